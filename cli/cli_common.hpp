@@ -1,0 +1,46 @@
+// What every crtforge subcommand shares: global options, loading the template library, printing
+// diagnostics as one line, and the exit-code convention (0 ok, 1 validation failure, 2 bad input).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "crtforge/crtforge.hpp"
+
+namespace crtforge::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitValidation = 1;
+inline constexpr int kExitUsage = 2;
+
+struct GlobalOptions {
+    std::string templates;   // --templates
+    std::string cache_dir;   // --cache-dir
+    bool no_cache = false;   // --no-cache
+};
+
+// Prints "crtforge: <diagnostic>" to stderr and returns the matching exit code.
+int report(const Diagnostic& d);
+
+// Loads the library named by --templates (or the default); nullptr after reporting on failure.
+std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_code);
+Cache make_cache(const GlobalOptions& g);
+
+// Shared variant options (--uniforms, --precision) for generate/export/assemble.
+struct VariantFlags {
+    std::string uniforms = "default";
+    std::string precision = "high";
+    void add_to(CLI::App& cmd);
+    Result<VariantOptions> parse() const;
+};
+
+// Each subcommand registers itself and returns the function to run when it was chosen.
+using Runner = std::function<int()>;
+Runner add_list_command(CLI::App& app, const GlobalOptions& g);
+Runner add_generate_command(CLI::App& app, const GlobalOptions& g);
+Runner add_assemble_command(CLI::App& app, const GlobalOptions& g);
+Runner add_export_command(CLI::App& app, const GlobalOptions& g);
+
+}  // namespace crtforge::cli

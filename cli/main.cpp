@@ -1,0 +1,82 @@
+// crtforge: a thin command line over the crtforge library.
+#include <cstdio>
+#include <iostream>
+
+#include "cli/cli_common.hpp"
+
+namespace crtforge::cli {
+
+int report(const Diagnostic& d) {
+    std::fprintf(stderr, "crtforge: %s\n", d.str().c_str());
+    return d.kind == ErrorKind::Validation ? kExitValidation : kExitUsage;
+}
+
+std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_code) {
+    auto lib = TemplateLibrary::load(g.templates.empty() ? TemplateLibrary::default_dir() : g.templates);
+    if (!lib.ok()) {
+        exit_code = report(lib.error());
+        return nullptr;
+    }
+    return lib.value();
+}
+
+Cache make_cache(const GlobalOptions& g) {
+    if (g.no_cache) return Cache();
+    return Cache(g.cache_dir.empty() ? Cache::default_dir() : g.cache_dir);
+}
+
+void VariantFlags::add_to(CLI::App& cmd) {
+    cmd.add_option("--uniforms", uniforms,
+                   "Which params stay runtime uniforms: default (the spec's runtime params), all, none, or NAME,NAME,...")
+        ->capture_default_str();
+    cmd.add_option("--precision", precision, "Float precision of the variant: high or medium")
+        ->check(CLI::IsMember({"high", "medium"}))
+        ->capture_default_str();
+}
+
+Result<VariantOptions> VariantFlags::parse() const {
+    VariantOptions options;
+    auto sel = UniformSelection::parse(uniforms);
+    if (!sel.ok()) return sel.error();
+    options.uniforms = sel.value();
+    options.precision = precision == "medium" ? Precision::Medium : Precision::High;
+    return options;
+}
+
+}  // namespace crtforge::cli
+
+int main(int argc, char** argv) {
+    using namespace crtforge::cli;
+    CLI::App app{"crtforge: generate, cross-compile and export CRT shader variants"};
+    app.set_version_flag("--version", std::string("crtforge ") + CRTFORGE_VERSION);
+    app.require_subcommand(1);
+    GlobalOptions g;
+    app.add_option("--templates", g.templates, "Template directory (stages/, presets/); default: the shipped templates");
+    app.add_option("--cache-dir", g.cache_dir, "Compile cache directory; default: $CRTFORGE_CACHE or ~/.cache/crtforge");
+    app.add_flag("--no-cache", g.no_cache, "Compile everything afresh and store nothing");
+
+    std::vector<std::pair<CLI::App*, Runner>> commands;
+    auto track = [&](Runner r) { commands.emplace_back(app.get_subcommands({}).back(), std::move(r)); };
+    track(add_list_command(app, g));
+    track(add_generate_command(app, g));
+    track(add_assemble_command(app, g));
+    track(add_export_command(app, g));
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::string msg = e.what();
+        for (char& c : msg) if (c == '\n') c = ' ';
+        std::fprintf(stderr, "crtforge: error: %s (see 'crtforge --help')\n", msg.c_str());
+        return kExitUsage;
+    }
+    for (auto& [cmd, run] : commands)
+        if (cmd->parsed()) return run();
+    return kExitUsage;
+}

@@ -1,0 +1,129 @@
+// Variant -> GLSL 450 source for glslang.
+#include "crtforge/assembler.hpp"
+
+#include <fmt/format.h>
+
+namespace crtforge {
+
+namespace {
+
+// One line of doc for a declaration comment; never lets a newline through.
+std::string one_line(const std::string& text) {
+    std::string out;
+    for (char c : text) out += (c == '\n' || c == '\r') ? ' ' : c;
+    return out;
+}
+
+std::string line_directive(int line, const std::string& file) {
+    return fmt::format("#line {} \"{}\"\n", line, file);
+}
+
+const char* builtin_comment(Builtin b) {
+    switch (b) {
+        case Builtin::OutputSize: return "output size in pixels";
+        case Builtin::SourceSize: return "source texture size in texels";
+        case Builtin::Time: return "seconds since start";
+    }
+    return "";
+}
+
+std::string declarations(const Variant& variant) {
+    std::string out;
+    out += fmt::format("layout(location = 0) in vec2 {};\n", kTexCoordName);
+    out += "layout(location = 0) out vec4 fragColor;\n";
+    out += fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};\n", kDescriptorSet,
+                       kTextureBinding, kSourceTextureName);
+    if (variant.has_uniform_block()) {
+        out += fmt::format("\nlayout(std140, set = {}, binding = {}) uniform {} {{\n", kDescriptorSet,
+                           kUniformBinding, kUniformBlockName);
+        for (Builtin b : variant.builtins) {
+            const char* type = b == Builtin::Time ? "float" : "vec2";
+            out += fmt::format("    {} {};  // builtin: {}\n", type, builtin_name(b), builtin_comment(b));
+        }
+        for (const VariantParam* p : variant.uniforms()) {
+            std::string range;
+            if (p->spec->min) range = fmt::format(" [{}, {}]", *p->spec->min, *p->spec->max);
+            out += fmt::format("    {} {};  // {}{} {}\n", glsl_type_for(p->spec->type), p->spec->name,
+                               p->stage->name, range, one_line(p->spec->doc));
+        }
+        out += "};\n";
+    }
+    auto baked = variant.baked();
+    if (!baked.empty()) {
+        out += "\n// Fixed by the preset: compile-time constants, folded away by the optimiser.\n";
+        for (const VariantParam* p : baked) {
+            int index = p->spec->type == ParamType::Enum
+                            ? p->spec->enum_index(std::get<std::string>(p->value)) : -1;
+            std::string note = p->spec->type == ParamType::Enum ? "  // " + std::get<std::string>(p->value) : "";
+            out += fmt::format("const {} {} = {};{}\n", glsl_type_for(p->spec->type), p->spec->name,
+                               value_to_glsl(p->value, p->spec->type, index), note);
+        }
+    }
+    return out;
+}
+
+// The fixed pass order: warp, sample position, fetch, colour stages, finish.
+std::string main_body(const Variant& variant) {
+    const Preset& preset = *variant.preset;
+    std::string out = "void main() {\n";
+    if (preset.stages.empty()) {
+        out += fmt::format("    fragColor = texture({}, {});  // CRT off: plain passthrough blit\n",
+                           kSourceTextureName, kTexCoordName);
+        return out + "}\n";
+    }
+    auto calls = [&](Hook hook, const std::string& pattern) {
+        std::string text;
+        for (const ResolvedStage& rs : preset.stages) {
+            const std::string& fn = rs.form->functions[static_cast<int>(hook)];
+            if (fn.empty()) continue;
+            text += "    " + fmt::format(fmt::runtime(pattern), fn) +
+                    fmt::format("  // {} ({})\n", rs.stage->name, rs.form->name);
+        }
+        return text;
+    };
+    out += "    CrtFrag frag;\n";
+    out += fmt::format("    frag.screenUv = {};\n", kTexCoordName);
+    out += fmt::format("    frag.pixel = {} * outputSize;\n", kTexCoordName);
+    out += fmt::format("    frag.uv = {};\n", kTexCoordName);
+    out += calls(Hook::Warp, "frag.uv = {}(frag.uv);");
+    out += "    frag.centered = frag.uv * 2.0 - 1.0;\n";
+    out += "    vec2 sampleUv = frag.uv;\n";
+    out += calls(Hook::SampleUv, "sampleUv = {}(sampleUv, frag);");
+    out += fmt::format("    vec3 color = texture({}, sampleUv).rgb;\n", kSourceTextureName);
+    out += calls(Hook::Fetch, "color = {}(color, sampleUv);");
+    out += calls(Hook::Color, "color = {}(color, frag);");
+    out += calls(Hook::Finish, "color = {}(color, frag);");
+    out += "    fragColor = vec4(color, 1.0);\n";
+    return out + "}\n";
+}
+
+}  // namespace
+
+AssembledShader assemble(const TemplateLibrary& library, const Variant& variant) {
+    const Preset& preset = *variant.preset;
+    std::string src;
+    src += "#version 450\n";
+    src += "#extension GL_GOOGLE_cpp_style_line_directive : require\n";
+    std::string lineage;
+    for (const auto& n : preset.lineage) lineage += (lineage.empty() ? "" : " <- ") + n;
+    src += fmt::format("// crtforge: preset {} ({}), precision {}, uniforms {}\n", preset.name, lineage,
+                       precision_name(variant.options.precision), variant.options.uniforms.str());
+    if (variant.options.precision == Precision::Medium) src += "precision mediump float;\n";
+    for (const ResolvedStage& rs : preset.stages)
+        src += fmt::format("#define CRT_FORM_{}_{} 1\n", rs.stage->name, rs.form->name);
+    src += declarations(variant);
+
+    if (!preset.stages.empty()) {
+        src += "\n" + line_directive(1, library.prelude_path()) + library.prelude_source();
+        for (const ResolvedStage& rs : preset.stages)
+            src += "\n" + line_directive(1, rs.stage->glsl_path) + rs.stage->glsl_source;
+    }
+    src += "\n" + line_directive(1, "<generated main for preset " + preset.name + ">") + main_body(variant);
+
+    AssembledShader out;
+    out.fragment = std::move(src);
+    out.vertex = library.vertex_source();
+    return out;
+}
+
+}  // namespace crtforge

@@ -1,0 +1,28 @@
+// manifest.json: for each preset and target, the files, the uniform layout (from SPIR-V
+// reflection) and the baked values — enough for a host to bind and fill everything.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "crtforge/exporter.hpp"
+
+namespace crtforge::detail {
+
+struct ManifestTargetEntry {
+    TargetId target;
+    std::map<std::string, std::string> files;  // "vertex"/"fragment" -> relative path
+    std::vector<std::pair<std::string, std::string>> bindings;
+};
+
+nlohmann::ordered_json value_to_json(const Value& value);
+
+// The preset-level part (stages, baked values, uniform block, textures).
+nlohmann::ordered_json preset_manifest(const CompiledVariant& compiled);
+
+nlohmann::ordered_json target_manifest(const ManifestTargetEntry& entry);
+
+}  // namespace crtforge::detail

@@ -1,0 +1,172 @@
+// glslang (in-process) -> SPIR-V -> SPIRV-Tools optimise + validate.
+#include "crtforge/spirv_compiler.hpp"
+
+#include <mutex>
+#include <regex>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <glslang/build_info.h>
+#include <spirv-tools/libspirv.hpp>
+#include <spirv-tools/optimizer.hpp>
+
+namespace crtforge {
+
+const char* shader_stage_name(ShaderStage stage) {
+    return stage == ShaderStage::Vertex ? "vert" : "frag";
+}
+
+namespace {
+
+void ensure_glslang_initialized() {
+    static std::once_flag once;
+    std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+EShLanguage to_glslang(ShaderStage stage) {
+    return stage == ShaderStage::Vertex ? EShLangVertex : EShLangFragment;
+}
+
+// glslang logs look like "ERROR: templates/stages/x.glsl:12: 'foo' : undeclared identifier";
+// without #line the file part is the string index ("0"). Turn the first error into a Diagnostic.
+Diagnostic diagnostic_from_log(const std::string& log, const std::string& fallback_file,
+                               const std::string& stage_label) {
+    static const std::regex located(R"(^(?:ERROR|WARNING): (.+?):(\d+): (.*)$)");
+    std::istringstream lines(log);
+    std::string line;
+    while (std::getline(lines, line)) {
+        if (line.rfind("ERROR: ", 0) != 0) continue;
+        std::smatch m;
+        if (std::regex_match(line, m, located)) {
+            std::string file = m[1].str();
+            if (file == "0" || file.empty()) file = fallback_file;
+            return make_error(stage_label + ": " + m[3].str(), file, std::stoi(m[2].str()));
+        }
+        return make_error(stage_label + ": " + line.substr(7), fallback_file);
+    }
+    return make_error(stage_label + ": compilation failed: " + log, fallback_file);
+}
+
+std::string join_messages(const std::vector<std::string>& messages) {
+    std::string out;
+    for (const auto& m : messages) out += (out.empty() ? "" : "; ") + m;
+    return out;
+}
+
+// Parses (and for SPIR-V output, links) one shader. Returns the program for SPIR-V generation.
+struct Parsed {
+    std::unique_ptr<glslang::TShader> shader;
+    std::unique_ptr<glslang::TProgram> program;
+};
+
+Result<std::shared_ptr<Parsed>> parse_shader(const std::string& source, ShaderStage stage,
+                                             SourceLanguage language, bool vulkan, int version,
+                                             bool es, const std::string& entry_point,
+                                             const std::string& name) {
+    ensure_glslang_initialized();
+    auto parsed = std::make_shared<Parsed>();
+    parsed->shader = std::make_unique<glslang::TShader>(to_glslang(stage));
+    glslang::TShader& shader = *parsed->shader;
+    const char* text = source.c_str();
+    const char* names[] = {name.c_str()};
+    shader.setStringsWithLengthsAndNames(&text, nullptr, names, 1);
+    shader.setEntryPoint(entry_point.c_str());
+    shader.setSourceEntryPoint(entry_point.c_str());
+    auto messages = static_cast<EShMessages>(EShMsgDefault);
+    if (vulkan) {
+        shader.setEnvInput(language == SourceLanguage::Hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl,
+                           to_glslang(stage), glslang::EShClientVulkan, 100);
+        shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+        shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+        messages = static_cast<EShMessages>(messages | EShMsgSpvRules | EShMsgVulkanRules);
+    }
+    if (language == SourceLanguage::Hlsl) messages = static_cast<EShMessages>(messages | EShMsgReadHlsl);
+    const std::string label = fmt::format("{} shader", shader_stage_name(stage));
+    if (!shader.parse(GetDefaultResources(), version, es ? EEsProfile : ECoreProfile, false, false, messages))
+        return diagnostic_from_log(shader.getInfoLog(), name, label);
+    parsed->program = std::make_unique<glslang::TProgram>();
+    parsed->program->addShader(&shader);
+    if (!parsed->program->link(messages))
+        return diagnostic_from_log(parsed->program->getInfoLog(), name, label + " (link)");
+    return parsed;
+}
+
+}  // namespace
+
+Status validate_spirv(const SpirvBinary& binary) {
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    std::vector<std::string> messages;
+    tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& pos, const char* msg) {
+        messages.push_back(fmt::format("word {}: {}", pos.index, msg));
+    });
+    if (!tools.Validate(binary)) return make_validation_error("spirv-val: " + join_messages(messages));
+    return Ok{};
+}
+
+std::string disassemble_spirv(const SpirvBinary& binary) {
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    std::string text;
+    tools.Disassemble(binary, &text, SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES);
+    return text;
+}
+
+Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOptions& options) {
+    const std::string name = options.source_name.empty() ? std::string("<source>") : options.source_name;
+    auto parsed = parse_shader(source, options.stage, options.language, true,
+                               options.language == SourceLanguage::Hlsl ? 100 : 450, false,
+                               options.entry_point, name);
+    if (!parsed.ok()) return parsed.error();
+
+    SpirvBinary spirv;
+    spv::SpvBuildLogger logger;
+    glslang::SpvOptions spv_options;
+    spv_options.disableOptimizer = true;  // SPIRV-Tools does it below, with our pass list
+    glslang::GlslangToSpv(*parsed.value()->program->getIntermediate(to_glslang(options.stage)), spirv,
+                          &logger, &spv_options);
+    if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
+
+    if (options.optimize) {
+        spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_0);
+        std::vector<std::string> messages;
+        optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* msg) {
+            if (level <= SPV_MSG_ERROR) messages.push_back(msg);
+        });
+        optimizer.RegisterPerformancePasses();
+        SpirvBinary optimized;
+        if (!optimizer.Run(spirv.data(), spirv.size(), &optimized))
+            return make_validation_error("spirv-opt failed: " + join_messages(messages), name);
+        spirv = std::move(optimized);
+    }
+    if (auto valid = validate_spirv(spirv); !valid.ok())
+        return make_validation_error(valid.error().message + " (the generator produced invalid SPIR-V)", name);
+    return spirv;
+}
+
+Status check_glsl(const std::string& source, ShaderStage stage, int version, bool es) {
+    auto parsed = parse_shader(source, stage, SourceLanguage::Glsl, false, version, es, "main",
+                               fmt::format("<glsl {}{}>", version, es ? " es" : ""));
+    if (!parsed.ok()) return parsed.error();
+    return Ok{};
+}
+
+Status check_hlsl(const std::string& source, ShaderStage stage, const std::string& entry_point) {
+    CompileOptions options;
+    options.stage = stage;
+    options.language = SourceLanguage::Hlsl;
+    options.optimize = false;
+    options.entry_point = entry_point;
+    options.source_name = "<hlsl>";
+    auto spirv = compile_to_spirv(source, options);
+    if (!spirv.ok()) return spirv.error();
+    return Ok{};
+}
+
+std::string compiler_versions() {
+    return fmt::format("crtforge {}; glslang {}.{}.{}; {}", CRTFORGE_VERSION, GLSLANG_VERSION_MAJOR,
+                       GLSLANG_VERSION_MINOR, GLSLANG_VERSION_PATCH, spvSoftwareVersionString());
+}
+
+}  // namespace crtforge

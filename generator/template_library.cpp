@@ -1,0 +1,146 @@
+// Loads the whole templates/ directory and cross-checks it (unique param names, pass order).
+#include "crtforge/template_library.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include "generator/file_io.hpp"
+
+namespace crtforge {
+
+using detail::file_stem;
+using detail::list_files;
+using detail::read_text_file;
+
+namespace {
+
+// Names the generated code itself declares; a param may not shadow them.
+const std::set<std::string>& reserved_names() {
+    static const std::set<std::string> names = {
+        "main", "source", "fragColor", "vTexCoord", "crt", "CrtParams", "CrtFrag", "color", "frag",
+        "inside", "sampleUv", "outputSize", "sourceSize", "time", "PI", "TAU"};
+    return names;
+}
+
+}  // namespace
+
+std::string TemplateLibrary::default_dir() {
+    if (const char* env = std::getenv("CRTFORGE_TEMPLATES"); env && *env) return env;
+    return CRTFORGE_DEFAULT_TEMPLATE_DIR;
+}
+
+const StageSpec* TemplateLibrary::find_stage(const std::string& name) const {
+    for (const auto& s : stages_)
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+const Preset* TemplateLibrary::find_preset(const std::string& name) const {
+    for (const auto& p : presets_)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+const ParamSpec* TemplateLibrary::find_param(const std::string& name, const StageSpec** owner) const {
+    for (const auto& s : stages_) {
+        if (const ParamSpec* p = s.find_param(name)) {
+            if (owner) *owner = &s;
+            return p;
+        }
+    }
+    return nullptr;
+}
+
+namespace {
+
+// Paths in diagnostics and #line directives: relative to the working directory when the templates
+// sit below it (short, readable), absolute otherwise.
+std::string display_dir(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::path p(dir);
+    if (!p.is_absolute()) return dir;
+    fs::path rel = fs::relative(p, fs::current_path(ec), ec);
+    if (ec || rel.empty() || *rel.begin() == "..") return dir;
+    return rel.string();
+}
+
+}  // namespace
+
+Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string& dir_arg) {
+    const std::string dir = display_dir(dir_arg);
+    auto lib = std::make_shared<TemplateLibrary>();
+    lib->dir_ = dir;
+
+    lib->prelude_path_ = dir + "/prelude.glsl";
+    auto prelude = read_text_file(lib->prelude_path_);
+    if (!prelude.ok()) return prelude.error();
+    lib->prelude_ = prelude.value();
+    lib->vertex_path_ = dir + "/fullscreen.vert";
+    auto vertex = read_text_file(lib->vertex_path_);
+    if (!vertex.ok()) return vertex.error();
+    lib->vertex_ = vertex.value();
+
+    auto spec_files = list_files(dir + "/stages", ".toml");
+    if (!spec_files.ok()) return spec_files.error();
+    if (spec_files.value().empty()) return make_error("no stage specs (*.toml) found", dir + "/stages");
+    std::map<std::string, std::string> param_owner;  // param -> "file:line" of first declaration
+    for (const auto& path : spec_files.value()) {
+        auto text = read_text_file(path);
+        if (!text.ok()) return text.error();
+        auto spec = parse_stage_spec(text.value(), path);
+        if (!spec.ok()) return spec.error();
+        StageSpec& s = spec.value();
+        if (s.name != file_stem(path))
+            return make_error("stage name '" + s.name + "' must match the file name '" + file_stem(path) + "'", path, 1, "name");
+        for (const auto& other : lib->stages_)
+            if (other.order == s.order)
+                return make_error("order " + std::to_string(s.order) + " is already used by stage '" + other.name +
+                                  "' (the pass order must be unambiguous)", path, 1, "order");
+        for (const auto& p : s.params) {
+            if (reserved_names().count(p.name))
+                return make_error("'" + p.name + "' is reserved by the generated code", path, p.where.line, "param." + p.name);
+            auto [it, fresh] = param_owner.emplace(p.name, p.where.file + ":" + std::to_string(p.where.line));
+            if (!fresh)
+                return make_error("param names are global (they become uniform names); already declared at " + it->second,
+                                  path, p.where.line, "param." + p.name);
+        }
+        s.glsl_path = dir + "/stages/" + s.name + ".glsl";
+        auto glsl = read_text_file(s.glsl_path);
+        if (!glsl.ok()) return glsl.error();
+        s.glsl_source = glsl.value();
+        for (const auto& f : s.forms)
+            for (const auto& fn : f.functions)
+                if (!fn.empty() && s.glsl_source.find(fn) == std::string::npos)
+                    return make_error("function '" + fn + "' is not defined in " + s.glsl_path, path, f.where.line, "form." + f.name);
+        lib->stages_.push_back(std::move(s));
+    }
+    std::sort(lib->stages_.begin(), lib->stages_.end(),
+              [](const StageSpec& a, const StageSpec& b) { return a.order < b.order; });
+
+    auto preset_files = list_files(dir + "/presets", ".toml");
+    if (!preset_files.ok()) return preset_files.error();
+    std::vector<PresetFile> files;
+    for (const auto& path : preset_files.value()) {
+        auto text = read_text_file(path);
+        if (!text.ok()) return text.error();
+        auto file = parse_preset_file(text.value(), path, lib.get());
+        if (!file.ok()) return file.error();
+        if (file.value().name != file_stem(path))
+            return make_error("preset name '" + file.value().name + "' must match the file name '" + file_stem(path) + "'",
+                              path, 1, "name");
+        files.push_back(std::move(file.value()));
+    }
+    for (const auto& f : files) {
+        auto preset = lib->resolve(files, f.name);
+        if (!preset.ok()) return preset.error();
+        lib->presets_.push_back(std::move(preset.value()));
+    }
+    std::sort(lib->presets_.begin(), lib->presets_.end(),
+              [](const Preset& a, const Preset& b) { return a.name < b.name; });
+    return lib;
+}
+
+}  // namespace crtforge

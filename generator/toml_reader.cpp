@@ -1,0 +1,176 @@
+#include "generator/toml_reader.hpp"
+
+#include <cctype>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace crtforge::detail {
+
+std::string join_field(const std::string& prefix, const std::string& key) {
+    return prefix.empty() ? key : prefix + "." + key;
+}
+
+bool is_identifier(const std::string& name) {
+    if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+        return false;
+    for (char c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+    // Names starting with gl_ or containing "__" are reserved in GLSL.
+    return name.rfind("gl_", 0) != 0 && name.find("__") == std::string::npos;
+}
+
+Result<toml::table> TomlReader::parse(const std::string& text) const {
+    try {
+        return toml::parse(text, path_);
+    } catch (const toml::parse_error& e) {
+        return make_error(std::string(e.description()), path_,
+                          static_cast<int>(e.source().begin.line), {},
+                          static_cast<int>(e.source().begin.column));
+    }
+}
+
+Result<std::string> TomlReader::string(const toml::table& owner, const std::string& key,
+                                       const std::string& prefix, bool required) const {
+    const toml::node* node = owner.get(key);
+    if (!node) {
+        if (required) return error(&owner, join_field(prefix, key), "is required but missing");
+        return std::string{};
+    }
+    if (!node->is_string()) return error(node, join_field(prefix, key), "must be a string");
+    return std::string(node->as_string()->get());
+}
+
+Result<std::optional<int64_t>> TomlReader::integer(const toml::table& owner, const std::string& key,
+                                                   const std::string& prefix) const {
+    const toml::node* node = owner.get(key);
+    if (!node) return std::optional<int64_t>{};
+    if (!node->is_integer()) return error(node, join_field(prefix, key), "must be an integer");
+    return std::optional<int64_t>{node->as_integer()->get()};
+}
+
+Result<std::optional<bool>> TomlReader::boolean(const toml::table& owner, const std::string& key,
+                                                const std::string& prefix) const {
+    const toml::node* node = owner.get(key);
+    if (!node) return std::optional<bool>{};
+    if (!node->is_boolean()) return error(node, join_field(prefix, key), "must be true or false");
+    return std::optional<bool>{node->as_boolean()->get()};
+}
+
+Result<std::vector<std::string>> TomlReader::strings(const toml::table& owner, const std::string& key,
+                                                     const std::string& prefix) const {
+    std::vector<std::string> out;
+    const toml::node* node = owner.get(key);
+    if (!node) return out;
+    const toml::array* array = node->as_array();
+    if (!array) return error(node, join_field(prefix, key), "must be an array of strings");
+    for (const toml::node& item : *array) {
+        if (!item.is_string())
+            return error(&item, join_field(prefix, key), "must be an array of strings");
+        out.emplace_back(item.as_string()->get());
+    }
+    return out;
+}
+
+Status TomlReader::only_keys(const toml::table& table, std::initializer_list<const char*> allowed,
+                             const std::string& prefix) const {
+    for (const auto& [key, node] : table) {
+        bool known = false;
+        for (const char* a : allowed) known = known || key.str() == a;
+        if (!known) {
+            std::string list;
+            for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+            return error(&node, join_field(prefix, std::string(key.str())),
+                         "unknown key (expected one of: " + list + ")");
+        }
+    }
+    return Ok{};
+}
+
+namespace {
+
+// "#rrggbb" or [r, g, b] with components in 0..1.
+bool read_color(const toml::node& node, Color& out) {
+    if (const auto* s = node.as_string()) {
+        const std::string& text = s->get();
+        if (text.size() != 7 || text[0] != '#') return false;
+        for (int i = 0; i < 3; ++i) {
+            unsigned v = 0;
+            for (int k = 0; k < 2; ++k) {
+                char c = static_cast<char>(std::tolower(static_cast<unsigned char>(text[1 + 2 * i + k])));
+                if (!std::isxdigit(static_cast<unsigned char>(c))) return false;
+                v = v * 16 + static_cast<unsigned>(std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : c - 'a' + 10);
+            }
+            out[i] = v / 255.0;
+        }
+        return true;
+    }
+    if (const auto* a = node.as_array()) {
+        if (a->size() != 3) return false;
+        for (size_t i = 0; i < 3; ++i) {
+            const toml::node& c = *a->get(i);
+            if (c.is_floating_point()) out[i] = c.as_floating_point()->get();
+            else if (c.is_integer()) out[i] = static_cast<double>(c.as_integer()->get());
+            else return false;
+            if (!(out[i] >= 0.0 && out[i] <= 1.0)) return false;
+        }
+        return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+Result<Value> TomlReader::typed_value(const toml::node& node, ParamType type,
+                                      const std::vector<std::string>& enum_values,
+                                      const std::string& field) const {
+    switch (type) {
+        case ParamType::Float:
+            if (node.is_floating_point()) {
+                double v = node.as_floating_point()->get();
+                if (!std::isfinite(v)) return error(&node, field, "must be a finite number");
+                return Value{v};
+            }
+            if (node.is_integer()) return Value{static_cast<double>(node.as_integer()->get())};
+            return error(&node, field, "must be a number (float param)");
+        case ParamType::Int:
+            if (node.is_integer()) return Value{node.as_integer()->get()};
+            return error(&node, field, "must be an integer (int param)");
+        case ParamType::Bool:
+            if (node.is_boolean()) return Value{node.as_boolean()->get()};
+            return error(&node, field, "must be true or false (bool param)");
+        case ParamType::Enum: {
+            if (!node.is_string()) return error(&node, field, "must be a string (enum param)");
+            std::string v(node.as_string()->get());
+            for (const auto& e : enum_values)
+                if (e == v) return Value{v};
+            std::string list;
+            for (const auto& e : enum_values) list += (list.empty() ? "" : ", ") + e;
+            return error(&node, field, "'" + v + "' is not one of: " + list);
+        }
+        case ParamType::Color: {
+            Color c{};
+            if (read_color(node, c)) return Value{c};
+            return error(&node, field, "must be a colour: \"#rrggbb\" or [r, g, b] with 0..1 components");
+        }
+    }
+    return error(&node, field, "unsupported type");
+}
+
+Result<Value> TomlReader::param_value(const toml::node& node, const ParamSpec& spec,
+                                      const std::string& field) const {
+    auto value = typed_value(node, spec.type, spec.enum_values, field);
+    if (!value.ok()) return value;
+    double v = 0;
+    if (auto d = std::get_if<double>(&value.value())) v = *d;
+    else if (auto i = std::get_if<int64_t>(&value.value())) v = static_cast<double>(*i);
+    else return value;
+    if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max))
+        return error(&node, field,
+                     fmt::format("{} is outside the range [{}, {}] declared at {}:{}",
+                                 value_to_string(value.value()), spec.min.value_or(-INFINITY),
+                                 spec.max.value_or(INFINITY), spec.where.file, spec.where.line));
+    return value;
+}
+
+}  // namespace crtforge::detail

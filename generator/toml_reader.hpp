@@ -1,0 +1,63 @@
+// Small helpers over toml++ that turn "wrong or missing field" into a Diagnostic naming the file,
+// line and field. Shared by the stage-spec and preset parsers.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/spec.hpp"
+
+namespace crtforge::detail {
+
+class TomlReader {
+public:
+    explicit TomlReader(std::string path) : path_(std::move(path)) {}
+
+    // Parses text; a syntax error becomes a diagnostic at the parser's position.
+    Result<toml::table> parse(const std::string& text) const;
+
+    const std::string& path() const { return path_; }
+    int line_of(const toml::node& node) const {
+        return static_cast<int>(node.source().begin.line);
+    }
+    Diagnostic error(const toml::node* node, const std::string& field, const std::string& message) const {
+        return make_error(message, path_, node ? line_of(*node) : 0, field,
+                          node ? static_cast<int>(node->source().begin.column) : 0);
+    }
+
+    // Required/optional typed fields of a table. `owner` is the table (for the line number when
+    // the field is missing), `prefix` the dotted path of that table.
+    Result<std::string> string(const toml::table& owner, const std::string& key,
+                               const std::string& prefix, bool required) const;
+    Result<std::optional<int64_t>> integer(const toml::table& owner, const std::string& key,
+                                           const std::string& prefix) const;
+    Result<std::optional<bool>> boolean(const toml::table& owner, const std::string& key,
+                                        const std::string& prefix) const;
+    // An array of strings; missing = empty.
+    Result<std::vector<std::string>> strings(const toml::table& owner, const std::string& key,
+                                             const std::string& prefix) const;
+
+    // Rejects keys not in `allowed` (typos should not be silently ignored).
+    Status only_keys(const toml::table& table, std::initializer_list<const char*> allowed,
+                     const std::string& prefix) const;
+
+    // A value for a param of the given spec (type, range, enum values), from any TOML node.
+    Result<Value> param_value(const toml::node& node, const ParamSpec& spec,
+                              const std::string& field) const;
+    // The same but the type comes from `type` and no range check (used while reading the spec
+    // itself, before min/max are known).
+    Result<Value> typed_value(const toml::node& node, ParamType type,
+                              const std::vector<std::string>& enum_values,
+                              const std::string& field) const;
+
+private:
+    std::string path_;
+};
+
+std::string join_field(const std::string& prefix, const std::string& key);
+bool is_identifier(const std::string& name);
+
+}  // namespace crtforge::detail

@@ -1,0 +1,92 @@
+#include "crtforge/value.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+namespace crtforge {
+
+const char* param_type_name(ParamType type) {
+    switch (type) {
+        case ParamType::Float: return "float";
+        case ParamType::Int: return "int";
+        case ParamType::Bool: return "bool";
+        case ParamType::Enum: return "enum";
+        case ParamType::Color: return "color";
+    }
+    return "?";
+}
+
+bool parse_param_type(const std::string& text, ParamType& out) {
+    for (ParamType t : {ParamType::Float, ParamType::Int, ParamType::Bool, ParamType::Enum,
+                        ParamType::Color}) {
+        if (text == param_type_name(t)) {
+            out = t;
+            return true;
+        }
+    }
+    return false;
+}
+
+bool value_matches(const Value& value, ParamType type) {
+    switch (type) {
+        case ParamType::Float: return std::holds_alternative<double>(value);
+        case ParamType::Int: return std::holds_alternative<int64_t>(value);
+        case ParamType::Bool: return std::holds_alternative<bool>(value);
+        case ParamType::Enum: return std::holds_alternative<std::string>(value);
+        case ParamType::Color: return std::holds_alternative<Color>(value);
+    }
+    return false;
+}
+
+namespace {
+
+// Shortest text that reads back as the same double, always with a decimal point or exponent so
+// GLSL parses it as a float literal.
+std::string float_literal(double v) {
+    std::string s = fmt::format("{}", v);
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+    return s;
+}
+
+}  // namespace
+
+std::string value_to_string(const Value& value) {
+    if (auto d = std::get_if<double>(&value)) return float_literal(*d);
+    if (auto i = std::get_if<int64_t>(&value)) return std::to_string(*i);
+    if (auto b = std::get_if<bool>(&value)) return *b ? "true" : "false";
+    if (auto s = std::get_if<std::string>(&value)) return "\"" + *s + "\"";
+    const Color& c = std::get<Color>(value);
+    auto byte = [](double x) { return static_cast<int>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); };
+    return fmt::format("#{:02x}{:02x}{:02x}", byte(c[0]), byte(c[1]), byte(c[2]));
+}
+
+std::string value_to_glsl(const Value& value, ParamType type, int enum_index) {
+    switch (type) {
+        case ParamType::Float: return float_literal(std::get<double>(value));
+        case ParamType::Int: return std::to_string(std::get<int64_t>(value));
+        case ParamType::Bool: return std::get<bool>(value) ? "true" : "false";
+        case ParamType::Enum: return std::to_string(enum_index);
+        case ParamType::Color: {
+            const Color& c = std::get<Color>(value);
+            return fmt::format("vec3({}, {}, {})", float_literal(c[0]), float_literal(c[1]),
+                               float_literal(c[2]));
+        }
+    }
+    return "0";
+}
+
+const char* glsl_type_for(ParamType type) {
+    switch (type) {
+        case ParamType::Float: return "float";
+        case ParamType::Int: return "int";
+        case ParamType::Bool: return "bool";
+        case ParamType::Enum: return "int";
+        case ParamType::Color: return "vec3";
+    }
+    return "float";
+}
+
+}  // namespace crtforge

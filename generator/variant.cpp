@@ -1,0 +1,116 @@
+// Splits a preset's params into baked constants and runtime uniforms.
+#include "crtforge/variant.hpp"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+namespace crtforge {
+
+const char* precision_name(Precision precision) {
+    return precision == Precision::High ? "high" : "medium";
+}
+
+Result<UniformSelection> UniformSelection::parse(const std::string& text) {
+    UniformSelection sel;
+    if (text.empty() || text == "default") return sel;
+    if (text == "all") { sel.mode = Mode::All; return sel; }
+    if (text == "none") { sel.mode = Mode::None; return sel; }
+    sel.mode = Mode::Names;
+    std::stringstream ss(text);
+    std::string name;
+    while (std::getline(ss, name, ',')) {
+        if (name.empty()) return make_error("empty name in the list '" + text + "'", {}, 0, "--uniforms");
+        sel.names.push_back(name);
+    }
+    return sel;
+}
+
+std::string UniformSelection::str() const {
+    switch (mode) {
+        case Mode::Default: return "default";
+        case Mode::All: return "all";
+        case Mode::None: return "none";
+        case Mode::Names: {
+            std::string out;
+            for (const auto& n : names) out += (out.empty() ? "" : ",") + n;
+            return out;
+        }
+    }
+    return "default";
+}
+
+bool Variant::has_uniform_block() const { return !builtins.empty() || !uniforms().empty(); }
+
+std::vector<const VariantParam*> Variant::uniforms() const {
+    std::vector<const VariantParam*> out;
+    for (const auto& p : params)
+        if (p.uniform) out.push_back(&p);
+    return out;
+}
+
+std::vector<const VariantParam*> Variant::baked() const {
+    std::vector<const VariantParam*> out;
+    for (const auto& p : params)
+        if (!p.uniform) out.push_back(&p);
+    return out;
+}
+
+Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
+                             const VariantOptions& options) {
+    Variant variant;
+    variant.preset = &preset;
+    variant.options = options;
+
+    std::set<std::string> used;
+    bool needs_time = false, needs_source_size = false;
+    for (const ResolvedStage& rs : preset.stages) {
+        // Params in declaration order of the spec, so layouts are stable and readable.
+        for (const ParamSpec& spec : rs.stage->params) {
+            auto v = rs.values.find(spec.name);
+            if (v == rs.values.end()) continue;
+            VariantParam vp;
+            vp.spec = &spec;
+            vp.stage = rs.stage;
+            vp.value = v->second;
+            using Mode = UniformSelection::Mode;
+            switch (options.uniforms.mode) {
+                case Mode::Default: vp.uniform = spec.runtime; break;
+                case Mode::All: vp.uniform = spec.runtime; break;
+                case Mode::None: vp.uniform = false; break;
+                case Mode::Names:
+                    vp.uniform = std::find(options.uniforms.names.begin(), options.uniforms.names.end(),
+                                           spec.name) != options.uniforms.names.end();
+                    break;
+            }
+            used.insert(spec.name);
+            variant.params.push_back(std::move(vp));
+        }
+        for (Builtin b : rs.form->builtins) {
+            needs_time = needs_time || b == Builtin::Time;
+            needs_source_size = needs_source_size || b == Builtin::SourceSize;
+        }
+    }
+
+    if (options.uniforms.mode == UniformSelection::Mode::Names) {
+        for (const auto& name : options.uniforms.names) {
+            const StageSpec* owner = nullptr;
+            const ParamSpec* spec = library.find_param(name, &owner);
+            if (!spec) return make_error("'" + name + "' is not a param of any stage", {}, 0, "--uniforms");
+            if (!spec->runtime)
+                return make_error("'" + name + "' cannot be a runtime uniform (runtime = false at " +
+                                  spec->where.file + ":" + std::to_string(spec->where.line) + ")", {}, 0, "--uniforms");
+            if (!used.count(name))
+                return make_error("'" + name + "' is not used by preset '" + preset.name +
+                                  "' (its stage is off or its form does not read it)", {}, 0, "--uniforms");
+        }
+    }
+
+    // outputSize is always present when any stage runs: the pixel grid every stage works on.
+    if (!preset.stages.empty()) variant.builtins.push_back(Builtin::OutputSize);
+    if (needs_source_size) variant.builtins.push_back(Builtin::SourceSize);
+    if (needs_time) variant.builtins.push_back(Builtin::Time);
+    return variant;
+}
+
+}  // namespace crtforge

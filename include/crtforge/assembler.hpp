@@ -1,0 +1,29 @@
+// Assembles a variant into GLSL 450 (Vulkan flavour) source: declarations for the uniform block and
+// baked constants, the prelude, the snippets of the enabled stages only (with #line directives
+// back to the template files), and a generated main() that calls the forms in pass order.
+#pragma once
+
+#include <string>
+
+#include "crtforge/template_library.hpp"
+#include "crtforge/variant.hpp"
+
+namespace crtforge {
+
+// Names shared by the generator, the targets and the manifest.
+inline constexpr const char* kUniformBlockName = "CrtParams";
+inline constexpr const char* kUniformInstanceName = "crt";
+inline constexpr const char* kSourceTextureName = "source";
+inline constexpr const char* kTexCoordName = "vTexCoord";
+inline constexpr int kUniformBinding = 0;
+inline constexpr int kTextureBinding = 1;
+inline constexpr int kDescriptorSet = 0;
+
+struct AssembledShader {
+    std::string fragment;  // GLSL 450 for glslang (uses GL_GOOGLE_cpp_style_line_directive)
+    std::string vertex;    // the full-screen triangle
+};
+
+AssembledShader assemble(const TemplateLibrary& library, const Variant& variant);
+
+}  // namespace crtforge

@@ -1,0 +1,35 @@
+// A content-addressed cache: blobs stored under a hash of everything that determines them, so an
+// unchanged variant is neither recompiled nor re-emitted. Writes are atomic (temp + rename);
+// an unreadable or truncated entry is treated as a miss.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace crtforge {
+
+class Cache {
+public:
+    // An empty dir disables the cache.
+    explicit Cache(std::string dir = {});
+    static std::string default_dir();  // $CRTFORGE_CACHE, else $XDG_CACHE_HOME/crtforge, else ~/.cache/crtforge
+
+    bool enabled() const { return !dir_.empty(); }
+    const std::string& dir() const { return dir_; }
+
+    // A stable 128-bit hex key of the given parts (order matters).
+    static std::string key(std::initializer_list<std::string_view> parts);
+
+    std::optional<std::string> get(const std::string& kind, const std::string& key) const;
+    void put(const std::string& kind, const std::string& key, std::string_view data) const;
+
+    unsigned hits() const { return hits_; }
+    unsigned misses() const { return misses_; }
+
+private:
+    std::string dir_;
+    mutable unsigned hits_ = 0, misses_ = 0;
+};
+
+}  // namespace crtforge

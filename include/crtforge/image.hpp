@@ -1,0 +1,57 @@
+// A floating-point RGBA image: what the render engine takes as input and hands back as output,
+// and what the comparison code and the CPU reference renderer work on.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace crtforge {
+
+// Row-major, row 0 is the TOP row, 4 floats per pixel (R, G, B, A). Values are linear (never
+// sRGB-encoded) and may exceed 1.0 or go below 0.0 (HDR intermediates), so nothing clamps them.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  // width * height * 4 floats
+
+    // A width x height image filled with `fill`. Sizes <= 0 give an empty image.
+    static Image make(int width, int height, std::array<float, 4> fill = {0.0f, 0.0f, 0.0f, 0.0f}) {
+        Image image;
+        if (width <= 0 || height <= 0) return image;
+        image.width = width;
+        image.height = height;
+        image.rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+        for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+            for (std::size_t c = 0; c < 4; ++c) image.rgba[i + c] = fill[c];
+        }
+        return image;
+    }
+
+    bool empty() const { return width <= 0 || height <= 0; }
+    std::size_t pixel_count() const {
+        return empty() ? 0 : static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    }
+    // True when the pixel buffer matches the declared size (a malformed Image is a caller bug the
+    // engine reports rather than reads past).
+    bool consistent() const { return rgba.size() == pixel_count() * 4; }
+
+    // Pointer to the 4 floats of pixel (x, y); no bounds check, like operator[].
+    float* at(int x, int y) { return rgba.data() + offset(x, y); }
+    const float* at(int x, int y) const { return rgba.data() + offset(x, y); }
+
+    std::array<float, 4> pixel(int x, int y) const {
+        const float* p = at(x, y);
+        return {p[0], p[1], p[2], p[3]};
+    }
+    void set_pixel(int x, int y, std::array<float, 4> value) {
+        float* p = at(x, y);
+        for (std::size_t c = 0; c < 4; ++c) p[c] = value[c];
+    }
+
+private:
+    std::size_t offset(int x, int y) const {
+        return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4;
+    }
+};
+
+}  // namespace crtforge

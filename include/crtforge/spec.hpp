@@ -1,0 +1,75 @@
+// The effect-spec model: stages, their formula variants ("forms") and their params.
+// Loaded from templates/stages/<stage>.toml; the GLSL lives beside it in <stage>.glsl.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "crtforge/value.hpp"
+
+namespace crtforge {
+
+struct SourceLocation {
+    std::string file;
+    int line = 0;
+};
+
+struct ParamSpec {
+    std::string name;                      // valid GLSL identifier, unique across all stages
+    ParamType type = ParamType::Float;
+    std::optional<double> min, max;        // float/int only
+    std::optional<double> step;            // optional UI step (Godot hint_range)
+    std::vector<std::string> enum_values;  // enum only
+    Value default_value;
+    std::string unit;                      // "px", "uv", "" ...
+    std::string doc;                       // one line
+    bool runtime = false;                  // may stay a runtime uniform (modulation candidate)
+    SourceLocation where;
+
+    int enum_index(const std::string& name) const;  // -1 if not a value of this enum
+};
+
+// The hooks of the fixed pass order in the generated main(): each form may provide one function
+// per hook. Order inside a hook follows StageSpec::order. Signatures:
+//   warp:      vec2 f(vec2 uv)                 — moves the texture coordinate (curvature)
+//   sample_uv: vec2 f(vec2 uv, CrtFrag frag)   — where the source is read (mask cell quantising)
+//   fetch:     vec3 f(vec3 color, vec2 uv)     — reads the source (aberration, bloom taps)
+//   color:     vec3 f(vec3 color, CrtFrag frag) — shapes the colour (scanlines, mask, vignette...)
+//   finish:    vec3 f(vec3 color, CrtFrag frag) — runs after every color hook (bezel clamp)
+enum class Hook { Warp, SampleUv, Fetch, Color, Finish };
+const char* hook_name(Hook hook);
+constexpr Hook kAllHooks[] = {Hook::Warp, Hook::SampleUv, Hook::Fetch, Hook::Color, Hook::Finish};
+constexpr int kHookCount = 5;
+
+// Values the generated code reads from the host besides params.
+enum class Builtin { OutputSize, SourceSize, Time };
+const char* builtin_name(Builtin builtin);  // the uniform member name: outputSize, sourceSize, time
+bool parse_builtin(const std::string& text, Builtin& out);
+
+struct FormSpec {
+    std::string name;                      // e.g. "atari"
+    std::string doc;                       // which document and formula
+    std::vector<std::string> params;       // params this form reads (besides always-on stage params)
+    std::vector<Builtin> builtins;         // builtins this form reads (outputSize is always present)
+    std::string functions[kHookCount];     // indexed by Hook; empty = none
+    SourceLocation where;
+};
+
+struct StageSpec {
+    std::string name;             // e.g. "scanlines"
+    std::string doc;
+    int order = 0;                // position in the CRT-effect document's pass order
+    std::string selector;         // enum param choosing the form; empty when there is one form
+    std::vector<std::string> common_params;  // params every form of this stage reads
+    std::vector<ParamSpec> params;
+    std::vector<FormSpec> forms;
+    std::string glsl_path;        // the snippet file
+    std::string glsl_source;      // its text
+    SourceLocation where;
+
+    const ParamSpec* find_param(const std::string& name) const;
+    const FormSpec* find_form(const std::string& name) const;
+};
+
+}  // namespace crtforge

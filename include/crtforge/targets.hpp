@@ -1,0 +1,52 @@
+// Output targets. Each target lives in targets/<lang>/ and has one entry point that turns the
+// compiled SPIR-V pair of a variant into the files an engine consumes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/spirv_compiler.hpp"
+#include "crtforge/variant.hpp"
+
+namespace crtforge {
+
+enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60 };
+
+struct TargetInfo {
+    TargetId id;
+    const char* name;         // CLI / manifest name: spirv, glsl450, ...
+    const char* description;  // one line for `crtforge list`
+};
+
+const std::vector<TargetInfo>& all_targets();
+const TargetInfo* find_target(const std::string& name);
+const TargetInfo& target_info(TargetId id);
+
+// One emitted file. `data` is text for source targets and raw bytes for SPIR-V.
+struct OutputFile {
+    ShaderStage stage;
+    std::string suffix;       // appended to the preset name: ".frag.spv", ".frag", ".ps.hlsl", ...
+    std::string data;
+};
+
+// What a target gets: the variant (for names and docs) and its two SPIR-V modules.
+struct TargetInput {
+    const Variant* variant = nullptr;
+    const SpirvBinary* fragment = nullptr;
+    const SpirvBinary* vertex = nullptr;
+};
+
+struct TargetOutput {
+    std::vector<OutputFile> files;  // vertex first, then fragment
+    // How the host binds resources in this target's language, for the manifest:
+    // e.g. {"CrtParams", "b0"} for HLSL, {"CrtParams", "binding=0"} for GLSL 450.
+    std::vector<std::pair<std::string, std::string>> bindings;
+};
+
+Result<TargetOutput> generate_target(TargetId id, const TargetInput& input);
+
+// A stable string naming the emitter and its options, folded into cache keys.
+std::string target_fingerprint(TargetId id);
+
+}  // namespace crtforge

@@ -1,0 +1,53 @@
+// The template library: every stage spec, the shared GLSL (prelude, full-screen vertex shader) and
+// every preset, loaded and validated from one templates/ directory.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/preset.hpp"
+#include "crtforge/spec.hpp"
+
+namespace crtforge {
+
+class TemplateLibrary {
+public:
+    // Loads <dir>/stages/*.toml (+ .glsl), <dir>/prelude.glsl, <dir>/fullscreen.vert and
+    // <dir>/presets/*.toml. Any invalid file fails the whole load with its first diagnostic.
+    static Result<std::shared_ptr<TemplateLibrary>> load(const std::string& dir);
+
+    // The directory compiled into the binary (the source tree's templates/), overridable with
+    // the CRTFORGE_TEMPLATES environment variable.
+    static std::string default_dir();
+
+    const std::vector<StageSpec>& stages() const { return stages_; }
+    const std::vector<Preset>& presets() const { return presets_; }  // sorted by name
+    const StageSpec* find_stage(const std::string& name) const;
+    const Preset* find_preset(const std::string& name) const;
+    const ParamSpec* find_param(const std::string& name, const StageSpec** owner = nullptr) const;
+
+    const std::string& prelude_source() const { return prelude_; }
+    const std::string& prelude_path() const { return prelude_path_; }
+    const std::string& vertex_source() const { return vertex_; }
+    const std::string& vertex_path() const { return vertex_path_; }
+    const std::string& dir() const { return dir_; }
+
+    // Resolves a preset file (inheritance, defaults, validation) against this library. Public so
+    // tools and tests can resolve presets that are not in the library's presets/ folder.
+    Result<Preset> resolve(const std::vector<PresetFile>& files, const std::string& name) const;
+
+private:
+    std::string dir_;
+    std::vector<StageSpec> stages_;  // sorted by order
+    std::vector<Preset> presets_;
+    std::string prelude_, prelude_path_, vertex_, vertex_path_;
+};
+
+// Parsers for one file's text; `path` is used in diagnostics only.
+Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& path);
+Result<PresetFile> parse_preset_file(const std::string& text, const std::string& path,
+                                     const TemplateLibrary* library_for_types);
+
+}  // namespace crtforge

@@ -1,0 +1,56 @@
+// A variant: a resolved preset plus build options — which params are baked as constants and which
+// stay runtime uniforms, and the float precision.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/preset.hpp"
+#include "crtforge/template_library.hpp"
+
+namespace crtforge {
+
+enum class Precision { High, Medium };
+const char* precision_name(Precision precision);
+
+// How params are split between baked constants and uniforms.
+struct UniformSelection {
+    enum class Mode { Default, All, None, Names } mode = Mode::Default;
+    std::vector<std::string> names;  // Mode::Names only
+
+    // Parses the CLI syntax: "default", "all", "none" or "NAME,NAME,...".
+    static Result<UniformSelection> parse(const std::string& text);
+    std::string str() const;
+};
+
+struct VariantOptions {
+    UniformSelection uniforms;
+    Precision precision = Precision::High;
+};
+
+struct VariantParam {
+    const ParamSpec* spec = nullptr;
+    const StageSpec* stage = nullptr;
+    Value value;        // the preset's value: the constant when baked, the default when uniform
+    bool uniform = false;
+};
+
+struct Variant {
+    const Preset* preset = nullptr;
+    VariantOptions options;
+    std::vector<VariantParam> params;   // every param the enabled forms read, in pass order
+    std::vector<Builtin> builtins;      // builtins in the uniform block, in declaration order
+
+    bool has_uniform_block() const;
+    std::vector<const VariantParam*> uniforms() const;
+    std::vector<const VariantParam*> baked() const;
+};
+
+// Default: params whose spec says runtime = true stay uniforms, all others are baked.
+// All: every runtime-capable param is a uniform. None: everything baked.
+// Names: exactly the listed params are uniforms; each must be runtime-capable and used.
+Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
+                             const VariantOptions& options);
+
+}  // namespace crtforge

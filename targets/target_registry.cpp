@@ -1,0 +1,51 @@
+// The list of targets and dispatch to each target's Generate().
+#include "crtforge/targets.hpp"
+
+#include "targets/glsl/glsl_writer.hpp"
+#include "targets/hlsl/hlsl_writer.hpp"
+#include "targets/spirv/spirv_writer.hpp"
+
+namespace crtforge {
+
+const std::vector<TargetInfo>& all_targets() {
+    static const std::vector<TargetInfo> targets = {
+        {TargetId::Spirv, "spirv", "SPIR-V 1.0 binaries (Vulkan), fragment + full-screen vertex shader"},
+        {TargetId::Glsl450, "glsl450", "GLSL 4.50 core (OpenGL 4.5)"},
+        {TargetId::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)"},
+        {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)"},
+        {TargetId::Hlsl50, "hlsl50", "HLSL Shader Model 5.0 (Direct3D 11)"},
+        {TargetId::Hlsl60, "hlsl60", "HLSL Shader Model 6.0 (Direct3D 12, DXC)"},
+    };
+    return targets;
+}
+
+const TargetInfo* find_target(const std::string& name) {
+    for (const auto& t : all_targets())
+        if (name == t.name) return &t;
+    return nullptr;
+}
+
+const TargetInfo& target_info(TargetId id) {
+    for (const auto& t : all_targets())
+        if (t.id == id) return t;
+    return all_targets().front();
+}
+
+Result<TargetOutput> generate_target(TargetId id, const TargetInput& input) {
+    switch (id) {
+        case TargetId::Spirv: return spirv::Generate(input);
+        case TargetId::Glsl450: return glsl::Generate(input, {450, false});
+        case TargetId::Glsl330: return glsl::Generate(input, {330, false});
+        case TargetId::GlslEs300: return glsl::Generate(input, {300, true});
+        case TargetId::Hlsl50: return hlsl::Generate(input, {50});
+        case TargetId::Hlsl60: return hlsl::Generate(input, {60});
+    }
+    return make_error("unknown target");
+}
+
+std::string target_fingerprint(TargetId id) {
+    // Bump the suffix whenever an emitter's output changes for the same SPIR-V.
+    return std::string(target_info(id).name) + "/spirv-cross-2021.01.15/v1";
+}
+
+}  // namespace crtforge
