@@ -1,0 +1,77 @@
+// Every target output is consumed by a real compiler: GLSL re-parsed by glslang in its desktop and
+// ES profiles, HLSL re-compiled through glslang's HLSL front end to SPIR-V.
+#include <cstring>
+
+#include <catch2/catch.hpp>
+
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+
+namespace {
+
+Status consume(TargetId target, const OutputFile& f) {
+    switch (target) {
+        case TargetId::Spirv: {
+            SpirvBinary words(f.data.size() / 4);
+            std::memcpy(words.data(), f.data.data(), words.size() * 4);
+            return validate_spirv(words);
+        }
+        case TargetId::Glsl450: return check_glsl(f.data, f.stage, 450, false);
+        case TargetId::Glsl330: return check_glsl(f.data, f.stage, 330, false);
+        case TargetId::GlslEs300: return check_glsl(f.data, f.stage, 300, true);
+        case TargetId::Hlsl50:
+        case TargetId::Hlsl60: return check_hlsl(f.data, f.stage, "main");
+    }
+    return make_error("unknown target");
+}
+
+}  // namespace
+
+TEST_CASE("every preset x target is accepted by the target's consumer", "[targets]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    for (const Preset& p : lib.presets()) {
+        for (Precision precision : {Precision::High, Precision::Medium}) {
+            VariantOptions options;
+            options.precision = precision;
+            CompiledVariant c = test::compile_or_fail(lib, p.name, options);
+            for (const TargetInfo& t : all_targets()) {
+                auto out = emit_target(c, t.id, Cache());
+                INFO(p.name << " -> " << t.name << " (" << precision_name(precision) << ")");
+                REQUIRE(out.ok());
+                REQUIRE(out.value().files.size() == 2);
+                for (const OutputFile& f : out.value().files) {
+                    INFO(shader_stage_name(f.stage) << " shader:\n" << f.data);
+                    auto consumed = consume(t.id, f);
+                    CHECK(consumed.ok());
+                    if (!consumed.ok()) WARN(consumed.error().str());
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("outputs use the spec's param names, not generated ids", "[targets]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    CompiledVariant c = test::compile_or_fail(lib, "crt-shadow-mask");
+    auto text = [&](TargetId t) { return emit_target(c, t, Cache()).value().files.back().data; };
+    CHECK_THAT(text(TargetId::Glsl450), Catch::Contains("crt.maskSize"));
+    CHECK_THAT(text(TargetId::Glsl330), Catch::Contains("uniform CrtParams"));
+    CHECK_THAT(text(TargetId::GlslEs300), Catch::Contains("crt.scanlineIntensity"));
+    CHECK_THAT(text(TargetId::GlslEs300), Catch::Contains("precision highp float"));
+    CHECK_THAT(text(TargetId::Hlsl50), Catch::Contains("crt_maskIntensity"));
+    CHECK_THAT(text(TargetId::Hlsl60), Catch::Contains("cbuffer CrtParams"));
+    for (TargetId t : {TargetId::Glsl450, TargetId::Glsl330, TargetId::GlslEs300})
+        CHECK_THAT(text(t), !Catch::Contains("} _"));  // no anonymous "_19" block instance
+}
+
+TEST_CASE("vertex shaders for y-up APIs are flipped, SPIR-V is not", "[targets]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    CompiledVariant c = test::compile_or_fail(lib, "passthrough");
+    const std::string glsl = emit_target(c, TargetId::Glsl330, Cache()).value().files.front().data;
+    CHECK_THAT(glsl, Catch::Contains("gl_VertexID"));
+    CHECK_THAT(glsl, Catch::Contains("gl_Position.y = -gl_Position.y"));
+    const std::string hlsl = emit_target(c, TargetId::Hlsl50, Cache()).value().files.front().data;
+    CHECK_THAT(hlsl, Catch::Contains("SV_VertexID"));
+    CHECK_THAT(hlsl, Catch::Contains("gl_Position.y = -gl_Position.y"));
+}

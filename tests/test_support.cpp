@@ -1,0 +1,81 @@
+#include "tests/test_support.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace crtforge::test {
+
+std::string shipped_template_dir() { return std::string(CRTFORGE_SOURCE_DIR) + "/templates"; }
+
+const TemplateLibrary& shipped_library() {
+    static std::shared_ptr<TemplateLibrary> lib = [] {
+        auto loaded = TemplateLibrary::load(shipped_template_dir());
+        if (!loaded.ok()) FAIL("shipped templates do not load: " << loaded.error().str());
+        return loaded.value();
+    }();
+    return *lib;
+}
+
+TempDir::TempDir() {
+    std::random_device rd;
+    path_ = (fs::temp_directory_path() / ("crtforge-test-" + std::to_string(rd()) + std::to_string(rd()))).string();
+    fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+}
+
+ScratchTemplates::ScratchTemplates() : dir_(tmp_ / "templates") {
+    fs::copy(shipped_template_dir(), dir_, fs::copy_options::recursive);
+}
+
+void ScratchTemplates::write(const std::string& rel, const std::string& text) const {
+    std::ofstream(dir_ + "/" + rel, std::ios::binary | std::ios::trunc) << text;
+}
+
+void ScratchTemplates::remove(const std::string& rel) const { fs::remove(dir_ + "/" + rel); }
+
+std::string ScratchTemplates::read(const std::string& rel) const {
+    std::ifstream in(dir_ + "/" + rel, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+CommandResult run_crtforge(const std::string& args) {
+    TempDir tmp;
+    const std::string out = tmp / "out.txt", err = tmp / "err.txt";
+    const std::string cmd = std::string("'") + CRTFORGE_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+    int status = std::system(cmd.c_str());
+    CommandResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    auto slurp = [](const std::string& path) {
+        std::ifstream in(path);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    };
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+}
+
+CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset_name,
+                                const VariantOptions& options) {
+    const Preset* preset = lib.find_preset(preset_name);
+    REQUIRE(preset != nullptr);
+    auto compiled = compile_variant(lib, *preset, options, Cache());
+    if (!compiled.ok()) FAIL(preset_name << ": " << compiled.error().str());
+    return std::move(compiled.value());
+}
+
+}  // namespace crtforge::test

@@ -1,0 +1,58 @@
+// Shared test fixtures: the shipped template library, scratch copies of it that a test may break on
+// purpose, temporary directories, and running the crtforge binary.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "crtforge/crtforge.hpp"
+
+namespace crtforge::test {
+
+// The shipped templates, loaded once per test binary.
+const TemplateLibrary& shipped_library();
+std::string shipped_template_dir();
+
+// A fresh, empty directory removed at scope exit.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::string& path() const { return path_; }
+    std::string operator/(const std::string& rel) const { return path_ + "/" + rel; }
+
+private:
+    std::string path_;
+};
+
+// A copy of the shipped templates in a TempDir; tests overwrite files in it to provoke errors.
+class ScratchTemplates {
+public:
+    ScratchTemplates();
+    const std::string& dir() const { return dir_; }
+    void write(const std::string& rel, const std::string& text) const;  // relative to templates/
+    void remove(const std::string& rel) const;
+    std::string read(const std::string& rel) const;
+    Result<std::shared_ptr<TemplateLibrary>> load() const { return TemplateLibrary::load(dir_); }
+
+private:
+    TempDir tmp_;
+    std::string dir_;
+};
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+// Runs build/crtforge with the given arguments (a shell-quoted string), capturing both streams.
+CommandResult run_crtforge(const std::string& args);
+
+// Compiles and emits one preset through every target; fails the test on any error.
+CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,
+                                const VariantOptions& options = {});
+
+}  // namespace crtforge::test
