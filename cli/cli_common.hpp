@@ -42,5 +42,6 @@ Runner add_list_command(CLI::App& app, const GlobalOptions& g);
 Runner add_generate_command(CLI::App& app, const GlobalOptions& g);
 Runner add_assemble_command(CLI::App& app, const GlobalOptions& g);
 Runner add_export_command(CLI::App& app, const GlobalOptions& g);
+Runner add_validate_command(CLI::App& app, const GlobalOptions& g);
 
 }  // namespace crtforge::cli

@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
     track(add_generate_command(app, g));
     track(add_assemble_command(app, g));
     track(add_export_command(app, g));
+    track(add_validate_command(app, g));
 
     try {
         app.parse(argc, argv);

@@ -3,7 +3,10 @@
 #include "crtforge/exporter.hpp"
 
 #include <cstring>
+#include <atomic>
 #include <filesystem>
+#include <mutex>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -27,12 +30,36 @@ SpirvBinary from_bytes(const std::string& bytes) {
     return words;
 }
 
+// Modules compiled earlier in this process (the full-screen vertex shader is shared by every
+// variant): a memo in front of the on-disk cache, shared by worker threads.
+struct CompileMemo {
+    std::mutex mutex;
+    std::map<std::string, SpirvBinary> modules;
+};
+
+CompileMemo& compile_memo() {
+    static CompileMemo memo;
+    return memo;
+}
+
 Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
                                    const std::string& name, const Cache& cache) {
     const std::string key = Cache::key({"spirv", compiler_versions(), shader_stage_name(stage), source});
+    {
+        std::lock_guard<std::mutex> lock(compile_memo().mutex);
+        auto it = compile_memo().modules.find(key);
+        if (it != compile_memo().modules.end()) return it->second;
+    }
+    auto remember = [&](const SpirvBinary& words) {
+        std::lock_guard<std::mutex> lock(compile_memo().mutex);
+        compile_memo().modules.emplace(key, words);
+    };
     if (auto hit = cache.get("spirv", key); hit && hit->size() % 4 == 0 && !hit->empty()) {
         SpirvBinary words = from_bytes(*hit);
-        if (words[0] == 0x07230203u) return words;
+        if (words[0] == 0x07230203u) {
+            remember(words);
+            return words;
+        }
     }
     CompileOptions options;
     options.stage = stage;
@@ -40,31 +67,62 @@ Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
     auto spirv = compile_to_spirv(source, options);
     if (!spirv.ok()) return spirv;
     cache.put("spirv", key, to_bytes(spirv.value()));
+    remember(spirv.value());
     return spirv;
 }
 
-std::string serialize(const TargetOutput& out) {
-    json j;
-    j["files"] = json::array();
-    for (const auto& f : out.files)
-        j["files"].push_back(json{{"stage", shader_stage_name(f.stage)}, {"suffix", f.suffix}, {"data", f.data}});
-    j["bindings"] = out.bindings;
-    return j.dump();
+// Cache encoding of a TargetOutput: length-prefixed fields (cheap to read back, unlike JSON).
+void put_field(std::string& out, std::string_view field) {
+    out += std::to_string(field.size());
+    out += ':';
+    out += field;
 }
 
-std::optional<TargetOutput> deserialize(const std::string& text) {
-    json j = json::parse(text, nullptr, false);
-    if (j.is_discarded()) return std::nullopt;
-    try {
-        TargetOutput out;
-        for (const auto& f : j.at("files"))
-            out.files.push_back({f.at("stage") == "vert" ? ShaderStage::Vertex : ShaderStage::Fragment,
-                                 f.at("suffix").get<std::string>(), f.at("data").get<std::string>()});
-        out.bindings = j.at("bindings").get<std::vector<std::pair<std::string, std::string>>>();
-        return out;
-    } catch (const std::exception&) {
-        return std::nullopt;
+bool get_field(std::string_view& in, std::string& field) {
+    const size_t colon = in.find(':');
+    if (colon == std::string_view::npos || colon == 0 || colon > 12) return false;
+    size_t size = 0;
+    for (char c : in.substr(0, colon)) {
+        if (c < '0' || c > '9') return false;
+        size = size * 10 + static_cast<size_t>(c - '0');
     }
+    if (in.size() < colon + 1 + size) return false;
+    field.assign(in.substr(colon + 1, size));
+    in.remove_prefix(colon + 1 + size);
+    return true;
+}
+
+std::string serialize(const TargetOutput& out) {
+    std::string blob;
+    put_field(blob, std::to_string(out.files.size()));
+    for (const auto& f : out.files) {
+        put_field(blob, shader_stage_name(f.stage));
+        put_field(blob, f.suffix);
+        put_field(blob, f.data);
+    }
+    put_field(blob, std::to_string(out.bindings.size()));
+    for (const auto& [name, how] : out.bindings) {
+        put_field(blob, name);
+        put_field(blob, how);
+    }
+    return blob;
+}
+
+std::optional<TargetOutput> deserialize(std::string_view in) {
+    TargetOutput out;
+    std::string field, stage, suffix, data, name, how;
+    if (!get_field(in, field) || field.size() > 2) return std::nullopt;
+    for (int n = std::stoi(field); n > 0; --n) {
+        if (!get_field(in, stage) || !get_field(in, suffix) || !get_field(in, data)) return std::nullopt;
+        out.files.push_back({stage == "vert" ? ShaderStage::Vertex : ShaderStage::Fragment, suffix, data});
+    }
+    if (!get_field(in, field) || field.size() > 2) return std::nullopt;
+    for (int n = std::stoi(field); n > 0; --n) {
+        if (!get_field(in, name) || !get_field(in, how)) return std::nullopt;
+        out.bindings.emplace_back(name, how);
+    }
+    if (!in.empty()) return std::nullopt;
+    return out;
 }
 
 }  // namespace
@@ -139,28 +197,57 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
     manifest["targets"] = std::move(target_names);
     manifest["presets"] = json::object();
 
-    for (const Preset* preset : presets) {
+    // Each preset is compiled and emitted on a worker thread (glslang, SPIRV-Tools and SPIRV-Cross
+    // objects are per-thread); results are gathered in preset order, so output stays deterministic.
+    struct PresetOutput {
+        std::optional<Diagnostic> error;
+        json entry;
+        std::map<std::string, std::string> files;
+    };
+    std::vector<PresetOutput> outputs(presets.size());
+    auto work = [&](size_t i) {
+        const Preset* preset = presets[i];
+        PresetOutput& po = outputs[i];
         auto compiled = compile_variant(library, *preset, request.options, cache);
-        if (!compiled.ok()) return compiled.error();
-        json entry = detail::preset_manifest(compiled.value());
+        if (!compiled.ok()) {
+            po.error = compiled.error();
+            return;
+        }
+        po.entry = detail::preset_manifest(compiled.value());
         json files = json::object();
         for (TargetId target : targets) {
             auto out = emit_target(compiled.value(), target, cache);
             if (!out.ok()) {
                 Diagnostic d = out.error();
                 d.message = "preset " + preset->name + ", target " + target_info(target).name + ": " + d.message;
-                return d;
+                po.error = d;
+                return;
             }
             detail::ManifestTargetEntry te{target, {}, out.value().bindings};
             for (const OutputFile& f : out.value().files) {
                 const std::string path = export_path(preset->name, target, f.suffix);
                 te.files[f.stage == ShaderStage::Vertex ? "vertex" : "fragment"] = path;
-                result.files[path] = f.data;
+                po.files[path] = f.data;
             }
             files[target_info(target).name] = detail::target_manifest(te);
         }
-        entry["targets"] = std::move(files);
-        manifest["presets"][preset->name] = std::move(entry);
+        po.entry["targets"] = std::move(files);
+    };
+    std::atomic<size_t> next{0};
+    auto worker = [&] {
+        for (size_t i = next++; i < presets.size(); i = next++) work(i);
+    };
+    const unsigned threads = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(),
+                                                              static_cast<unsigned>(presets.size())));
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+
+    for (size_t i = 0; i < presets.size(); ++i) {
+        if (outputs[i].error) return *outputs[i].error;  // the first failing preset, in order
+        manifest["presets"][presets[i]->name] = std::move(outputs[i].entry);
+        result.files.merge(outputs[i].files);
         ++result.variants;
     }
     result.files["manifest.json"] = manifest.dump(2) + "\n";
@@ -172,8 +259,11 @@ Status write_files(const std::string& dir, const std::map<std::string, std::stri
     std::filesystem::create_directories(dir, ec);
     if (ec) return make_error("cannot create output directory: " + ec.message(), dir, 0, "--out");
     if (!std::filesystem::is_directory(dir, ec)) return make_error("is not a directory", dir, 0, "--out");
-    for (const auto& [path, data] : files)
+    for (const auto& [path, data] : files) {
+        // Unchanged files are left alone: re-exports are cheap and keep file times stable.
+        if (auto existing = detail::read_text_file(dir + "/" + path); existing.ok() && existing.value() == data) continue;
         if (auto s = detail::write_file_atomic(dir + "/" + path, data); !s.ok()) return s;
+    }
     return Ok{};
 }
 

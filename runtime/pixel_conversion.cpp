@@ -8,7 +8,7 @@
 namespace crtforge::vulkan {
 
 float half_to_float(uint16_t half) {
-    const uint32_t sign = static_cast<uint32_t>(half & 0x8000u) << 16;
+    const uint32_t sign = (half & 0x8000u) << 16;
     const uint32_t exponent = (half >> 10) & 0x1fu;
     const uint32_t mantissa = half & 0x3ffu;
     if (exponent == 0) {

@@ -47,7 +47,14 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverity
     // Called from inside the driver stack: nothing may throw across it.
     try {
         const char* text = (data && data->pMessage) ? data->pMessage : "(no message text)";
-        static_cast<ValidationLog*>(user_data)->add(fmt::format("{}: {}", severity_name(severity), text));
+        const std::string message = fmt::format("{}: {}", severity_name(severity), text);
+        // The loader's own messages (e.g. a stale ICD manifest of an uninstalled driver) describe
+        // the machine's Vulkan install, not the work being validated: say them, do not fail on them.
+        if (data && data->pMessageIdName && std::strcmp(data->pMessageIdName, "Loader Message") == 0) {
+            std::cerr << "crtforge: note from the Vulkan loader: " << message << '\n';
+        } else {
+            static_cast<ValidationLog*>(user_data)->add(message);
+        }
     } catch (...) {
     }
     return VK_FALSE;  // never abort the call: the engine decides what a message means
@@ -76,19 +83,17 @@ bool has_layer(const char* name) {
                        [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-// Looks in the loader's own list and in the named layer's list.
+// Whether the loader itself or the named layer provides an instance extension.
 bool has_instance_extension(const char* name, const char* layer) {
-    for (const char* source : {static_cast<const char*>(nullptr), layer}) {
+    auto listed_by = [name](const char* source) {
         uint32_t count = 0;
-        if (vkEnumerateInstanceExtensionProperties(source, &count, nullptr) != VK_SUCCESS) continue;
+        if (vkEnumerateInstanceExtensionProperties(source, &count, nullptr) != VK_SUCCESS) return false;
         std::vector<VkExtensionProperties> extensions(count);
-        if (vkEnumerateInstanceExtensionProperties(source, &count, extensions.data()) != VK_SUCCESS) continue;
-        for (const auto& e : extensions) {
-            if (std::strcmp(e.extensionName, name) == 0) return true;
-        }
-        if (!layer) break;
-    }
-    return false;
+        if (vkEnumerateInstanceExtensionProperties(source, &count, extensions.data()) != VK_SUCCESS) return false;
+        return std::any_of(extensions.begin(), extensions.end(),
+                           [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+    };
+    return listed_by(nullptr) || listed_by(layer);
 }
 
 bool has_device_extension(VkPhysicalDevice device, const char* name) {
@@ -101,13 +106,14 @@ bool has_device_extension(VkPhysicalDevice device, const char* name) {
 }
 
 // The highest instance version worth asking for: 1.2 lets device listing read the driver name
-// (VkPhysicalDeviceDriverProperties); rendering itself only uses Vulkan 1.0.
+// (VkPhysicalDeviceDriverProperties) and lets shaders be SPIR-V up to 1.5. The engine's own calls
+// are all Vulkan 1.0.
 uint32_t pick_instance_version() {
     auto enumerate_version = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(
         vkGetInstanceProcAddr(VK_NULL_HANDLE, "vkEnumerateInstanceVersion"));
     uint32_t loader = VK_API_VERSION_1_0;
     if (enumerate_version && enumerate_version(&loader) != VK_SUCCESS) loader = VK_API_VERSION_1_0;
-    return std::min(loader, static_cast<uint32_t>(VK_API_VERSION_1_2));
+    return std::min(loader, VK_API_VERSION_1_2);
 }
 
 bool is_lavapipe(const DeviceInfo& info) {
@@ -279,9 +285,10 @@ DeviceInfo VulkanInstance::describe(VkPhysicalDevice device, uint32_t index) con
 
     // The driver's own name needs VkPhysicalDeviceDriverProperties (Vulkan 1.2, or the KHR extension
     // on older drivers); without it the raw IDs are all there is.
-    const bool core12 = std::min(api_version_, props.apiVersion) >= VK_API_VERSION_1_2;
-    const bool driver_props = core12 || (api_version_ >= VK_API_VERSION_1_1 &&
-                                         has_device_extension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME));
+    const uint32_t usable = std::min(api_version_, props.apiVersion);
+    const bool driver_props = usable >= VK_API_VERSION_1_2 ||
+                              (usable >= VK_API_VERSION_1_1 &&
+                               has_device_extension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME));
     if (driver_props) {
         VkPhysicalDeviceDriverProperties driver{};
         driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;

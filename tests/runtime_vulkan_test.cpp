@@ -98,7 +98,7 @@ Image render_ok(const RenderJob& job) {
 std::string render_error(const RenderJob& job) {
     auto image = engine().render(job);
     REQUIRE_FALSE(image.ok());
-    const std::string message = image.error().str();
+    std::string message = image.error().str();
     CHECK(message.find('\n') == std::string::npos);  // one line
     return message;
 }

@@ -1,32 +1,11 @@
 // Every target output is consumed by a real compiler: GLSL re-parsed by glslang in its desktop and
 // ES profiles, HLSL re-compiled through glslang's HLSL front end to SPIR-V.
-#include <cstring>
-
 #include <catch2/catch.hpp>
 
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
 
-namespace {
-
-Status consume(TargetId target, const OutputFile& f) {
-    switch (target) {
-        case TargetId::Spirv: {
-            SpirvBinary words(f.data.size() / 4);
-            std::memcpy(words.data(), f.data.data(), words.size() * 4);
-            return validate_spirv(words);
-        }
-        case TargetId::Glsl450: return check_glsl(f.data, f.stage, 450, false);
-        case TargetId::Glsl330: return check_glsl(f.data, f.stage, 330, false);
-        case TargetId::GlslEs300: return check_glsl(f.data, f.stage, 300, true);
-        case TargetId::Hlsl50:
-        case TargetId::Hlsl60: return check_hlsl(f.data, f.stage, "main");
-    }
-    return make_error("unknown target");
-}
-
-}  // namespace
 
 TEST_CASE("every preset x target is accepted by the target's consumer", "[targets]") {
     const TemplateLibrary& lib = test::shipped_library();
@@ -42,7 +21,7 @@ TEST_CASE("every preset x target is accepted by the target's consumer", "[target
                 REQUIRE(out.value().files.size() == 2);
                 for (const OutputFile& f : out.value().files) {
                     INFO(shader_stage_name(f.stage) << " shader:\n" << f.data);
-                    auto consumed = consume(t.id, f);
+                    auto consumed = consume_output(t.id, f);
                     CHECK(consumed.ok());
                     if (!consumed.ok()) WARN(consumed.error().str());
                 }

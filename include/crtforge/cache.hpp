@@ -3,6 +3,7 @@
 // an unreadable or truncated entry is treated as a miss.
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,6 +14,7 @@ class Cache {
 public:
     // An empty dir disables the cache.
     explicit Cache(std::string dir = {});
+    Cache(const Cache& other) : dir_(other.dir_) {}
     static std::string default_dir();  // $CRTFORGE_CACHE, else $XDG_CACHE_HOME/crtforge, else ~/.cache/crtforge
 
     bool enabled() const { return !dir_.empty(); }
@@ -29,7 +31,8 @@ public:
 
 private:
     std::string dir_;
-    mutable unsigned hits_ = 0, misses_ = 0;
+    // Safe to share between the export's worker threads.
+    mutable std::atomic<unsigned> hits_{0}, misses_{0};
 };
 
 }  // namespace crtforge

@@ -50,3 +50,12 @@ Result<TargetOutput> generate_target(TargetId id, const TargetInput& input);
 std::string target_fingerprint(TargetId id);
 
 }  // namespace crtforge
+
+namespace crtforge {
+
+// Feeds one emitted file to the real consumer of its language, as a host would: SPIR-V through
+// spirv-val, GLSL re-parsed by glslang in the matching desktop/ES profile, HLSL compiled by
+// glslang's HLSL front end to SPIR-V (then spirv-val). Failures are ErrorKind::Validation.
+Status consume_output(TargetId target, const OutputFile& file);
+
+}  // namespace crtforge

@@ -1,0 +1,30 @@
+// Proof that each target's text is accepted by the compiler its users will run.
+#include <cstring>
+
+#include "crtforge/targets.hpp"
+
+namespace crtforge {
+
+Status consume_output(TargetId target, const OutputFile& f) {
+    Status status = Ok{};
+    switch (target) {
+        case TargetId::Spirv: {
+            if (f.data.size() % 4 != 0) return make_validation_error("SPIR-V file size is not a multiple of 4");
+            SpirvBinary words(f.data.size() / 4);
+            std::memcpy(words.data(), f.data.data(), f.data.size());
+            status = validate_spirv(words);
+            break;
+        }
+        case TargetId::Glsl450: status = check_glsl(f.data, f.stage, 450, false); break;
+        case TargetId::Glsl330: status = check_glsl(f.data, f.stage, 330, false); break;
+        case TargetId::GlslEs300: status = check_glsl(f.data, f.stage, 300, true); break;
+        case TargetId::Hlsl50:
+        case TargetId::Hlsl60: status = check_hlsl(f.data, f.stage, "main"); break;
+    }
+    if (status.ok()) return status;
+    Diagnostic d = status.error();
+    d.kind = ErrorKind::Validation;  // our output was rejected: a validation failure, not bad input
+    return d;
+}
+
+}  // namespace crtforge
