@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "crtforge/crtforge.hpp"
+#include "crtforge/image.hpp"
 
 namespace crtforge::cli {
 
@@ -43,5 +44,14 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g);
 Runner add_assemble_command(CLI::App& app, const GlobalOptions& g);
 Runner add_export_command(CLI::App& app, const GlobalOptions& g);
 Runner add_validate_command(CLI::App& app, const GlobalOptions& g);
+Runner add_report_command(CLI::App& app, const GlobalOptions& g);
+Runner add_render_command(CLI::App& app, const GlobalOptions& g);
+Runner add_golden_command(CLI::App& app, const GlobalOptions& g);
+Runner add_devices_command(CLI::App& app, const GlobalOptions& g);
+
+// Shared parsing helpers.
+Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"
+Result<Image> load_input(const std::string& spec);                  // file path or generated input name
+std::string default_golden_dir();                                    // $CRTFORGE_GOLDEN or the source tree's golden/
 
 }  // namespace crtforge::cli

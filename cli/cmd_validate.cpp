@@ -1,4 +1,5 @@
-// crtforge validate [--report DIR] [--preset P...] [--target T...] [--shard i/n]
+// crtforge validate [--report DIR] [--preset P...] [--target T...] [--input I...] [--shard i/n] [-j N]
+// crtforge report merge --out DIR SHARD_DIR...
 #include <chrono>
 #include <cstdio>
 
@@ -12,9 +13,10 @@ namespace crtforge::cli {
 
 namespace {
 struct ValidateArgs {
-    std::string report, shard = "1/1";
-    std::vector<std::string> presets, targets;
-    VariantFlags flags;
+    std::string report, shard = "1/1", golden, device;
+    std::vector<std::string> presets, targets, inputs;
+    unsigned jobs = 1;
+    bool compile_only = false;
 };
 
 // Plain lines when piped (CI logs), an in-place progress bar on a terminal.
@@ -31,53 +33,96 @@ ProgressFn make_progress() {
         }
     };
 }
+
+// The one-screen summary: per target, checks passed/failed and the worst render metrics.
+void print_summary(const ValidationReport& r) {
+    fmt::print("{:<10} {:>7} {:>7} {:>10} {:>9} {:>9}  {}\n", "target", "passed", "failed", "max RMSE", "min SSIM", "max |d|", "consumer");
+    for (const TargetInfo& t : all_targets()) {
+        size_t pass = 0, fail = 0;
+        double rmse = 0, ssim = 1, maxabs = 0;
+        for (const auto& c : r.checks) {
+            if (c.target != t.name) continue;
+            (c.passed ? pass : fail)++;
+            if (c.verdict) {
+                rmse = std::max(rmse, c.verdict->metrics.rmse);
+                ssim = std::min(ssim, c.verdict->metrics.ssim);
+                maxabs = std::max(maxabs, c.verdict->metrics.max_abs);
+            }
+        }
+        if (pass + fail == 0) continue;
+        std::string consumer;
+        for (const auto& [name, desc] : r.consumers)
+            if (name == t.name) consumer = desc;
+        fmt::print("{:<10} {:>7} {:>7} {:>10.5f} {:>9.4f} {:>9.4f}  {}\n", t.name, pass, fail, rmse, ssim, maxabs, consumer);
+    }
+}
 }  // namespace
 
 Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
-    auto args = std::make_shared<ValidateArgs>();
-    auto* cmd = app.add_subcommand("validate", "Prove every preset x target with its real consumer and write a report");
-    cmd->add_option("--report", args->report, "Write report.json and junit.xml into this directory");
-    cmd->add_option("--preset", args->presets, "Only these presets")->delimiter(',');
-    cmd->add_option("--target", args->targets, "Only these targets")->delimiter(',');
-    cmd->add_option("--shard", args->shard, "Run share i of n (1-based), for CI matrices")->capture_default_str();
-    args->flags.add_to(*cmd);
-    return [&g, args]() {
+    auto a = std::make_shared<ValidateArgs>();
+    auto* cmd = app.add_subcommand("validate",
+                                   "Compile every preset x target with its real consumer, render it there and compare with the goldens");
+    cmd->add_option("--report", a->report, "Write report.json, junit.xml, report.html and pictures into this directory");
+    cmd->add_option("--preset", a->presets, "Only these presets")->delimiter(',');
+    cmd->add_option("--target", a->targets, "Only these targets")->delimiter(',');
+    cmd->add_option("--input", a->inputs, "Only goldens of these generated inputs")->delimiter(',');
+    cmd->add_option("--shard", a->shard, "Run share i of n (1-based), for CI matrices")->capture_default_str();
+    cmd->add_option("-j,--jobs", a->jobs, "Worker threads")->check(CLI::Range(1u, 64u))->capture_default_str();
+    cmd->add_option("--golden-dir", a->golden, "Golden directory (default: the source tree's golden/)");
+    cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe; see 'crtforge devices')");
+    cmd->add_flag("--compile-only", a->compile_only, "Only the compile checks, no renders");
+    return [&g, a]() {
         const auto start = std::chrono::steady_clock::now();
         int code = kExitOk;
         ValidateRequest request;
-        for (const auto& name : args->targets) {
+        for (const auto& name : a->targets) {
             const TargetInfo* t = find_target(name);
             if (!t) return report(make_error("unknown target '" + name + "'", {}, 0, "--target"));
             request.targets.push_back(t->id);
         }
-        auto shard = Shard::parse(args->shard);
+        auto shard = Shard::parse(a->shard);
         if (!shard.ok()) return report(shard.error());
         request.shard = shard.value();
-        auto options = args->flags.parse();
-        if (!options.ok()) return report(options.error());
-        request.options = options.value();
-        request.presets = args->presets;
+        request.presets = a->presets;
+        request.inputs = a->inputs;
+        request.render = !a->compile_only;
+        request.golden_dir = a->golden.empty() ? default_golden_dir() : a->golden;
+        request.report_dir = a->report;
+        request.vulkan.device = a->device;
+        request.jobs = a->jobs;
         auto lib = load_library(g, code);
         if (!lib) return code;
         Cache cache = make_cache(g);
         auto result = run_validation(*lib, request, cache, make_progress());
         if (!result.ok()) return report(result.error());
         const ValidationReport& r = result.value();
-        if (!args->report.empty())
-            if (auto s = write_report(r, args->report); !s.ok()) return report(s.error());
+        if (!a->report.empty())
+            if (auto s = write_report(r, a->report); !s.ok()) return report(s.error());
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        // A one-screen summary: per target, how many checks passed.
-        fmt::print("{:<10} {:>7} {:>7}\n", "target", "passed", "failed");
-        for (const TargetInfo& t : all_targets()) {
-            size_t pass = 0, fail = 0;
-            for (const auto& c : r.checks)
-                if (c.target == t.name) (c.passed ? pass : fail)++;
-            if (pass + fail) fmt::print("{:<10} {:>7} {:>7}\n", t.name, pass, fail);
-        }
+        print_summary(r);
         fmt::print("validate: {} passed, {} failed ({} checks, shard {}/{}, {:.1f} s){}\n", r.passed(), r.failed(),
                    r.checks.size(), request.shard.index, request.shard.count, secs,
-                   args->report.empty() ? "" : ", report in " + args->report);
+                   a->report.empty() ? "" : ", report: " + a->report + "/report.html");
         return r.failed() ? kExitValidation : kExitOk;
+    };
+}
+
+Runner add_report_command(CLI::App& app, const GlobalOptions&) {
+    auto* cmd = app.add_subcommand("report", "Work with validate reports");
+    cmd->require_subcommand(1);
+    auto* merge = cmd->add_subcommand("merge", "Merge shard reports (report.json files) into one report");
+    auto out = std::make_shared<std::string>();
+    auto dirs = std::make_shared<std::vector<std::string>>();
+    merge->add_option("--out", *out, "Directory for the merged report")->required();
+    merge->add_option("dirs", *dirs, "Shard report directories")->required();
+    return [out, dirs]() {
+        auto merged = merge_reports(*dirs);
+        if (!merged.ok()) return report(merged.error());
+        if (auto s = write_report(merged.value(), *out); !s.ok()) return report(s.error());
+        print_summary(merged.value());
+        fmt::print("report merge: {} passed, {} failed ({} checks from {} shards) into {}\n", merged.value().passed(),
+                   merged.value().failed(), merged.value().checks.size(), dirs->size(), *out);
+        return merged.value().failed() ? kExitValidation : kExitOk;
     };
 }
 

@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
     track(add_assemble_command(app, g));
     track(add_export_command(app, g));
     track(add_validate_command(app, g));
+    track(add_report_command(app, g));
+    track(add_render_command(app, g));
+    track(add_golden_command(app, g));
+    track(add_devices_command(app, g));
 
     try {
         app.parse(argc, argv);

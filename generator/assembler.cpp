@@ -113,12 +113,18 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
         src += fmt::format("#define CRT_FORM_{}_{} 1\n", rs.stage->name, rs.form->name);
     src += declarations(variant);
 
+    // Each included file starts on its own line with a #line directive naming it, so glslang
+    // reports errors at the template's file:line.
+    auto include = [&src](const std::string& file, const std::string& text) {
+        src += '\n';
+        src += line_directive(1, file);
+        src += text;
+    };
     if (!preset.stages.empty()) {
-        src += "\n" + line_directive(1, library.prelude_path()) + library.prelude_source();
-        for (const ResolvedStage& rs : preset.stages)
-            src += "\n" + line_directive(1, rs.stage->glsl_path) + rs.stage->glsl_source;
+        include(library.prelude_path(), library.prelude_source());
+        for (const ResolvedStage& rs : preset.stages) include(rs.stage->glsl_path, rs.stage->glsl_source);
     }
-    src += "\n" + line_directive(1, "<generated main for preset " + preset.name + ">") + main_body(variant);
+    include("<generated main for preset " + preset.name + ">", main_body(variant));
 
     AssembledShader out;
     out.fragment = std::move(src);

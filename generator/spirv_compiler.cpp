@@ -83,7 +83,13 @@ Result<std::shared_ptr<Parsed>> parse_shader(const std::string& source, ShaderSt
         shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
         messages = static_cast<EShMessages>(messages | EShMsgSpvRules | EShMsgVulkanRules);
     }
-    if (language == SourceLanguage::Hlsl) messages = static_cast<EShMessages>(messages | EShMsgReadHlsl);
+    if (language == SourceLanguage::Hlsl) {
+        messages = static_cast<EShMessages>(messages | EShMsgReadHlsl);
+        // register(bN)/register(tN) become Vulkan bindings N, and the separate Texture2D +
+        // SamplerState pair becomes one combined image sampler, as a D3D-style host binds them.
+        shader.setHlslIoMapping(true);
+        shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
+    }
     const std::string label = fmt::format("{} shader", shader_stage_name(stage));
     if (!shader.parse(GetDefaultResources(), version, es ? EEsProfile : ECoreProfile, false, false, messages))
         return diagnostic_from_log(shader.getInfoLog(), name, label);
@@ -91,6 +97,8 @@ Result<std::shared_ptr<Parsed>> parse_shader(const std::string& source, ShaderSt
     parsed->program->addShader(&shader);
     if (!parsed->program->link(messages))
         return diagnostic_from_log(parsed->program->getInfoLog(), name, label + " (link)");
+    if (language == SourceLanguage::Hlsl && !parsed->program->mapIO())
+        return diagnostic_from_log(parsed->program->getInfoLog(), name, label + " (resource mapping)");
     return parsed;
 }
 

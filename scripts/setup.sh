@@ -6,6 +6,7 @@ APT_PACKAGES=(
   build-essential cmake pkg-config
   glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev spirv-cross
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  libegl-dev libgles-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   libopenimageio-dev libfmt-dev catch2
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev
 )

@@ -96,4 +96,10 @@ TEST_CASE("generate and export write the promised files", "[cli]") {
     CHECK(fs::exists(tmp / "e/spirv/classic.frag.spv"));
     CHECK(fs::exists(tmp / "e/glsl330/passthrough.vert"));
     CHECK_FALSE(fs::exists(tmp / "e/hlsl50"));
+
+    // The same export again: everything comes from the content-hash cache, nothing recompiles.
+    auto again = test::run_crtforge("--cache-dir '" + tmp.path() + "/cache' export --out '" + tmp.path() +
+                                    "/e2' --preset classic,passthrough --target spirv --target glsl330");
+    CHECK(again.exit_code == 0);
+    CHECK_THAT(again.out, Catch::Contains(" 0 misses"));
 }

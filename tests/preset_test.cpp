@@ -29,8 +29,13 @@ TEST_CASE("every shipped preset resolves and names its source document", "[prese
     std::vector<std::string> names;
     for (const auto& p : lib.presets()) names.push_back(p.name);
     CHECK(names == std::vector<std::string>{"arcade", "atari-crt", "classic", "crt-aperture-grille",
-                                            "crt-shadow-mask", "heavy", "passthrough", "quiet-frame",
-                                            "subtle", "webgpu-post"});
+                                            "crt-pulse", "crt-shadow-mask", "heavy", "passthrough",
+                                            "quiet-frame", "subtle", "webgpu-post"});
+    const Preset* pulse = lib.find_preset("crt-pulse");
+    REQUIRE(pulse->find_stage("glow"));
+    CHECK(number(*pulse, "glow", "pulseIntensity") == 0.03);
+    CHECK(number(*pulse, "glow", "pulseWidth") == 60.0);
+    CHECK(number(*pulse, "glow", "pulseSpeed") == 20.0);
     CHECK_THAT(lib.find_preset("quiet-frame")->doc, Catch::Contains("Quiet Frame"));
     CHECK_THAT(lib.find_preset("webgpu-post")->doc, Catch::Contains("crt.ts"));
     CHECK_THAT(lib.find_preset("classic")->doc, Catch::Contains("Retro CRT Effects"));

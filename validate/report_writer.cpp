@@ -1,4 +1,9 @@
-// report.json (machine-readable, mergeable) and junit.xml (one test case per check) for CI.
+// report.json (machine-readable, mergeable across shards), junit.xml (one test case per check) and
+// report.html (a contact sheet: pictures first, metrics under each render).
+#include <algorithm>
+#include <map>
+
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "crtforge/validation.hpp"
@@ -6,9 +11,11 @@
 
 namespace crtforge {
 
+using json = nlohmann::ordered_json;
+
 namespace {
 
-std::string xml_escape(const std::string& s) {
+std::string escape(const std::string& s) {
     std::string out;
     for (char c : s) {
         switch (c) {
@@ -22,13 +29,32 @@ std::string xml_escape(const std::string& s) {
     return out;
 }
 
+json metrics_json(const Verdict& v) {
+    return json{{"maxAbs", v.metrics.max_abs}, {"rmse", v.metrics.rmse}, {"psnr", v.metrics.psnr},
+                {"ssim", v.metrics.ssim}, {"outlierFraction", v.outlier_fraction},
+                {"worstPixel", json::array({v.metrics.worst_x, v.metrics.worst_y})}};
+}
+
+json golden_json(const GoldenEntry& g) {
+    return json{{"id", g.id}, {"preset", g.preset}, {"input", g.input}, {"width", g.width}, {"height", g.height},
+                {"inputWidth", g.input_width}, {"inputHeight", g.input_height}, {"frame", g.frame},
+                {"tolerance", {{"maxRmse", g.tolerance.max_rmse}, {"outlierThreshold", g.tolerance.outlier_threshold},
+                               {"maxOutlierFraction", g.tolerance.max_outlier_fraction}, {"minSsim", g.tolerance.min_ssim},
+                               {"why", g.tolerance.why}}}};
+}
+
 std::string report_json(const ValidationReport& report) {
-    nlohmann::ordered_json j;
+    json j;
     j["summary"] = {{"checks", report.checks.size()}, {"passed", report.passed()}, {"failed", report.failed()}};
-    j["checks"] = nlohmann::ordered_json::array();
+    j["consumers"] = json::object();
+    for (const auto& [t, c] : report.consumers) j["consumers"][t] = c;
+    j["goldens"] = json::array();
+    for (const auto& g : report.goldens) j["goldens"].push_back(golden_json(g));
+    j["checks"] = json::array();
     for (const CheckResult& c : report.checks) {
-        nlohmann::ordered_json e{{"preset", c.preset}, {"target", c.target}, {"check", c.check}, {"passed", c.passed}};
-        if (!c.passed) e["message"] = c.message;
+        json e{{"preset", c.preset}, {"target", c.target}, {"check", c.check}, {"passed", c.passed}};
+        if (!c.message.empty()) e["message"] = c.message;
+        if (c.verdict) e["metrics"] = metrics_json(*c.verdict);
         j["checks"].push_back(std::move(e));
     }
     return j.dump(2) + "\n";
@@ -36,8 +62,7 @@ std::string report_json(const ValidationReport& report) {
 
 std::string junit_xml(const ValidationReport& report) {
     std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    out += "<testsuites name=\"crtforge validate\" tests=\"" + std::to_string(report.checks.size()) +
-           "\" failures=\"" + std::to_string(report.failed()) + "\">\n";
+    out += fmt::format("<testsuites name=\"crtforge validate\" tests=\"{}\" failures=\"{}\">\n", report.checks.size(), report.failed());
     // One suite per target, so CI dashboards group by output language.
     std::vector<std::string> targets;
     for (const auto& c : report.checks)
@@ -48,25 +73,172 @@ std::string junit_xml(const ValidationReport& report) {
         for (const auto& c : report.checks) {
             if (c.target != t) continue;
             ++tests;
-            cases += "    <testcase classname=\"" + xml_escape(c.target + "." + c.preset) + "\" name=\"" + xml_escape(c.check) + "\"";
+            cases += "    <testcase classname=\"" + escape(c.target + "." + c.preset) + "\" name=\"" + escape(c.check) + "\"";
             if (c.passed) {
                 cases += "/>\n";
             } else {
                 ++failures;
-                cases += ">\n      <failure message=\"" + xml_escape(c.message) + "\"/>\n    </testcase>\n";
+                cases += ">\n      <failure message=\"" + escape(c.message) + "\"/>\n    </testcase>\n";
             }
         }
-        out += "  <testsuite name=\"" + xml_escape(t) + "\" tests=\"" + std::to_string(tests) + "\" failures=\"" +
-               std::to_string(failures) + "\">\n" + cases + "  </testsuite>\n";
+        out += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n", escape(t), tests, failures) + cases + "  </testsuite>\n";
     }
     return out + "</testsuites>\n";
+}
+
+std::string report_html(const ValidationReport& report) {
+    std::vector<std::string> targets;
+    for (const auto& c : report.checks)
+        if (std::find(targets.begin(), targets.end(), c.target) == targets.end()) targets.push_back(c.target);
+    std::map<std::pair<std::string, std::string>, const CheckResult*> render_checks;  // (golden, target)
+    for (const auto& c : report.checks)
+        if (!c.golden_id.empty()) render_checks[{c.golden_id, c.target}] = &c;
+
+    std::string h;
+    h += "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>crtforge validate</title>\n<style>\n"
+         "body{font:14px system-ui,sans-serif;background:#111;color:#ddd;margin:20px}"
+         "h1,h2{font-weight:600}table{border-collapse:collapse}td,th{padding:4px 8px;border-bottom:1px solid #333;text-align:left}"
+         ".sheet{display:flex;flex-wrap:wrap;gap:8px;margin:6px 0 22px}"
+         "figure{margin:0;padding:4px;background:#1c1c1c;border:2px solid #2a2a2a}figure.fail{border-color:#e33}"
+         "figure img{display:block;width:240px;image-rendering:pixelated}figcaption{font-size:12px;max-width:240px}"
+         ".bad{color:#f66}.ok{color:#7d7}\n</style></head><body>\n";
+    h += fmt::format("<h1>crtforge validate: <span class=\"{}\">{} passed, {} failed</span> of {} checks</h1>\n",
+                     report.failed() ? "bad" : "ok", report.passed(), report.failed(), report.checks.size());
+    h += "<table><tr><th>target</th><th>consumer</th><th>passed</th><th>failed</th><th>max RMSE</th><th>min SSIM</th></tr>\n";
+    for (const auto& t : targets) {
+        size_t pass = 0, fail = 0;
+        double max_rmse = 0, min_ssim = 1;
+        for (const auto& c : report.checks) {
+            if (c.target != t) continue;
+            (c.passed ? pass : fail)++;
+            if (c.verdict) {
+                max_rmse = std::max(max_rmse, c.verdict->metrics.rmse);
+                min_ssim = std::min(min_ssim, c.verdict->metrics.ssim);
+            }
+        }
+        std::string consumer;
+        for (const auto& [name, desc] : report.consumers)
+            if (name == t) consumer = desc;
+        h += fmt::format("<tr><td>{}</td><td>{}</td><td class=ok>{}</td><td class=\"{}\">{}</td><td>{:.5f}</td><td>{:.4f}</td></tr>\n",
+                         escape(t), escape(consumer), pass, fail ? "bad" : "ok", fail, max_rmse, min_ssim);
+    }
+    h += "</table>\n";
+    std::string current_preset;
+    for (const GoldenEntry& g : report.goldens) {
+        bool any = false;
+        for (const auto& t : targets) any = any || render_checks.count({g.id, t});
+        if (!any) continue;
+        if (g.preset != current_preset) {
+            current_preset = g.preset;
+            h += "<h2>" + escape(g.preset) + "</h2>\n";
+        }
+        h += fmt::format("<div>{} — {}×{}, frame {}</div>\n<div class=sheet>\n", escape(g.input), g.width, g.height, g.frame);
+        h += "<figure><img src=\"images/" + escape(g.id) + "/input.png\" alt=\"input\"><figcaption>input</figcaption></figure>\n";
+        h += "<figure><img src=\"images/" + escape(g.id) + "/golden.png\" alt=\"golden\"><figcaption>golden (CPU fp64)</figcaption></figure>\n";
+        for (const auto& t : targets) {
+            auto it = render_checks.find({g.id, t});
+            if (it == render_checks.end()) continue;
+            const CheckResult& c = *it->second;
+            std::string caption = escape(t);
+            if (c.verdict)
+                caption += fmt::format("<br>RMSE {:.5f} · SSIM {:.4f}<br>max {:.3f} · PSNR {:.1f} dB", c.verdict->metrics.rmse,
+                                       c.verdict->metrics.ssim, c.verdict->metrics.max_abs, c.verdict->metrics.psnr);
+            if (!c.passed) caption += "<br><span class=bad>" + escape(c.message) + "</span>";
+            h += fmt::format("<figure class=\"{}\"><img src=\"images/{}/{}.png\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
+                             c.passed ? "" : "fail", escape(g.id), escape(t), escape(t), caption);
+            if (!c.passed && c.verdict)
+                h += fmt::format("<figure class=fail><img src=\"images/{}/{}.diff.png\" alt=\"diff\"><figcaption>{} diff (red = tolerance)</figcaption></figure>\n",
+                                 escape(g.id), escape(t), escape(t));
+        }
+        h += "</div>\n";
+    }
+    std::string compile_failures;
+    for (const auto& c : report.checks)
+        if (!c.passed && c.golden_id.empty())
+            compile_failures += "<li>" + escape(c.preset + " " + c.target + " " + c.check + ": " + c.message) + "</li>\n";
+    if (!compile_failures.empty()) h += "<h2 class=bad>Compile failures</h2><ul>\n" + compile_failures + "</ul>\n";
+    return h + "</body></html>\n";
 }
 
 }  // namespace
 
 Status write_report(const ValidationReport& report, const std::string& dir) {
     if (auto s = detail::write_file_atomic(dir + "/report.json", report_json(report)); !s.ok()) return s;
-    return detail::write_file_atomic(dir + "/junit.xml", junit_xml(report));
+    if (auto s = detail::write_file_atomic(dir + "/junit.xml", junit_xml(report)); !s.ok()) return s;
+    return detail::write_file_atomic(dir + "/report.html", report_html(report));
+}
+
+Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
+    ValidationReport merged;
+    std::map<std::string, GoldenEntry> goldens;
+    std::vector<std::string> golden_order;
+    for (const auto& dir : dirs) {
+        const std::string path = dir + "/report.json";
+        auto text = detail::read_text_file(path);
+        if (!text.ok()) return text.error();
+        json j = json::parse(text.value(), nullptr, false);
+        if (j.is_discarded() || !j.contains("checks")) return make_error("not a crtforge report", path);
+        try {
+            for (const auto& [t, c] : j.at("consumers").items())
+                if (std::none_of(merged.consumers.begin(), merged.consumers.end(), [&](const auto& p) { return p.first == t; }))
+                    merged.consumers.emplace_back(t, c.get<std::string>());
+            for (const auto& g : j.at("goldens")) {
+                GoldenEntry e;
+                e.id = g.at("id");
+                e.preset = g.at("preset");
+                e.input = g.at("input");
+                e.width = g.at("width");
+                e.height = g.at("height");
+                e.input_width = g.at("inputWidth");
+                e.input_height = g.at("inputHeight");
+                e.frame = g.at("frame");
+                const auto& t = g.at("tolerance");
+                e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"), t.at("why")};
+                if (goldens.emplace(e.id, e).second) golden_order.push_back(e.id);
+            }
+            for (const auto& c : j.at("checks")) {
+                CheckResult r{c.at("preset"), c.at("target"), c.at("check"), c.at("passed"), c.value("message", ""), {}, {}};
+                if (r.check.rfind("render:", 0) == 0) r.golden_id = r.check.substr(7);
+                if (c.contains("metrics")) {
+                    const auto& m = c.at("metrics");
+                    Verdict v;
+                    v.passed = r.passed;
+                    v.reason = r.passed ? "" : r.message;
+                    v.metrics.max_abs = m.at("maxAbs");
+                    v.metrics.rmse = m.at("rmse");
+                    v.metrics.psnr = m.at("psnr");
+                    v.metrics.ssim = m.at("ssim");
+                    v.metrics.worst_x = m.at("worstPixel")[0];
+                    v.metrics.worst_y = m.at("worstPixel")[1];
+                    v.outlier_fraction = m.at("outlierFraction");
+                    r.verdict = v;
+                }
+                merged.checks.push_back(std::move(r));
+            }
+        } catch (const std::exception& e) {
+            return make_error(std::string("malformed report: ") + e.what(), path);
+        }
+    }
+    for (const auto& id : golden_order) merged.goldens.push_back(goldens.at(id));
+    // Restore the unsharded order: preset, then target order, then compile before render checks
+    // in golden order.
+    auto target_rank = [](const std::string& t) {
+        const auto& all = all_targets();
+        for (size_t i = 0; i < all.size(); ++i)
+            if (t == all[i].name) return i;
+        return all.size();
+    };
+    auto check_rank = [&](const CheckResult& c) -> size_t {
+        if (c.check == "compile:vert") return 0;
+        if (c.check == "compile:frag") return 1;
+        return 2 + static_cast<size_t>(std::find(golden_order.begin(), golden_order.end(), c.golden_id) - golden_order.begin());
+    };
+    std::stable_sort(merged.checks.begin(), merged.checks.end(), [&](const CheckResult& a, const CheckResult& b) {
+        if (a.preset != b.preset) return a.preset < b.preset;
+        if (a.target != b.target) return target_rank(a.target) < target_rank(b.target);
+        return check_rank(a) < check_rank(b);
+    });
+    return merged;
 }
 
 }  // namespace crtforge

@@ -1,10 +1,19 @@
-// Enumerates preset x target x check in a fixed order, keeps this shard's share, runs the checks.
+// Enumerates (preset, target) jobs in a fixed order, keeps this shard's share, and runs each job's
+// checks on worker threads: the consumer compiles the target's files, then every golden of the
+// preset is rendered through that consumer and judged.
 #include "crtforge/validation.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <thread>
 
 #include "crtforge/exporter.hpp"
+#include "crtforge/image_compare.hpp"
+#include "crtforge/image_io.hpp"
+#include "crtforge/target_render.hpp"
 
 namespace crtforge {
 
@@ -25,63 +34,178 @@ Result<Shard> Shard::parse(const std::string& text) {
     return s;
 }
 
+namespace {
+
+struct Job {
+    const Preset* preset;
+    TargetId target;
+    std::vector<const GoldenEntry*> goldens;
+};
+
+// Pictures for the HTML report: the input and golden once per golden, each target's render, and
+// a heat-map wherever a comparison failed.
+Status write_pictures(const std::string& dir, const GoldenEntry& g, const std::string& target, const Image& render,
+                      const Image& golden, const Image& input, const Verdict& verdict) {
+    const std::string base = dir + "/images/" + g.id;
+    std::error_code ec;
+    std::filesystem::create_directories(base, ec);
+    if (ec) return make_error("cannot create report directory: " + ec.message(), base);
+    // Workers of different targets share a golden's folder: the first writes input and golden.
+    static std::mutex shared_files;
+    {
+        std::lock_guard<std::mutex> lock(shared_files);
+        if (!std::filesystem::exists(base + "/golden.png")) {
+            if (auto s = write_png(base + "/golden.png", golden, 8); !s.ok()) return s;
+            if (auto s = write_png(base + "/input.png", input, 8); !s.ok()) return s;
+        }
+    }
+    if (auto s = write_png(base + "/" + target + ".png", render, 8); !s.ok()) return s;
+    if (!verdict.passed)
+        return write_png(base + "/" + target + ".diff.png", diff_heatmap(render, golden, g.tolerance.outlier_threshold), 8);
+    return Ok{};
+}
+
+std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job, const ValidateRequest& request,
+                                 const Cache& cache, TargetRenderer& renderer) {
+    std::vector<CheckResult> results;
+    const std::string target = target_info(job.target).name;
+    auto fail_all = [&](const std::string& message) {
+        for (const char* c : {"compile:vert", "compile:frag"}) results.push_back({job.preset->name, target, c, false, message, {}, {}});
+        for (const GoldenEntry* g : job.goldens)
+            results.push_back({job.preset->name, target, "render:" + g->id, false, message, {}, g->id});
+        return results;
+    };
+    auto compiled = compile_variant(library, *job.preset, {}, cache);
+    if (!compiled.ok()) return fail_all(compiled.error().str());
+    auto out = emit_target(compiled.value(), job.target, cache);
+    if (!out.ok()) return fail_all(out.error().str());
+
+    bool compiles = true;
+    for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
+        CheckResult r{job.preset->name, target, std::string("compile:") + shader_stage_name(stage), false, {}, {}, {}};
+        for (const OutputFile& f : out.value().files) {
+            if (f.stage != stage) continue;
+            auto consumed = consume_output(job.target, f);
+            r.passed = consumed.ok();
+            if (!consumed.ok()) r.message = consumed.error().str();
+        }
+        compiles = compiles && r.passed;
+        results.push_back(std::move(r));
+    }
+
+    for (const GoldenEntry* g : job.goldens) {
+        CheckResult r{job.preset->name, target, "render:" + g->id, false, {}, {}, g->id};
+        auto golden = read_image(request.golden_dir + "/" + g->file());
+        auto input = golden_input(*g);
+        if (!golden.ok()) {
+            r.message = golden.error().str() + " (run 'crtforge golden update')";
+        } else if (!input.ok()) {
+            r.message = input.error().str();
+        } else if (!compiles) {
+            r.message = "not rendered: the consumer rejected the shader";
+        } else {
+            TargetRenderRequest rr;
+            rr.compiled = &compiled.value();
+            rr.target = job.target;
+            rr.output = &out.value();
+            rr.input = input.value();
+            rr.filter = job.preset->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
+            rr.width = g->width;
+            rr.height = g->height;
+            rr.time = FrameInfo::time_of_frame(g->frame);
+            auto image = renderer.render(rr);
+            if (!image.ok()) {
+                r.message = image.error().str();
+            } else {
+                auto verdict = judge(image.value(), golden.value(), g->tolerance);
+                if (!verdict.ok()) {
+                    r.message = verdict.error().str();
+                } else {
+                    r.passed = verdict.value().passed;
+                    r.message = verdict.value().reason;
+                    r.verdict = verdict.value();
+                    if (!request.report_dir.empty()) {
+                        auto written = write_pictures(request.report_dir, *g, target, image.value(), golden.value(),
+                                                      input.value(), verdict.value());
+                        if (!written.ok()) {
+                            r.passed = false;
+                            r.message = written.error().str();
+                        }
+                    }
+                }
+            }
+        }
+        results.push_back(std::move(r));
+    }
+    return results;
+}
+
+}  // namespace
+
 Result<ValidationReport> run_validation(const TemplateLibrary& library, const ValidateRequest& request,
                                         const Cache& cache, const ProgressFn& progress) {
-    std::vector<const Preset*> presets;
-    for (const auto& p : library.presets())
-        if (request.presets.empty() || std::find(request.presets.begin(), request.presets.end(), p.name) != request.presets.end())
-            presets.push_back(&p);
     for (const auto& name : request.presets)
         if (!library.find_preset(name)) return make_error("unknown preset '" + name + "'", {}, 0, "--preset");
     std::vector<TargetId> targets = request.targets;
     if (targets.empty())
         for (const auto& t : all_targets()) targets.push_back(t.id);
 
+    ValidationReport report;
+    if (request.render) {
+        auto goldens = load_golden_manifest(request.golden_dir);
+        if (!goldens.ok()) return goldens.error();
+        for (const auto& in : request.inputs) {
+            bool known = false;
+            for (const auto& g : goldens.value()) known = known || g.input == in;
+            if (!known) return make_error("no golden uses input '" + in + "'", {}, 0, "--input");
+        }
+        for (const auto& g : goldens.value())
+            if (request.inputs.empty() || std::find(request.inputs.begin(), request.inputs.end(), g.input) != request.inputs.end())
+                report.goldens.push_back(g);
+    }
+
     // A shard takes every count-th (preset, target) pair, so work spreads evenly and the shards'
     // reports concatenate back into the full, ordered report.
-    struct Job { const Preset* preset; TargetId target; };
     std::vector<Job> jobs;
     size_t index = 0;
-    for (const Preset* p : presets)
-        for (TargetId t : targets)
-            if (index++ % request.shard.count == request.shard.index - 1) jobs.push_back({p, t});
+    size_t total = 0;
+    for (const Preset& p : library.presets()) {
+        if (!request.presets.empty() && std::find(request.presets.begin(), request.presets.end(), p.name) == request.presets.end())
+            continue;
+        for (TargetId t : targets) {
+            if (index++ % request.shard.count != request.shard.index - 1) continue;
+            Job job{&p, t, {}};
+            for (const GoldenEntry& g : report.goldens)
+                if (g.preset == p.name) job.goldens.push_back(&g);
+            total += 2 + job.goldens.size();
+            jobs.push_back(std::move(job));
+        }
+    }
 
-    ValidationReport report;
-    const size_t total = jobs.size() * 2;
-    const Preset* compiled_for = nullptr;
-    std::optional<CompiledVariant> compiled;
-    for (const Job& job : jobs) {
-        if (compiled_for != job.preset) {
-            auto c = compile_variant(library, *job.preset, request.options, cache);
-            if (!c.ok()) {
-                // The generator itself failed: every check of this preset fails with that reason.
-                for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
-                    report.checks.push_back({job.preset->name, target_info(job.target).name,
-                                             std::string("compile:") + shader_stage_name(stage), false, c.error().str()});
-                    if (progress) progress(report.checks.size(), total, report.checks.back());
-                }
-                continue;
+    std::vector<std::vector<CheckResult>> results(jobs.size());
+    std::atomic<size_t> next{0}, done{0};
+    std::mutex progress_mutex;
+    auto worker = [&] {
+        TargetRenderer renderer(request.vulkan);  // engines are per thread
+        for (size_t i = next++; i < jobs.size(); i = next++) {
+            results[i] = run_job(library, jobs[i], request, cache, renderer);
+            std::lock_guard<std::mutex> lock(progress_mutex);
+            for (const auto& r : results[i]) {
+                ++done;
+                if (progress) progress(done, total, r);
             }
-            compiled = std::move(c.value());
-            compiled_for = job.preset;
         }
-        auto out = emit_target(*compiled, job.target, cache);
-        for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
-            CheckResult r{job.preset->name, target_info(job.target).name,
-                          std::string("compile:") + shader_stage_name(stage), false, {}};
-            if (!out.ok()) {
-                r.message = out.error().str();
-            } else {
-                for (const OutputFile& f : out.value().files) {
-                    if (f.stage != stage) continue;
-                    auto consumed = consume_output(job.target, f);
-                    r.passed = consumed.ok();
-                    if (!consumed.ok()) r.message = consumed.error().str();
-                }
-            }
-            report.checks.push_back(std::move(r));
-            if (progress) progress(report.checks.size(), total, report.checks.back());
-        }
+    };
+    const unsigned threads = std::max(1u, std::min<unsigned>(request.jobs, static_cast<unsigned>(jobs.size())));
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    for (auto& r : results) report.checks.insert(report.checks.end(), r.begin(), r.end());
+
+    if (request.render) {
+        TargetRenderer describe(request.vulkan);
+        for (TargetId t : targets) report.consumers.emplace_back(target_info(t).name, describe.consumer(t));
     }
     return report;
 }

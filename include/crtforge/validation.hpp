@@ -1,5 +1,6 @@
-// crtforge validate: every preset x target is proven by something that consumes it, and the results
-// are gathered into a report (report.json, junit.xml) that CI can fail on.
+// crtforge validate: every preset x target is proven by something that consumes it — its compiler
+// accepts it, and its render through the real consumer matches the golden reference images — and
+// the results are gathered into a report (report.json, junit.xml, report.html) CI can fail on.
 #pragma once
 
 #include <functional>
@@ -9,6 +10,8 @@
 
 #include "crtforge/cache.hpp"
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/golden.hpp"
+#include "crtforge/render_engine.hpp"
 #include "crtforge/targets.hpp"
 #include "crtforge/template_library.hpp"
 #include "crtforge/variant.hpp"
@@ -18,13 +21,17 @@ namespace crtforge {
 struct CheckResult {
     std::string preset;
     std::string target;
-    std::string check;      // "compile:<vert|frag>" — what was proven
+    std::string check;      // "compile:vert", "compile:frag" or "render:<golden id>"
     bool passed = false;
-    std::string message;    // one line: what the consumer said on failure
+    std::string message;    // one line: what failed and why
+    std::optional<Verdict> verdict;  // render checks
+    std::string golden_id;           // render checks
 };
 
 struct ValidationReport {
-    std::vector<CheckResult> checks;  // in a fixed order: preset, target, check
+    std::vector<CheckResult> checks;              // fixed order: preset, target, check
+    std::vector<GoldenEntry> goldens;             // the goldens this run rendered against
+    std::vector<std::pair<std::string, std::string>> consumers;  // target -> consumer description
     size_t failed() const;
     size_t passed() const { return checks.size() - failed(); }
 };
@@ -37,18 +44,25 @@ struct Shard {
 struct ValidateRequest {
     std::vector<std::string> presets;  // empty = all
     std::vector<TargetId> targets;     // empty = all
-    VariantOptions options;
+    std::vector<std::string> inputs;   // golden inputs to render; empty = all
+    bool render = true;                // false: compile checks only
+    std::string golden_dir;            // where golden/manifest.json lives
+    std::string report_dir;            // when set, render/golden/diff pictures go to <report_dir>/images
+    EngineOptions vulkan;              // --device
     Shard shard;
+    unsigned jobs = 1;                 // worker threads, each with its own engines
 };
 
-// Called after each check, for progress display.
 using ProgressFn = std::function<void(size_t done, size_t total, const CheckResult&)>;
 
 Result<ValidationReport> run_validation(const TemplateLibrary& library, const ValidateRequest& request,
                                         const Cache& cache, const ProgressFn& progress = {});
 
-// report.json and junit.xml into dir (created if needed). No timestamps or timings: the same
-// results give byte-identical files.
+// report.json, junit.xml and report.html into dir. No timestamps or timings: the same results give
+// byte-identical files.
 Status write_report(const ValidationReport& report, const std::string& dir);
+
+// Concatenates shard reports (their report.json files) into one report, in the full run's order.
+Result<ValidationReport> merge_reports(const std::vector<std::string>& report_dirs);
 
 }  // namespace crtforge

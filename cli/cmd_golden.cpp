@@ -1,0 +1,45 @@
+// crtforge golden update [--filter TEXT] [--dir DIR]   and   crtforge devices
+#include <fmt/format.h>
+
+#include "cli/cli_common.hpp"
+#include "crtforge/golden.hpp"
+#include "crtforge/render_engine.hpp"
+
+namespace crtforge::cli {
+
+std::string default_golden_dir() {
+    if (const char* env = std::getenv("CRTFORGE_GOLDEN"); env && *env) return env;
+    return CRTFORGE_DEFAULT_GOLDEN_DIR;
+}
+
+Runner add_golden_command(CLI::App& app, const GlobalOptions& g) {
+    auto* cmd = app.add_subcommand("golden", "Manage the golden reference images");
+    cmd->require_subcommand(1);
+    auto* update = cmd->add_subcommand("update", "Re-render goldens with the CPU reference renderer (the only way goldens change)");
+    auto dir = std::make_shared<std::string>(default_golden_dir());
+    auto filter = std::make_shared<std::string>();
+    update->add_option("--dir", *dir, "Golden directory")->capture_default_str();
+    update->add_option("--filter", *filter, "Only re-render goldens whose id contains this text");
+    return [&g, dir, filter]() {
+        int code = kExitOk;
+        auto lib = load_library(g, code);
+        if (!lib) return code;
+        auto written = update_goldens(*lib, *dir, *filter);
+        if (!written.ok()) return report(written.error());
+        fmt::print("golden update: {} reference images written to {} (manifest lists {})\n", written.value(), *dir,
+                   golden_plan(*lib).size());
+        return kExitOk;
+    };
+}
+
+Runner add_devices_command(CLI::App& app, const GlobalOptions&) {
+    app.add_subcommand("devices", "List the Vulkan devices validate and render can use (--device NAME|INDEX)");
+    return []() {
+        auto devices = list_vulkan_devices();
+        if (!devices.ok()) return report(devices.error());
+        for (const auto& d : devices.value()) fmt::print("{}  {}  ({}, {})\n", d.index, d.name, d.type, d.driver);
+        return kExitOk;
+    };
+}
+
+}  // namespace crtforge::cli

@@ -1,0 +1,32 @@
+// Filling the std140 uniform buffer of a compiled variant: builtins from the frame being drawn,
+// params from the variant (or caller overrides), at the offsets reflected from SPIR-V.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "crtforge/exporter.hpp"
+
+namespace crtforge {
+
+// What the host knows about the frame: the sizes and the clock.
+struct FrameInfo {
+    int output_width = 0, output_height = 0;
+    int source_width = 0, source_height = 0;
+    double time = 0.0;  // seconds
+    static double time_of_frame(int frame) { return frame / 60.0; }  // a 60 Hz clock
+};
+
+// The bytes of the uniform block (empty when the variant has none). Param values default to the
+// variant's; `overrides` replaces some (name -> value), e.g. to drive a modulation.
+Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, const FrameInfo& frame,
+                                           const std::map<std::string, Value>& overrides = {});
+
+// Every param value the variant's shader sees (baked and uniform), with overrides applied: what a
+// reference renderer needs to evaluate the same math.
+std::map<std::string, Value> effective_values(const Variant& variant,
+                                              const std::map<std::string, Value>& overrides = {});
+
+}  // namespace crtforge

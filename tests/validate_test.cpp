@@ -1,0 +1,136 @@
+// crtforge validate end to end: the shipped goldens are current, every preset x target passes,
+// and validation can fail — perturbed shaders are caught, with pictures and reasons in the report.
+#include <filesystem>
+#include <fstream>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "crtforge/golden.hpp"
+#include "crtforge/image_io.hpp"
+#include "crtforge/validation.hpp"
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string golden_dir() { return std::string(CRTFORGE_SOURCE_DIR) + "/golden"; }
+
+std::string replace_once(std::string s, const std::string& from, const std::string& to) {
+    const auto pos = s.find(from);
+    REQUIRE(pos != std::string::npos);
+    return s.replace(pos, from.size(), to);
+}
+
+ValidationReport validate_with(const TemplateLibrary& lib, std::vector<std::string> presets, std::vector<TargetId> targets,
+                               std::vector<std::string> inputs, const std::string& report_dir = {}) {
+    ValidateRequest request;
+    request.presets = std::move(presets);
+    request.targets = std::move(targets);
+    request.inputs = std::move(inputs);
+    request.golden_dir = golden_dir();
+    request.report_dir = report_dir;
+    request.vulkan.validation = true;  // any Vulkan validation message fails the render
+    auto report = run_validation(lib, request, Cache());
+    if (!report.ok()) FAIL(report.error().str());
+    return report.value();
+}
+
+}  // namespace
+
+TEST_CASE("the shipped goldens are current: the reference renders them bit for bit", "[validate][golden]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    auto manifest = load_golden_manifest(golden_dir());
+    REQUIRE(manifest.ok());
+    const auto plan = golden_plan(lib);
+    REQUIRE(manifest.value().size() == plan.size());
+    for (size_t i = 0; i < plan.size(); ++i) CHECK(manifest.value()[i].id == plan[i].id);
+    // Re-rendering every golden takes a while on 2 cores; a spread sample covers each preset.
+    for (size_t i = 0; i < plan.size(); i += 3) {
+        INFO(plan[i].id << " is stale: run 'crtforge golden update'");
+        auto stored = read_image(golden_dir() + "/" + plan[i].file());
+        REQUIRE(stored.ok());
+        auto fresh = render_golden_reference(lib, plan[i]);
+        REQUIRE(fresh.ok());
+        auto metrics = compare_images(fresh.value(), stored.value());
+        REQUIRE(metrics.ok());
+        CHECK(metrics.value().max_abs <= 1.0 / 65535.0 + 1e-9);  // only 16-bit quantisation
+    }
+}
+
+TEST_CASE("every preset passes on spirv and hlsl50 against the goldens (colour bars)", "[validate]") {
+    ValidationReport r = validate_with(test::shipped_library(), {}, {TargetId::Spirv, TargetId::Hlsl50}, {"color_bars"});
+    CHECK(r.checks.size() == test::shipped_library().presets().size() * 2 * 3);
+    for (const auto& c : r.checks) {
+        INFO(c.preset << " " << c.target << " " << c.check << ": " << c.message);
+        CHECK(c.passed);
+    }
+}
+
+TEST_CASE("validate catches a scanline period off by 5%", "[validate][perturbed]") {
+    test::ScratchTemplates t;
+    t.write("stages/scanlines.glsl",
+            replace_once(t.read("stages/scanlines.glsl"), "(2.0 * PI / scanlinePeriodPx)", "(2.0 * PI / (scanlinePeriodPx * 1.05))"));
+    auto lib = t.load();
+    REQUIRE(lib.ok());
+    test::TempDir report_dir;
+    ValidationReport r = validate_with(*lib.value(), {"webgpu-post"}, {TargetId::Spirv}, {"color_bars"}, report_dir.path());
+    size_t render_failures = 0;
+    for (const auto& c : r.checks) {
+        if (c.check.rfind("render:", 0) != 0) continue;
+        CHECK_FALSE(c.passed);
+        CHECK_THAT(c.message, Catch::Contains("RMSE"));
+        ++render_failures;
+        CHECK(fs::exists(report_dir / ("images/" + c.golden_id + "/spirv.diff.png")));
+        CHECK(fs::exists(report_dir / ("images/" + c.golden_id + "/spirv.png")));
+        CHECK(fs::exists(report_dir / ("images/" + c.golden_id + "/golden.png")));
+    }
+    CHECK(render_failures == 1);  // color_bars has one golden per preset (320x240)
+    REQUIRE(write_report(r, report_dir.path()).ok());
+    auto json = nlohmann::json::parse(std::ifstream(report_dir / "report.json"));
+    CHECK(json["summary"]["failed"].get<int>() == static_cast<int>(render_failures));
+}
+
+TEST_CASE("validate catches a swapped mask channel", "[validate][perturbed]") {
+    test::ScratchTemplates t;
+    t.write("stages/mask.glsl", replace_once(t.read("stages/mask.glsl"), "if (col == 0) mask = vec3(1.0, maskDim, maskDim);",
+                                             "if (col == 0) mask = vec3(maskDim, 1.0, maskDim);"));
+    auto lib = t.load();
+    REQUIRE(lib.ok());
+    ValidationReport r = validate_with(*lib.value(), {"quiet-frame"}, {TargetId::Spirv, TargetId::Glsl330}, {"color_bars"});
+    size_t failed_renders = 0;
+    for (const auto& c : r.checks)
+        if (c.check.rfind("render:", 0) == 0 && !c.passed) ++failed_renders;
+    CHECK(failed_renders == 2);
+}
+
+TEST_CASE("shard reports merge back into the unsharded report", "[validate]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    test::TempDir a, b, whole, merged;
+    ValidateRequest request;
+    request.presets = {"classic", "webgpu-post"};
+    request.targets = {TargetId::Spirv, TargetId::Glsl450};
+    request.inputs = {"hdr"};
+    request.golden_dir = golden_dir();
+    request.vulkan.validation = true;
+    auto full = run_validation(lib, request, Cache());
+    REQUIRE(full.ok());
+    REQUIRE(write_report(full.value(), whole.path()).ok());
+    for (unsigned i : {1u, 2u}) {
+        request.shard = Shard{i, 2};
+        auto part = run_validation(lib, request, Cache());
+        REQUIRE(part.ok());
+        REQUIRE(write_report(part.value(), i == 1 ? a.path() : b.path()).ok());
+    }
+    auto m = merge_reports({a.path(), b.path()});
+    REQUIRE(m.ok());
+    REQUIRE(write_report(m.value(), merged.path()).ok());
+    auto slurp = [](const std::string& p) {
+        std::ifstream in(p);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    CHECK(slurp(merged / "report.json") == slurp(whole / "report.json"));
+    CHECK(slurp(merged / "junit.xml") == slurp(whole / "junit.xml"));
+}

@@ -1,0 +1,131 @@
+#include "crtforge/target_render.hpp"
+
+#include <cstring>
+
+#include "crtforge/gl_engine.hpp"
+
+namespace crtforge {
+
+TargetRenderer::TargetRenderer(EngineOptions vulkan_options) : vulkan_options_(std::move(vulkan_options)) {}
+TargetRenderer::~TargetRenderer() = default;
+
+Result<RenderEngine*> TargetRenderer::vulkan() {
+    if (!vulkan_) {
+        auto engine = create_vulkan_engine(vulkan_options_);
+        if (!engine.ok()) return engine.error();
+        vulkan_ = std::move(engine.value());
+    }
+    return vulkan_.get();
+}
+
+Result<GlEngine*> TargetRenderer::gl(bool es) {
+    auto& slot = es ? gl_es_ : gl_core_;
+    if (!slot) {
+        auto engine = create_gl_engine(es ? GlApi::Es : GlApi::DesktopCore);
+        if (!engine.ok()) return engine.error();
+        slot = std::move(engine.value());
+    }
+    return slot.get();
+}
+
+std::string TargetRenderer::consumer(TargetId target) {
+    switch (target) {
+        case TargetId::Spirv: {
+            auto v = vulkan();
+            return "Vulkan: " + (v.ok() ? v.value()->device().name : std::string("unavailable"));
+        }
+        case TargetId::Glsl450:
+        case TargetId::Glsl330:
+        case TargetId::GlslEs300: {
+            auto g = gl(target == TargetId::GlslEs300);
+            return g.ok() ? g.value()->renderer() : std::string("OpenGL unavailable");
+        }
+        case TargetId::Hlsl50:
+        case TargetId::Hlsl60: {
+            auto v = vulkan();
+            return "glslang HLSL -> SPIR-V -> Vulkan: " + (v.ok() ? v.value()->device().name : std::string("unavailable"));
+        }
+    }
+    return "?";
+}
+
+namespace {
+
+const OutputFile* file_of(const TargetOutput& out, ShaderStage stage) {
+    for (const auto& f : out.files)
+        if (f.stage == stage) return &f;
+    return nullptr;
+}
+
+void flip_rows(Image& image) {
+    const size_t row = static_cast<size_t>(image.width) * 4;
+    for (int y = 0; y < image.height / 2; ++y)
+        std::swap_ranges(image.rgba.begin() + y * row, image.rgba.begin() + (y + 1) * row,
+                         image.rgba.begin() + (image.height - 1 - y) * row);
+}
+
+}  // namespace
+
+Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
+    if (!r.compiled) return make_error("render request without a compiled variant");
+    FrameInfo frame{r.width, r.height, r.input.width, r.input.height, r.time};
+    auto uniforms = pack_uniforms(*r.compiled, frame, r.overrides);
+    if (!uniforms.ok()) return uniforms.error();
+    if (r.target != TargetId::Spirv && !r.output) return make_error("render request without the target's files");
+
+    if (r.target == TargetId::Glsl450 || r.target == TargetId::Glsl330 || r.target == TargetId::GlslEs300) {
+        auto engine = gl(r.target == TargetId::GlslEs300);
+        if (!engine.ok()) return engine.error();
+        GlRenderJob job;
+        job.vertex_source = file_of(*r.output, ShaderStage::Vertex)->data;
+        job.fragment_source = file_of(*r.output, ShaderStage::Fragment)->data;
+        job.input = r.input;
+        job.filter = r.filter;
+        job.width = r.width;
+        job.height = r.height;
+        job.format = r.format;
+        job.uniform_data = uniforms.value();
+        return engine.value()->render(job);
+    }
+
+    RenderJob job;
+    job.input = r.input;
+    job.filter = r.filter;
+    job.width = r.width;
+    job.height = r.height;
+    job.format = r.format;
+    job.uniform_data = uniforms.value();
+    if (r.target == TargetId::Spirv) {
+        job.vertex_spirv = r.compiled->vertex;
+        job.fragment_spirv = r.compiled->fragment;
+    } else {  // HLSL: compile the emitted text back to SPIR-V, as a D3D-to-Vulkan layer would
+        for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
+            CompileOptions options;
+            options.stage = stage;
+            options.language = SourceLanguage::Hlsl;
+            options.optimize = false;
+            options.source_name = std::string("<") + target_info(r.target).name + " " + shader_stage_name(stage) + ">";
+            auto spirv = compile_to_spirv(file_of(*r.output, stage)->data, options);
+            if (!spirv.ok()) {
+                Diagnostic d = spirv.error();
+                d.kind = ErrorKind::Validation;
+                return d;
+            }
+            (stage == ShaderStage::Vertex ? job.vertex_spirv : job.fragment_spirv) = std::move(spirv.value());
+        }
+    }
+    auto engine = vulkan();
+    if (!engine.ok()) return engine.error();
+    auto image = engine.value()->render(job);
+    if (!image.ok()) {
+        Diagnostic d = image.error();
+        d.kind = ErrorKind::Validation;
+        return d;
+    }
+    // The HLSL vertex shader targets D3D's y-up clip space; on Vulkan that draws the picture upside
+    // down, exactly as D3D would show it the right way up. Flip back to compare.
+    if (r.target == TargetId::Hlsl50 || r.target == TargetId::Hlsl60) flip_rows(image.value());
+    return image;
+}
+
+}  // namespace crtforge
