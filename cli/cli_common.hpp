@@ -49,6 +49,10 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g);
 Runner add_golden_command(CLI::App& app, const GlobalOptions& g);
 Runner add_devices_command(CLI::App& app, const GlobalOptions& g);
 
+// Name lookups whose errors list what exists (field --target / --preset).
+Result<const TargetInfo*> lookup_target(const std::string& name);
+Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name);
+
 // Shared parsing helpers.
 Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"
 Result<Image> load_input(const std::string& spec);                  // file path or generated input name

@@ -31,13 +31,9 @@ Runner add_export_command(CLI::App& app, const GlobalOptions& g) {
         int code = kExitOk;
         ExportRequest request;
         for (const auto& name : args->targets) {
-            const TargetInfo* t = find_target(name);
-            if (!t) {
-                std::string list;
-                for (const auto& ti : all_targets()) list += (list.empty() ? "" : ", ") + std::string(ti.name);
-                return report(make_error("unknown target '" + name + "' (targets: " + list + ")", {}, 0, "--target"));
-            }
-            request.targets.push_back(t->id);
+            auto t = lookup_target(name);
+            if (!t.ok()) return report(t.error());
+            request.targets.push_back(t.value()->id);
         }
         auto options = args->flags.parse();
         if (!options.ok()) return report(options.error());

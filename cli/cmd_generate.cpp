@@ -12,14 +12,6 @@ struct GenerateArgs {
     VariantFlags flags;
 };
 
-const Preset* find_preset_or_report(const TemplateLibrary& lib, const std::string& name, int& code) {
-    if (const Preset* p = lib.find_preset(name)) return p;
-    std::string list;
-    for (const auto& q : lib.presets()) list += (list.empty() ? "" : ", ") + q.name;
-    code = report(make_error("unknown preset '" + name + "' (presets: " + list + ")", {}, 0, "--preset"));
-    return nullptr;
-}
-
 }  // namespace
 
 Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
@@ -33,18 +25,16 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
     args->flags.add_to(*cmd);
     return [&g, args]() {
         int code = kExitOk;
-        const TargetInfo* target = find_target(args->target);
-        if (!target) {
-            std::string list;
-            for (const auto& t : all_targets()) list += (list.empty() ? "" : ", ") + std::string(t.name);
-            return report(make_error("unknown target '" + args->target + "' (targets: " + list + ")", {}, 0, "--target"));
-        }
+        auto found = lookup_target(args->target);
+        if (!found.ok()) return report(found.error());
+        const TargetInfo* target = found.value();
         auto options = args->flags.parse();
         if (!options.ok()) return report(options.error());
         auto lib = load_library(g, code);
         if (!lib) return code;
-        const Preset* preset = find_preset_or_report(*lib, args->preset, code);
-        if (!preset) return code;
+        auto preset_found = lookup_preset(*lib, args->preset);
+        if (!preset_found.ok()) return report(preset_found.error());
+        const Preset* preset = preset_found.value();
         Cache cache = make_cache(g);
         auto compiled = compile_variant(*lib, *preset, options.value(), cache);
         if (!compiled.ok()) return report(compiled.error());
@@ -79,9 +69,9 @@ Runner add_assemble_command(CLI::App& app, const GlobalOptions& g) {
         if (!options.ok()) return report(options.error());
         auto lib = load_library(g, code);
         if (!lib) return code;
-        const Preset* preset = find_preset_or_report(*lib, args->preset, code);
-        if (!preset) return code;
-        auto variant = make_variant(*lib, *preset, options.value());
+        auto preset = lookup_preset(*lib, args->preset);
+        if (!preset.ok()) return report(preset.error());
+        auto variant = make_variant(*lib, *preset.value(), options.value());
         if (!variant.ok()) return report(variant.error());
         fmt::print("{}", assemble(*lib, variant.value()).fragment);
         return kExitOk;

@@ -65,8 +65,9 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     a->flags.add_to(*cmd);
     return [&g, a]() {
         int code = kExitOk;
-        const TargetInfo* target = find_target(a->target);
-        if (!target) return report(make_error("unknown target '" + a->target + "'", {}, 0, "--target"));
+        auto target_found = lookup_target(a->target);
+        if (!target_found.ok()) return report(target_found.error());
+        const TargetInfo* target = target_found.value();
         auto options = a->flags.parse();
         if (!options.ok()) return report(options.error());
         auto input = load_input(a->input);
@@ -79,8 +80,9 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         }
         auto lib = load_library(g, code);
         if (!lib) return code;
-        const Preset* preset = lib->find_preset(a->preset);
-        if (!preset) return report(make_error("unknown preset '" + a->preset + "'", {}, 0, "--preset"));
+        auto preset_found = lookup_preset(*lib, a->preset);
+        if (!preset_found.ok()) return report(preset_found.error());
+        const Preset* preset = preset_found.value();
         Cache cache = make_cache(g);
         auto compiled = compile_variant(*lib, *preset, options.value(), cache);
         if (!compiled.ok()) return report(compiled.error());

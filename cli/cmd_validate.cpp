@@ -76,9 +76,9 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         int code = kExitOk;
         ValidateRequest request;
         for (const auto& name : a->targets) {
-            const TargetInfo* t = find_target(name);
-            if (!t) return report(make_error("unknown target '" + name + "'", {}, 0, "--target"));
-            request.targets.push_back(t->id);
+            auto t = lookup_target(name);
+            if (!t.ok()) return report(t.error());
+            request.targets.push_back(t.value()->id);
         }
         auto shard = Shard::parse(a->shard);
         if (!shard.ok()) return report(shard.error());

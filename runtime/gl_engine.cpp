@@ -15,6 +15,7 @@
 #include "gl_functions.hpp"
 #include "gl_objects.hpp"
 #include "gl_program.hpp"
+#include "job_checks.hpp"
 #include "pixel_conversion.hpp"
 
 // Desktop-only enum (ES has no switch for it: sRGB attachments always encode there).
@@ -27,19 +28,8 @@ namespace gl {
 namespace {
 
 using vulkan::TextureTexels;
-
-Diagnostic job_error(std::string message, const char* field) {
-    return make_error(std::move(message), {}, 0, fmt::format("job.{}", field));
-}
-
-const char* output_format_name(OutputFormat format) {
-    switch (format) {
-        case OutputFormat::Rgba8Unorm: return "Rgba8Unorm";
-        case OutputFormat::Rgba8Srgb: return "Rgba8Srgb";
-        case OutputFormat::Rgba16Float: return "Rgba16Float";
-    }
-    return "?";
-}
+using detail::job_error;
+using detail::output_format_name;
 
 GLenum output_internal_format(OutputFormat format) {
     switch (format) {
@@ -60,26 +50,9 @@ Status check_job(const GlContext& context, const GlRenderJob& job) {
     const GlContextFacts& facts = context.facts();
     if (job.vertex_source.empty()) return job_error("vertex shader source is empty", "vertex_source");
     if (job.fragment_source.empty()) return job_error("fragment shader source is empty", "fragment_source");
-    for (bool horizontal : {true, false}) {
-        const int size = horizontal ? job.width : job.height;
-        const char* field = horizontal ? "width" : "height";
-        const int limit = max_output_extent(facts, horizontal);
-        if (size <= 0 || size > limit) {
-            return job_error(fmt::format("output {} must be between 1 and {} (limit of '{}'); got {}", field, limit,
-                                         facts.renderer, size),
-                             field);
-        }
-    }
-    if (!job.input.consistent() || job.input.width < 0 || job.input.height < 0) {
-        return job_error(fmt::format("input image is {}x{} but holds {} floats (expected width * height * 4)",
-                                     job.input.width, job.input.height, job.input.rgba.size()),
-                         "input");
-    }
-    if (job.input.width > facts.max_texture_size || job.input.height > facts.max_texture_size) {
-        return job_error(fmt::format("input image {}x{} exceeds GL_MAX_TEXTURE_SIZE of {}", job.input.width,
-                                     job.input.height, facts.max_texture_size),
-                         "input");
-    }
+    const detail::JobLimits limits{max_output_extent(facts, true), max_output_extent(facts, false),
+                                   facts.max_texture_size, facts.renderer, "GL_MAX_TEXTURE_SIZE"};
+    if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s;
     if (!job.uniform_data.empty()) {
         if (job.uniform_block.empty()) return job_error("uniform data is given but no uniform block is named", "uniform_block");
         if (job.uniform_data.size() > static_cast<size_t>(facts.max_uniform_block_size)) {

@@ -1,5 +1,7 @@
 #include "job_validation.hpp"
 
+#include "job_checks.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -11,18 +13,8 @@
 namespace crtforge::vulkan {
 namespace {
 
-Diagnostic job_error(std::string message, const char* field) {
-    return make_error(std::move(message), {}, 0, fmt::format("job.{}", field));
-}
-
-const char* output_format_name(OutputFormat format) {
-    switch (format) {
-        case OutputFormat::Rgba8Unorm: return "Rgba8Unorm";
-        case OutputFormat::Rgba8Srgb: return "Rgba8Srgb";
-        case OutputFormat::Rgba16Float: return "Rgba16Float";
-    }
-    return "?";
-}
+using detail::job_error;
+using detail::output_format_name;
 
 // The smallest of the limits an image of this size has to satisfy along one axis.
 uint32_t max_extent(const VkPhysicalDeviceLimits& limits, bool horizontal) {
@@ -34,28 +26,11 @@ uint32_t max_extent(const VkPhysicalDeviceLimits& limits, bool horizontal) {
 
 Status check_size(const VulkanContext& context, const RenderJob& job) {
     const auto& limits = context.limits();
-    for (bool horizontal : {true, false}) {
-        const int size = horizontal ? job.width : job.height;
-        const char* field = horizontal ? "width" : "height";
-        const uint32_t limit = max_extent(limits, horizontal);
-        if (size <= 0 || static_cast<int64_t>(size) > static_cast<int64_t>(limit)) {
-            return job_error(fmt::format("output {} must be between 1 and {} (limit of '{}'); got {}", field, limit,
-                                         context.info().name, size),
-                             field);
-        }
-    }
-    if (!job.input.consistent() || job.input.width < 0 || job.input.height < 0) {
-        return job_error(fmt::format("input image is {}x{} but holds {} floats (expected width * height * 4)",
-                                     job.input.width, job.input.height, job.input.rgba.size()),
-                         "input");
-    }
-    if (static_cast<int64_t>(job.input.width) > limits.maxImageDimension2D ||
-        static_cast<int64_t>(job.input.height) > limits.maxImageDimension2D) {
-        return job_error(fmt::format("input image {}x{} exceeds the device's maxImageDimension2D of {}", job.input.width,
-                                     job.input.height, limits.maxImageDimension2D),
-                         "input");
-    }
-    return Ok{};
+    auto clamp_int = [](uint32_t v) { return static_cast<int>(std::min<uint32_t>(v, 1u << 30)); };
+    detail::JobLimits job_limits{clamp_int(max_extent(limits, true)), clamp_int(max_extent(limits, false)),
+                                 clamp_int(limits.maxImageDimension2D), context.info().name,
+                                 "the device's maxImageDimension2D"};
+    return detail::check_job_extent(job.width, job.height, job.input, job_limits);
 }
 
 Status check_bindings(const VulkanContext& context, const RenderJob& job) {

@@ -9,13 +9,4 @@ void apply_readable_names(spirv_cross::CompilerGLSL& compiler) {
     for (const auto& ub : resources.uniform_buffers) compiler.set_name(ub.id, kUniformInstanceName);
 }
 
-Result<std::string> cross_compile(spirv_cross::CompilerGLSL& compiler, const char* target, ShaderStage stage) {
-    try {
-        return compiler.compile();
-    } catch (const std::exception& e) {
-        return make_validation_error(std::string("SPIRV-Cross cannot express the ") + shader_stage_name(stage) +
-                          " shader in " + target + ": " + e.what());
-    }
-}
-
 }  // namespace crtforge::detail

@@ -1,14 +1,15 @@
-// Shared SPIRV-Cross plumbing for the GLSL and HLSL writers: readable resource names and
-// exceptions turned into Diagnostics.
+// Shared SPIRV-Cross plumbing for the GLSL and HLSL writers: one driver that builds the compiler,
+// lets the writer set its options, gives resources readable names, and turns SPIRV-Cross's
+// exceptions into Diagnostics.
 #pragma once
 
-#include <functional>
 #include <string>
 
 #include <spirv_cross/spirv_glsl.hpp>
 
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/spirv_compiler.hpp"
+#include "crtforge/targets.hpp"
 
 namespace crtforge::detail {
 
@@ -16,7 +17,35 @@ namespace crtforge::detail {
 // crt_scanlineIntensity (HLSL) instead of _19.scanlineIntensity.
 void apply_readable_names(spirv_cross::CompilerGLSL& compiler);
 
-// Runs compile() and converts SPIRV-Cross exceptions into a Diagnostic naming target and stage.
-Result<std::string> cross_compile(spirv_cross::CompilerGLSL& compiler, const char* target, ShaderStage stage);
+// Compiles `module` with a Compiler (CompilerGLSL or a subclass) after `configure(compiler)` set
+// its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0").
+template <typename Compiler, typename Configure>
+Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, const std::string& target,
+                                  Configure&& configure) {
+    try {
+        Compiler compiler(module);
+        configure(compiler);
+        apply_readable_names(compiler);
+        return compiler.compile();
+    } catch (const std::exception& e) {
+        return make_validation_error("SPIRV-Cross cannot express the " + std::string(shader_stage_name(stage)) +
+                                     " shader in " + target + ": " + e.what());
+    }
+}
+
+// Emits the vertex then the fragment shader of `input` with `emit(module, stage)`, naming the files
+// "<preset><suffix>" with the given per-stage suffixes.
+template <typename Emit>
+Result<TargetOutput> emit_both_stages(const TargetInput& input, const char* vertex_suffix,
+                                      const char* fragment_suffix, Emit&& emit) {
+    TargetOutput out;
+    for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
+        const SpirvBinary& module = stage == ShaderStage::Vertex ? *input.vertex : *input.fragment;
+        Result<std::string> text = emit(module, stage);
+        if (!text.ok()) return text.error();
+        out.files.push_back({stage, stage == ShaderStage::Vertex ? vertex_suffix : fragment_suffix, std::move(text.value())});
+    }
+    return out;
+}
 
 }  // namespace crtforge::detail

@@ -57,6 +57,19 @@ const OutputFile* file_of(const TargetOutput& out, ShaderStage stage) {
     return nullptr;
 }
 
+// The fields the Vulkan and GL jobs share.
+template <typename Job>
+Job common_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms) {
+    Job job;
+    job.input = r.input;
+    job.filter = r.filter;
+    job.width = r.width;
+    job.height = r.height;
+    job.format = r.format;
+    job.uniform_data = std::move(uniforms);
+    return job;
+}
+
 void flip_rows(Image& image) {
     const size_t row = static_cast<size_t>(image.width) * 4;
     for (int y = 0; y < image.height / 2; ++y)
@@ -76,25 +89,13 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
     if (r.target == TargetId::Glsl450 || r.target == TargetId::Glsl330 || r.target == TargetId::GlslEs300) {
         auto engine = gl(r.target == TargetId::GlslEs300);
         if (!engine.ok()) return engine.error();
-        GlRenderJob job;
+        auto job = common_job<GlRenderJob>(r, std::move(uniforms.value()));
         job.vertex_source = file_of(*r.output, ShaderStage::Vertex)->data;
         job.fragment_source = file_of(*r.output, ShaderStage::Fragment)->data;
-        job.input = r.input;
-        job.filter = r.filter;
-        job.width = r.width;
-        job.height = r.height;
-        job.format = r.format;
-        job.uniform_data = uniforms.value();
         return engine.value()->render(job);
     }
 
-    RenderJob job;
-    job.input = r.input;
-    job.filter = r.filter;
-    job.width = r.width;
-    job.height = r.height;
-    job.format = r.format;
-    job.uniform_data = uniforms.value();
+    auto job = common_job<RenderJob>(r, std::move(uniforms.value()));
     if (r.target == TargetId::Spirv) {
         job.vertex_spirv = r.compiled->vertex;
         job.fragment_spirv = r.compiled->fragment;
