@@ -7,4 +7,4 @@ scripts/setup.sh
 scripts/build.sh
 export CRTFORGE_CACHE="${CRTFORGE_CACHE:-$PWD/build/cache}"
 build/crtforge export --out out/export
-build/crtforge validate --report out/report
+build/crtforge validate --report out/report -j "$(nproc 2>/dev/null || echo 2)"

@@ -1,9 +1,12 @@
 // The crtforge executable: exit codes (0 ok, 1 validation failure, 2 bad usage or input), one-line
 // errors naming file, line and field, and no partial output on failure.
 #include <filesystem>
+#include <fstream>
 
 #include <catch2/catch.hpp>
 
+#include "crtforge/golden.hpp"
+#include "crtforge/image_io.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -37,7 +40,8 @@ TEST_CASE("list prints one name per line for scripts", "[cli]") {
 }
 
 TEST_CASE("help on every command exits 0", "[cli]") {
-    for (const char* cmd : {"--help", "list --help", "generate --help", "export --help", "assemble --help"}) {
+    for (const char* cmd : {"--help", "list --help", "generate --help", "export --help", "assemble --help", "validate --help",
+                            "render --help", "golden update --help", "report merge --help", "devices --help"}) {
         INFO(cmd);
         auto r = test::run_crtforge(cmd);
         CHECK(r.exit_code == 0);
@@ -102,4 +106,77 @@ TEST_CASE("generate and export write the promised files", "[cli]") {
                                     "/e2' --preset classic,passthrough --target spirv --target glsl330");
     CHECK(again.exit_code == 0);
     CHECK_THAT(again.out, Catch::Contains(" 0 misses"));
+}
+
+TEST_CASE("render puts a preset on a user's image through a target's consumer", "[cli][render]") {
+    test::TempDir tmp;
+    // A user's screenshot: any format OpenImageIO reads; here a PNG written by crtforge itself.
+    auto made = test::run_crtforge("render --preset passthrough --input color_bars --size 64x48 --output '" + (tmp / "shot.png") + "'");
+    REQUIRE(made.exit_code == 0);
+    for (const char* target : {"spirv", "glsl330", "glsles300", "hlsl60"}) {
+        INFO(target);
+        auto r = test::run_crtforge(std::string("--no-cache render --preset quiet-frame --target ") + target + " --input '" +
+                                    (tmp / "shot.png") + "' --size 96x72 --output '" + (tmp / (std::string(target) + ".png")) + "'");
+        CHECK(r.exit_code == 0);
+        auto image = read_image(tmp / (std::string(target) + ".png"));
+        REQUIRE(image.ok());
+        CHECK(image.value().width == 96);
+        CHECK(image.value().height == 72);
+    }
+    auto hdr = test::run_crtforge("render --preset webgpu-post --input hdr --reference --output '" + (tmp / "hdr.exr") + "'");
+    CHECK(hdr.exit_code == 0);
+    CHECK(fs::exists(tmp / "hdr.exr"));
+}
+
+TEST_CASE("render rejects bad sizes, inputs and outputs with exit 2 and no file", "[cli][render][errors]") {
+    test::TempDir tmp;
+    const std::string out = tmp / "out.png";
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --size 0x10 --output '" + out + "'"), "--size");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --size 64by48 --output '" + out + "'"), "--size");
+    check_usage_error(test::run_crtforge("render --preset classic --input nosuchfile.png --output '" + out + "'"), "--input");
+    std::ofstream(tmp / "broken.png") << "not a png";
+    check_usage_error(test::run_crtforge("render --preset classic --input '" + (tmp / "broken.png") + "' --output '" + out + "'"), "broken.png");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --output '" + (tmp / "out.bmp") + "'"), "--output");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --frame -3 --output '" + out + "'"), "--frame");
+    CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("without a Vulkan driver, render says which package is missing", "[cli][render][errors]") {
+    test::TempDir tmp;
+    auto r = test::run_crtforge("render --preset classic --input color_bars --output '" + (tmp / "x.png") + "'",
+                                "VK_ICD_FILENAMES=/nonexistent.json");
+    check_usage_error(r, "mesa-vulkan-drivers");
+    CHECK_FALSE(fs::exists(tmp / "x.png"));
+}
+
+TEST_CASE("devices lists lavapipe; golden update writes only when asked", "[cli][golden]") {
+    auto devices = test::run_crtforge("devices");
+    CHECK(devices.exit_code == 0);
+    CHECK_THAT(devices.out, Catch::Contains("llvmpipe"));
+
+    test::TempDir dir;
+    auto update = test::run_crtforge("golden update --dir '" + dir.path() + "' --filter webgpu-post.color_bars");
+    CHECK(update.exit_code == 0);
+    CHECK(fs::exists(dir / "webgpu-post.color_bars.320x240.f0.png"));
+    CHECK_FALSE(fs::exists(dir / "classic.color_bars.320x240.f0.png"));
+    auto manifest = load_golden_manifest(dir.path());
+    REQUIRE(manifest.ok());
+    CHECK(manifest.value().size() == golden_plan(test::shipped_library()).size());
+}
+
+TEST_CASE("validate exits 1 on a failing comparison and 2 on bad arguments", "[cli][validate]") {
+    test::TempDir golden;
+    // A golden set where one image is wrong: validate must fail it, with a report.
+    REQUIRE(test::run_crtforge("golden update --dir '" + golden.path() + "' --filter webgpu-post.color_bars").exit_code == 0);
+    Image wrong = Image::make(320, 240, {1.0f, 0.0f, 1.0f, 1.0f});
+    REQUIRE(write_png(golden / "webgpu-post.color_bars.320x240.f0.png", wrong, 16).ok());
+    test::TempDir report;
+    auto r = test::run_crtforge("validate --golden-dir '" + golden.path() + "' --preset webgpu-post --target spirv --input color_bars --report '" +
+                                report.path() + "'");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.out, Catch::Contains("FAIL webgpu-post spirv render:webgpu-post.color_bars.320x240.f0"));
+    CHECK(fs::exists(report / "report.html"));
+    CHECK(fs::exists(report / "images/webgpu-post.color_bars.320x240.f0/spirv.diff.png"));
+    check_usage_error(test::run_crtforge("validate --shard 3/2"), "--shard");
+    check_usage_error(test::run_crtforge("validate --input nothing --preset classic"), "--input");
 }

@@ -49,7 +49,8 @@ struct CommandResult {
 };
 
 // Runs build/crtforge with the given arguments (a shell-quoted string), capturing both streams.
-CommandResult run_crtforge(const std::string& args);
+// `env` is prepended as environment assignments (e.g. "VK_ICD_FILENAMES=/nonexistent.json").
+CommandResult run_crtforge(const std::string& args, const std::string& env = {});
 
 // Compiles and emits one preset through every target; fails the test on any error.
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,

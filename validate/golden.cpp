@@ -18,16 +18,18 @@ using json = nlohmann::ordered_json;
 
 namespace {
 
-// fp32 on the GPU against fp64 on the CPU: smooth regions agree to ~1e-4 (half-float output adds
-// ~5e-4), so RMSE stays far below 0.01. Where the math is discontinuous — floor() in masks and
-// cell quantising, the bezel edge, 1-texel bilinear steps — a sample falling on the other side of
-// an edge flips a whole pixel, so a small fraction of outlier pixels is allowed rather than a
-// large max error. A 5% scanline-period error or a swapped mask channel moves RMSE past 0.03 and
-// SSIM below 0.9 (tests/validate_test.cpp proves it).
+// fp32 on the GPU against fp64 on the CPU: on lavapipe and Mesa GL every render agrees to RMSE
+// <= 0.0003 and max |d| <= 0.0005 (the half-float output and 16-bit golden steps), so RMSE may be
+// at most 0.004 (about 1/255): ten times that floor, still small enough to catch a wrong constant
+// such as a luma weight. Where the math is discontinuous — floor() in masks and cell quantising,
+// the bezel edge, texel steps — another driver's rounding can put a sample on the other side of an
+// edge and flip a whole pixel, so up to 0.5% of pixels may differ by more than 0.05 rather than
+// bounding the max error. A 5% scanline-period error or a swapped mask channel fails by far
+// (tests/validate_test.cpp).
 Tolerance default_tolerance() {
-    return {0.01, 0.05, 0.005, 0.98,
-            "fp32 GPU vs fp64 reference: RMSE <= 0.01; discontinuities (floor in masks, bezel edge, "
-            "texel steps) may flip up to 0.5% of pixels by more than 0.05; luma SSIM >= 0.98"};
+    return {0.004, 0.05, 0.005, 0.99,
+            "fp32 GPU vs fp64 reference: RMSE <= 0.004 (lavapipe/Mesa measure <= 0.0003); discontinuities "
+            "(floor in masks, bezel edge, texel steps) may flip up to 0.5% of pixels by more than 0.05; luma SSIM >= 0.99"};
 }
 
 GoldenEntry make_entry(const std::string& preset, const std::string& input, int w, int h, int frame) {
