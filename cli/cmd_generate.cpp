@@ -45,12 +45,12 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
                 fmt::print("{}", disassemble_spirv(compiled.value().fragment));
             } else {
                 for (const auto& f : out.value().files)
-                    if (f.stage == ShaderStage::Fragment) fmt::print("{}", f.data);
+                    if (f.manifest_role() == "fragment" || f.manifest_role() == "shader") fmt::print("{}", f.data);
             }
             return kExitOk;
         }
         std::map<std::string, std::string> files;
-        for (const auto& f : out.value().files) files[preset->name + f.suffix] = f.data;
+        for (const auto& f : out.value().files) files[f.path.empty() ? preset->name + f.suffix : f.path] = f.data;
         if (auto s = write_files(args->out, files); !s.ok()) return report(s.error());
         for (const auto& [path, data] : files) fmt::print("{}/{}\n", args->out, path);
         return kExitOk;

@@ -1,9 +1,13 @@
 #include "crtforge/cache.hpp"
 
+#include <link.h>
+
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 #include <xxhash.h>
@@ -33,6 +37,53 @@ std::string Cache::key(std::initializer_list<std::string_view> parts) {
     XXH128_hash_t h = XXH3_128bits_digest(state);
     XXH3_freeState(state);
     return fmt::format("{:016x}{:016x}", h.high64, h.low64);
+}
+
+namespace {
+
+// The GNU build-id note the linker puts in the executable: unique per build, read from memory.
+int find_build_id(struct dl_phdr_info* info, size_t, void* out) {
+    if (info->dlpi_name && info->dlpi_name[0]) return 0;  // the main program comes first, unnamed
+    for (int i = 0; i < info->dlpi_phnum; ++i) {
+        const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+        if (ph.p_type != PT_NOTE) continue;
+        const char* p = reinterpret_cast<const char*>(info->dlpi_addr + ph.p_vaddr);
+        const char* end = p + ph.p_memsz;
+        while (p + sizeof(ElfW(Nhdr)) <= end) {
+            const auto* note = reinterpret_cast<const ElfW(Nhdr)*>(p);
+            const char* name = p + sizeof(ElfW(Nhdr));
+            const char* desc = name + ((note->n_namesz + 3) & ~3u);
+            if (note->n_type == NT_GNU_BUILD_ID && note->n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
+                auto* id = static_cast<std::string*>(out);
+                for (unsigned k = 0; k < note->n_descsz; ++k) *id += fmt::format("{:02x}", static_cast<unsigned char>(desc[k]));
+                return 1;
+            }
+            p = desc + ((note->n_descsz + 3) & ~3u);
+        }
+    }
+    return 1;
+}
+
+}  // namespace
+
+const std::string& Cache::build_id() {
+    static const std::string id = [] {
+        std::string found;
+        dl_iterate_phdr(find_build_id, &found);
+        if (!found.empty()) return found;
+        // No build-id note (unusual linker settings): hash the executable instead.
+        std::ifstream in("/proc/self/exe", std::ios::binary);
+        if (!in) return std::string(CRTFORGE_VERSION);
+        XXH3_state_t* state = XXH3_createState();
+        XXH3_128bits_reset(state);
+        std::vector<char> chunk(1 << 20);
+        while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
+            XXH3_128bits_update(state, chunk.data(), static_cast<size_t>(in.gcount()));
+        const XXH128_hash_t h = XXH3_128bits_digest(state);
+        XXH3_freeState(state);
+        return fmt::format("{:016x}{:016x}", h.high64, h.low64);
+    }();
+    return id;
 }
 
 std::optional<std::string> Cache::get(const std::string& kind, const std::string& key) const {

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "crtforge/assembler.hpp"
@@ -44,7 +45,7 @@ CompileMemo& compile_memo() {
 
 Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
                                    const std::string& name, const Cache& cache) {
-    const std::string key = Cache::key({"spirv", compiler_versions(), shader_stage_name(stage), source});
+    const std::string key = Cache::key({"spirv", Cache::build_id(), compiler_versions(), shader_stage_name(stage), source});
     {
         std::lock_guard<std::mutex> lock(compile_memo().mutex);
         auto it = compile_memo().modules.find(key);
@@ -99,6 +100,8 @@ std::string serialize(const TargetOutput& out) {
         put_field(blob, shader_stage_name(f.stage));
         put_field(blob, f.suffix);
         put_field(blob, f.data);
+        put_field(blob, f.role);
+        put_field(blob, f.path);
     }
     put_field(blob, std::to_string(out.bindings.size()));
     for (const auto& [name, how] : out.bindings) {
@@ -110,11 +113,13 @@ std::string serialize(const TargetOutput& out) {
 
 std::optional<TargetOutput> deserialize(std::string_view in) {
     TargetOutput out;
-    std::string field, stage, suffix, data, name, how;
+    std::string field, stage, suffix, data, role, path, name, how;
     if (!get_field(in, field) || field.size() > 2) return std::nullopt;
     for (int n = std::stoi(field); n > 0; --n) {
-        if (!get_field(in, stage) || !get_field(in, suffix) || !get_field(in, data)) return std::nullopt;
-        out.files.push_back({stage == "vert" ? ShaderStage::Vertex : ShaderStage::Fragment, suffix, data});
+        if (!get_field(in, stage) || !get_field(in, suffix) || !get_field(in, data) || !get_field(in, role) ||
+            !get_field(in, path))
+            return std::nullopt;
+        out.files.push_back({stage == "vert" ? ShaderStage::Vertex : ShaderStage::Fragment, suffix, data, role, path});
     }
     if (!get_field(in, field) || field.size() > 2) return std::nullopt;
     for (int n = std::stoi(field); n > 0; --n) {
@@ -122,6 +127,19 @@ std::optional<TargetOutput> deserialize(std::string_view in) {
         out.bindings.emplace_back(name, how);
     }
     if (!in.empty()) return std::nullopt;
+    return out;
+}
+
+// Everything besides the SPIR-V that a target may print: Godot files carry the preset's name, doc,
+// filter and every uniform's default, and two presets can share one SPIR-V module.
+std::string variant_fingerprint(const Variant& v) {
+    std::string out = v.preset->name + "\n" + v.preset->doc + "\n" + filter_name(v.preset->filter) + "\n";
+    for (const VariantParam& p : v.params) {
+        // Exact values: value_to_string rounds colours to 8 bits.
+        std::string value = value_to_string(p.value);
+        if (auto c = std::get_if<Color>(&p.value)) value = fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
+        out += p.spec->name + (p.uniform ? "=u:" : "=c:") + value + "\n";
+    }
     return out;
 }
 
@@ -150,10 +168,11 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
 Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId target, const Cache& cache) {
     TargetInput input{&compiled.variant, &compiled.fragment, &compiled.vertex};
     if (target == TargetId::Spirv) return generate_target(target, input);  // nothing to cache
-    const std::string key = Cache::key({"target", target_fingerprint(target),
+    const std::string key = Cache::key({"target", Cache::build_id(), target_fingerprint(target),
                                         precision_name(compiled.variant.options.precision),
                                         compiled.variant.has_uniform_block() ? "ubo" : "no-ubo",
-                                        to_bytes(compiled.fragment), to_bytes(compiled.vertex)});
+                                        to_bytes(compiled.fragment), to_bytes(compiled.vertex),
+                                        variant_fingerprint(compiled.variant)});
     const std::string kind = target_info(target).name;
     if (auto hit = cache.get(kind, key))
         if (auto out = deserialize(*hit)) return *out;
@@ -225,8 +244,9 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
             }
             detail::ManifestTargetEntry te{target, {}, out.value().bindings};
             for (const OutputFile& f : out.value().files) {
-                const std::string path = export_path(preset->name, target, f.suffix);
-                te.files[f.stage == ShaderStage::Vertex ? "vertex" : "fragment"] = path;
+                const std::string path = f.path.empty() ? export_path(preset->name, target, f.suffix)
+                                                        : std::string(target_info(target).name) + "/" + f.path;
+                te.files[f.manifest_role()] = path;
                 po.files[path] = f.data;
             }
             files[target_info(target).name] = detail::target_manifest(te);

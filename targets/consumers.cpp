@@ -2,6 +2,7 @@
 #include <cstring>
 
 #include "crtforge/targets.hpp"
+#include "targets/godot/godot_shim.hpp"
 
 namespace crtforge {
 
@@ -20,6 +21,18 @@ Status consume_output(TargetId target, const OutputFile& f) {
         case TargetId::GlslEs300: status = check_glsl(f.data, f.stage, 300, true); break;
         case TargetId::Hlsl50:
         case TargetId::Hlsl60: status = check_hlsl(f.data, f.stage, "main"); break;
+        case TargetId::Godot4:
+        case TargetId::Godot3: {
+            if (!f.is_shader()) return Ok{};  // the material and the README are not code
+            auto shim = godot::wrap_in_shim(f.data, target == TargetId::Godot4 ? 4 : 3);
+            if (!shim.ok()) return shim.error();
+            CompileOptions options;
+            options.optimize = false;
+            options.source_name = "<godot shader>";
+            auto spirv = compile_to_spirv(shim.value().glsl, options);
+            status = spirv.ok() ? Status(Ok{}) : Status(spirv.error());
+            break;
+        }
     }
     if (status.ok()) return status;
     Diagnostic d = status.error();

@@ -229,8 +229,8 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
         return all.size();
     };
     auto check_rank = [&](const CheckResult& c) -> size_t {
-        if (c.check == "compile:vert") return 0;
-        if (c.check == "compile:frag") return 1;
+        if (c.check == "compile:vertex" || c.check == "compile:shader") return 0;
+        if (c.check == "compile:fragment" || c.check == "compile:screenShader") return 1;
         return 2 + static_cast<size_t>(std::find(golden_order.begin(), golden_order.end(), c.golden_id) - golden_order.begin());
     };
     std::stable_sort(merged.checks.begin(), merged.checks.end(), [&](const CheckResult& a, const CheckResult& b) {

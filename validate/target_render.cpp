@@ -3,6 +3,8 @@
 #include <cstring>
 
 #include "crtforge/gl_engine.hpp"
+#include "crtforge/reflection.hpp"
+#include "targets/godot/godot_shim.hpp"
 
 namespace crtforge {
 
@@ -45,6 +47,12 @@ std::string TargetRenderer::consumer(TargetId target) {
             auto v = vulkan();
             return "glslang HLSL -> SPIR-V -> Vulkan: " + (v.ok() ? v.value()->device().name : std::string("unavailable"));
         }
+        case TargetId::Godot4: {
+            auto v = vulkan();
+            return "Godot 4 shim (Godot builtins as Vulkan resources) -> glslang -> Vulkan: " +
+                   (v.ok() ? v.value()->device().name : std::string("unavailable"));
+        }
+        case TargetId::Godot3: return "none yet";
     }
     return "?";
 }
@@ -68,6 +76,48 @@ Job common_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms) {
     job.format = r.format;
     job.uniform_data = std::move(uniforms);
     return job;
+}
+
+const OutputFile* file_with_role(const TargetOutput& out, const std::string& role) {
+    for (const auto& f : out.files)
+        if (f.manifest_role() == role) return &f;
+    return nullptr;
+}
+
+// The std140 bytes of the shim's block: Godot's builtins for this frame, then the shader's uniforms
+// at the variant's values (colours are vec3 in Godot 4 and vec4 in Godot 3).
+Result<std::vector<uint8_t>> pack_shim_uniforms(const SpirvBinary& spirv, const TargetRenderRequest& r) {
+    auto reflection = reflect(spirv);
+    if (!reflection.ok()) return reflection.error();
+    std::vector<uint8_t> bytes;
+    if (reflection.value().uniform_blocks.empty()) return bytes;
+    const ReflectedBlock& block = reflection.value().uniform_blocks.front();
+    bytes.assign((block.size + 15u) / 16u * 16u, 0);
+    const auto values = effective_values(r.compiled->variant, r.overrides);
+    auto put = [&](uint32_t offset, std::initializer_list<float> floats) {
+        for (float f : floats) {
+            std::memcpy(bytes.data() + offset, &f, sizeof f);
+            offset += sizeof f;
+        }
+    };
+    for (const ReflectedMember& m : block.members) {
+        if (m.name == "TEXTURE_PIXEL_SIZE") put(m.offset, {1.0f / r.input.width, 1.0f / r.input.height});
+        else if (m.name == "SCREEN_PIXEL_SIZE") put(m.offset, {1.0f / r.width, 1.0f / r.height});
+        else if (m.name == "TIME") put(m.offset, {static_cast<float>(r.time)});
+        else {
+            auto v = values.find(m.name);
+            if (v == values.end()) return make_validation_error("the Godot shader declares uniform '" + m.name + "' that the variant has no value for");
+            if (auto d = std::get_if<double>(&v->second)) put(m.offset, {static_cast<float>(*d)});
+            else if (auto c = std::get_if<Color>(&v->second)) {
+                put(m.offset, {static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])});
+                if (m.type == "vec4") put(m.offset + 12, {1.0f});
+            } else if (auto i = std::get_if<int64_t>(&v->second)) {
+                const int32_t value = static_cast<int32_t>(*i);
+                std::memcpy(bytes.data() + m.offset, &value, sizeof value);
+            }
+        }
+    }
+    return bytes;
 }
 
 void flip_rows(Image& image) {
@@ -96,7 +146,26 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
     }
 
     auto job = common_job<RenderJob>(r, std::move(uniforms.value()));
-    if (r.target == TargetId::Spirv) {
+    if (r.target == TargetId::Godot4) {  // the shim: Godot's builtins as Vulkan resources
+        const OutputFile* shader = file_with_role(*r.output, "shader");
+        if (!shader) return make_error("godot4 output without a shader");
+        auto shim = godot::wrap_in_shim(shader->data, 4);
+        if (!shim.ok()) return shim.error();
+        CompileOptions options;
+        options.optimize = false;
+        options.source_name = "<godot4 shim>";
+        auto spirv = compile_to_spirv(shim.value().glsl, options);
+        if (!spirv.ok()) {
+            Diagnostic d = spirv.error();
+            d.kind = ErrorKind::Validation;
+            return d;
+        }
+        auto bytes = pack_shim_uniforms(spirv.value(), r);
+        if (!bytes.ok()) return bytes.error();
+        job.uniform_data = std::move(bytes.value());
+        job.vertex_spirv = r.compiled->vertex;
+        job.fragment_spirv = std::move(spirv.value());
+    } else if (r.target == TargetId::Spirv) {
         job.vertex_spirv = r.compiled->vertex;
         job.fragment_spirv = r.compiled->fragment;
     } else {  // HLSL: compile the emitted text back to SPIR-V, as a D3D-to-Vulkan layer would

@@ -70,7 +70,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     std::vector<CheckResult> results;
     const std::string target = target_info(job.target).name;
     auto fail_all = [&](const std::string& message) {
-        for (const char* c : {"compile:vert", "compile:frag"}) results.push_back({job.preset->name, target, c, false, message, {}, {}});
+        for (const char* c : {"compile:vertex", "compile:fragment"}) results.push_back({job.preset->name, target, c, false, message, {}, {}});
         for (const GoldenEntry* g : job.goldens)
             results.push_back({job.preset->name, target, "render:" + g->id, false, message, {}, g->id});
         return results;
@@ -81,14 +81,12 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     if (!out.ok()) return fail_all(out.error().str());
 
     bool compiles = true;
-    for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
-        CheckResult r{job.preset->name, target, std::string("compile:") + shader_stage_name(stage), false, {}, {}, {}};
-        for (const OutputFile& f : out.value().files) {
-            if (f.stage != stage) continue;
-            auto consumed = consume_output(job.target, f);
-            r.passed = consumed.ok();
-            if (!consumed.ok()) r.message = consumed.error().str();
-        }
+    for (const OutputFile& f : out.value().files) {
+        if (!f.is_shader()) continue;
+        CheckResult r{job.preset->name, target, "compile:" + f.manifest_role(), false, {}, {}, {}};
+        auto consumed = consume_output(job.target, f);
+        r.passed = consumed.ok();
+        if (!consumed.ok()) r.message = consumed.error().str();
         compiles = compiles && r.passed;
         results.push_back(std::move(r));
     }

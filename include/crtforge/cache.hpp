@@ -23,6 +23,10 @@ public:
     // A stable 128-bit hex key of the given parts (order matters).
     static std::string key(std::initializer_list<std::string_view> parts);
 
+    // A hash of the running executable, folded into every key: a rebuilt crtforge (changed
+    // templates handling, emitters, compiler libraries) never reuses another build's entries.
+    static const std::string& build_id();
+
     std::optional<std::string> get(const std::string& kind, const std::string& key) const;
     void put(const std::string& kind, const std::string& key, std::string_view data) const;
 

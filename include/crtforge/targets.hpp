@@ -11,7 +11,7 @@
 
 namespace crtforge {
 
-enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60 };
+enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60, Godot4, Godot3 };
 
 struct TargetInfo {
     TargetId id;
@@ -28,6 +28,15 @@ struct OutputFile {
     ShaderStage stage;
     std::string suffix;       // appended to the preset name: ".frag.spv", ".frag", ".ps.hlsl", ...
     std::string data;
+    std::string role;         // manifest key; empty: "vertex" or "fragment" from the stage
+    std::string path;         // path under the target's folder; empty: "<preset><suffix>"
+
+    std::string manifest_role() const { return !role.empty() ? role : stage == ShaderStage::Vertex ? "vertex" : "fragment"; }
+    // Shader code a consumer compiles (not a material resource or a README).
+    bool is_shader() const {
+        const std::string r = manifest_role();
+        return r == "vertex" || r == "fragment" || r == "shader" || r == "screenShader";
+    }
 };
 
 // What a target gets: the variant (for names and docs) and its two SPIR-V modules.

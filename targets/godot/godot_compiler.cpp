@@ -1,0 +1,172 @@
+#include "targets/godot/godot_compiler.hpp"
+
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "crtforge/assembler.hpp"
+
+namespace crtforge::godot {
+
+namespace {
+
+// TIME wraps (rendering/limits/time/time_rollover_secs, 3600 s by default). A phase TIME * speed
+// stays continuous across the wrap when speed * 3600 is a whole number of turns, so the pulse speed
+// is rounded to the nearest multiple of 2*pi/3600 rad/s (a change below 0.0009 rad/s).
+constexpr const char* kRollover = "3600.0";
+constexpr const char* kTau = "6.28318530717959";
+
+std::string literal(double v) {
+    std::string s = fmt::format("{}", v);
+    if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+    return s;
+}
+
+}  // namespace
+
+GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options)
+    : CompilerGLSL(std::move(spirv)), variant_(variant), options_(options) {}
+
+std::string GodotCompiler::builtin_expression(const std::string& member) const {
+    const bool screen = options_.mode == Mode::Screen;
+    if (member == "outputSize") {
+        // The node's size in pixels, whatever it is stretched to: UV changes by 1/size per pixel on an
+        // axis-aligned node. Rounded, because a node covers whole pixels and the derivative carries
+        // ~1e-5 relative error, enough to move samples across floor() edges (mask cells).
+        return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))";
+    }
+    if (member == "sourceSize") return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "(1.0 / TEXTURE_PIXEL_SIZE)";
+    if (member == "time") {
+        for (const VariantParam& p : variant_.params) {
+            if (p.spec->name != "pulseSpeed") continue;
+            const std::string speed = p.uniform ? "pulseSpeed" : literal(std::get<double>(p.value));
+            return fmt::format("(TIME * (round({0} * {1} / {2}) * {2} / {1}) / {0})", speed, kRollover, kTau);
+        }
+        return "TIME";
+    }
+    return member;
+}
+
+std::string GodotCompiler::uniform_declaration(const VariantParam& p) const {
+    const ParamSpec& s = *p.spec;
+    std::string hint, type = glsl_type_for(s.type), value;
+    if (s.type == ParamType::Float || s.type == ParamType::Int) {
+        const double step = s.step.value_or(s.type == ParamType::Int ? 1.0 : (*s.max - *s.min) / 100.0);
+        hint = s.type == ParamType::Int ? fmt::format(" : hint_range({}, {}, {})", static_cast<int64_t>(*s.min),
+                                                      static_cast<int64_t>(*s.max), static_cast<int64_t>(step))
+                                        : fmt::format(" : hint_range({}, {}, {})", literal(*s.min), literal(*s.max), literal(step));
+        value = s.type == ParamType::Int ? std::to_string(std::get<int64_t>(p.value)) : literal(std::get<double>(p.value));
+    } else if (s.type == ParamType::Color) {
+        const Color& c = std::get<Color>(p.value);
+        if (options_.godot_version >= 4) {
+            hint = " : source_color";
+            value = fmt::format("vec3({}, {}, {})", literal(c[0]), literal(c[1]), literal(c[2]));
+        } else {  // Godot 3's hint_color is for vec4 only
+            type = "vec4";
+            hint = " : hint_color";
+            value = fmt::format("vec4({}, {}, {}, 1.0)", literal(c[0]), literal(c[1]), literal(c[2]));
+        }
+    } else {
+        value = value_to_string(p.value);
+    }
+    return fmt::format("uniform {} {}{} = {};", type, s.name, hint, value);
+}
+
+void GodotCompiler::prepare() {
+    auto o = get_common_options();
+    o.es = true;  // Godot's shading language is GLSL ES 3.0 flavoured
+    o.version = 300;
+    o.vulkan_semantics = false;
+    o.fragment.default_float_precision = Options::Highp;
+    set_common_options(o);
+
+    const bool screen = options_.mode == Mode::Screen;
+    auto resources = get_shader_resources();
+    // Declared by Godot itself (or by emit_header): hide them and use Godot's names.
+    for (const auto& in : resources.stage_inputs) {
+        set_remapped_variable_state(in.id, true);
+        set_name(in.id, screen ? "SCREEN_UV" : "UV");
+    }
+    for (const auto& out : resources.stage_outputs) {
+        set_remapped_variable_state(out.id, true);
+        set_name(out.id, "COLOR");
+    }
+    for (const auto& img : resources.sampled_images) {
+        set_remapped_variable_state(img.id, true);
+        set_name(img.id, !screen ? "TEXTURE" : options_.godot_version >= 4 ? "screen_texture" : "SCREEN_TEXTURE");
+    }
+    // The uniform block disappears: each member becomes a plain `uniform` (emit_header) or a Godot
+    // builtin expression. SPIRV-Cross writes member accesses as <block>.<member>; the block gets a
+    // reserved name so compile_godot() can resolve those accesses exactly.
+    for (const auto& ub : resources.uniform_buffers) {
+        set_remapped_variable_state(ub.id, true);
+        set_name(ub.id, kBlockMarker);
+        const auto& type = get_type(ub.base_type_id);
+        for (uint32_t i = 0; i < type.member_types.size(); ++i) {
+            const std::string name = get_member_name(ub.base_type_id, i);
+            Builtin builtin{};
+            std::string expr = parse_builtin(name, builtin) ? builtin_expression(name) : name;
+            for (const VariantParam& p : variant_.params)
+                if (p.spec->name == name && p.spec->type == ParamType::Color && options_.godot_version < 4) expr = name + ".rgb";
+            member_expressions_[name] = expr;
+        }
+    }
+}
+
+std::string GodotCompiler::compile_godot() {
+    prepare();
+    std::string text = compile();
+    static const std::regex access(std::string("\\b") + kBlockMarker + "\\.(\\w+)");
+    std::string out;
+    auto begin = std::sregex_iterator(text.begin(), text.end(), access);
+    size_t last = 0;
+    for (auto it = begin; it != std::sregex_iterator(); ++it) {
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        auto found = member_expressions_.find((*it)[1].str());
+        if (found == member_expressions_.end())
+            throw spirv_cross::CompilerError("unknown uniform member " + (*it)[1].str());
+        out += found->second;
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    if (out.find(kBlockMarker) != std::string::npos) throw spirv_cross::CompilerError("unresolved uniform block access");
+    return out;
+}
+
+void GodotCompiler::emit_header() {
+    const Preset& preset = *variant_.preset;
+    const bool screen = options_.mode == Mode::Screen;
+    statement("// crtforge ", CRTFORGE_VERSION, ": preset ", preset.name, ". ", preset.doc);
+    statement("// Godot ", options_.godot_version, " canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.");
+    if (screen) {
+        statement("// Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.");
+    } else {
+        statement("// Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);");
+        statement("// set the node's texture filter to ", filter_name(preset.filter), ".");
+    }
+    bool uses_time = false;
+    for (Builtin b : variant_.builtins) uses_time = uses_time || b == Builtin::Time;
+    if (uses_time) {
+        statement("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): the pulse speed is");
+        statement("// rounded to a multiple of 2*pi/3600 rad/s so the glow stays continuous across the wrap.");
+    }
+    statement("shader_type canvas_item;");
+    statement("");
+    if (screen && options_.godot_version >= 4)
+        statement("uniform sampler2D screen_texture : hint_screen_texture, filter_", filter_name(preset.filter), ", repeat_disable;");
+    for (const VariantParam* p : variant_.uniforms()) {
+        statement("// ", p->stage->name, ": ", p->spec->doc, p->spec->unit.empty() ? "" : " (" + p->spec->unit + ")");
+        statement(uniform_declaration(*p));
+    }
+    statement("");
+}
+
+void GodotCompiler::emit_function_prototype(spirv_cross::SPIRFunction& func, const spirv_cross::Bitset& return_flags) {
+    if (func.self == ir.default_entry_point) {
+        statement("void fragment()");
+        return;
+    }
+    CompilerGLSL::emit_function_prototype(func, return_flags);
+}
+
+}  // namespace crtforge::godot

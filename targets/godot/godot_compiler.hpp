@@ -1,0 +1,38 @@
+// A SPIRV-Cross GLSL compiler that prints Godot's canvas_item dialect: no #version, layout, in/out,
+// precision or uniform blocks; `void fragment()`; one `uniform` with inspector hints per runtime
+// param; the source texture, the texture coordinate, the output colour and crtforge's builtins
+// mapped to TEXTURE/SCREEN_TEXTURE, UV/SCREEN_UV, COLOR and TEXTURE_PIXEL_SIZE/SCREEN_PIXEL_SIZE/TIME.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <spirv_cross/spirv_glsl.hpp>
+
+#include "crtforge/variant.hpp"
+#include "targets/godot/godot_writer.hpp"
+
+namespace crtforge::godot {
+
+class GodotCompiler : public spirv_cross::CompilerGLSL {
+public:
+    GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options);
+
+    // The whole shader in Godot's dialect (may throw spirv_cross::CompilerError).
+    std::string compile_godot();
+
+protected:
+    void emit_header() override;
+    void emit_function_prototype(spirv_cross::SPIRFunction& func, const spirv_cross::Bitset& return_flags) override;
+
+private:
+    static constexpr const char* kBlockMarker = "crtforge_params_block";
+    void prepare();  // remaps resources onto Godot builtins
+    std::string uniform_declaration(const VariantParam& p) const;
+    std::string builtin_expression(const std::string& member) const;
+    const Variant& variant_;
+    godot::Options options_;
+    std::map<std::string, std::string> member_expressions_;  // block member -> Godot expression  // qualified: CompilerGLSL has its own nested Options
+};
+
+}  // namespace crtforge::godot

@@ -1,0 +1,88 @@
+#include "targets/godot/godot_writer.hpp"
+
+#include <fmt/format.h>
+
+#include "targets/godot/godot_compiler.hpp"
+
+namespace crtforge::godot {
+
+namespace {
+
+std::string literal(double v) { return fmt::format("{}", v); }
+
+const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
+
+// A ShaderMaterial resource with every runtime param at the preset's value.
+std::string material_resource(const Variant& variant, int version) {
+    const Preset& preset = *variant.preset;
+    const std::string shader_path = "res://addons/crtforge/" + preset.name + shader_extension(version);
+    std::string out;
+    if (version >= 4) {
+        out += "[gd_resource type=\"ShaderMaterial\" load_steps=2 format=3]\n\n";
+        out += "[ext_resource type=\"Shader\" path=\"" + shader_path + "\" id=\"1\"]\n\n";
+        out += "[resource]\nshader = ExtResource(\"1\")\n";
+    } else {
+        out += "[gd_resource type=\"ShaderMaterial\" load_steps=2 format=2]\n\n";
+        out += "[ext_resource path=\"" + shader_path + "\" type=\"Shader\" id=1]\n\n";
+        out += "[resource]\nshader = ExtResource( 1 )\n";
+    }
+    const char* key = version >= 4 ? "shader_parameter/" : "shader_param/";
+    for (const VariantParam* p : variant.uniforms()) {
+        std::string value;
+        if (auto d = std::get_if<double>(&p->value)) value = literal(*d);
+        else if (auto i = std::get_if<int64_t>(&p->value)) value = std::to_string(*i);
+        else if (auto c = std::get_if<Color>(&p->value))
+            value = version >= 4 ? fmt::format("Color({}, {}, {}, 1)", literal((*c)[0]), literal((*c)[1]), literal((*c)[2]))
+                                 : fmt::format("Color( {}, {}, {}, 1 )", literal((*c)[0]), literal((*c)[1]), literal((*c)[2]));
+        else continue;
+        out += key + p->spec->name + " = " + value + "\n";
+    }
+    return out;
+}
+
+std::string readme(int version) {
+    const std::string ext = shader_extension(version);
+    std::string out = fmt::format("# crtforge CRT shaders for Godot {}\n\n", version);
+    out += "Copy `addons/crtforge/` into your project. Each preset comes as:\n\n";
+    out += "- `<preset>" + ext + "`: node mode. Assign it (or `<preset>.tres`, a ShaderMaterial with the\n"
+           "  preset's values) to the node that shows the picture: a TextureRect, a Sprite, or a node showing\n"
+           "  a SubViewport's texture. Set the node's texture filter as the shader's header says.\n";
+    out += "- `<preset>.screen" + ext + "`: screen mode. Put a ColorRect over the whole screen (anchors: full rect)\n"
+           "  and give it a ShaderMaterial with this shader; it post-processes everything drawn below it.\n\n";
+    out += "Every runtime parameter shows in the inspector with its range; baked parameters are constants.\n";
+    return out;
+}
+
+}  // namespace
+
+Result<std::string> GenerateShader(const TargetInput& input, const Options& options) {
+    try {
+        GodotCompiler compiler(*input.fragment, *input.variant, options);
+        return compiler.compile_godot();
+    } catch (const std::exception& e) {
+        return make_validation_error(fmt::format("SPIRV-Cross cannot express the fragment shader in Godot {}: {}",
+                                                 options.godot_version, e.what()));
+    }
+}
+
+Result<TargetOutput> Generate(const TargetInput& input, int version) {
+    const std::string& preset = input.variant->preset->name;
+    const std::string ext = shader_extension(version);
+    TargetOutput out;
+    auto node = GenerateShader(input, {version, Mode::NodeTexture});
+    if (!node.ok()) return node.error();
+    auto screen = GenerateShader(input, {version, Mode::Screen});
+    if (!screen.ok()) return screen.error();
+    out.files.push_back({ShaderStage::Fragment, ext, node.value(), "shader", "addons/crtforge/" + preset + ext});
+    out.files.push_back({ShaderStage::Fragment, ".screen" + ext, screen.value(), "screenShader",
+                         "addons/crtforge/" + preset + ".screen" + ext});
+    out.files.push_back({ShaderStage::Fragment, ".tres", material_resource(*input.variant, version), "material",
+                         "addons/crtforge/" + preset + ".tres"});
+    out.files.push_back({ShaderStage::Fragment, ".md", readme(version), "readme", "addons/crtforge/README.md"});
+    out.bindings.push_back({"source", "node mode: the node's TEXTURE at UV; screen mode: " +
+                                          std::string(version >= 4 ? "screen_texture (hint_screen_texture)" : "SCREEN_TEXTURE") + " at SCREEN_UV"});
+    out.bindings.push_back({"params", "one `uniform` per runtime param (inspector hints), set with set_shader_param"});
+    return out;
+}
+
+}  // namespace crtforge::godot

@@ -1,0 +1,28 @@
+// Godot targets (godot4: .gdshader, godot3: .shader): canvas_item shaders written from the same
+// SPIR-V as every other target, by a SPIRV-Cross GLSL compiler whose header, entry point and
+// resources are remapped onto Godot's dialect and builtins. Uniforms carry the spec: hint_range
+// with step and default, source_color / hint_color for colours.
+#pragma once
+
+#include "crtforge/targets.hpp"
+
+namespace crtforge::godot {
+
+enum class Mode {
+    NodeTexture,  // reads the node's own TEXTURE at UV (TextureRect, Sprite, SubViewport texture)
+    Screen,       // post-processes the screen on a full-screen ColorRect
+};
+
+struct Options {
+    int godot_version = 4;         // 4 (shader_type canvas_item; .gdshader) or 3 (.shader)
+    Mode mode = Mode::NodeTexture;
+};
+
+// The shader text for one mode.
+Result<std::string> GenerateShader(const TargetInput& input, const Options& options);
+
+// Both modes, the ShaderMaterial resource (.tres) of the node-texture shader, and a README: the
+// files of addons/crtforge/ for one preset.
+Result<TargetOutput> Generate(const TargetInput& input, int godot_version);
+
+}  // namespace crtforge::godot

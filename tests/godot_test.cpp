@@ -1,0 +1,128 @@
+// The Godot targets: dialect rules, inspector hints, both modes, materials, and that the Godot 3 and
+// Godot 4 outputs differ only where the dialects differ.
+#include <regex>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+
+namespace {
+
+const OutputFile& file(const TargetOutput& out, const std::string& role) {
+    for (const auto& f : out.files)
+        if (f.manifest_role() == role) return f;
+    FAIL("no file with role " << role);
+    throw;  // unreachable
+}
+
+TargetOutput emit(const std::string& preset, TargetId target) {
+    CompiledVariant c = test::compile_or_fail(test::shipped_library(), preset);
+    auto out = emit_target(c, target, Cache());
+    REQUIRE(out.ok());
+    return out.value();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("Godot 4 shaders are canvas_item code with no GLSL plumbing", "[godot]") {
+    for (const Preset& p : test::shipped_library().presets()) {
+        INFO(p.name);
+        const TargetOutput out = emit(p.name, TargetId::Godot4);
+        for (const char* role : {"shader", "screenShader"}) {
+            const std::string& text = file(out, role).data;
+            CHECK_THAT(text, Catch::Contains("shader_type canvas_item;"));
+            CHECK_THAT(text, Catch::Contains("void fragment()"));
+            CHECK_THAT(text, Catch::Contains("COLOR = "));
+            for (const char* banned : {"#version", "layout(", "precision ", "\nin ", "\nout ", "uniform CrtParams", "void main"})
+                CHECK_THAT(text, !Catch::Contains(banned));
+        }
+        CHECK_THAT(file(out, "shader").data, Catch::Contains("UV"));
+        if (!p.stages.empty()) {
+            CHECK_THAT(file(out, "screenShader").data,
+                       Catch::Contains("uniform sampler2D screen_texture : hint_screen_texture, filter_linear, repeat_disable;"));
+            CHECK_THAT(file(out, "screenShader").data, Catch::Contains("SCREEN_UV"));
+        }
+    }
+}
+
+TEST_CASE("every runtime param is an inspector uniform with range, step and default", "[godot]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    CompiledVariant c = test::compile_or_fail(lib, "crt-pulse");
+    const std::string text = file(emit("crt-pulse", TargetId::Godot4), "shader").data;
+    for (const VariantParam* p : c.variant.uniforms()) {
+        INFO(p->spec->name);
+        if (p->spec->type == ParamType::Color)
+            CHECK_THAT(text, Catch::Contains("uniform vec3 " + p->spec->name + " : source_color = vec3("));
+        else
+            CHECK(std::regex_search(text, std::regex("uniform float " + p->spec->name + R"( : hint_range\([-0-9.]+, [-0-9.]+, [0-9.e-]+\) = [-0-9.]+;)")));
+    }
+    CHECK_THAT(text, Catch::Contains("uniform float maskSize : hint_range(2.0, 24.0, 0.5) = 8.0;"));
+    // Baked params are constants folded into the code, never uniforms.
+    CHECK_THAT(text, !Catch::Contains("uniform float maskBorder"));
+    // TIME wraps: the header says so and the pulse speed is rounded to whole turns per wrap.
+    CHECK_THAT(text, Catch::Contains("TIME wraps"));
+    CHECK_THAT(text, Catch::Contains("round(pulseSpeed * 3600.0"));
+    CHECK_THAT(file(emit("quiet-frame", TargetId::Godot4), "shader").data, !Catch::Contains("TIME"));
+}
+
+TEST_CASE("Godot 3 and Godot 4 outputs differ only where the dialects differ", "[godot]") {
+    // Godot 3: hint_color on vec4 (read back as .rgb), SCREEN_TEXTURE instead of a hinted sampler,
+    // and the version in the header. Everything else must be the same text.
+    for (const Preset& p : test::shipped_library().presets()) {
+        for (const char* role : {"shader", "screenShader"}) {
+            INFO(p.name << " " << role);
+            auto g4 = lines_of(file(emit(p.name, TargetId::Godot4), role).data);
+            auto g3 = lines_of(file(emit(p.name, TargetId::Godot3), role).data);
+            std::vector<std::string> normalised;
+            for (std::string line : g3) {
+                line = std::regex_replace(line, std::regex(R"(uniform vec4 (\w+) : hint_color = vec4\(([^,]+), ([^,]+), ([^,]+), 1\.0\);)"),
+                                          "uniform vec3 $1 : source_color = vec3($2, $3, $4);");
+                line = std::regex_replace(line, std::regex(R"(\bbezelColor\.rgb\b)"), "bezelColor");
+                line = std::regex_replace(line, std::regex(R"(\bSCREEN_TEXTURE\b)"), "screen_texture");
+                line = std::regex_replace(line, std::regex("// Godot 3 canvas_item"), "// Godot 4 canvas_item");
+                normalised.push_back(line);
+            }
+            // Godot 4 declares the screen texture; Godot 3 has it built in.
+            g4.erase(std::remove_if(g4.begin(), g4.end(), [](const std::string& l) { return l.find("hint_screen_texture") != std::string::npos; }),
+                     g4.end());
+            CHECK(normalised == g4);
+        }
+    }
+}
+
+TEST_CASE("materials carry the preset's values in each version's resource format", "[godot]") {
+    const std::string g4 = file(emit("quiet-frame", TargetId::Godot4), "material").data;
+    CHECK_THAT(g4, Catch::StartsWith("[gd_resource type=\"ShaderMaterial\" load_steps=2 format=3]"));
+    CHECK_THAT(g4, Catch::Contains("path=\"res://addons/crtforge/quiet-frame.gdshader\""));
+    CHECK_THAT(g4, Catch::Contains("shader_parameter/curvature = 0.1\n"));
+    CHECK_THAT(g4, Catch::Contains("shader_parameter/bezelColor = Color(0, 0, 0, 1)\n"));
+    const std::string g3 = file(emit("quiet-frame", TargetId::Godot3), "material").data;
+    CHECK_THAT(g3, Catch::Contains("format=2"));
+    CHECK_THAT(g3, Catch::Contains("res://addons/crtforge/quiet-frame.shader"));
+    CHECK_THAT(g3, Catch::Contains("shader_param/bloomStrength = 1.4\n"));
+    const TargetOutput out = emit("webgpu-post", TargetId::Godot4);
+    CHECK(file(out, "shader").path == "addons/crtforge/webgpu-post.gdshader");
+    CHECK(file(out, "readme").path == "addons/crtforge/README.md");
+}
+
+TEST_CASE("the shim rejects what is not a crtforge canvas_item shader", "[godot][errors]") {
+    OutputFile f{ShaderStage::Fragment, ".gdshader", "shader_type spatial;\nvoid fragment() {}\n", "shader", ""};
+    auto r = consume_output(TargetId::Godot4, f);
+    REQUIRE_FALSE(r.ok());
+    CHECK_THAT(r.error().message, Catch::Contains("canvas_item"));
+    f.data = "shader_type canvas_item;\nvoid fragment() { COLOR = vec4(undefinedThing); }\n";
+    r = consume_output(TargetId::Godot4, f);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().kind == ErrorKind::Validation);
+    CHECK_THAT(r.error().message, Catch::Contains("undefinedThing"));
+}
