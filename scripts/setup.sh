@@ -7,6 +7,7 @@ APT_PACKAGES=(
   glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev spirv-cross
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libegl-dev libgles-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
+  godot3 xvfb
   libopenimageio-dev libfmt-dev catch2
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev
 )

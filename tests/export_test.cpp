@@ -23,9 +23,9 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     CHECK(first.value().files == cold.value().files);
     CHECK(first.value().files == warm.value().files);
     CHECK(cache.hits() > 0);
-    // 6 targets x 2 shaders and godot4's 2 shaders + material per preset, one README for the Godot
-    // addon, the manifest.
-    CHECK(first.value().files.size() == lib.presets().size() * (6 * 2 + 3) + 1 + 1);
+    // 6 targets x 2 shaders and 2 Godot targets x (2 shaders + material) per preset, one README per
+    // Godot addon, the manifest.
+    CHECK(first.value().files.size() == lib.presets().size() * (6 * 2 + 2 * 3) + 2 + 1);
 }
 
 TEST_CASE("written files match the in-memory export", "[export]") {

@@ -1,8 +1,10 @@
 #include "crtforge/target_render.hpp"
 
 #include <cstring>
+#include <regex>
 
 #include "crtforge/gl_engine.hpp"
+#include "crtforge/godot3_engine.hpp"
 #include "crtforge/reflection.hpp"
 #include "targets/godot/godot_shim.hpp"
 
@@ -52,7 +54,10 @@ std::string TargetRenderer::consumer(TargetId target) {
             return "Godot 4 shim (Godot builtins as Vulkan resources) -> glslang -> Vulkan: " +
                    (v.ok() ? v.value()->device().name : std::string("unavailable"));
         }
-        case TargetId::Godot3: return "none yet";
+        case TargetId::Godot3: {
+            const std::string version = godot3_version();
+            return version.empty() ? std::string("Godot 3 unavailable") : "Godot " + version + " (GLES3 on Mesa, Xvfb)";
+        }
     }
     return "?";
 }
@@ -143,6 +148,29 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
         job.vertex_source = file_of(*r.output, ShaderStage::Vertex)->data;
         job.fragment_source = file_of(*r.output, ShaderStage::Fragment)->data;
         return engine.value()->render(job);
+    }
+
+    if (r.target == TargetId::Godot3) {  // a real Godot 3, node mode
+        const OutputFile* shader = file_with_role(*r.output, "shader");
+        if (!shader) return make_error("godot3 output without a shader");
+        Godot3Job job;
+        job.shader_code = shader->data;
+        // Godot's TIME is the wall clock; to render a given frame, the one TIME token becomes a
+        // uniform pinned to the frame's time (the only change to the shipped text).
+        const std::string pinned = "crtforge_validation_time";
+        static const std::regex time_token(R"(\bTIME\b)");
+        if (std::regex_search(job.shader_code, time_token)) {
+            job.shader_code = std::regex_replace(job.shader_code, time_token, pinned);
+            job.shader_code.insert(job.shader_code.find("void fragment()"), "uniform float " + pinned + ";\n");
+            job.params[pinned] = r.time;
+        }
+        job.input = r.input;
+        job.filter = r.filter;
+        job.width = r.width;
+        job.height = r.height;
+        for (const VariantParam* p : r.compiled->variant.uniforms()) job.params[p->spec->name] = p->value;
+        for (const auto& [name, value] : r.overrides) job.params[name] = value;
+        return render_godot3(job);
     }
 
     auto job = common_job<RenderJob>(r, std::move(uniforms.value()));
