@@ -21,7 +21,7 @@ namespace crtforge {
 struct CheckResult {
     std::string preset;
     std::string target;
-    std::string check;      // "compile:vert", "compile:frag" or "render:<golden id>"
+    std::string check;      // "compile:<role>" (vertex, fragment, shader, screenShader) or "render:<golden id>"
     bool passed = false;
     std::string message;    // one line: what failed and why
     std::optional<Verdict> verdict;  // render checks
