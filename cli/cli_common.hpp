@@ -49,8 +49,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g);
 Runner add_golden_command(CLI::App& app, const GlobalOptions& g);
 Runner add_devices_command(CLI::App& app, const GlobalOptions& g);
 
-// Name lookups whose errors list what exists (field --target / --preset).
-Result<const TargetInfo*> lookup_target(const std::string& name);
+// TemplateLibrary::lookup_preset, for symmetry with crtforge::lookup_target.
 Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name);
 
 // Shared parsing helpers.

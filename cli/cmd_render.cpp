@@ -28,9 +28,7 @@ Result<Image> load_input(const std::string& spec) {
         const bool nes = spec == "pixel_art";
         return make_test_input(spec, nes ? 256 : 640, nes ? 224 : 480);
     }
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    return make_error("'" + spec + "' is neither an image file nor a generated input (" + list + ")", {}, 0, "--input");
+    return make_error("'" + spec + "' is neither an image file nor a generated input (" + join_list(names) + ")", {}, 0, "--input");
 }
 
 namespace {

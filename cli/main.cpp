@@ -20,18 +20,8 @@ std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_
     return lib.value();
 }
 
-Result<const TargetInfo*> lookup_target(const std::string& name) {
-    if (const TargetInfo* t = find_target(name)) return t;
-    std::string list;
-    for (const auto& t : all_targets()) list += (list.empty() ? "" : ", ") + std::string(t.name);
-    return make_error("unknown target '" + name + "' (targets: " + list + ")", {}, 0, "--target");
-}
-
 Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name) {
-    if (const Preset* p = lib.find_preset(name)) return p;
-    std::string list;
-    for (const auto& q : lib.presets()) list += (list.empty() ? "" : ", ") + q.name;
-    return make_error("unknown preset '" + name + "' (presets: " + list + ")", {}, 0, "--preset");
+    return lib.lookup_preset(name);
 }
 
 Cache make_cache(const GlobalOptions& g) {

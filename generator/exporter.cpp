@@ -192,13 +192,9 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
         for (const auto& p : library.presets()) presets.push_back(&p);
     } else {
         for (const auto& name : request.presets) {
-            const Preset* p = library.find_preset(name);
-            if (!p) {
-                std::string list;
-                for (const auto& q : library.presets()) list += (list.empty() ? "" : ", ") + q.name;
-                return make_error("unknown preset '" + name + "' (presets: " + list + ")", {}, 0, "--preset");
-            }
-            presets.push_back(p);
+            auto p = library.lookup_preset(name);
+            if (!p.ok()) return p.error();
+            presets.push_back(p.value());
         }
     }
     std::vector<TargetId> targets = request.targets;

@@ -77,8 +77,9 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
             if (!t) return r.error(node, field, "must be a table");
             const StageSpec* spec = library ? library->find_stage(stage_name) : nullptr;
             if (library && !spec) {
-                std::string list;
-                for (const auto& s : library->stages()) list += (list.empty() ? "" : ", ") + s.name;
+                std::vector<std::string> names;
+                for (const auto& s : library->stages()) names.push_back(s.name);
+                const std::string list = join_list(names);
                 return r.error(node, field, "unknown stage (stages: " + list + ")");
             }
             PresetStageEntry entry;
@@ -94,10 +95,10 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
                 }
                 const ParamSpec* pspec = spec ? spec->find_param(param) : nullptr;
                 if (!pspec) {
-                    std::string list;
+                    std::vector<std::string> names;
                     if (spec)
-                        for (const auto& p : spec->params) list += (list.empty() ? "" : ", ") + p.name;
-                    return r.error(&value, pfield, "unknown param of stage '" + stage_name + "' (params: " + list + ")");
+                        for (const auto& p : spec->params) names.push_back(p.name);
+                    return r.error(&value, pfield, "unknown param of stage '" + stage_name + "' (params: " + join_list(names) + ")");
                 }
                 auto v = r.param_value(value, *pspec, pfield);
                 if (!v.ok()) return v.error();
@@ -178,8 +179,7 @@ Result<Preset> TemplateLibrary::resolve(const std::vector<PresetFile>& files, co
             if (entry.stage != spec.name) continue;
             for (const auto& [k, v] : entry.values) {
                 if (!rs.values.count(k)) {
-                    std::string list;
-                    for (const auto& p : reads) list += (list.empty() ? "" : ", ") + p;
+                    const std::string list = join_list(reads);
                     return make_error(fmt::format("is not read by form '{}' of stage '{}' (it reads: {})",
                                                   rs.form->name, spec.name, list),
                                       leaf->where.file, entry.value_lines.at(k), "stages." + spec.name + "." + k);

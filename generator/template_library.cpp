@@ -43,6 +43,17 @@ const Preset* TemplateLibrary::find_preset(const std::string& name) const {
     return nullptr;
 }
 
+std::vector<std::string> TemplateLibrary::preset_names() const {
+    std::vector<std::string> names;
+    for (const auto& p : presets_) names.push_back(p.name);
+    return names;
+}
+
+Result<const Preset*> TemplateLibrary::lookup_preset(const std::string& name) const {
+    if (const Preset* p = find_preset(name)) return p;
+    return make_error("unknown preset '" + name + "' (presets: " + join_list(preset_names()) + ")", {}, 0, "--preset");
+}
+
 const ParamSpec* TemplateLibrary::find_param(const std::string& name, const StageSpec** owner) const {
     for (const auto& s : stages_) {
         if (const ParamSpec* p = s.find_param(name)) {

@@ -78,8 +78,7 @@ Status TomlReader::only_keys(const toml::table& table, std::initializer_list<con
         bool known = false;
         for (const char* a : allowed) known = known || key.str() == a;
         if (!known) {
-            std::string list;
-            for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+            const std::string list = join_list(std::vector<std::string>(allowed.begin(), allowed.end()));
             return error(&node, join_field(prefix, std::string(key.str())),
                          "unknown key (expected one of: " + list + ")");
         }
@@ -144,8 +143,7 @@ Result<Value> TomlReader::typed_value(const toml::node& node, ParamType type,
             std::string v(node.as_string()->get());
             for (const auto& e : enum_values)
                 if (e == v) return Value{v};
-            std::string list;
-            for (const auto& e : enum_values) list += (list.empty() ? "" : ", ") + e;
+            const std::string list = join_list(enum_values);
             return error(&node, field, "'" + v + "' is not one of: " + list);
         }
         case ParamType::Color: {

@@ -11,48 +11,50 @@ std::map<std::string, Value> effective_values(const Variant& variant, const std:
     return values;
 }
 
-namespace {
-
-void put_floats(std::vector<uint8_t>& bytes, uint32_t offset, std::initializer_list<float> floats) {
-    for (float f : floats) {
-        std::memcpy(bytes.data() + offset, &f, sizeof f);
-        offset += sizeof f;
+Result<MemberData> member_data(const Value& value, const std::string& type) {
+    if (auto d = std::get_if<double>(&value)) return MemberData{std::vector<float>{static_cast<float>(*d)}};
+    if (auto i = std::get_if<int64_t>(&value)) return MemberData{static_cast<int32_t>(*i)};
+    if (auto c = std::get_if<Color>(&value)) {
+        std::vector<float> rgb{static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])};
+        if (type == "vec4") rgb.push_back(1.0f);
+        return MemberData{std::move(rgb)};
     }
+    return make_error("a " + type + " uniform cannot hold this value (bools and enums are never uniforms)");
 }
 
-}  // namespace
-
-Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, const FrameInfo& frame,
-                                           const std::map<std::string, Value>& overrides) {
-    std::vector<uint8_t> bytes;
-    if (compiled.reflection.uniform_blocks.empty()) return bytes;
-    const ReflectedBlock& block = compiled.reflection.uniform_blocks.front();
-    bytes.assign((block.size + 15u) / 16u * 16u, 0);
-    const auto values = effective_values(compiled.variant, overrides);
+Result<std::vector<uint8_t>> pack_block(const ReflectedBlock& block,
+                                        const std::function<Result<MemberData>(const ReflectedMember&)>& resolve) {
+    std::vector<uint8_t> bytes((block.size + 15u) / 16u * 16u, 0);
     for (const ReflectedMember& m : block.members) {
-        if (m.offset + m.size > bytes.size()) return make_error("uniform member '" + m.name + "' lies outside the block");
-        if (m.name == "outputSize") {
-            put_floats(bytes, m.offset, {static_cast<float>(frame.output_width), static_cast<float>(frame.output_height)});
-        } else if (m.name == "sourceSize") {
-            put_floats(bytes, m.offset, {static_cast<float>(frame.source_width), static_cast<float>(frame.source_height)});
-        } else if (m.name == "time") {
-            put_floats(bytes, m.offset, {static_cast<float>(frame.time)});
-        } else {
-            auto v = values.find(m.name);
-            if (v == values.end()) return make_error("no value for uniform '" + m.name + "'");
-            if (auto d = std::get_if<double>(&v->second)) {
-                put_floats(bytes, m.offset, {static_cast<float>(*d)});
-            } else if (auto c = std::get_if<Color>(&v->second)) {
-                put_floats(bytes, m.offset, {static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])});
-            } else if (auto i = std::get_if<int64_t>(&v->second)) {
-                const int32_t value = static_cast<int32_t>(*i);
-                std::memcpy(bytes.data() + m.offset, &value, sizeof value);
-            } else {
-                return make_error("uniform '" + m.name + "' has a type that cannot live in a uniform block");
-            }
+        auto data = resolve(m);
+        if (!data.ok()) return data.error();
+        const size_t size = std::holds_alternative<int32_t>(data.value()) ? sizeof(int32_t)
+                                                                          : std::get<std::vector<float>>(data.value()).size() * sizeof(float);
+        if (m.offset + size > bytes.size() || size > m.size)
+            return make_error("uniform member '" + m.name + "' does not fit its reflected slot");
+        if (auto i = std::get_if<int32_t>(&data.value())) std::memcpy(bytes.data() + m.offset, i, sizeof *i);
+        else {
+            const auto& floats = std::get<std::vector<float>>(data.value());
+            std::memcpy(bytes.data() + m.offset, floats.data(), floats.size() * sizeof(float));
         }
     }
     return bytes;
+}
+
+Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, const FrameInfo& frame,
+                                           const std::map<std::string, Value>& overrides) {
+    if (compiled.reflection.uniform_blocks.empty()) return std::vector<uint8_t>{};
+    const auto values = effective_values(compiled.variant, overrides);
+    return pack_block(compiled.reflection.uniform_blocks.front(), [&](const ReflectedMember& m) -> Result<MemberData> {
+        if (m.name == "outputSize")
+            return MemberData{std::vector<float>{static_cast<float>(frame.output_width), static_cast<float>(frame.output_height)}};
+        if (m.name == "sourceSize")
+            return MemberData{std::vector<float>{static_cast<float>(frame.source_width), static_cast<float>(frame.source_height)}};
+        if (m.name == "time") return MemberData{std::vector<float>{static_cast<float>(frame.time)}};
+        auto v = values.find(m.name);
+        if (v == values.end()) return make_error("no value for uniform '" + m.name + "'");
+        return member_data(v->second, m.type);
+    });
 }
 
 }  // namespace crtforge

@@ -41,17 +41,11 @@ bool value_matches(const Value& value, ParamType type) {
     return false;
 }
 
-namespace {
-
-// Shortest text that reads back as the same double, always with a decimal point or exponent so
-// GLSL parses it as a float literal.
 std::string float_literal(double v) {
     std::string s = fmt::format("{}", v);
     if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
     return s;
 }
-
-}  // namespace
 
 std::string value_to_string(const Value& value) {
     if (auto d = std::get_if<double>(&value)) return float_literal(*d);

@@ -28,6 +28,13 @@ const TargetInfo* find_target(const std::string& name) {
     return nullptr;
 }
 
+Result<const TargetInfo*> lookup_target(const std::string& name) {
+    if (const TargetInfo* t = find_target(name)) return t;
+    std::vector<std::string> names;
+    for (const auto& t : all_targets()) names.emplace_back(t.name);
+    return make_error("unknown target '" + name + "' (targets: " + join_list(names) + ")", {}, 0, "--target");
+}
+
 const TargetInfo& target_info(TargetId id) {
     for (const auto& t : all_targets())
         if (t.id == id) return t;

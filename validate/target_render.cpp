@@ -22,6 +22,23 @@ Result<RenderEngine*> TargetRenderer::vulkan() {
     return vulkan_.get();
 }
 
+Result<const TargetRenderer::ConsumerModule*> TargetRenderer::consumer_module(const std::string& source,
+                                                                             const CompileOptions& options) {
+    const std::string key = Cache::key({source, shader_stage_name(options.stage),
+                                        options.language == SourceLanguage::Hlsl ? "hlsl" : "glsl"});
+    auto found = consumer_modules_.find(key);
+    if (found != consumer_modules_.end()) return &found->second;
+    auto spirv = compile_to_spirv(source, options);
+    if (!spirv.ok()) {
+        Diagnostic d = spirv.error();
+        d.kind = ErrorKind::Validation;  // our output was rejected
+        return d;
+    }
+    auto reflection = reflect(spirv.value());
+    if (!reflection.ok()) return reflection.error();
+    return &consumer_modules_.emplace(key, ConsumerModule{std::move(spirv.value()), std::move(reflection.value())}).first->second;
+}
+
 Result<GlEngine*> TargetRenderer::gl(bool es) {
     auto& slot = es ? gl_es_ : gl_core_;
     if (!slot) {
@@ -89,40 +106,20 @@ const OutputFile* file_with_role(const TargetOutput& out, const std::string& rol
     return nullptr;
 }
 
-// The std140 bytes of the shim's block: Godot's builtins for this frame, then the shader's uniforms
-// at the variant's values (colours are vec3 in Godot 4 and vec4 in Godot 3).
-Result<std::vector<uint8_t>> pack_shim_uniforms(const SpirvBinary& spirv, const TargetRenderRequest& r) {
-    auto reflection = reflect(spirv);
-    if (!reflection.ok()) return reflection.error();
-    std::vector<uint8_t> bytes;
-    if (reflection.value().uniform_blocks.empty()) return bytes;
-    const ReflectedBlock& block = reflection.value().uniform_blocks.front();
-    bytes.assign((block.size + 15u) / 16u * 16u, 0);
+// The shim's block: Godot's builtins for this frame, then the shader's uniforms at the variant's
+// values (colours are vec3 in Godot 4 and vec4 in Godot 3).
+Result<std::vector<uint8_t>> pack_shim_uniforms(const Reflection& reflection, const TargetRenderRequest& r) {
+    if (reflection.uniform_blocks.empty()) return std::vector<uint8_t>{};
     const auto values = effective_values(r.compiled->variant, r.overrides);
-    auto put = [&](uint32_t offset, std::initializer_list<float> floats) {
-        for (float f : floats) {
-            std::memcpy(bytes.data() + offset, &f, sizeof f);
-            offset += sizeof f;
-        }
-    };
-    for (const ReflectedMember& m : block.members) {
-        if (m.name == "TEXTURE_PIXEL_SIZE") put(m.offset, {1.0f / r.input.width, 1.0f / r.input.height});
-        else if (m.name == "SCREEN_PIXEL_SIZE") put(m.offset, {1.0f / r.width, 1.0f / r.height});
-        else if (m.name == "TIME") put(m.offset, {static_cast<float>(r.time)});
-        else {
-            auto v = values.find(m.name);
-            if (v == values.end()) return make_validation_error("the Godot shader declares uniform '" + m.name + "' that the variant has no value for");
-            if (auto d = std::get_if<double>(&v->second)) put(m.offset, {static_cast<float>(*d)});
-            else if (auto c = std::get_if<Color>(&v->second)) {
-                put(m.offset, {static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])});
-                if (m.type == "vec4") put(m.offset + 12, {1.0f});
-            } else if (auto i = std::get_if<int64_t>(&v->second)) {
-                const int32_t value = static_cast<int32_t>(*i);
-                std::memcpy(bytes.data() + m.offset, &value, sizeof value);
-            }
-        }
-    }
-    return bytes;
+    return pack_block(reflection.uniform_blocks.front(), [&](const ReflectedMember& m) -> Result<MemberData> {
+        if (m.name == "TEXTURE_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.input.width, 1.0f / r.input.height}};
+        if (m.name == "SCREEN_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.width, 1.0f / r.height}};
+        if (m.name == "TIME") return MemberData{std::vector<float>{static_cast<float>(r.time)}};
+        auto v = values.find(m.name);
+        if (v == values.end())
+            return make_validation_error("the Godot shader declares uniform '" + m.name + "' that the variant has no value for");
+        return member_data(v->second, m.type);
+    });
 }
 
 void flip_rows(Image& image) {
@@ -182,17 +179,13 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
         CompileOptions options;
         options.optimize = false;
         options.source_name = "<godot4 shim>";
-        auto spirv = compile_to_spirv(shim.value().glsl, options);
-        if (!spirv.ok()) {
-            Diagnostic d = spirv.error();
-            d.kind = ErrorKind::Validation;
-            return d;
-        }
-        auto bytes = pack_shim_uniforms(spirv.value(), r);
+        auto module = consumer_module(shim.value().glsl, options);
+        if (!module.ok()) return module.error();
+        auto bytes = pack_shim_uniforms(module.value()->reflection, r);
         if (!bytes.ok()) return bytes.error();
         job.uniform_data = std::move(bytes.value());
         job.vertex_spirv = r.compiled->vertex;
-        job.fragment_spirv = std::move(spirv.value());
+        job.fragment_spirv = module.value()->spirv;
     } else if (r.target == TargetId::Spirv) {
         job.vertex_spirv = r.compiled->vertex;
         job.fragment_spirv = r.compiled->fragment;
@@ -203,13 +196,9 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
             options.language = SourceLanguage::Hlsl;
             options.optimize = false;
             options.source_name = std::string("<") + target_info(r.target).name + " " + shader_stage_name(stage) + ">";
-            auto spirv = compile_to_spirv(file_of(*r.output, stage)->data, options);
-            if (!spirv.ok()) {
-                Diagnostic d = spirv.error();
-                d.kind = ErrorKind::Validation;
-                return d;
-            }
-            (stage == ShaderStage::Vertex ? job.vertex_spirv : job.fragment_spirv) = std::move(spirv.value());
+            auto module = consumer_module(file_of(*r.output, stage)->data, options);
+            if (!module.ok()) return module.error();
+            (stage == ShaderStage::Vertex ? job.vertex_spirv : job.fragment_spirv) = module.value()->spirv;
         }
     }
     auto engine = vulkan();

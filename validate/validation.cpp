@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <deque>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -36,10 +37,24 @@ Result<Shard> Shard::parse(const std::string& text) {
 
 namespace {
 
+// Loaded once per run and shared read-only by every target's job: the golden and its input.
+struct GoldenData {
+    const GoldenEntry* entry;
+    Result<Image> golden = make_error("not loaded");
+    Result<Image> input = make_error("not loaded");
+};
+
+// Compiled once per preset (on whichever worker needs it first) and shared by its targets' jobs.
+struct PresetWork {
+    const Preset* preset = nullptr;
+    std::once_flag once;
+    Result<CompiledVariant> compiled = make_error("not compiled");
+};
+
 struct Job {
-    const Preset* preset;
+    PresetWork* work;
     TargetId target;
-    std::vector<const GoldenEntry*> goldens;
+    std::vector<const GoldenData*> goldens;
 };
 
 // Pictures for the HTML report: the input and golden once per golden, each target's render, and
@@ -68,14 +83,16 @@ Status write_pictures(const std::string& dir, const GoldenEntry& g, const std::s
 std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job, const ValidateRequest& request,
                                  const Cache& cache, TargetRenderer& renderer) {
     std::vector<CheckResult> results;
+    const Preset* preset = job.work->preset;
     const std::string target = target_info(job.target).name;
     auto fail_all = [&](const std::string& message) {
-        for (const char* c : {"compile:vertex", "compile:fragment"}) results.push_back({job.preset->name, target, c, false, message, {}, {}});
-        for (const GoldenEntry* g : job.goldens)
-            results.push_back({job.preset->name, target, "render:" + g->id, false, message, {}, g->id});
+        for (const char* c : {"compile:vertex", "compile:fragment"}) results.push_back({preset->name, target, c, false, message, {}, {}});
+        for (const GoldenData* g : job.goldens)
+            results.push_back({preset->name, target, "render:" + g->entry->id, false, message, {}, g->entry->id});
         return results;
     };
-    auto compiled = compile_variant(library, *job.preset, {}, cache);
+    std::call_once(job.work->once, [&] { job.work->compiled = compile_variant(library, *preset, {}, cache); });
+    const auto& compiled = job.work->compiled;
     if (!compiled.ok()) return fail_all(compiled.error().str());
     auto out = emit_target(compiled.value(), job.target, cache);
     if (!out.ok()) return fail_all(out.error().str());
@@ -83,7 +100,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     bool compiles = true;
     for (const OutputFile& f : out.value().files) {
         if (!f.is_shader()) continue;
-        CheckResult r{job.preset->name, target, "compile:" + f.manifest_role(), false, {}, {}, {}};
+        CheckResult r{preset->name, target, "compile:" + f.manifest_role(), false, {}, {}, {}};
         auto consumed = consume_output(job.target, f);
         r.passed = consumed.ok();
         if (!consumed.ok()) r.message = consumed.error().str();
@@ -91,10 +108,11 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         results.push_back(std::move(r));
     }
 
-    for (const GoldenEntry* g : job.goldens) {
-        CheckResult r{job.preset->name, target, "render:" + g->id, false, {}, {}, g->id};
-        auto golden = read_image(request.golden_dir + "/" + g->file());
-        auto input = golden_input(*g);
+    for (const GoldenData* data : job.goldens) {
+        const GoldenEntry* g = data->entry;
+        CheckResult r{preset->name, target, "render:" + g->id, false, {}, {}, g->id};
+        const auto& golden = data->golden;
+        const auto& input = data->input;
         if (!golden.ok()) {
             r.message = golden.error().str() + " (run 'crtforge golden update')";
         } else if (!input.ok()) {
@@ -107,7 +125,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             rr.target = job.target;
             rr.output = &out.value();
             rr.input = input.value();
-            rr.filter = job.preset->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
+            rr.filter = preset->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
             rr.width = g->width;
             rr.height = g->height;
             rr.time = FrameInfo::time_of_frame(g->frame);
@@ -143,7 +161,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
 Result<ValidationReport> run_validation(const TemplateLibrary& library, const ValidateRequest& request,
                                         const Cache& cache, const ProgressFn& progress) {
     for (const auto& name : request.presets)
-        if (!library.find_preset(name)) return make_error("unknown preset '" + name + "'", {}, 0, "--preset");
+        if (auto p = library.lookup_preset(name); !p.ok()) return p.error();
     std::vector<TargetId> targets = request.targets;
     if (targets.empty())
         for (const auto& t : all_targets()) targets.push_back(t.id);
@@ -165,18 +183,30 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
     // A shard takes every count-th (preset, target) pair, so work spreads evenly and the shards'
     // reports concatenate back into the full, ordered report.
     std::vector<Job> jobs;
+    std::deque<PresetWork> presets;  // stable addresses for the jobs' pointers
+    std::deque<GoldenData> golden_data;
     size_t index = 0;
     size_t total = 0;
     for (const Preset& p : library.presets()) {
         if (!request.presets.empty() && std::find(request.presets.begin(), request.presets.end(), p.name) == request.presets.end())
             continue;
+        PresetWork* work = nullptr;
+        std::vector<const GoldenData*> goldens;
         for (TargetId t : targets) {
             if (index++ % request.shard.count != request.shard.index - 1) continue;
-            Job job{&p, t, {}};
-            for (const GoldenEntry& g : report.goldens)
-                if (g.preset == p.name) job.goldens.push_back(&g);
-            total += 2 + job.goldens.size();
-            jobs.push_back(std::move(job));
+            if (!work) {
+                work = &presets.emplace_back();
+                work->preset = &p;
+                for (const GoldenEntry& g : report.goldens) {
+                    if (g.preset != p.name) continue;
+                    GoldenData& d = golden_data.emplace_back(GoldenData{&g});
+                    d.golden = read_image(request.golden_dir + "/" + g.file());
+                    d.input = golden_input(g);
+                    goldens.push_back(&d);
+                }
+            }
+            total += 2 + goldens.size();
+            jobs.push_back(Job{work, t, goldens});
         }
     }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace crtforge {
 
@@ -64,6 +65,13 @@ public:
 private:
     std::variant<T, Diagnostic> data_;
 };
+
+// "a, b, c": lists of names in messages.
+inline std::string join_list(const std::vector<std::string>& items, const char* separator = ", ") {
+    std::string out;
+    for (const auto& item : items) out += (out.empty() ? "" : separator) + item;
+    return out;
+}
 
 // Result<void> stand-in.
 struct Ok {};

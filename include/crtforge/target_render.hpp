@@ -12,6 +12,7 @@
 
 #include "crtforge/exporter.hpp"
 #include "crtforge/image.hpp"
+#include "crtforge/reflection.hpp"
 #include "crtforge/render_engine.hpp"
 #include "crtforge/uniforms.hpp"
 
@@ -41,6 +42,15 @@ public:
     std::string consumer(TargetId target);
 
 private:
+    // The SPIR-V a consumer front end made of a target's text (HLSL, the Godot shim), compiled once
+    // per distinct source: every golden of a preset renders the same shader.
+    struct ConsumerModule {
+        SpirvBinary spirv;
+        Reflection reflection;
+    };
+    Result<const ConsumerModule*> consumer_module(const std::string& source, const CompileOptions& options);
+    std::map<std::string, ConsumerModule> consumer_modules_;
+
     Result<RenderEngine*> vulkan();
     Result<GlEngine*> gl(bool es);
     EngineOptions vulkan_options_;

@@ -21,6 +21,8 @@ struct TargetInfo {
 
 const std::vector<TargetInfo>& all_targets();
 const TargetInfo* find_target(const std::string& name);
+// The same, or an error (field --target) that lists the targets there are.
+Result<const TargetInfo*> lookup_target(const std::string& name);
 const TargetInfo& target_info(TargetId id);
 
 // One emitted file. `data` is text for source targets and raw bytes for SPIR-V.

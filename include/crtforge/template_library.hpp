@@ -26,6 +26,9 @@ public:
     const std::vector<Preset>& presets() const { return presets_; }  // sorted by name
     const StageSpec* find_stage(const std::string& name) const;
     const Preset* find_preset(const std::string& name) const;
+    // The same, or an error (field --preset) that lists the presets there are.
+    Result<const Preset*> lookup_preset(const std::string& name) const;
+    std::vector<std::string> preset_names() const;
     const ParamSpec* find_param(const std::string& name, const StageSpec** owner = nullptr) const;
 
     const std::string& prelude_source() const { return prelude_; }

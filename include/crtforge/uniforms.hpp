@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <variant>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,6 +20,17 @@ struct FrameInfo {
     double time = 0.0;  // seconds
     static double time_of_frame(int frame) { return frame / 60.0; }  // a 60 Hz clock
 };
+
+// What one block member holds: floats (float, vec2, vec3, vec4) or an int.
+using MemberData = std::variant<std::vector<float>, int32_t>;
+
+// A param value as the member type wants it (a colour fills a vec4 with alpha 1).
+Result<MemberData> member_data(const Value& value, const std::string& member_type);
+
+// The std140 bytes of `block` (sized to whole 16-byte registers), each member written at its
+// reflected offset with what `resolve` gives for it. Shared by every host that fills a block.
+Result<std::vector<uint8_t>> pack_block(const ReflectedBlock& block,
+                                        const std::function<Result<MemberData>(const ReflectedMember&)>& resolve);
 
 // The bytes of the uniform block (empty when the variant has none). Param values default to the
 // variant's; `overrides` replaces some (name -> value), e.g. to drive a modulation.

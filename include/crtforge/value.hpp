@@ -28,6 +28,10 @@ std::string value_to_string(const Value& value);
 // Enums are written as the index of the name in `enum_values` (callers pass it).
 std::string value_to_glsl(const Value& value, ParamType type, int enum_index = -1);
 
+// Shortest text that reads back as the same double, with a decimal point or exponent so GLSL (and
+// Godot) parse it as a float literal: 0.3, 4.0, 1e-07.
+std::string float_literal(double v);
+
 // The GLSL type used for a param of this type when it lives in the uniform block.
 const char* glsl_type_for(ParamType type);
 

@@ -16,11 +16,6 @@ namespace {
 constexpr const char* kRollover = "3600.0";
 constexpr const char* kTau = "6.28318530717959";
 
-std::string literal(double v) {
-    std::string s = fmt::format("{}", v);
-    if (s.find_first_of(".eE") == std::string::npos) s += ".0";
-    return s;
-}
 
 }  // namespace
 
@@ -39,7 +34,7 @@ std::string GodotCompiler::builtin_expression(const std::string& member) const {
     if (member == "time") {
         for (const VariantParam& p : variant_.params) {
             if (p.spec->name != "pulseSpeed") continue;
-            const std::string speed = p.uniform ? "pulseSpeed" : literal(std::get<double>(p.value));
+            const std::string speed = p.uniform ? "pulseSpeed" : float_literal(std::get<double>(p.value));
             return fmt::format("(TIME * (round({0} * {1} / {2}) * {2} / {1}) / {0})", speed, kRollover, kTau);
         }
         return "TIME";
@@ -54,17 +49,17 @@ std::string GodotCompiler::uniform_declaration(const VariantParam& p) const {
         const double step = s.step.value_or(s.type == ParamType::Int ? 1.0 : (*s.max - *s.min) / 100.0);
         hint = s.type == ParamType::Int ? fmt::format(" : hint_range({}, {}, {})", static_cast<int64_t>(*s.min),
                                                       static_cast<int64_t>(*s.max), static_cast<int64_t>(step))
-                                        : fmt::format(" : hint_range({}, {}, {})", literal(*s.min), literal(*s.max), literal(step));
-        value = s.type == ParamType::Int ? std::to_string(std::get<int64_t>(p.value)) : literal(std::get<double>(p.value));
+                                        : fmt::format(" : hint_range({}, {}, {})", float_literal(*s.min), float_literal(*s.max), float_literal(step));
+        value = s.type == ParamType::Int ? std::to_string(std::get<int64_t>(p.value)) : float_literal(std::get<double>(p.value));
     } else if (s.type == ParamType::Color) {
         const Color& c = std::get<Color>(p.value);
         if (options_.godot_version >= 4) {
             hint = " : source_color";
-            value = fmt::format("vec3({}, {}, {})", literal(c[0]), literal(c[1]), literal(c[2]));
+            value = fmt::format("vec3({}, {}, {})", float_literal(c[0]), float_literal(c[1]), float_literal(c[2]));
         } else {  // Godot 3's hint_color is for vec4 only
             type = "vec4";
             hint = " : hint_color";
-            value = fmt::format("vec4({}, {}, {}, 1.0)", literal(c[0]), literal(c[1]), literal(c[2]));
+            value = fmt::format("vec4({}, {}, {}, 1.0)", float_literal(c[0]), float_literal(c[1]), float_literal(c[2]));
         }
     } else {
         value = value_to_string(p.value);
