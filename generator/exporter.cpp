@@ -108,6 +108,7 @@ std::string serialize(const TargetOutput& out) {
         put_field(blob, name);
         put_field(blob, how);
     }
+    put_field(blob, out.manifest_json);
     return blob;
 }
 
@@ -126,6 +127,7 @@ std::optional<TargetOutput> deserialize(std::string_view in) {
         if (!get_field(in, name) || !get_field(in, how)) return std::nullopt;
         out.bindings.emplace_back(name, how);
     }
+    if (!get_field(in, out.manifest_json)) return std::nullopt;
     if (!in.empty()) return std::nullopt;
     return out;
 }
@@ -166,7 +168,7 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
 }
 
 Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId target, const Cache& cache) {
-    TargetInput input{&compiled.variant, &compiled.fragment, &compiled.vertex};
+    TargetInput input{&compiled.variant, &compiled.fragment, &compiled.vertex, &compiled.fragment_glsl};
     if (target == TargetId::Spirv) return generate_target(target, input);  // nothing to cache
     const std::string key = Cache::key({"target", Cache::build_id(), target_fingerprint(target),
                                         precision_name(compiled.variant.options.precision),
@@ -238,7 +240,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
                 po.error = d;
                 return;
             }
-            detail::ManifestTargetEntry te{target, {}, out.value().bindings};
+            detail::ManifestTargetEntry te{target, {}, out.value().bindings, out.value().manifest_json};
             for (const OutputFile& f : out.value().files) {
                 const std::string path = f.path.empty() ? export_path(preset->name, target, f.suffix)
                                                         : std::string(target_info(target).name) + "/" + f.path;

@@ -96,6 +96,10 @@ json target_manifest(const ManifestTargetEntry& entry) {
     json bindings = json::object();
     for (const auto& [name, how] : entry.bindings) bindings[name] = how;
     out["bindings"] = std::move(bindings);
+    if (!entry.extra_json.empty()) {
+        const json extra = json::parse(entry.extra_json);
+        for (auto& [key, value] : extra.items()) out[key] = value;
+    }
     return out;
 }
 

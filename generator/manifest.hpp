@@ -16,6 +16,7 @@ struct ManifestTargetEntry {
     TargetId target;
     std::map<std::string, std::string> files;  // "vertex"/"fragment" -> relative path
     std::vector<std::pair<std::string, std::string>> bindings;
+    std::string extra_json;  // TargetOutput::manifest_json
 };
 
 nlohmann::ordered_json value_to_json(const Value& value);

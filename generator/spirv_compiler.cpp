@@ -132,6 +132,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     spv::SpvBuildLogger logger;
     glslang::SpvOptions spv_options;
     spv_options.disableOptimizer = true;  // SPIRV-Tools does it below, with our pass list
+    spv_options.generateDebugInfo = options.debug_lines;
     glslang::GlslangToSpv(*parsed.value()->program->getIntermediate(to_glslang(options.stage)), spirv,
                           &logger, &spv_options);
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);

@@ -5,6 +5,7 @@
 #include "targets/godot/godot_writer.hpp"
 #include "targets/hlsl/hlsl_writer.hpp"
 #include "targets/spirv/spirv_writer.hpp"
+#include "targets/wgsl/wgsl_writer.hpp"
 
 namespace crtforge {
 
@@ -18,6 +19,7 @@ const std::vector<TargetInfo>& all_targets() {
         {TargetId::Hlsl60, "hlsl60", "HLSL Shader Model 6.0 (Direct3D 12, DXC)"},
         {TargetId::Godot4, "godot4", "Godot 4 canvas_item .gdshader + ShaderMaterial (node and screen modes)"},
         {TargetId::Godot3, "godot3", "Godot 3 canvas_item .shader + ShaderMaterial (node and screen modes)"},
+        {TargetId::Wgsl, "wgsl", "WGSL for WebGPU: one module, vs_main + fs_main (crtforge's own emitter)"},
     };
     return targets;
 }
@@ -51,12 +53,14 @@ Result<TargetOutput> generate_target(TargetId id, const TargetInput& input) {
         case TargetId::Hlsl60: return hlsl::Generate(input, {60});
         case TargetId::Godot4: return godot::Generate(input, 4);
         case TargetId::Godot3: return godot::Generate(input, 3);
+        case TargetId::Wgsl: return wgsl::Generate(input);
     }
     return make_error("unknown target");
 }
 
 std::string target_fingerprint(TargetId id) {
     // Bump the suffix whenever an emitter's output changes for the same SPIR-V.
+    if (id == TargetId::Wgsl) return "wgsl/crtforge-emitter/v1";
     return std::string(target_info(id).name) + "/spirv-cross-2021.01.15/v2";
 }
 

@@ -23,9 +23,9 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     CHECK(first.value().files == cold.value().files);
     CHECK(first.value().files == warm.value().files);
     CHECK(cache.hits() > 0);
-    // 6 targets x 2 shaders and 2 Godot targets x (2 shaders + material) per preset, one README per
-    // Godot addon, the manifest.
-    CHECK(first.value().files.size() == lib.presets().size() * (6 * 2 + 2 * 3) + 2 + 1);
+    // 6 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module per
+    // preset, one README per Godot addon, the manifest.
+    CHECK(first.value().files.size() == lib.presets().size() * (6 * 2 + 2 * 3 + 1) + 2 + 1);
 }
 
 TEST_CASE("written files match the in-memory export", "[export]") {
@@ -68,8 +68,10 @@ TEST_CASE("the manifest lists files, uniform layout and baked values", "[export]
             INFO(name << " " << t.name);
             const json& entry = preset["targets"][t.name];
             const bool godot = std::string(t.name).rfind("godot", 0) == 0;
-            for (const char* role : godot ? std::vector<const char*>{"shader", "screenShader", "material", "readme"}
-                                          : std::vector<const char*>{"vertex", "fragment"}) {
+            const std::vector<const char*> roles = godot ? std::vector<const char*>{"shader", "screenShader", "material", "readme"}
+                                                 : t.id == TargetId::Wgsl ? std::vector<const char*>{"shader"}
+                                                                          : std::vector<const char*>{"vertex", "fragment"};
+            for (const char* role : roles) {
                 REQUIRE(entry.contains(role));
                 CHECK(files.count(entry[role].get<std::string>()) == 1);
             }

@@ -1,14 +1,28 @@
 #include "crtforge/target_render.hpp"
 
 #include <cstring>
+#include <mutex>
 #include <regex>
 
+#include "crtforge/dawn_engine.hpp"
 #include "crtforge/gl_engine.hpp"
 #include "crtforge/godot3_engine.hpp"
 #include "crtforge/reflection.hpp"
 #include "targets/godot/godot_shim.hpp"
 
 namespace crtforge {
+
+Result<DawnEngine*> shared_dawn_engine() {
+    static std::mutex mutex;
+    static std::unique_ptr<DawnEngine> engine;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!engine) {
+        auto created = DawnEngine::create();
+        if (!created.ok()) return created.error();
+        engine = std::move(created.value());
+    }
+    return engine.get();
+}
 
 TargetRenderer::TargetRenderer(EngineOptions vulkan_options) : vulkan_options_(std::move(vulkan_options)) {}
 TargetRenderer::~TargetRenderer() = default;
@@ -70,6 +84,10 @@ std::string TargetRenderer::consumer(TargetId target) {
             auto v = vulkan();
             return "Godot 4 shim (Godot builtins as Vulkan resources) -> glslang -> Vulkan: " +
                    (v.ok() ? v.value()->device().name : std::string("unavailable"));
+        }
+        case TargetId::Wgsl: {
+            auto d = shared_dawn_engine();
+            return d.ok() ? d.value()->adapter_description() : std::string("Dawn unavailable");
         }
         case TargetId::Godot3: {
             const std::string version = godot3_version();
@@ -144,6 +162,19 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
         auto job = common_job<GlRenderJob>(r, std::move(uniforms.value()));
         job.vertex_source = file_of(*r.output, ShaderStage::Vertex)->data;
         job.fragment_source = file_of(*r.output, ShaderStage::Fragment)->data;
+        return engine.value()->render(job);
+    }
+
+    if (r.target == TargetId::Wgsl) {  // Dawn, the WebGPU implementation in Chrome
+        auto engine = shared_dawn_engine();
+        if (!engine.ok()) return engine.error();
+        const OutputFile* shader = file_with_role(*r.output, "shader");
+        if (!shader) return make_error("wgsl output without a shader");
+        auto job = common_job<DawnJob>(r, std::move(uniforms.value()));
+        job.wgsl = shader->data;
+        // WebGPU binds the WGSL struct's whole size, which rounds up to 16 bytes.
+        if (!job.uniform_data.empty()) job.uniform_data.resize((job.uniform_data.size() + 15) / 16 * 16, 0);
+        job.uses_texture = !r.compiled->reflection.textures.empty();
         return engine.value()->render(job);
     }
 

@@ -22,6 +22,7 @@ struct CompileOptions {
     bool optimize = true;            // SPIRV-Tools performance passes (folds baked constants)
     std::string entry_point = "main";
     std::string source_name;         // used in diagnostics when the source has no #line
+    bool debug_lines = false;        // keep OpLine (template file:line) on instructions, for diagnostics
 };
 
 // Compiles one shader. Errors carry the template file:line recovered from #line directives.

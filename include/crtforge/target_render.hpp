@@ -18,6 +18,17 @@
 
 namespace crtforge {
 
+// Feeds one emitted file to the real consumer of its language, as a host would: SPIR-V through
+// spirv-val, GLSL re-parsed by glslang in the matching desktop/ES profile, HLSL compiled by
+// glslang's HLSL front end to SPIR-V (then spirv-val), WGSL compiled by Dawn, which must report
+// no error and no warning. Failures are ErrorKind::Validation.
+Status consume_output(TargetId target, const OutputFile& file);
+
+class DawnEngine;
+// The process's Dawn engine (one Node.js runner for every thread; its calls are serialised),
+// started on first use. A failure to start is returned and retried on the next call.
+Result<DawnEngine*> shared_dawn_engine();
+
 struct TargetRenderRequest {
     const CompiledVariant* compiled = nullptr;
     TargetId target = TargetId::Spirv;

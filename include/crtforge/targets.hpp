@@ -11,7 +11,7 @@
 
 namespace crtforge {
 
-enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60, Godot4, Godot3 };
+enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60, Godot4, Godot3, Wgsl };
 
 struct TargetInfo {
     TargetId id;
@@ -46,6 +46,9 @@ struct TargetInput {
     const Variant* variant = nullptr;
     const SpirvBinary* fragment = nullptr;
     const SpirvBinary* vertex = nullptr;
+    // The GLSL the fragment module was compiled from (with #line back to the templates), so an
+    // emitter that rejects an instruction can recompile with debug lines and name the template line.
+    const std::string* fragment_source = nullptr;
 };
 
 struct TargetOutput {
@@ -53,6 +56,9 @@ struct TargetOutput {
     // How the host binds resources in this target's language, for the manifest:
     // e.g. {"CrtParams", "b0"} for HLSL, {"CrtParams", "binding=0"} for GLSL 450.
     std::vector<std::pair<std::string, std::string>> bindings;
+    // Extra keys for this target's manifest entry, as a JSON object ("" = none): e.g. WGSL's
+    // entry points, bind-group layout and uniform-buffer byte layout.
+    std::string manifest_json;
 };
 
 Result<TargetOutput> generate_target(TargetId id, const TargetInput& input);
@@ -62,11 +68,3 @@ std::string target_fingerprint(TargetId id);
 
 }  // namespace crtforge
 
-namespace crtforge {
-
-// Feeds one emitted file to the real consumer of its language, as a host would: SPIR-V through
-// spirv-val, GLSL re-parsed by glslang in the matching desktop/ES profile, HLSL compiled by
-// glslang's HLSL front end to SPIR-V (then spirv-val). Failures are ErrorKind::Validation.
-Status consume_output(TargetId target, const OutputFile& file);
-
-}  // namespace crtforge

@@ -1,7 +1,10 @@
 // Proof that each target's text is accepted by the compiler its users will run.
 #include <cstring>
 
-#include "crtforge/targets.hpp"
+#include <fmt/format.h>
+
+#include "crtforge/dawn_engine.hpp"
+#include "crtforge/target_render.hpp"
 #include "targets/godot/godot_shim.hpp"
 
 namespace crtforge {
@@ -31,6 +34,20 @@ Status consume_output(TargetId target, const OutputFile& f) {
             options.source_name = "<godot shader>";
             auto spirv = compile_to_spirv(shim.value().glsl, options);
             status = spirv.ok() ? Status(Ok{}) : Status(spirv.error());
+            break;
+        }
+        case TargetId::Wgsl: {
+            auto engine = shared_dawn_engine();
+            if (!engine.ok()) return engine.error();
+            auto messages = engine.value()->compile(f.data);
+            if (!messages.ok()) return messages.error();
+            // Zero errors and zero warnings: a warning in a user's browser console is a defect too.
+            if (!messages.value().empty()) {
+                const WgslMessage& m = messages.value().front();
+                status = make_validation_error(fmt::format("Dawn {}: {} ({} message{})", m.type, m.text,
+                                                           messages.value().size(), messages.value().size() == 1 ? "" : "s"),
+                                               "<wgsl>", m.line);
+            }
             break;
         }
     }

@@ -1,0 +1,112 @@
+// Internal to the WGSL emitter: the per-stage state shared by the module-level printer
+// (wgsl_module_emitter.cpp: types, constants, resources, entry points) and the function printer
+// (wgsl_function_emitter.cpp: structured control flow and instructions).
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "targets/wgsl/spirv_module.hpp"
+#include "targets/wgsl/wgsl_emitter.hpp"
+
+namespace crtforge::wgsl {
+
+// Thrown inside the emitter only (caught in emit_wgsl and turned into a Diagnostic): keeps every
+// "cannot translate" path one line long.
+struct EmitError {
+    std::string message;
+    SourceLine line;
+};
+[[noreturn]] void fail(const std::string& message, const SourceLine& line = {});
+[[noreturn]] void unsupported(const Instruction& inst, const std::string& why = {});
+
+// A value as the function printer refers to it: the text of an expression, and whether that text
+// can be used as an operand without parentheses.
+struct Expr {
+    std::string text;
+    bool atom = true;
+    std::string operand() const { return atom ? text : "(" + text + ")"; }
+};
+
+// What one stage's entry function reads and writes.
+struct StageInterface {
+    struct Input {
+        uint32_t variable = 0;
+        std::string param;      // the entry point's parameter name
+        std::string attribute;  // "@location(0)", "@builtin(position)"
+        std::string wgsl_type;  // the parameter's WGSL type
+        std::string read;       // how the body reads it (e.g. i32(vertex_index))
+    };
+    struct Output {
+        uint32_t variable = 0;        // a plain output variable, or a gl_PerVertex-style block
+        std::string local;            // the local var the body writes
+        std::string wgsl_type;
+        std::vector<std::pair<std::string, std::string>> fields;  // (attribute, name) returned
+        std::map<uint32_t, std::string> block_members;            // block member index -> local name
+    };
+    std::vector<Input> inputs;
+    std::vector<Output> outputs;
+};
+
+class ModuleEmitter {
+public:
+    ModuleEmitter(const SpirvModule& module, const EmitOptions& options, std::set<std::string>& global_names,
+                  const std::string& stage_name, const std::string& entry_name);
+
+    const SpirvModule& m;
+    const EmitOptions& options;
+    std::string stage_name;  // "vertex" / "fragment"
+    std::string entry_name;  // the WGSL entry point's name
+    std::map<uint32_t, std::vector<std::string>> struct_member_names;  // struct type id -> WGSL member names
+    std::map<uint32_t, std::vector<WgslMember>> struct_layouts;        // struct type id -> members with offsets
+    std::map<uint32_t, uint32_t> struct_sizes;                         // struct type id -> WGSL size
+
+    // Module-scope text, keyed so stages can share identical declarations.
+    std::map<std::string, std::string> struct_decls;    // struct name -> declaration
+    std::vector<std::string> struct_order;
+    std::map<std::pair<uint32_t, uint32_t>, std::string> resource_decls;  // (group, binding) -> declaration
+    std::vector<WgslBinding> bindings;
+    std::map<std::string, std::string> helpers;          // helper function name -> definition
+    std::vector<std::string> functions;                  // emitted non-entry functions
+    std::string entry;                                   // the entry point
+    bool needs_derivative_uniformity_off = false;
+
+    std::string type_name(uint32_t type_id);
+    // Type used where a value lives in the uniform address space (same as type_name for scalars).
+    std::string struct_name(uint32_t type_id);
+    Expr constant(uint32_t id);
+    bool is_constant(uint32_t id) const { return m.constants.count(id) != 0; }
+    const Type& type(uint32_t id) const { return m.type(id); }
+    uint32_t scalar_of(uint32_t type_id) const;   // element scalar of a scalar/vector type
+    uint32_t component_count(uint32_t type_id) const;  // 1 for scalars
+
+    // Module-scope resources and the sampler each combined image sampler was split into.
+    std::map<uint32_t, std::string> resource_names;      // variable id -> WGSL name
+    std::map<uint32_t, std::string> sampler_names;       // combined image sampler id -> sampler name
+    StageInterface interface;
+    std::map<uint32_t, const Instruction*> private_globals;  // Private-storage variables
+    std::set<std::string>& global_names;  // module-scope names of the whole WGSL module
+    std::set<std::string> stage_names;    // those plus this stage's entry parameters and locals
+    std::map<uint32_t, std::string> function_names;  // non-entry functions
+    // A module-scope identifier: unique in the whole module, and reserved for this stage's locals.
+    std::string module_scope_name(const std::string& wanted);
+
+    void emit();
+
+private:
+    void declare_resources();
+    void declare_interface(const EntryPoint& entry);
+    std::string declare_struct(uint32_t type_id);
+    void emit_entry(const EntryPoint& entry);
+    std::map<uint32_t, std::string> struct_names_;
+};
+
+// Prints a function. For the entry function (`is_entry`) only the body statements come out, to go
+// inside the WGSL entry point, and every return becomes `return <entry_return>;` (bare `return;`
+// when it is empty). Other functions come out whole, signature included.
+std::string emit_function_body(ModuleEmitter& module, const Function& function, bool is_entry,
+                               const std::string& entry_return, std::set<std::string>& local_names);
+
+}  // namespace crtforge::wgsl

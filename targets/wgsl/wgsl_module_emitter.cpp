@@ -1,0 +1,582 @@
+// Module-level WGSL: types and struct layouts, constants, resources (combined image samplers split
+// into a texture and a sampler), the stage interface, the entry point, and the merge of several
+// stages into one module.
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "targets/wgsl/wgsl_context.hpp"
+#include "targets/wgsl/wgsl_names.hpp"
+
+namespace crtforge::wgsl {
+
+void fail(const std::string& message, const SourceLine& line) { throw EmitError{message, line}; }
+
+void unsupported(const Instruction& inst, const std::string& why) {
+    fail("cannot translate " + opcode_name(inst.op) + " to WGSL" + (why.empty() ? "" : ": " + why), inst.line);
+}
+
+namespace {
+
+uint32_t round_up(uint32_t align, uint32_t value) { return (value + align - 1) / align * align; }
+
+const char* storage_class_name(spv::StorageClass s) {
+    switch (s) {
+        case spv::StorageClassUniformConstant: return "UniformConstant";
+        case spv::StorageClassInput: return "Input";
+        case spv::StorageClassUniform: return "Uniform";
+        case spv::StorageClassOutput: return "Output";
+        case spv::StorageClassWorkgroup: return "Workgroup";
+        case spv::StorageClassPrivate: return "Private";
+        case spv::StorageClassFunction: return "Function";
+        case spv::StorageClassPushConstant: return "PushConstant";
+        case spv::StorageClassStorageBuffer: return "StorageBuffer";
+        default: return "another storage class";
+    }
+}
+
+}  // namespace
+
+ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, std::set<std::string>& names,
+                             const std::string& stage, const std::string& entry)
+    : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names) {}
+
+std::string ModuleEmitter::module_scope_name(const std::string& wanted) {
+    std::set<std::string> both = global_names;
+    both.insert(stage_names.begin(), stage_names.end());
+    const std::string name = unique_identifier(wanted, both);
+    global_names.insert(name);
+    stage_names.insert(name);
+    return name;
+}
+
+uint32_t ModuleEmitter::scalar_of(uint32_t type_id) const {
+    const Type& t = type(type_id);
+    return t.op == spv::OpTypeVector ? t.element : type_id;
+}
+
+uint32_t ModuleEmitter::component_count(uint32_t type_id) const {
+    const Type& t = type(type_id);
+    return t.op == spv::OpTypeVector ? t.count : 1;
+}
+
+std::string ModuleEmitter::type_name(uint32_t id) {
+    const Type& t = type(id);
+    switch (t.op) {
+        case spv::OpTypeBool: return "bool";
+        case spv::OpTypeFloat:
+            if (t.width != 32) fail(fmt::format("{}-bit floats have no WGSL type here (only f32)", t.width));
+            return "f32";
+        case spv::OpTypeInt:
+            if (t.width != 32) fail(fmt::format("{}-bit integers have no WGSL type (only 32-bit)", t.width));
+            return t.is_signed ? "i32" : "u32";
+        case spv::OpTypeVector: return fmt::format("vec{}<{}>", t.count, type_name(t.element));
+        case spv::OpTypeMatrix: {
+            const Type& column = type(t.element);
+            return fmt::format("mat{}x{}<{}>", t.count, column.count, type_name(column.element));
+        }
+        case spv::OpTypeArray: return fmt::format("array<{}, {}>", type_name(t.element), t.count);
+        case spv::OpTypeStruct: return struct_name(id);
+        case spv::OpTypeSampler: return "sampler";
+        case spv::OpTypeImage: {
+            if (t.depth) fail("depth textures are not supported by crtforge's WGSL emitter");
+            const std::string sampled = type_name(t.element);
+            if (t.multisampled) return "texture_multisampled_2d<" + sampled + ">";
+            switch (t.dim) {
+                case spv::Dim1D: return "texture_1d<" + sampled + ">";
+                case spv::Dim2D: return (t.arrayed ? "texture_2d_array<" : "texture_2d<") + sampled + ">";
+                case spv::Dim3D: return "texture_3d<" + sampled + ">";
+                case spv::DimCube: return (t.arrayed ? "texture_cube_array<" : "texture_cube<") + sampled + ">";
+                default: fail("image dimensionality has no WGSL texture type");
+            }
+        }
+        case spv::OpTypeVoid: return "";
+        default: fail(fmt::format("type {} has no WGSL equivalent", opcode_name(t.op)));
+    }
+}
+
+std::string ModuleEmitter::struct_name(uint32_t id) {
+    auto it = struct_names_.find(id);
+    if (it != struct_names_.end()) return it->second;
+    return declare_struct(id);
+}
+
+// WGSL's uniform-address-space alignment and size of a type (std140 rules where they agree).
+namespace {
+struct Layout {
+    uint32_t align = 4, size = 4;
+};
+}  // namespace
+
+std::string ModuleEmitter::declare_struct(uint32_t id) {
+    const Type& t = type(id);
+    std::string wanted = m.name(id);
+    if (wanted.empty()) wanted = "Struct";
+    const std::string name = module_scope_name(wanted);
+    struct_names_[id] = name;
+
+    // Layout, computed the way WGSL computes it, then checked against the SPIR-V Offsets.
+    std::function<Layout(uint32_t)> layout = [&](uint32_t type_id) -> Layout {
+        const Type& ty = type(type_id);
+        switch (ty.op) {
+            case spv::OpTypeVector: {
+                Layout e = layout(ty.element);
+                const uint32_t n = ty.count == 3 ? 4 : ty.count;
+                return {e.size * n, e.size * ty.count};
+            }
+            case spv::OpTypeMatrix: {
+                Layout column = layout(ty.element);
+                return {column.align, ty.count * round_up(column.align, column.size)};
+            }
+            case spv::OpTypeArray: {
+                Layout e = layout(ty.element);
+                return {e.align, ty.count * round_up(e.align, e.size)};
+            }
+            case spv::OpTypeStruct: {
+                Layout s{1, 0};
+                for (size_t i = 0; i < ty.members.size(); ++i) {
+                    Layout member = layout(ty.members[i]);
+                    s.align = std::max(s.align, member.align);
+                    auto d = m.member_decorations.find({type_id, static_cast<uint32_t>(i)});
+                    const uint32_t offset = d != m.member_decorations.end() && d->second.offset
+                                                ? *d->second.offset : round_up(member.align, s.size);
+                    s.size = offset + member.size;
+                }
+                s.align = round_up(16, s.align);
+                s.size = round_up(s.align, s.size);
+                return s;
+            }
+            default: return {4, 4};
+        }
+    };
+
+    struct Member {
+        std::string name, type;
+        std::optional<uint32_t> offset;
+        uint32_t size_attribute = 0;  // @size(n) when the next member starts later than WGSL would put it
+    };
+    std::set<std::string> member_names;
+    std::vector<Member> members;
+    uint32_t end = 0;
+    for (size_t i = 0; i < t.members.size(); ++i) {
+        const uint32_t member_type = t.members[i];
+        auto mn = m.member_names.find({id, static_cast<uint32_t>(i)});
+        Member member{unique_identifier(mn != m.member_names.end() ? mn->second : fmt::format("m{}", i), member_names),
+                      type_name(member_type), std::nullopt, 0};
+        auto d = m.member_decorations.find({id, static_cast<uint32_t>(i)});
+        if (d != m.member_decorations.end() && d->second.offset) {
+            const Layout l = layout(member_type);
+            const uint32_t offset = *d->second.offset;
+            const uint32_t natural = round_up(l.align, end);
+            if (offset < natural || (i == 0 && offset != 0))
+                fail(fmt::format("member {} of {} is at byte {}, where WGSL's layout puts it at {}", member.name, name,
+                                 offset, natural));
+            if (offset > natural) members.back().size_attribute = offset - *members.back().offset;
+            const Type& mt = type(member_type);
+            if (mt.op == spv::OpTypeArray) {
+                auto stride = m.decorations.find(member_type);
+                const uint32_t s = stride != m.decorations.end() && stride->second.array_stride ? *stride->second.array_stride : 0;
+                const Layout e = layout(mt.element);
+                if (s % 16 != 0 || s != round_up(e.align, e.size))
+                    fail(fmt::format("array member {} of {} has stride {}; WGSL uniform arrays need the element's own "
+                                     "stride, a multiple of 16", member.name, name, s));
+            }
+            member.offset = offset;
+            end = offset + l.size;
+            struct_layouts[id].push_back({member.name, member.type, offset, l.size});
+        }
+        members.push_back(member);
+    }
+    for (const Member& member : members) struct_member_names[id].push_back(member.name);
+    struct_sizes[id] = layout(id).size;
+    std::string decl = "struct " + name + " {\n";
+    for (const Member& member : members) {
+        decl += "  ";
+        if (member.size_attribute) decl += fmt::format("@size({}) ", member.size_attribute);
+        decl += member.name + ": " + member.type + ",";
+        if (member.offset) decl += fmt::format("  // offset {}", *member.offset);
+        decl += "\n";
+    }
+    decl += "}\n";
+    struct_decls[name] = decl;
+    struct_order.push_back(name);
+    return name;
+}
+
+Expr ModuleEmitter::constant(uint32_t id) {
+    const Constant& c = m.constants.at(id);
+    const Type& t = type(c.type);
+    auto zero = [&]() -> Expr { return {type_name(c.type) + "()", true}; };
+    switch (c.op) {
+        case spv::OpConstantTrue: return {"true", true};
+        case spv::OpConstantFalse: return {"false", true};
+        case spv::OpConstantNull:
+        case spv::OpUndef: return zero();
+        case spv::OpConstant: {
+            const uint32_t bits = c.words.empty() ? 0 : c.words[0];
+            if (t.op == spv::OpTypeFloat) {
+                if (t.width != 32) fail("only 32-bit float constants are supported");
+                std::string text = f32_literal(bits);
+                return {text[0] == '-' ? "(" + text + ")" : text, true};
+            }
+            if (t.op == spv::OpTypeInt) {
+                if (t.width != 32) fail("only 32-bit integer constants are supported");
+                return {t.is_signed ? i32_literal(static_cast<int32_t>(bits)) : u32_literal(bits), true};
+            }
+            fail("constant of an unexpected type");
+        }
+        case spv::OpConstantComposite: {
+            std::vector<std::string> parts;
+            for (uint32_t part : c.words) parts.push_back(constant(part).text);
+            // A vector of one repeated value reads better as a splat.
+            if (t.op == spv::OpTypeVector && std::all_of(parts.begin(), parts.end(), [&](auto& p) { return p == parts[0]; }))
+                return {type_name(c.type) + "(" + parts[0] + ")", true};
+            std::string text = type_name(c.type) + "(";
+            for (size_t i = 0; i < parts.size(); ++i) text += (i ? ", " : "") + parts[i];
+            return {text + ")", true};
+        }
+        default: fail("unsupported constant " + opcode_name(c.op));
+    }
+}
+
+void ModuleEmitter::declare_resources() {
+    // Samplers split off combined image samplers go after every binding the module uses.
+    std::map<uint32_t, uint32_t> next_binding;  // group -> first free binding
+    for (const auto& [id, var] : m.globals) {
+        auto d = m.decorations.find(id);
+        if (d != m.decorations.end() && d->second.binding)
+            next_binding[d->second.set.value_or(0)] = std::max(next_binding[d->second.set.value_or(0)], *d->second.binding + 1);
+    }
+    for (const auto& [id, var] : m.globals) {
+        const Type& pointer = type(var.type);
+        const spv::StorageClass storage = pointer.storage;
+        if (storage == spv::StorageClassInput || storage == spv::StorageClassOutput) continue;
+        if (storage == spv::StorageClassPrivate) {
+            private_globals[id] = &var;
+            continue;
+        }
+        if (storage != spv::StorageClassUniform && storage != spv::StorageClassUniformConstant)
+            fail(fmt::format("variable '{}' is in {} storage, which crtforge's WGSL emitter does not map "
+                             "(uniform blocks, textures and samplers only)", m.name(id), storage_class_name(storage)));
+        auto d = m.decorations.find(id);
+        if (d == m.decorations.end() || !d->second.binding)
+            fail(fmt::format("resource '{}' has no binding decoration", m.name(id)));
+        const uint32_t group = d->second.set.value_or(0), binding = *d->second.binding;
+        const Type& pointee = type(pointer.element);
+        std::string wanted = m.name(id);
+        WgslBinding b;
+        b.group = group;
+        b.binding = binding;
+        b.stages = {stage_name};
+        if (storage == spv::StorageClassUniform) {
+            if (pointee.op != spv::OpTypeStruct) fail("a uniform variable that is not a block");
+            const std::string sname = struct_name(pointer.element);
+            if (wanted.empty() || wanted == "_") {
+                auto named = options.block_instance_names.find(m.name(pointer.element));
+                wanted = named != options.block_instance_names.end() ? named->second : "params";
+            }
+            const std::string name = module_scope_name(wanted);
+            resource_names[id] = name;
+            resource_decls[{group, binding}] =
+                fmt::format("@group({}) @binding({}) var<uniform> {}: {};\n", group, binding, name, sname);
+            b.name = name;
+            b.kind = "uniform-buffer";
+            b.wgsl_type = sname;
+            // The buffer size WebGPU checks: the struct's size under WGSL's layout rules.
+            for (size_t i = 0; i < pointee.members.size(); ++i)
+                if (type(pointee.members[i]).op == spv::OpTypeStruct) fail("nested structs in a uniform block are not supported");
+            b.members = struct_layouts[pointer.element];
+            const uint32_t size = struct_sizes[pointer.element];
+            b.size = round_up(16, size);
+            bindings.push_back(b);
+            continue;
+        }
+        // UniformConstant: a combined image sampler, a texture, or a sampler.
+        if (wanted.empty()) wanted = pointee.op == spv::OpTypeSampler ? "samp" : "tex";
+        const std::string name = module_scope_name(wanted);
+        resource_names[id] = name;
+        if (pointee.op == spv::OpTypeSampledImage || pointee.op == spv::OpTypeImage) {
+            const uint32_t image = pointee.op == spv::OpTypeSampledImage ? pointee.element : pointer.element;
+            const std::string texture_type = type_name(image);
+            resource_decls[{group, binding}] = fmt::format("@group({}) @binding({}) var {}: {};\n", group, binding, name, texture_type);
+            b.name = name;
+            b.kind = "texture";
+            b.wgsl_type = texture_type;
+            b.sample_type = type(type(image).element).op == spv::OpTypeFloat ? "float" : type(type(image).element).is_signed ? "sint" : "uint";
+            if (pointee.op == spv::OpTypeSampledImage) {
+                const uint32_t sampler_binding = next_binding[group]++;
+                const std::string sampler = module_scope_name(name + "_sampler");
+                sampler_names[id] = sampler;
+                resource_decls[{group, sampler_binding}] =
+                    fmt::format("@group({}) @binding({}) var {}: sampler;\n", group, sampler_binding, sampler);
+                b.paired_with = sampler;
+                WgslBinding s;
+                s.group = group;
+                s.binding = sampler_binding;
+                s.name = sampler;
+                s.kind = "sampler";
+                s.wgsl_type = "sampler";
+                s.paired_with = name;
+                s.stages = {stage_name};
+                bindings.push_back(s);
+            }
+            bindings.push_back(b);
+        } else if (pointee.op == spv::OpTypeSampler) {
+            resource_decls[{group, binding}] = fmt::format("@group({}) @binding({}) var {}: sampler;\n", group, binding, name);
+            b.name = name;
+            b.kind = "sampler";
+            b.wgsl_type = "sampler";
+            bindings.push_back(b);
+        } else {
+            fail(fmt::format("uniform-constant variable '{}' of type {} is not supported", name, opcode_name(pointee.op)));
+        }
+    }
+}
+
+void ModuleEmitter::declare_interface(const EntryPoint& entry) {
+    const bool vertex = entry.model == spv::ExecutionModelVertex;
+    for (uint32_t id : entry.interface) {
+        auto g = m.globals.find(id);
+        if (g == m.globals.end()) continue;
+        const Type& pointer = type(g->second.type);
+        const uint32_t value_type = pointer.element;
+        auto d = m.decorations.find(id);
+        const Decorations deco = d != m.decorations.end() ? d->second : Decorations{};
+        std::string name = m.name(id);
+        const bool integer = type(scalar_of(value_type)).op == spv::OpTypeInt;
+
+        auto interpolation = [&]() -> std::string {
+            if (deco.flat || integer) return " @interpolate(flat)";
+            std::string kind = deco.no_perspective ? "linear" : "perspective";
+            if (deco.centroid) return " @interpolate(" + kind + ", centroid)";
+            if (deco.sample) return " @interpolate(" + kind + ", sample)";
+            return deco.no_perspective ? " @interpolate(linear)" : "";
+        };
+
+        if (pointer.storage == spv::StorageClassInput) {
+            StageInterface::Input in;
+            in.variable = id;
+            if (deco.builtin) {
+                switch (*deco.builtin) {
+                    case spv::BuiltInFragCoord:
+                        in.attribute = "@builtin(position)"; in.wgsl_type = "vec4<f32>"; name = name.empty() ? "gl_FragCoord" : name; break;
+                    case spv::BuiltInFrontFacing:
+                        in.attribute = "@builtin(front_facing)"; in.wgsl_type = "bool"; name = name.empty() ? "gl_FrontFacing" : name; break;
+                    case spv::BuiltInVertexIndex:
+                        in.attribute = "@builtin(vertex_index)"; in.wgsl_type = "u32"; name = "vertex_index"; break;
+                    case spv::BuiltInInstanceIndex:
+                        in.attribute = "@builtin(instance_index)"; in.wgsl_type = "u32"; name = "instance_index"; break;
+                    case spv::BuiltInSampleId:
+                        in.attribute = "@builtin(sample_index)"; in.wgsl_type = "u32"; name = "sample_index"; break;
+                    default: fail(fmt::format("input builtin {} has no WGSL equivalent", static_cast<int>(*deco.builtin)));
+                }
+            } else if (deco.location) {
+                in.attribute = fmt::format("@location({}){}", *deco.location, vertex ? "" : interpolation());
+                in.wgsl_type = type_name(value_type);
+            } else {
+                fail(fmt::format("input '{}' has neither a location nor a builtin", name));
+            }
+            in.param = unique_identifier(name.empty() ? "input" : name, stage_names);
+            in.read = in.param;
+            // SPIR-V reads the index builtins as int; WGSL gives u32.
+            if (in.wgsl_type == "u32" && type(value_type).op == spv::OpTypeInt && type(value_type).is_signed)
+                in.read = "i32(" + in.param + ")";
+            interface.inputs.push_back(in);
+            continue;
+        }
+        if (pointer.storage != spv::StorageClassOutput) continue;
+        StageInterface::Output out;
+        out.variable = id;
+        const Type& vt = type(value_type);
+        if (vt.op == spv::OpTypeStruct && !vt.members.empty()) {
+            // gl_PerVertex: only gl_Position maps to WGSL; the other members must stay unwritten.
+            for (size_t i = 0; i < vt.members.size(); ++i) {
+                auto md = m.member_decorations.find({value_type, static_cast<uint32_t>(i)});
+                if (md == m.member_decorations.end() || !md->second.builtin) fail("an output block member without a builtin");
+                if (*md->second.builtin == spv::BuiltInPosition) {
+                    const std::string local = unique_identifier("gl_Position", stage_names);
+                    out.block_members[static_cast<uint32_t>(i)] = local;
+                    out.fields.push_back({"@builtin(position)", local});
+                }
+            }
+            out.wgsl_type = "vec4<f32>";
+            interface.outputs.push_back(out);
+            continue;
+        }
+        out.wgsl_type = type_name(value_type);
+        if (deco.builtin && *deco.builtin == spv::BuiltInPosition) {
+            out.local = unique_identifier(name.empty() ? "gl_Position" : name, stage_names);
+            out.fields.push_back({"@builtin(position)", out.local});
+        } else if (deco.builtin && *deco.builtin == spv::BuiltInFragDepth) {
+            out.local = unique_identifier(name.empty() ? "gl_FragDepth" : name, stage_names);
+            out.fields.push_back({"@builtin(frag_depth)", out.local});
+        } else if (deco.location) {
+            out.local = unique_identifier(name.empty() ? "output" : name, stage_names);
+            out.fields.push_back({fmt::format("@location({}){}", *deco.location, vertex ? interpolation() : ""), out.local});
+        } else {
+            fail(fmt::format("output '{}' has neither a location nor a supported builtin", name));
+        }
+        interface.outputs.push_back(out);
+    }
+}
+
+void ModuleEmitter::emit_entry(const EntryPoint& entry) {
+    const bool vertex = entry.model == spv::ExecutionModelVertex;
+    const Function* main = m.function(entry.function);
+    if (!main) fail("the entry point's function is missing");
+
+    // Every returned value, in order: (attribute, expression).
+    std::vector<std::pair<std::string, std::string>> returned;
+    for (const auto& out : interface.outputs) {
+        for (const auto& [attribute, local] : out.fields) {
+            std::string value = local;
+            if (vertex && options.flip_vertex_y && attribute == "@builtin(position)")
+                value = local + " * vec4<f32>(1.0, -1.0, 1.0, 1.0)";  // SPIR-V clip space is y-down, WebGPU's y-up
+            returned.push_back({attribute, value});
+        }
+    }
+    std::string result_type, return_expr;
+    if (returned.size() == 1) {
+        const auto& out = interface.outputs.front();
+        result_type = " -> " + returned[0].first + " " + out.wgsl_type;
+        return_expr = returned[0].second;
+    } else if (!returned.empty()) {
+        const std::string sname = module_scope_name(vertex ? "VertexOutput" : "FragmentOutput");
+        std::string decl = "struct " + sname + " {\n";
+        std::vector<std::string> values;
+        for (const auto& out : interface.outputs)
+            for (const auto& [attribute, local] : out.fields) decl += "  " + attribute + " " + local + ": " + out.wgsl_type + ",\n";
+        decl += "}\n";
+        struct_decls[sname] = decl;
+        struct_order.push_back(sname);
+        result_type = " -> " + sname;
+        return_expr = sname + "(";
+        for (size_t i = 0; i < returned.size(); ++i) return_expr += (i ? ", " : "") + returned[i].second;
+        return_expr += ")";
+    }
+
+    std::set<std::string> locals = stage_names;
+    std::string text = vertex ? "@vertex\n" : "@fragment\n";
+    text += "fn " + entry_name + "(";
+    for (size_t i = 0; i < interface.inputs.size(); ++i) {
+        const auto& in = interface.inputs[i];
+        text += (i ? ", " : "") + in.attribute + " " + in.param + ": " + in.wgsl_type;
+    }
+    text += ")" + result_type + " {\n";
+    for (const auto& out : interface.outputs) {
+        if (!out.local.empty()) text += "  var " + out.local + ": " + out.wgsl_type + ";\n";
+        for (const auto& [index, local] : out.block_members) text += "  var " + local + ": vec4<f32>;\n";
+    }
+    text += emit_function_body(*this, *main, true, return_expr, locals);
+    text += "}\n";
+    this->entry = text;
+}
+
+void ModuleEmitter::emit() {
+    if (m.entry_points.size() != 1) fail("a module must have exactly one entry point");
+    const EntryPoint& e = m.entry_points.front();
+    if (e.model != spv::ExecutionModelVertex && e.model != spv::ExecutionModelFragment)
+        fail("only vertex and fragment shaders can be translated to WGSL");
+    for (const auto& [id, name] : m.ext_imports)
+        if (name != "GLSL.std.450") fail("extended instruction set '" + name + "' is not supported");
+    stage_names = global_names;
+    for (const Function& f : m.functions)
+        if (f.id != e.function) {
+            // glslang names functions with their mangled signature: "curvature(vf2;" -> "curvature".
+            const std::string name = m.name(f.id).substr(0, m.name(f.id).find('('));
+            function_names[f.id] = module_scope_name(name.empty() ? "function" : name);
+        }
+    declare_resources();
+    declare_interface(e);
+    // Helper functions other than the entry, in module order.
+    for (const Function& f : m.functions) {
+        if (f.id == e.function) continue;
+        std::set<std::string> locals = stage_names;
+        functions.push_back(emit_function_body(*this, f, false, "", locals));
+    }
+    emit_entry(e);
+}
+
+Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOptions& options) {
+    std::set<std::string> global_names;
+    std::vector<SpirvModule> modules;
+    std::vector<std::unique_ptr<ModuleEmitter>> emitters;
+    try {
+        for (const auto& stage : stages) {
+            auto parsed = parse_spirv(*stage.spirv);
+            if (!parsed.ok()) return parsed.error();
+            modules.push_back(std::move(parsed.value()));
+        }
+        for (size_t i = 0; i < modules.size(); ++i) {
+            const auto model = modules[i].entry_points.empty() ? spv::ExecutionModelMax : modules[i].entry_points[0].model;
+            auto emitter = std::make_unique<ModuleEmitter>(modules[i], options, global_names,
+                                                           model == spv::ExecutionModelVertex ? "vertex" : "fragment",
+                                                           stages[i].entry_name);
+            emitter->emit();
+            emitters.push_back(std::move(emitter));
+        }
+    } catch (const EmitError& e) {
+        return make_validation_error("WGSL emitter: " + e.message, e.line.file, e.line.line);
+    }
+
+    // Merge: identical declarations are shared; two different ones at one binding are an error.
+    WgslModule out;
+    std::string text;
+    for (const auto& line : {options.header_comment}) {
+        if (line.empty()) continue;
+        size_t start = 0;
+        while (start <= line.size()) {
+            size_t end = line.find('\n', start);
+            if (end == std::string::npos) end = line.size();
+            text += "// " + line.substr(start, end - start) + "\n";
+            start = end + 1;
+        }
+        text += "\n";
+    }
+    bool diagnostic_off = false;
+    for (const auto& e : emitters) diagnostic_off = diagnostic_off || e->needs_derivative_uniformity_off;
+    if (diagnostic_off)
+        text += "// GLSL samples with implicit derivatives inside non-uniform control flow (after the bezel's early\n"
+                "// exit); WGSL would reject that, so the check is off, as GLSL never had it.\n"
+                "diagnostic(off, derivative_uniformity);\n\n";
+    std::vector<std::string> printed_structs;
+    for (const auto& e : emitters)
+        for (const auto& name : e->struct_order)
+            if (std::find(printed_structs.begin(), printed_structs.end(), name) == printed_structs.end()) {
+                text += e->struct_decls.at(name) + "\n";
+                printed_structs.push_back(name);
+            }
+    std::map<std::pair<uint32_t, uint32_t>, std::string> resources;
+    for (const auto& e : emitters)
+        for (const auto& [key, decl] : e->resource_decls) {
+            auto [it, inserted] = resources.insert({key, decl});
+            if (!inserted && it->second != decl)
+                return make_validation_error(fmt::format("WGSL emitter: the stages declare different resources at "
+                                                         "@group({}) @binding({})", key.first, key.second));
+        }
+    for (const auto& [key, decl] : resources) text += decl;
+    if (!resources.empty()) text += "\n";
+    std::map<std::string, std::string> helpers;
+    for (const auto& e : emitters) helpers.insert(e->helpers.begin(), e->helpers.end());
+    for (const auto& [name, def] : helpers) text += def + "\n";
+    for (const auto& e : emitters)
+        for (const auto& f : e->functions) text += f + "\n";
+    for (size_t i = 0; i < emitters.size(); ++i) text += (i ? "\n" : "") + emitters[i]->entry;
+    out.text = text;
+
+    for (const auto& e : emitters)
+        for (const auto& b : e->bindings) {
+            auto it = std::find_if(out.bindings.begin(), out.bindings.end(),
+                                   [&](const WgslBinding& x) { return x.group == b.group && x.binding == b.binding; });
+            if (it == out.bindings.end()) out.bindings.push_back(b);
+            else it->stages.push_back(b.stages.front());
+        }
+    std::sort(out.bindings.begin(), out.bindings.end(),
+              [](const WgslBinding& a, const WgslBinding& b) { return std::tie(a.group, a.binding) < std::tie(b.group, b.binding); });
+    return out;
+}
+
+}  // namespace crtforge::wgsl

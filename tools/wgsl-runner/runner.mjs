@@ -1,0 +1,469 @@
+// crtforge WGSL runner: a persistent Dawn (npm `webgpu`, dawn.node) process that compiles and
+// renders WGSL for crtforge's Dawn engine (include/crtforge/dawn_engine.hpp). See README.md.
+//
+// Protocol: one JSON request per line on stdin, one JSON reply per line on the reply channel
+// (stdout, or the descriptor given with --reply-fd=N). Every reply has "ok" and, when ok is
+// false, "error" (one line) and "kind": "request" (malformed request, unreadable file) or
+// "validation" (Dawn rejected the shader, the pipeline or the pass). The first reply, sent
+// without a request, says whether start-up worked: {"ok":true,"ready":true,"info":{...}} or
+// {"ok":false,"kind":"no-adapter"|"start","error":...} followed by exit code 3.
+//
+// dawn.node prints its own messages (start-up limit warnings, compilation logs, uncaptured
+// errors) on STDOUT through C stdio, so a reply stream on stdout can be interleaved with them;
+// the engine therefore passes --reply-fd and sends the process's stdout and stderr to a log.
+import { readFileSync, writeFileSync, writeSync, closeSync } from 'node:fs';
+import { createInterface } from 'node:readline';
+
+process.env.EGL_PLATFORM ??= 'surfaceless';  // Mesa EGL without a window system
+
+let replyFd = 1;
+let backend = 'opengles';
+for (const arg of process.argv.slice(2)) {
+  let m;
+  if ((m = /^--reply-fd=(\d+)$/.exec(arg))) replyFd = Number(m[1]);
+  else if ((m = /^--backend=([\w-]+)$/.exec(arg))) backend = m[1];
+  else {
+    process.stderr.write(`crtforge-wgsl-runner: unknown argument '${arg}'\n`);
+    process.exit(2);
+  }
+}
+
+function oneLine(text) {
+  return String(text ?? '').replace(/\s*\n\s*/g, ' ').trim();
+}
+
+function reply(object) {
+  // A leading newline keeps the reply on a line of its own even when it shares stdout with
+  // Dawn's unterminated output; readers skip empty lines.
+  const line = (replyFd === 1 ? '\n' : '') + JSON.stringify(object) + '\n';
+  writeSync(replyFd, line);
+}
+
+class RequestError extends Error {}
+class RejectError extends Error {
+  constructor(message, extra = {}) {
+    super(message);
+    this.extra = extra;
+  }
+}
+
+// ---- start-up ------------------------------------------------------------------------------
+
+let gpu, adapter, device;
+const uncaptured = [];  // device errors nobody caught with an error scope, drained per request
+let lost = null;
+
+async function start() {
+  let webgpu;
+  try {
+    webgpu = await import('webgpu');
+  } catch (e) {
+    return { ok: false, kind: 'start', error: `cannot load the npm package 'webgpu' (run scripts/setup.sh): ${oneLine(e.message)}` };
+  }
+  Object.assign(globalThis, webgpu.globals);
+  gpu = webgpu.create([`backend=${backend}`]);
+  adapter = await gpu.requestAdapter({ featureLevel: 'compatibility' });
+  if (!adapter)
+    return {
+      ok: false,
+      kind: 'no-adapter',
+      error: `Dawn found no '${backend}' adapter (EGL_PLATFORM is '${process.env.EGL_PLATFORM}')`,
+    };
+  const requiredFeatures = adapter.features.has('float32-filterable') ? ['float32-filterable'] : [];
+  device = await adapter.requestDevice({
+    requiredFeatures,
+    requiredLimits: { maxTextureDimension2D: adapter.limits.maxTextureDimension2D },
+  });
+  device.addEventListener('uncapturederror', (event) => uncaptured.push(oneLine(event.error?.message)));
+  device.lost.then((info) => {
+    lost = oneLine(info.message) || info.reason || 'device lost';
+  });
+  return { ok: true, ready: true, info: adapterInfo() };
+}
+
+function adapterInfo() {
+  const i = adapter.info;
+  return {
+    vendor: i.vendor ?? '',
+    architecture: i.architecture ?? '',
+    device: i.device ?? '',
+    description: i.description ?? '',
+    featureLevel: adapter.featureLevel ?? (adapter.features.has('core-features-and-limits') ? 'core' : 'compatibility'),
+    backend,
+    features: [...device.features].sort(),
+    adapterFeatures: [...adapter.features].sort(),
+    maxTextureDimension2D: device.limits.maxTextureDimension2D,
+    float32Filterable: device.features.has('float32-filterable'),
+  };
+}
+
+// ---- helpers -------------------------------------------------------------------------------
+
+function str(request, key, fallback) {
+  const v = request[key] ?? fallback;
+  if (typeof v !== 'string' || v === '') throw new RequestError(`"${key}" must be a non-empty string`);
+  return v;
+}
+
+function int(request, key, fallback, min, max) {
+  const v = request[key] ?? fallback;
+  if (!Number.isInteger(v) || v < min || v > max) throw new RequestError(`"${key}" must be an integer in ${min}..${max}; got ${JSON.stringify(v)}`);
+  return v;
+}
+
+function readBytes(path, what) {
+  try {
+    return readFileSync(path);
+  } catch (e) {
+    throw new RequestError(`cannot read the ${what} '${path}': ${oneLine(e.message)}`);
+  }
+}
+
+function compilationMessages(info) {
+  return info.messages.map((m) => ({
+    type: m.type,
+    lineNum: m.lineNum,
+    linePos: m.linePos,
+    message: oneLine(m.message),
+  }));
+}
+
+// Runs `work` inside validation, internal and out-of-memory error scopes; the first error any of
+// them (or the uncaptured-error listener) caught, or null.
+async function withErrorScopes(work) {
+  uncaptured.length = 0;
+  device.pushErrorScope('out-of-memory');
+  device.pushErrorScope('internal');
+  device.pushErrorScope('validation');
+  let thrown = null;
+  let result;
+  try {
+    result = await work();
+  } catch (e) {
+    thrown = e;
+  }
+  const errors = [];
+  for (let i = 0; i < 3; ++i) {
+    const e = await device.popErrorScope();
+    if (e) errors.push(oneLine(e.message));
+  }
+  if (thrown) throw thrown;
+  errors.push(...uncaptured);
+  uncaptured.length = 0;
+  return { result, error: errors[0] ?? null };
+}
+
+// Shader modules and pipelines that compiled cleanly, kept for the next request with the same
+// source (and, for pipelines, the same entry points, layout and format): creating a pipeline
+// links a GL program, which is most of a small render's time on llvmpipe.
+const CACHE_SIZE = 32;
+const moduleCache = new Map();
+const pipelineCache = new Map();
+
+function remember(cache, key, value) {
+  cache.delete(key);
+  cache.set(key, value);
+  if (cache.size > CACHE_SIZE) cache.delete(cache.keys().next().value);
+  return value;
+}
+
+async function compileModule(path) {
+  const code = readBytes(path, 'WGSL file').toString('utf8');
+  const cached = moduleCache.get(code);
+  if (cached) return remember(moduleCache, code, cached);
+  const { result, error } = await withErrorScopes(async () => {
+    const module = device.createShaderModule({ code });
+    const info = await module.getCompilationInfo();
+    return { module, messages: compilationMessages(info) };
+  });
+  const compiled = { ...result, error, code };
+  if (!error && !compiled.messages.some((m) => m.type === 'error')) remember(moduleCache, code, compiled);
+  return compiled;
+}
+
+// float32 -> IEEE half bits, round to nearest even; overflow goes to infinity, NaN stays NaN.
+// Works on the float bits in bulk (a per-value Float32Array round trip is ~10x slower).
+function floatsToHalves(floats) {
+  const bits = new Uint32Array(floats.buffer, floats.byteOffset, floats.length);
+  const out = new Uint16Array(floats.length);
+  for (let i = 0; i < bits.length; ++i) {
+    const x = bits[i];
+    const sign = (x >>> 16) & 0x8000;
+    const exp = (x >>> 23) & 0xff;
+    let mant = x & 0x7fffff;
+    let half;
+    if (exp === 0xff) {
+      half = 0x7c00 | (mant ? 0x200 : 0);
+    } else if (exp > 142) {  // >= 2^16 after rounding: infinity
+      half = 0x7c00;
+    } else if (exp >= 113) {  // normal half
+      half = ((exp - 112) << 10) | (mant >>> 13);
+      const rest = mant & 0x1fff;
+      if (rest > 0x1000 || (rest === 0x1000 && (half & 1))) half += 1;  // a carry into the exponent is right
+    } else if (exp >= 102) {  // subnormal half
+      mant |= 0x800000;
+      const shift = 126 - exp;  // 14..24
+      half = mant >>> shift;
+      const rest = mant & ((1 << shift) - 1);
+      const halfway = 1 << (shift - 1);
+      if (rest > halfway || (rest === halfway && (half & 1))) half += 1;
+    } else {
+      half = 0;
+    }
+    out[i] = sign | half;
+  }
+  return out;
+}
+
+function halfToFloat(h) {
+  const sign = h & 0x8000 ? -1 : 1;
+  const exp = (h >>> 10) & 0x1f;
+  const mant = h & 0x3ff;
+  if (exp === 0) return sign * mant * 2 ** -24;
+  if (exp === 0x1f) return mant ? NaN : sign * Infinity;
+  return sign * (1 + mant / 1024) * 2 ** (exp - 15);
+}
+
+const HALF_TO_FLOAT = new Float32Array(65536).map((_, h) => halfToFloat(h));
+
+function srgbToLinear(byte) {
+  const c = byte / 255;
+  return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4;
+}
+
+const OUTPUT_FORMATS = {
+  rgba16float: { gpu: 'rgba16float', bytes: 8 },
+  rgba8unorm: { gpu: 'rgba8unorm', bytes: 4 },
+  'rgba8unorm-srgb': { gpu: 'rgba8unorm-srgb', bytes: 4 },
+};
+
+// ---- requests ------------------------------------------------------------------------------
+
+async function opCompile(request) {
+  const { messages, error } = await compileModule(str(request, 'wgsl'));
+  // A device error the compilation info does not show (none seen so far) becomes a message.
+  if (error && !messages.some((m) => m.type === 'error')) messages.push({ type: 'error', lineNum: 0, linePos: 0, message: error });
+  return { ok: true, messages };
+}
+
+async function opRender(request) {
+  const wgsl = str(request, 'wgsl');
+  const vertexEntry = str(request, 'vertex_entry', 'vs_main');
+  const fragmentEntry = str(request, 'fragment_entry', 'fs_main');
+  const maxDim = device.limits.maxTextureDimension2D;
+  const width = int(request, 'width', undefined, 1, maxDim);
+  const height = int(request, 'height', undefined, 1, maxDim);
+  const formatName = str(request, 'format', 'rgba16float');
+  const format = OUTPUT_FORMATS[formatName];
+  if (!format) throw new RequestError(`"format" must be one of ${Object.keys(OUTPUT_FORMATS).join(', ')}; got '${formatName}'`);
+  const output = str(request, 'output');
+  const uniformPath = request.uniform ?? null;
+  if (uniformPath !== null && (typeof uniformPath !== 'string' || uniformPath === '')) throw new RequestError('"uniform" must be a path or null');
+  const usesTexture = request.texture ?? true;
+  if (typeof usesTexture !== 'boolean') throw new RequestError('"texture" must be true or false');
+  const filter = str(request, 'filter', 'linear');
+  if (filter !== 'nearest' && filter !== 'linear') throw new RequestError(`"filter" must be 'nearest' or 'linear'; got '${filter}'`);
+  const uniformBinding = int(request, 'uniform_binding', 0, 0, 1000);
+  const textureBinding = int(request, 'texture_binding', 1, 0, 1000);
+  const samplerBinding = int(request, 'sampler_binding', 2, 0, 1000);
+  const used = [...(uniformPath ? [uniformBinding] : []), ...(usesTexture ? [textureBinding, samplerBinding] : [])];
+  if (new Set(used).size !== used.length) throw new RequestError(`the bindings ${used.join(', ')} must differ`);
+
+  // The input: raw float32 RGBA rows, top first; none = 1x1 transparent black.
+  let inputWidth = 1, inputHeight = 1, pixels = new Float32Array(4);
+  if (usesTexture && request.input != null) {
+    inputWidth = int(request, 'input_width', undefined, 1, maxDim);
+    inputHeight = int(request, 'input_height', undefined, 1, maxDim);
+    const bytes = readBytes(str(request, 'input'), 'input image');
+    const expected = inputWidth * inputHeight * 16;
+    if (bytes.length !== expected) throw new RequestError(`the input image holds ${bytes.length} bytes; ${inputWidth}x${inputHeight} RGBA float32 needs ${expected}`);
+    pixels = new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length));
+  }
+  let uniformBytes = null;
+  if (uniformPath) {
+    uniformBytes = readBytes(uniformPath, 'uniform buffer');
+    if (uniformBytes.length === 0) throw new RequestError('the uniform buffer file is empty');
+  }
+
+  const { module, messages, error: moduleError, code } = await compileModule(wgsl);
+  const firstError = messages.find((m) => m.type === 'error');
+  if (firstError)
+    throw new RejectError(`${firstError.lineNum}:${firstError.linePos}: ${firstError.message}`, {
+      messages, line: firstError.lineNum, column: firstError.linePos,
+    });
+  if (moduleError) throw new RejectError(moduleError, { messages });
+
+  // rgba32float when it can be sampled with the filter (nearest always: as unfilterable-float
+  // with a non-filtering sampler); otherwise rgba16float converted here.
+  const linear = filter === 'linear';
+  const float32 = !linear || device.features.has('float32-filterable');
+  const textureFormat = float32 ? 'rgba32float' : 'rgba16float';
+
+  const { result, error } = await withErrorScopes(async () => {
+    const visibility = GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT;
+    const layoutEntries = [];
+    const groupEntries = [];
+    const destroy = [];
+    if (uniformBytes) {
+      const size = Math.max(16, Math.ceil(uniformBytes.length / 16) * 16);
+      const padded = new Uint8Array(size);
+      padded.set(uniformBytes);
+      const buffer = device.createBuffer({ size, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
+      destroy.push(buffer);
+      device.queue.writeBuffer(buffer, 0, padded);
+      layoutEntries.push({ binding: uniformBinding, visibility, buffer: { type: 'uniform' } });
+      // The binding covers exactly the bytes given, so a block larger than the data is refused.
+      groupEntries.push({ binding: uniformBinding, resource: { buffer, offset: 0, size: Math.ceil(uniformBytes.length / 4) * 4 } });
+    }
+    if (usesTexture) {
+      const texture = device.createTexture({
+        size: [inputWidth, inputHeight],
+        format: textureFormat,
+        usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+      });
+      destroy.push(texture);
+      let data = pixels, bytesPerPixel = 16;
+      if (textureFormat === 'rgba16float') {
+        data = floatsToHalves(pixels);
+        bytesPerPixel = 8;
+      }
+      device.queue.writeTexture({ texture }, data, { bytesPerRow: inputWidth * bytesPerPixel, rowsPerImage: inputHeight }, [inputWidth, inputHeight]);
+      const sampler = device.createSampler({
+        magFilter: filter, minFilter: filter, mipmapFilter: 'nearest',
+        addressModeU: 'clamp-to-edge', addressModeV: 'clamp-to-edge',
+      });
+      layoutEntries.push({ binding: textureBinding, visibility, texture: { sampleType: float32 && !linear ? 'unfilterable-float' : 'float' } });
+      layoutEntries.push({ binding: samplerBinding, visibility, sampler: { type: linear ? 'filtering' : 'non-filtering' } });
+      groupEntries.push({ binding: textureBinding, resource: texture.createView() });
+      groupEntries.push({ binding: samplerBinding, resource: sampler });
+    }
+    const pipelineKey = JSON.stringify([code, vertexEntry, fragmentEntry, format.gpu, layoutEntries]);
+    let { bindGroupLayout, pipeline } = pipelineCache.get(pipelineKey) ?? {};
+    if (!pipeline) {
+      bindGroupLayout = device.createBindGroupLayout({ entries: layoutEntries });
+      pipeline = await device.createRenderPipelineAsync({
+        layout: device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout] }),
+        vertex: { module, entryPoint: vertexEntry },
+        fragment: { module, entryPoint: fragmentEntry, targets: [{ format: format.gpu }] },
+        primitive: { topology: 'triangle-list' },
+      });
+    }
+    const bindGroup = device.createBindGroup({ layout: bindGroupLayout, entries: groupEntries });
+    const target = device.createTexture({
+      size: [width, height],
+      format: format.gpu,
+      usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC,
+    });
+    destroy.push(target);
+    const bytesPerRow = Math.ceil((width * format.bytes) / 256) * 256;
+    const readback = device.createBuffer({ size: bytesPerRow * height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+    destroy.push(readback);
+    const encoder = device.createCommandEncoder();
+    const pass = encoder.beginRenderPass({
+      colorAttachments: [{ view: target.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] }],
+    });
+    pass.setPipeline(pipeline);
+    pass.setBindGroup(0, bindGroup);
+    pass.draw(3);
+    pass.end();
+    encoder.copyTextureToBuffer({ texture: target }, { buffer: readback, bytesPerRow, rowsPerImage: height }, [width, height]);
+    device.queue.submit([encoder.finish()]);
+    await device.queue.onSubmittedWorkDone();
+    return { readback, bytesPerRow, destroy, cache: () => remember(pipelineCache, pipelineKey, { bindGroupLayout, pipeline }) };
+  }).catch((e) => ({ result: null, error: oneLine(e.message) }));
+
+  const cleanup = () => result?.destroy.forEach((o) => o.destroy());
+  if (error) {
+    cleanup();
+    throw new RejectError(error, { messages });
+  }
+  result.cache();  // the pipeline, the bind group and the pass were all valid
+  const { readback, bytesPerRow } = result;
+  try {
+    await readback.mapAsync(GPUMapMode.READ);
+  } catch (e) {
+    cleanup();
+    throw new RejectError(`reading the pixels back failed: ${oneLine(e.message)}`, { messages });
+  }
+  const mapped = new Uint8Array(readback.getMappedRange());
+  const out = new Float32Array(width * height * 4);
+  const rowValues = width * 4;
+  for (let y = 0; y < height; ++y) {
+    const base = y * bytesPerRow;
+    const o = y * rowValues;
+    if (format.gpu === 'rgba16float') {
+      const row = new Uint16Array(mapped.buffer, mapped.byteOffset + base, rowValues);
+      for (let i = 0; i < rowValues; ++i) out[o + i] = HALF_TO_FLOAT[row[i]];
+    } else if (format.gpu === 'rgba8unorm') {
+      for (let i = 0; i < rowValues; ++i) out[o + i] = mapped[base + i] / 255;
+    } else {
+      for (let i = 0; i < rowValues; ++i) out[o + i] = (i & 3) === 3 ? mapped[base + i] / 255 : srgbToLinear(mapped[base + i]);
+    }
+  }
+  readback.unmap();
+  cleanup();
+  try {
+    writeFileSync(output, new Uint8Array(out.buffer));
+  } catch (e) {
+    throw new RequestError(`cannot write the output '${output}': ${oneLine(e.message)}`);
+  }
+  return { ok: true, messages, width, height, input_format: usesTexture ? textureFormat : null };
+}
+
+async function handle(line) {
+  let request;
+  try {
+    request = JSON.parse(line);
+  } catch (e) {
+    return { ok: false, kind: 'request', error: `the request is not JSON: ${oneLine(e.message)}` };
+  }
+  if (request === null || typeof request !== 'object' || Array.isArray(request))
+    return { ok: false, kind: 'request', error: 'the request must be a JSON object' };
+  const id = typeof request.id === 'number' || typeof request.id === 'string' ? { id: request.id } : {};
+  return { ...(await dispatch(request)), ...id };
+}
+
+async function dispatch(request) {
+  if (lost) return { ok: false, kind: 'validation', error: `the device was lost: ${lost}` };
+  try {
+    switch (request.op) {
+      case 'info': return { ok: true, info: adapterInfo() };
+      case 'compile': return await opCompile(request);
+      case 'render': return await opRender(request);
+      default: return { ok: false, kind: 'request', error: `unknown op ${JSON.stringify(request.op)} (expected compile, render or info)` };
+    }
+  } catch (e) {
+    if (e instanceof RequestError) return { ok: false, kind: 'request', error: e.message };
+    if (e instanceof RejectError) return { ok: false, kind: 'validation', error: oneLine(e.message), ...e.extra };
+    return { ok: false, kind: 'validation', error: oneLine(e?.message ?? e) };
+  }
+}
+
+// ---- main loop -----------------------------------------------------------------------------
+
+let started;
+try {
+  started = await start();
+} catch (e) {
+  started = { ok: false, kind: 'start', error: `Dawn failed to start: ${oneLine(e?.message ?? e)}` };
+}
+reply(started);
+if (!started.ok) {
+  process.exitCode = 3;
+} else {
+  const lines = createInterface({ input: process.stdin, crlfDelay: Infinity, terminal: false });
+  for await (const line of lines) {
+    if (line.trim() === '') continue;
+    let answer;
+    try {
+      answer = await handle(line);
+    } catch (e) {
+      answer = { ok: false, kind: 'validation', error: oneLine(e?.message ?? e) };
+    }
+    reply(answer);
+  }
+  device.destroy();
+}
+if (replyFd !== 1) closeSync(replyFd);
+// dawn.node keeps the event loop alive with its own handles; leave explicitly.
+process.exit();
