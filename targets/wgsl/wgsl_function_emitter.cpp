@@ -201,7 +201,9 @@ void FunctionPrinter::count_uses() {
             types_[phi.result] = phi.type;
             for (size_t i = 0; i + 1 < phi.operands.size(); i += 2) {
                 uses_[phi.operands[i]] += 1;
-                phi_sources_.insert(phi.operands[i]);
+                // A value copied into a phi on an edge that carries several copies must be named:
+                // the copies then read values, never each other's targets half-written.
+                if (b.phis.size() > 1) phi_sources_.insert(phi.operands[i]);
                 use_blocks_[phi.operands[i]].insert(phi.operands[i + 1]);
             }
         }
