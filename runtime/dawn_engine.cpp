@@ -36,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "job_checks.hpp"
+#include "process_util.hpp"
 
 extern char** environ;
 
@@ -48,6 +49,12 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using detail::child_environment;
+using detail::describe_status;
+using detail::find_on_path;
+using detail::trim;
+using detail::wait_until;
+using detail::write_file;
 using json = nlohmann::json;
 using detail::job_error;
 
@@ -58,69 +65,11 @@ constexpr int kRequestSeconds = 120;
 constexpr int kStopSeconds = 2;
 constexpr std::size_t kMaxReplyBytes = 64u << 20;
 
-// ---- small helpers (the same as the Godot 3 engine's, which keeps its own private) ----------
-
-std::string find_on_path(const char* name) {
-    const char* path = std::getenv("PATH");
-    std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
-    std::size_t start = 0;
-    while (start <= dirs.size()) {
-        std::size_t end = dirs.find(':', start);
-        if (end == std::string::npos) end = dirs.size();
-        // An empty PATH entry means the current directory.
-        const std::string candidate = (end == start ? std::string(".") : dirs.substr(start, end - start)) + "/" + name;
-        struct stat st {};
-        if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(candidate.c_str(), X_OK) == 0)
-            return candidate;
-        start = end + 1;
-    }
-    return {};
-}
-
-std::string trim(std::string text) {
-    auto is_space = [](unsigned char c) { return std::isspace(c) != 0; };
-    while (!text.empty() && is_space(static_cast<unsigned char>(text.back()))) text.pop_back();
-    std::size_t first = 0;
-    while (first < text.size() && is_space(static_cast<unsigned char>(text[first]))) ++first;
-    return text.substr(first);
-}
-
-Status write_file(const fs::path& path, const void* data, std::size_t size) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (out && size > 0) out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    if (!out) return make_error(fmt::format("cannot write '{}'", path.string()));
-    return Ok{};
-}
+// ---- small helpers (the process ones are shared with the Godot 3 engine: process_util.hpp) ----
 
 void close_fd(int& fd) {
     if (fd >= 0) ::close(fd);
     fd = -1;
-}
-
-std::vector<std::string> child_environment() {
-    std::vector<std::string> env;
-    for (char** e = environ; e && *e; ++e) {
-        if (std::strncmp(*e, "EGL_PLATFORM=", 13) != 0) env.emplace_back(*e);
-    }
-    env.emplace_back("EGL_PLATFORM=surfaceless");  // Mesa EGL without a window system
-    return env;
-}
-
-std::string describe_status(int status) {
-    if (WIFEXITED(status)) return fmt::format("exit code {}", WEXITSTATUS(status));
-    if (WIFSIGNALED(status)) return fmt::format("signal {} ({})", WTERMSIG(status), ::strsignal(WTERMSIG(status)));
-    return "unknown status";
-}
-
-std::optional<int> wait_until(pid_t pid, Clock::time_point deadline) {
-    for (;;) {
-        int status = 0;
-        pid_t r = ::waitpid(pid, &status, WNOHANG);
-        if (r == pid) return status;
-        if (r < 0 && errno != EINTR) return -1;
-        if (Clock::now() >= deadline) return std::nullopt;
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
 }
 
 // "" when the npm package is in place at the pinned version, else why not.
@@ -291,7 +240,7 @@ struct DawnEngine::Impl {
         std::vector<char*> argv;
         for (std::string& a : args) argv.push_back(a.data());
         argv.push_back(nullptr);
-        std::vector<std::string> env = child_environment();
+        std::vector<std::string> env = child_environment({{"EGL_PLATFORM", "surfaceless"}});  // Mesa EGL, no window system
         std::vector<char*> envp;
         for (std::string& e : env) envp.push_back(e.data());
         envp.push_back(nullptr);

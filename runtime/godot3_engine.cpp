@@ -36,6 +36,7 @@
 #include <fmt/core.h>
 
 #include "job_checks.hpp"
+#include "process_util.hpp"
 
 extern char** environ;
 
@@ -49,6 +50,12 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using detail::job_error;
+using detail::child_environment;
+using detail::describe_status;
+using detail::find_on_path;
+using detail::trim;
+using detail::wait_until;
+using detail::write_file;
 
 constexpr const char* kPackages = "the Debian packages godot3 and xvfb";
 constexpr const char* kRunnerPrefix = "crtforge-godot3-runner: ";
@@ -59,33 +66,6 @@ constexpr int kMaxExtent = 16384;               // the runner's limit, and llvmp
 constexpr int kXvfbStartSeconds = 15;
 
 // ---- small helpers --------------------------------------------------------------------------
-
-// The executable `name` found on PATH, or "".
-std::string find_on_path(const char* name) {
-    const char* path = std::getenv("PATH");
-    std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
-    std::size_t start = 0;
-    while (start <= dirs.size()) {
-        std::size_t end = dirs.find(':', start);
-        if (end == std::string::npos) end = dirs.size();
-        std::string dir = dirs.substr(start, end - start);
-        if (dir.empty()) dir = ".";
-        std::string candidate = dir + "/" + name;
-        struct stat st {};
-        if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(candidate.c_str(), X_OK) == 0)
-            return candidate;
-        start = end + 1;
-    }
-    return {};
-}
-
-std::string trim(std::string text) {
-    auto is_space = [](unsigned char c) { return std::isspace(c) != 0; };
-    while (!text.empty() && is_space(static_cast<unsigned char>(text.back()))) text.pop_back();
-    std::size_t first = 0;
-    while (first < text.size() && is_space(static_cast<unsigned char>(text[first]))) ++first;
-    return text.substr(first);
-}
 
 std::vector<std::string> split_lines(const std::string& text) {
     std::vector<std::string> lines;
@@ -102,13 +82,6 @@ bool contains_nocase(const std::string& text, const std::string& needle) {
         return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
     });
     return it != text.end();
-}
-
-Status write_file(const fs::path& path, const void* data, std::size_t size) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (out) out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    if (!out) return make_error(fmt::format("cannot write '{}'", path.string()));
-    return Ok{};
 }
 
 Status write_text(const fs::path& path, const std::string& text) { return write_file(path, text.data(), text.size()); }
@@ -219,18 +192,6 @@ int wait_blocking(pid_t pid) {
     return status;
 }
 
-// Waits until `deadline`; the wait status, or nullopt if the process is still running.
-std::optional<int> wait_until(pid_t pid, Clock::time_point deadline) {
-    for (;;) {
-        int status = 0;
-        pid_t r = ::waitpid(pid, &status, WNOHANG);
-        if (r == pid) return status;
-        if (r < 0 && errno != EINTR) return -1;
-        if (Clock::now() >= deadline) return std::nullopt;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-}
-
 // A started child that is stopped (signal, then SIGKILL after a grace period) and reaped when the
 // guard goes out of scope, unless it was already reaped.
 class ChildGuard {
@@ -275,19 +236,6 @@ bool read_until_eof(int fd, Clock::time_point deadline, std::string& out, bool s
     }
 }
 
-std::vector<std::string> child_environment(const std::vector<std::pair<std::string, std::string>>& overrides) {
-    std::vector<std::string> env;
-    for (char** e = environ; e && *e; ++e) {
-        std::string entry = *e;
-        std::string name = entry.substr(0, entry.find('='));
-        bool replaced = name == "XAUTHORITY" || std::any_of(overrides.begin(), overrides.end(),
-                                                             [&](const auto& o) { return o.first == name; });
-        if (!replaced) env.push_back(std::move(entry));
-    }
-    for (const auto& [name, value] : overrides) env.push_back(name + "=" + value);
-    return env;
-}
-
 // ---- Xvfb -------------------------------------------------------------------------------------
 
 struct XServer {
@@ -306,7 +254,7 @@ Result<XServer> start_xvfb(const std::string& xvfb, const fs::path& scratch) {
     spec.executable = xvfb;
     // No -auth: the server accepts local clients only (-nolisten tcp), which is all Godot needs.
     spec.args = {"-displayfd", std::to_string(child_fd), "-screen", "0", "64x64x24", "-nolisten", "tcp"};
-    spec.env = child_environment({});
+    spec.env = child_environment({}, {"XAUTHORITY"});
     spec.output_fd = log_fd;
     spec.extra_fd = std::make_pair(ready.write, child_fd);
     auto pid = spawn(spec);
@@ -464,12 +412,6 @@ std::string last_message(const std::vector<std::string>& lines) {
     return last;
 }
 
-std::string describe_status(int status) {
-    if (WIFEXITED(status)) return fmt::format("exit code {}", WEXITSTATUS(status));
-    if (WIFSIGNALED(status)) return fmt::format("signal {} ({})", WTERMSIG(status), ::strsignal(WTERMSIG(status)));
-    return "unknown status";
-}
-
 Result<Image> read_output(const fs::path& path, int width, int height) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return make_validation_error("Godot 3 exited without writing the output pixels");
@@ -583,7 +525,7 @@ std::string godot3_version() {
         SpawnSpec spec;
         spec.executable = godot;
         spec.args = {"--version"};
-        spec.env = child_environment({});
+        spec.env = child_environment({}, {"XAUTHORITY"});
         spec.output_fd = output.write;
         auto pid = spawn(spec);
         output.close_write();

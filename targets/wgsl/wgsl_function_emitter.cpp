@@ -92,6 +92,16 @@ private:
     // ---- structured control flow ----
     void region(uint32_t start, uint32_t stop, const LoopContext* loop);
     void loop_construct(uint32_t header, const LoopContext* outer);
+    // One arm of an if or switch, in its own scope one level in: the region from `target` to the
+    // construct's merge, or just the phi copies when the arm goes straight to the merge.
+    void arm(uint32_t from, uint32_t target, uint32_t merge, const LoopContext* loop, int parent_scope) {
+        open_scope();
+        ++indent_;
+        if (target == merge) phi_copies(from, merge);
+        else region(target, merge, loop);
+        --indent_;
+        close_scope(parent_scope);
+    }
     void conditional_exit(const Block& b, uint32_t stop, const LoopContext* loop, uint32_t& next, bool& done);
     bool is_exit(uint32_t target, uint32_t stop, const LoopContext* loop) const;
     void exit_statement(uint32_t from, uint32_t target, uint32_t stop, const LoopContext* loop);
@@ -116,6 +126,8 @@ private:
         if (!dry_run_) out_ += std::string(indent_ * 2, ' ') + text + "\n";
     }
     std::string temp_name(uint32_t id);
+    // ".x", ".member", "[2]" for the literal indices operands[first..] into a value of `type`.
+    std::string composite_path(uint32_t type, const std::vector<uint32_t>& operands, size_t first);
     bool flow_uniform() const { return nesting_ == 0 && !early_exit_; }
     uint32_t pointee(uint32_t pointer_id) const;
     spv::StorageClass storage_of(uint32_t pointer_id) const;
@@ -319,16 +331,7 @@ void FunctionPrinter::region(uint32_t start, uint32_t stop, const LoopContext* l
                     if (dry_run_) use_scopes_[term.operand(0)].insert(scope_);
                     const int saved = scope_;
                     ++nesting_;
-                    auto branch = [&](uint32_t target) {
-                        return capture([&] {
-                            open_scope();
-                            ++indent_;
-                            if (target == merge) phi_copies(b, merge);
-                            else region(target, merge, loop);
-                            --indent_;
-                            close_scope(saved);
-                        });
-                    };
+                    auto branch = [&](uint32_t target) { return capture([&] { arm(b, target, merge, loop, saved); }); };
                     const std::string then_text = branch(t), else_text = branch(f);
                     --nesting_;
                     if (then_text.empty() && !else_text.empty()) {
@@ -376,12 +379,7 @@ void FunctionPrinter::region(uint32_t start, uint32_t stop, const LoopContext* l
                 bool default_done = false;
                 auto emit_case = [&](const std::string& head, uint32_t target) {
                     line(head + " {");
-                    open_scope();
-                    ++indent_;
-                    if (target == merge) phi_copies(b, merge);
-                    else region(target, merge, loop);
-                    --indent_;
-                    close_scope(saved);
+                    arm(b, target, merge, loop, saved);
                     line("}");
                 };
                 for (auto& [target, literals] : groups) {
@@ -579,6 +577,25 @@ void FunctionPrinter::loop_construct(uint32_t header, const LoopContext* outer) 
 std::string FunctionPrinter::temp_name(uint32_t id) {
     const std::string wanted = m_.name(id);
     return unique_identifier(wanted.empty() ? fmt::format("_{}", id) : wanted, names_);
+}
+
+std::string FunctionPrinter::composite_path(uint32_t type, const std::vector<uint32_t>& operands, size_t first) {
+    std::string path;
+    for (size_t i = first; i < operands.size(); ++i) {
+        const Type& t = m_.type(type);
+        if (t.op == spv::OpTypeVector) {
+            path += std::string(".") + swizzle_letter(operands[i]);
+            type = t.element;
+        } else if (t.op == spv::OpTypeStruct) {
+            mod_.struct_name(type);
+            path += "." + mod_.struct_member_names.at(type).at(operands[i]);
+            type = t.members.at(operands[i]);
+        } else {
+            path += fmt::format("[{}]", operands[i]);
+            type = t.element;
+        }
+    }
+    return path;
 }
 
 Expr FunctionPrinter::value(uint32_t id) {
@@ -860,36 +877,17 @@ void FunctionPrinter::instruction(const Instruction& inst) {
             return;
         }
         case spv::OpCompositeExtract: {
-            std::string text = v(0).operand();
-            uint32_t current = type_of(o.at(0));
-            if (!current) unsupported(inst, "the composite's type is unknown");
-            for (size_t i = 1; i < o.size(); ++i) {
-                const Type& t = m_.type(current);
-                if (t.op == spv::OpTypeVector) { text += std::string(".") + swizzle_letter(o[i]); current = t.element; }
-                else if (t.op == spv::OpTypeStruct) {
-                    mod_.struct_name(current);
-                    text += "." + mod_.struct_member_names.at(current).at(o[i]);
-                    current = t.members.at(o[i]);
-                } else { text += fmt::format("[{}]", o[i]); current = t.element; }
-            }
-            define(inst, text, true, true);
+            if (!type_of(o.at(0))) unsupported(inst, "the composite's type is unknown");
+            const Expr base = v(0);
+            // Member reads of a named value are free to repeat; of an expression, they get a let.
+            define(inst, base.operand() + composite_path(type_of(o.at(0)), o, 1), true,
+                   base.text.find('(') == std::string::npos);
             return;
         }
         case spv::OpCompositeInsert: {
             const std::string name = temp_name(inst.result);
             line("var " + name + " = " + value(o.at(1)).text + ";");
-            std::string path;
-            uint32_t current = inst.type;
-            for (size_t i = 2; i < o.size(); ++i) {
-                const Type& t = m_.type(current);
-                if (t.op == spv::OpTypeVector) { path += std::string(".") + swizzle_letter(o[i]); current = t.element; }
-                else if (t.op == spv::OpTypeStruct) {
-                    mod_.struct_name(current);
-                    path += "." + mod_.struct_member_names.at(current).at(o[i]);
-                    current = t.members.at(o[i]);
-                } else { path += fmt::format("[{}]", o[i]); current = t.element; }
-            }
-            line(name + path + " = " + value(o.at(0)).text + ";");
+            line(name + composite_path(inst.type, o, 2) + " = " + value(o.at(0)).text + ";");
             values_[inst.result] = {name, true};
             return;
         }
