@@ -26,7 +26,9 @@ EmitOptions emit_options(const Variant& variant) {
     return options;
 }
 
-json manifest_extra(const WgslModule& module) {
+// `nearest`: a nearest-filtered preset can take any float texture, rgba32float included, so its
+// layout asks for unfilterable-float with a non-filtering sampler (valid without float32-filterable).
+json manifest_extra(const WgslModule& module, bool nearest) {
     json layout = json::array();
     json uniform_buffer = nullptr;
     for (const WgslBinding& b : module.bindings) {
@@ -43,10 +45,11 @@ json manifest_extra(const WgslModule& module) {
                                   {"note", "little-endian f32/i32/u32; bytes between members are padding"},
                                   {"members", std::move(members)}};
         } else if (b.kind == "texture") {
-            entry["texture"] = json{{"sampleType", b.sample_type}, {"viewDimension", "2d"}, {"multisampled", false}};
+            const std::string sample_type = nearest && b.sample_type == "float" ? "unfilterable-float" : b.sample_type;
+            entry["texture"] = json{{"sampleType", sample_type}, {"viewDimension", "2d"}, {"multisampled", false}};
             if (!b.paired_with.empty()) entry["pairedSampler"] = b.paired_with;
         } else {
-            entry["sampler"] = json{{"type", "filtering"}};
+            entry["sampler"] = json{{"type", nearest ? "non-filtering" : "filtering"}};
             if (!b.paired_with.empty()) entry["pairedTexture"] = b.paired_with;
         }
         layout.push_back(std::move(entry));
@@ -83,7 +86,7 @@ Result<TargetOutput> Generate(const TargetInput& input) {
     out.files.push_back({ShaderStage::Fragment, ".wgsl", module.value().text, "shader", ""});
     for (const WgslBinding& b : module.value().bindings)
         out.bindings.push_back({b.name, fmt::format("@group({}) @binding({}) {}", b.group, b.binding, b.wgsl_type)});
-    out.manifest_json = manifest_extra(module.value()).dump();
+    out.manifest_json = manifest_extra(module.value(), input.variant->preset->filter == Filter::Nearest).dump();
     return out;
 }
 
