@@ -408,3 +408,14 @@ TEST_CASE("wgsl: every preset x every uniform selection x precision compiles in 
     }
     CHECK(modules == lib.presets().size() * 6);
 }
+
+TEST_CASE("wgsl: gl_FragCoord becomes @builtin(position) with the same top-left origin", "[wgsl]") {
+    Uniforms u;
+    auto r = check_construct(R"(void main() {
+        fragColor = vec4(gl_FragCoord.xy / 16.0, vTexCoord);
+    })", u);
+    CHECK_THAT(r.wgsl, Contains("@builtin(position) gl_FragCoord: vec4<f32>"));
+    CHECK(pixel(r.dawn, 3, 5)[0] == Approx(3.5f / 16.0f));
+    CHECK(pixel(r.dawn, 3, 5)[1] == Approx(5.5f / 16.0f));
+    CHECK(pixel(r.dawn, 3, 5)[3] == Approx(5.5f / 16.0f).margin(1e-3));  // row 0 is the top on both
+}
