@@ -43,7 +43,7 @@ Result<TargetOutput> emit_both_stages(const TargetInput& input, const char* vert
         const SpirvBinary& module = stage == ShaderStage::Vertex ? *input.vertex : *input.fragment;
         Result<std::string> text = emit(module, stage);
         if (!text.ok()) return text.error();
-        out.files.push_back({stage, stage == ShaderStage::Vertex ? vertex_suffix : fragment_suffix, std::move(text.value())});
+        out.files.push_back({stage, stage == ShaderStage::Vertex ? vertex_suffix : fragment_suffix, std::move(text.value()), {}, {}});
     }
     return out;
 }

@@ -13,8 +13,8 @@ std::string as_bytes(const SpirvBinary& words) {
 
 Result<TargetOutput> Generate(const TargetInput& input, const Options&) {
     TargetOutput out;
-    out.files.push_back({ShaderStage::Vertex, ".vert.spv", as_bytes(*input.vertex)});
-    out.files.push_back({ShaderStage::Fragment, ".frag.spv", as_bytes(*input.fragment)});
+    out.files.push_back({ShaderStage::Vertex, ".vert.spv", as_bytes(*input.vertex), {}, {}});
+    out.files.push_back({ShaderStage::Fragment, ".frag.spv", as_bytes(*input.fragment), {}, {}});
     if (input.variant->has_uniform_block())
         out.bindings.push_back({kUniformBlockName, "set=0, binding=0 (uniform buffer, std140)"});
     out.bindings.push_back({kSourceTextureName, "set=0, binding=1 (combined image sampler)"});

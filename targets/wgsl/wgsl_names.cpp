@@ -56,8 +56,8 @@ std::string unique_identifier(const std::string& wanted, std::set<std::string>& 
     std::string base;
     for (char c : wanted) base += ident_char(c) ? c : '_';
     while (base.size() >= 2 && base[0] == '_' && base[1] == '_') base.erase(0, 1);
-    if (base.empty() || base == "_") base = "v";
-    if (!ident_start(base[0])) base = "v" + base;
+    if (base.empty() || base == "_") base.assign(1, 'v');
+    if (!ident_start(base[0])) base.insert(0, 1, 'v');
     if (reserved_words().count(base)) base += "_";
     std::string name = base;
     for (int n = 1; taken.count(name); ++n) name = fmt::format("{}_{}", base, n);
