@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "crtforge/dawn_engine.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -73,13 +74,7 @@ DawnJob make_job(std::string wgsl, int width, int height, Image input = {},
 }
 
 Image render_ok(const DawnJob& job) {
-    auto image = engine().render(job);
-    INFO((image.ok() ? std::string() : image.error().str()));
-    REQUIRE(image.ok());
-    REQUIRE(image.value().width == job.width);
-    REQUIRE(image.value().height == job.height);
-    REQUIRE(image.value().consistent());
-    return std::move(image).value();
+    return test::require_image(engine().render(job), job.width, job.height);
 }
 
 Diagnostic render_error(DawnEngine& e, const DawnJob& job) {

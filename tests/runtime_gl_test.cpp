@@ -14,6 +14,7 @@
 #include "crtforge/crtforge.hpp"
 #include "crtforge/gl_engine.hpp"
 #include "crtforge/render_engine.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -162,13 +163,7 @@ GlRenderJob make_job(const std::string& vertex, const std::string& fragment, Ima
 }
 
 Image render_ok(GlApi api, const GlRenderJob& job) {
-    auto image = engine(api).render(job);
-    INFO((image.ok() ? std::string() : image.error().str()));
-    REQUIRE(image.ok());
-    REQUIRE(image.value().width == job.width);
-    REQUIRE(image.value().height == job.height);
-    REQUIRE(image.value().consistent());
-    return std::move(image).value();
+    return test::require_image(engine(api).render(job), job.width, job.height);
 }
 
 Diagnostic render_error(GlApi api, const GlRenderJob& job) {

@@ -10,6 +10,7 @@
 
 #include "crtforge/render_engine.hpp"
 #include "crtforge/spirv_compiler.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 
@@ -86,13 +87,7 @@ RenderJob make_job(const std::string& fragment, Image input, int width, int heig
 }
 
 Image render_ok(const RenderJob& job) {
-    auto image = engine().render(job);
-    INFO((image.ok() ? std::string() : image.error().str()));
-    REQUIRE(image.ok());
-    REQUIRE(image.value().width == job.width);
-    REQUIRE(image.value().height == job.height);
-    REQUIRE(image.value().consistent());
-    return std::move(image).value();
+    return test::require_image(engine().render(job), job.width, job.height);
 }
 
 std::string render_error(const RenderJob& job) {

@@ -78,4 +78,13 @@ CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& p
     return std::move(compiled.value());
 }
 
+Image require_image(Result<Image> image, int width, int height) {
+    INFO((image.ok() ? std::string() : image.error().str()));
+    REQUIRE(image.ok());
+    REQUIRE(image.value().width == width);
+    REQUIRE(image.value().height == height);
+    REQUIRE(image.value().consistent());
+    return std::move(image).value();
+}
+
 }  // namespace crtforge::test

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "crtforge/crtforge.hpp"
+#include "crtforge/image.hpp"
 
 namespace crtforge::test {
 
@@ -51,6 +52,10 @@ struct CommandResult {
 // Runs build/crtforge with the given arguments (a shell-quoted string), capturing both streams.
 // `env` is prepended as environment assignments (e.g. "VK_ICD_FILENAMES=/nonexistent.json").
 CommandResult run_crtforge(const std::string& args, const std::string& env = {});
+
+// The image of a render that must succeed (the test stops otherwise, quoting the error), checked
+// to be width x height and consistent.
+Image require_image(Result<Image> image, int width, int height);
 
 // Compiles and emits one preset through every target; fails the test on any error.
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,
