@@ -149,6 +149,14 @@ TEST_CASE("without a Vulkan driver, render says which package is missing", "[cli
     CHECK_FALSE(fs::exists(tmp / "x.png"));
 }
 
+TEST_CASE("without Node.js, a WGSL render says which packages to install", "[cli][render][errors][wgsl]") {
+    test::TempDir tmp;
+    auto r = test::run_crtforge("render --preset classic --target wgsl --input color_bars --output '" + (tmp / "x.png") + "'",
+                                "PATH=/nonexistent");
+    check_usage_error(r, "nodejs and npm");
+    CHECK_FALSE(fs::exists(tmp / "x.png"));
+}
+
 TEST_CASE("devices lists lavapipe; golden update writes only when asked", "[cli][golden]") {
     auto devices = test::run_crtforge("devices");
     CHECK(devices.exit_code == 0);
