@@ -12,7 +12,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -50,6 +49,8 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using detail::child_environment;
+using detail::spawn;
+using detail::SpawnSpec;
 using detail::describe_status;
 using detail::find_on_path;
 using detail::trim;
@@ -236,40 +237,20 @@ struct DawnEngine::Impl {
         // The reply pipe becomes descriptor 3 (4 if it already is 3: dup2 onto itself would keep
         // O_CLOEXEC set and the runner would lose it).
         const int reply_number = child_reply == 3 ? 4 : 3;
-        std::vector<std::string> args = {node, script.string(), fmt::format("--reply-fd={}", reply_number)};
-        std::vector<char*> argv;
-        for (std::string& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        std::vector<std::string> env = child_environment({{"EGL_PLATFORM", "surfaceless"}});  // Mesa EGL, no window system
-        std::vector<char*> envp;
-        for (std::string& e : env) envp.push_back(e.data());
-        envp.push_back(nullptr);
-
-        posix_spawn_file_actions_t actions;
-        posix_spawnattr_t attr;
-        posix_spawn_file_actions_init(&actions);
-        posix_spawnattr_init(&attr);
-        posix_spawn_file_actions_adddup2(&actions, child_stdin, 0);
-        posix_spawn_file_actions_adddup2(&actions, child_log, 1);
-        posix_spawn_file_actions_adddup2(&actions, child_log, 2);
-        posix_spawn_file_actions_adddup2(&actions, child_reply, reply_number);
-        sigset_t none, defaults;
-        sigemptyset(&none);
-        sigemptyset(&defaults);
-        for (int sig : {SIGPIPE, SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGUSR1, SIGUSR2, SIGCHLD}) sigaddset(&defaults, sig);
-        posix_spawnattr_setsigmask(&attr, &none);
-        posix_spawnattr_setsigdefault(&attr, &defaults);
-        posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-        pid_t child = -1;
-        const int rc = ::posix_spawn(&child, node.c_str(), &actions, &attr, argv.data(), envp.data());
-        posix_spawn_file_actions_destroy(&actions);
-        posix_spawnattr_destroy(&attr);
+        SpawnSpec spec;
+        spec.executable = node;
+        spec.args = {script.string(), fmt::format("--reply-fd={}", reply_number)};
+        spec.env = child_environment({{"EGL_PLATFORM", "surfaceless"}});  // Mesa EGL, no window system
+        spec.input_fd = child_stdin;
+        spec.output_fd = child_log;
+        spec.extra_fd = {{child_reply, reply_number}};
+        auto child = spawn(spec);
         close_child_ends();
-        if (rc != 0) {
+        if (!child.ok()) {
             stop(true);
-            return make_error(fmt::format("cannot start '{}': {}", node, std::strerror(rc)));
+            return child.error();
         }
-        pid = child;
+        pid = child.value();
 
         // The runner's first line says whether Dawn found an adapter.
         auto ready = read_reply(Clock::now() + std::chrono::seconds(kStartSeconds), "start");

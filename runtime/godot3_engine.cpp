@@ -11,7 +11,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -51,6 +50,8 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using detail::job_error;
 using detail::child_environment;
+using detail::spawn;
+using detail::SpawnSpec;
 using detail::describe_status;
 using detail::find_on_path;
 using detail::trim;
@@ -132,55 +133,6 @@ Status open_pipe(Pipe& pipe) {
     pipe.read = fds[0];
     pipe.write = fds[1];
     return Ok{};
-}
-
-struct SpawnSpec {
-    std::string executable;               // absolute path
-    std::vector<std::string> args;        // argv[1..]
-    std::vector<std::string> env;         // the whole environment
-    int output_fd = -1;                   // becomes stdout and stderr; -1 = /dev/null
-    std::optional<std::pair<int, int>> extra_fd;  // (fd here, fd number in the child)
-};
-
-// Starts the process; stdin is /dev/null, every other descriptor is closed (O_CLOEXEC).
-Result<pid_t> spawn(const SpawnSpec& spec) {
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(spec.executable.c_str()));
-    for (const std::string& a : spec.args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    std::vector<char*> envp;
-    for (const std::string& e : spec.env) envp.push_back(const_cast<char*>(e.c_str()));
-    envp.push_back(nullptr);
-
-    posix_spawn_file_actions_t actions;
-    posix_spawnattr_t attr;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawnattr_init(&attr);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    if (spec.output_fd >= 0) {
-        posix_spawn_file_actions_adddup2(&actions, spec.output_fd, 1);
-        posix_spawn_file_actions_adddup2(&actions, spec.output_fd, 2);
-    } else {
-        posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-        posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    }
-    if (spec.extra_fd) posix_spawn_file_actions_adddup2(&actions, spec.extra_fd->first, spec.extra_fd->second);
-    // The child starts with no blocked signals and default handlers for the ones that matter
-    // (Xvfb signals its parent with SIGUSR1 when it inherits SIGUSR1 ignored).
-    sigset_t none, defaults;
-    sigemptyset(&none);
-    sigemptyset(&defaults);
-    for (int sig : {SIGPIPE, SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGUSR1, SIGUSR2, SIGCHLD}) sigaddset(&defaults, sig);
-    posix_spawnattr_setsigmask(&attr, &none);
-    posix_spawnattr_setsigdefault(&attr, &defaults);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-
-    pid_t pid = -1;
-    int rc = ::posix_spawn(&pid, spec.executable.c_str(), &actions, &attr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attr);
-    if (rc != 0) return make_error(fmt::format("cannot start '{}': {}", spec.executable, std::strerror(rc)));
-    return pid;
 }
 
 // waitpid() that retries on EINTR; the wait status, or -1.
