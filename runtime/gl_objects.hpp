@@ -57,25 +57,18 @@ using UniqueFramebuffer = GlObject<ObjectKind::Framebuffer>;
 using UniqueVertexArray = GlObject<ObjectKind::VertexArray>;
 
 // glGen* one name and own it.
-inline UniqueBuffer make_buffer(const GlFunctions& gl) {
+template <ObjectKind Kind>
+GlObject<Kind> generate(const GlFunctions& gl) {
     GLuint name = 0;
-    gl.GenBuffers(1, &name);
-    return UniqueBuffer(gl, name);
+    if constexpr (Kind == ObjectKind::Buffer) gl.GenBuffers(1, &name);
+    if constexpr (Kind == ObjectKind::Texture) gl.GenTextures(1, &name);
+    if constexpr (Kind == ObjectKind::Framebuffer) gl.GenFramebuffers(1, &name);
+    if constexpr (Kind == ObjectKind::VertexArray) gl.GenVertexArrays(1, &name);
+    return GlObject<Kind>(gl, name);
 }
-inline UniqueTexture make_texture(const GlFunctions& gl) {
-    GLuint name = 0;
-    gl.GenTextures(1, &name);
-    return UniqueTexture(gl, name);
-}
-inline UniqueFramebuffer make_framebuffer(const GlFunctions& gl) {
-    GLuint name = 0;
-    gl.GenFramebuffers(1, &name);
-    return UniqueFramebuffer(gl, name);
-}
-inline UniqueVertexArray make_vertex_array(const GlFunctions& gl) {
-    GLuint name = 0;
-    gl.GenVertexArrays(1, &name);
-    return UniqueVertexArray(gl, name);
-}
+inline UniqueBuffer make_buffer(const GlFunctions& gl) { return generate<ObjectKind::Buffer>(gl); }
+inline UniqueTexture make_texture(const GlFunctions& gl) { return generate<ObjectKind::Texture>(gl); }
+inline UniqueFramebuffer make_framebuffer(const GlFunctions& gl) { return generate<ObjectKind::Framebuffer>(gl); }
+inline UniqueVertexArray make_vertex_array(const GlFunctions& gl) { return generate<ObjectKind::VertexArray>(gl); }
 
 }  // namespace crtforge::gl

@@ -8,27 +8,21 @@
 namespace crtforge::gl {
 namespace {
 
-std::string shader_log(const GlFunctions& gl, GLuint shader) {
+// A shader's or program's info log, through the matching pair of GL entry points.
+template <typename GetIv, typename GetLog>
+std::string info_log(GLuint object, GetIv get_iv, GetLog get_log) {
     GLint length = 0;
-    gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    get_iv(object, GL_INFO_LOG_LENGTH, &length);
     if (length <= 0) return {};
     std::string log(static_cast<size_t>(length), '\0');
     GLsizei written = 0;
-    gl.GetShaderInfoLog(shader, length, &written, log.data());
+    get_log(object, length, &written, log.data());
     log.resize(static_cast<size_t>(written > 0 ? written : 0));
     return log;
 }
 
-std::string program_log(const GlFunctions& gl, GLuint program) {
-    GLint length = 0;
-    gl.GetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    if (length <= 0) return {};
-    std::string log(static_cast<size_t>(length), '\0');
-    GLsizei written = 0;
-    gl.GetProgramInfoLog(program, length, &written, log.data());
-    log.resize(static_cast<size_t>(written > 0 ? written : 0));
-    return log;
-}
+std::string shader_log(const GlFunctions& gl, GLuint shader) { return info_log(shader, gl.GetShaderiv, gl.GetShaderInfoLog); }
+std::string program_log(const GlFunctions& gl, GLuint program) { return info_log(program, gl.GetProgramiv, gl.GetProgramInfoLog); }
 
 Diagnostic rejected_shader(const GlFunctions& gl, GLenum stage, GLuint shader) {
     return make_validation_error(fmt::format("GL driver rejected the {} shader: {}",

@@ -141,20 +141,22 @@ TEST_CASE("render rejects bad sizes, inputs and outputs with exit 2 and no file"
     CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("without a Vulkan driver, render says which package is missing", "[cli][render][errors]") {
+// A render whose consumer is missing from the machine (hidden through `env`): exit 2, the message
+// names what to install, and no output file.
+static void check_missing_consumer(const std::string& target, const std::string& env, const std::string& install) {
     test::TempDir tmp;
-    auto r = test::run_crtforge("render --preset classic --input color_bars --output '" + (tmp / "x.png") + "'",
-                                "VK_ICD_FILENAMES=/nonexistent.json");
-    check_usage_error(r, "mesa-vulkan-drivers");
+    auto r = test::run_crtforge("render --preset classic --target " + target + " --input color_bars --output '" +
+                                    (tmp / "x.png") + "'", env);
+    check_usage_error(r, install);
     CHECK_FALSE(fs::exists(tmp / "x.png"));
 }
 
+TEST_CASE("without a Vulkan driver, render says which package is missing", "[cli][render][errors]") {
+    check_missing_consumer("spirv", "VK_ICD_FILENAMES=/nonexistent.json", "mesa-vulkan-drivers");
+}
+
 TEST_CASE("without Node.js, a WGSL render says which packages to install", "[cli][render][errors][wgsl]") {
-    test::TempDir tmp;
-    auto r = test::run_crtforge("render --preset classic --target wgsl --input color_bars --output '" + (tmp / "x.png") + "'",
-                                "PATH=/nonexistent");
-    check_usage_error(r, "nodejs and npm");
-    CHECK_FALSE(fs::exists(tmp / "x.png"));
+    check_missing_consumer("wgsl", "PATH=/nonexistent", "nodejs and npm");
 }
 
 TEST_CASE("devices lists lavapipe; golden update writes only when asked", "[cli][golden]") {

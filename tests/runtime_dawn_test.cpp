@@ -64,12 +64,8 @@ std::string sampling_module(int width, int height) {
 
 DawnJob make_job(std::string wgsl, int width, int height, Image input = {},
                  SamplerFilter filter = SamplerFilter::Nearest) {
-    DawnJob job;
+    auto job = test::frame_job<DawnJob>(std::move(input), width, height, OutputFormat::Rgba16Float, filter);
     job.wgsl = std::move(wgsl);
-    job.width = width;
-    job.height = height;
-    job.input = std::move(input);
-    job.filter = filter;
     return job;
 }
 

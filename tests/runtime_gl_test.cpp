@@ -151,14 +151,9 @@ GlEngine& engine(GlApi api) {
 
 GlRenderJob make_job(const std::string& vertex, const std::string& fragment, Image input, int width, int height,
                      OutputFormat format, SamplerFilter filter = SamplerFilter::Nearest) {
-    GlRenderJob job;
+    auto job = test::frame_job<GlRenderJob>(std::move(input), width, height, format, filter);
     job.vertex_source = vertex;
     job.fragment_source = fragment;
-    job.input = std::move(input);
-    job.filter = filter;
-    job.width = width;
-    job.height = height;
-    job.format = format;
     return job;
 }
 

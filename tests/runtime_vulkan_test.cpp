@@ -75,14 +75,9 @@ RenderEngine& engine() {
 
 RenderJob make_job(const std::string& fragment, Image input, int width, int height, OutputFormat format,
                    SamplerFilter filter = SamplerFilter::Nearest) {
-    RenderJob job;
+    auto job = test::frame_job<RenderJob>(std::move(input), width, height, format, filter);
     job.vertex_spirv = vertex_spirv();
     job.fragment_spirv = compile(fragment, ShaderStage::Fragment);
-    job.input = std::move(input);
-    job.filter = filter;
-    job.width = width;
-    job.height = height;
-    job.format = format;
     return job;
 }
 

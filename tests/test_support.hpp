@@ -8,6 +8,7 @@
 
 #include "crtforge/crtforge.hpp"
 #include "crtforge/image.hpp"
+#include "crtforge/render_engine.hpp"
 
 namespace crtforge::test {
 
@@ -52,6 +53,18 @@ struct CommandResult {
 // Runs build/crtforge with the given arguments (a shell-quoted string), capturing both streams.
 // `env` is prepended as environment assignments (e.g. "VK_ICD_FILENAMES=/nonexistent.json").
 CommandResult run_crtforge(const std::string& args, const std::string& env = {});
+
+// The fields every engine's job shares (RenderJob, GlRenderJob, DawnJob), filled in.
+template <typename Job>
+Job frame_job(Image input, int width, int height, OutputFormat format, SamplerFilter filter) {
+    Job job;
+    job.input = std::move(input);
+    job.filter = filter;
+    job.width = width;
+    job.height = height;
+    job.format = format;
+    return job;
+}
 
 // The image of a render that must succeed (the test stops otherwise, quoting the error), checked
 // to be width x height and consistent.

@@ -98,30 +98,17 @@ Rendered check_construct(const std::string& body, const Uniforms& u, bool optimi
     for (const auto& m : messages.value()) FAIL_CHECK(m.type << " " << m.line << ":" << m.column << " " << m.text);
     CHECK(messages.value().empty());
 
-    DawnJob job;
+    auto job = test::frame_job<DawnJob>(input(), kSize, kSize, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
     job.wgsl = r.wgsl;
-    job.input = input();
-    job.filter = SamplerFilter::Nearest;
-    job.width = job.height = kSize;
     job.uniform_data = u.bytes();
     job.uses_texture = r.wgsl.find("texture_2d") != std::string::npos;
-    auto rendered = dawn.value()->render(job);
-    INFO((rendered.ok() ? std::string() : rendered.error().str()));
-    REQUIRE(rendered.ok());
-    r.dawn = rendered.value();
+    r.dawn = test::require_image(dawn.value()->render(job), kSize, kSize);
 
-    RenderJob vk;
+    auto vk = test::frame_job<RenderJob>(input(), kSize, kSize, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
     vk.vertex_spirv = vertex();
     vk.fragment_spirv = fragment;
-    vk.input = input();
-    vk.filter = SamplerFilter::Nearest;
-    vk.width = vk.height = kSize;
-    vk.format = OutputFormat::Rgba16Float;
     vk.uniform_data = u.bytes();
-    auto reference = vulkan().render(vk);
-    INFO((reference.ok() ? std::string() : reference.error().str()));
-    REQUIRE(reference.ok());
-    r.vulkan = reference.value();
+    r.vulkan = test::require_image(vulkan().render(vk), kSize, kSize);
 
     float worst = 0;
     for (size_t k = 0; k < r.dawn.rgba.size(); ++k) {
