@@ -41,11 +41,17 @@ bool value_matches(const Value& value, ParamType type) {
     return false;
 }
 
-std::string float_literal(double v) {
-    std::string s = fmt::format("{}", v);
+namespace {
+template <typename F>
+std::string shortest_float_literal(F v) {
+    std::string s = fmt::format("{}", v);  // shortest round-trip text for F
     if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
     return s;
 }
+}  // namespace
+
+std::string float_literal(double v) { return shortest_float_literal(v); }
+std::string float_literal(float v) { return shortest_float_literal(v); }
 
 std::string value_to_string(const Value& value) {
     if (auto d = std::get_if<double>(&value)) return float_literal(*d);

@@ -172,8 +172,6 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
         if (!shader) return make_error("wgsl output without a shader");
         auto job = common_job<DawnJob>(r, std::move(uniforms.value()));
         job.wgsl = shader->data;
-        // WebGPU binds the WGSL struct's whole size, which rounds up to 16 bytes.
-        if (!job.uniform_data.empty()) job.uniform_data.resize((job.uniform_data.size() + 15) / 16 * 16, 0);
         job.uses_texture = !r.compiled->reflection.textures.empty();
         return engine.value()->render(job);
     }

@@ -31,6 +31,8 @@ std::string value_to_glsl(const Value& value, ParamType type, int enum_index = -
 // Shortest text that reads back as the same double, with a decimal point or exponent so GLSL (and
 // Godot) parse it as a float literal: 0.3, 4.0, 1e-07.
 std::string float_literal(double v);
+// The same for a 32-bit float: the shortest text that reads back as that float ("0.3", not 0.30000001).
+std::string float_literal(float v);
 
 // The GLSL type used for a param of this type when it lives in the uniform block.
 const char* glsl_type_for(ParamType type);

@@ -91,7 +91,7 @@ private:
 
     // ---- structured control flow ----
     void region(uint32_t start, uint32_t stop, const LoopContext* loop);
-    void loop_construct(uint32_t header, const LoopContext* outer);
+    void loop_construct(uint32_t header);
     // One arm of an if or switch, in its own scope one level in: the region from `target` to the
     // construct's merge, or just the phi copies when the arm goes straight to the merge.
     void arm(uint32_t from, uint32_t target, uint32_t merge, const LoopContext* loop, int parent_scope) {
@@ -129,8 +129,7 @@ private:
     // ".x", ".member", "[2]" for the literal indices operands[first..] into a value of `type`.
     std::string composite_path(uint32_t type, const std::vector<uint32_t>& operands, size_t first);
     bool flow_uniform() const { return nesting_ == 0 && !early_exit_; }
-    uint32_t pointee(uint32_t pointer_id) const;
-    spv::StorageClass storage_of(uint32_t pointer_id) const;
+    const Type& pointer_type(uint32_t pointer_id) const;
 
     ModuleEmitter& mod_;
     const SpirvModule& m_;
@@ -157,7 +156,7 @@ private:
     std::map<uint32_t, std::pair<std::string, std::string>> images_;  // (texture, sampler)
     std::map<uint32_t, uint32_t> pointer_types_;                        // local pointer id -> pointer type
     std::map<uint32_t, std::string> phi_vars_;
-    std::set<uint32_t> pointer_params_;
+    std::map<uint32_t, std::string> pointer_params_;  // ptr parameter id -> its name
     std::string out_;
     int indent_ = 1;
     int nesting_ = 0;
@@ -174,20 +173,11 @@ std::string FunctionPrinter::capture(const std::function<void()>& body) {
     return saved;
 }
 
-uint32_t FunctionPrinter::pointee(uint32_t pointer_id) const {
-    auto it = pointer_types_.find(pointer_id);
-    uint32_t type = 0;
-    if (it != pointer_types_.end()) type = it->second;
-    else if (auto g = m_.globals.find(pointer_id); g != m_.globals.end()) type = g->second.type;
-    return m_.type(type).element;
-}
-
-spv::StorageClass FunctionPrinter::storage_of(uint32_t pointer_id) const {
-    auto it = pointer_types_.find(pointer_id);
-    uint32_t type = 0;
-    if (it != pointer_types_.end()) type = it->second;
-    else if (auto g = m_.globals.find(pointer_id); g != m_.globals.end()) type = g->second.type;
-    return m_.type(type).storage;
+// The OpTypePointer of a pointer value: a local (variable, access chain, parameter) or a global.
+const Type& FunctionPrinter::pointer_type(uint32_t pointer_id) const {
+    if (auto it = pointer_types_.find(pointer_id); it != pointer_types_.end()) return m_.type(it->second);
+    if (auto g = m_.globals.find(pointer_id); g != m_.globals.end()) return m_.type(g->second.type);
+    return m_.type(0);
 }
 
 uint32_t FunctionPrinter::type_of(uint32_t id) const {
@@ -302,7 +292,7 @@ void FunctionPrinter::region(uint32_t start, uint32_t stop, const LoopContext* l
         const Block& block = f_.blocks[it->second];
 
         if (block.merge && block.merge->op == spv::OpLoopMerge && !(loop && loop->header == b)) {
-            loop_construct(b, loop);
+            loop_construct(b);
             b = block.merge->operand(0);
             continue;
         }
@@ -407,8 +397,11 @@ void FunctionPrinter::region(uint32_t start, uint32_t stop, const LoopContext* l
             case spv::OpTerminateInvocation:
                 line("discard;");
                 // WGSL's discard demotes the invocation and carries on: end the path as SPIR-V does.
-                if (m_.type(f_.return_type).op != spv::OpTypeVoid || (is_entry_ && !entry_return_.empty()))
-                    return_statement(Instruction{spv::OpReturn});
+                if (m_.type(f_.return_type).op != spv::OpTypeVoid || (is_entry_ && !entry_return_.empty())) {
+                    Instruction plain_return;
+                    plain_return.op = spv::OpReturn;
+                    return_statement(plain_return);
+                }
                 early_exit_ = true;
                 return;
             case spv::OpUnreachable:
@@ -492,8 +485,7 @@ void FunctionPrinter::conditional_exit(const Block& block, uint32_t stop, const 
     done = false;
 }
 
-void FunctionPrinter::loop_construct(uint32_t header, const LoopContext* outer) {
-    (void)outer;
+void FunctionPrinter::loop_construct(uint32_t header) {
     const Block& h = f_.block(header);
     LoopContext ctx;
     ctx.header = header;
@@ -547,7 +539,6 @@ void FunctionPrinter::loop_construct(uint32_t header, const LoopContext* outer) 
             close_scope(loop_scope);
         }
         // The continue construct, unless it is an empty block that just branches back.
-        const Block& c = f_.block(ctx.cont);
         LoopContext cont_ctx = ctx;
         cont_ctx.in_continuing = true;
         const std::string continuing = capture([&] {
@@ -558,7 +549,6 @@ void FunctionPrinter::loop_construct(uint32_t header, const LoopContext* outer) 
             close_scope(loop_scope);
             --indent_;
         });
-        (void)c;
         if (!continuing.empty()) {
             line("continuing {");
             out_ += continuing;
@@ -703,7 +693,7 @@ std::string FunctionPrinter::run() {
                              mod_.type_name(t.element) + ">");
             refs_[p.result] = "(*" + name + ")";
             pointer_types_[p.result] = p.type;
-            pointer_params_.insert(p.result);
+            pointer_params_[p.result] = name;
         } else if (t.op == spv::OpTypeSampledImage || t.op == spv::OpTypeImage || t.op == spv::OpTypeSampler) {
             fail("texture or sampler function parameters are not supported (crtforge inlines every function)");
         } else {
@@ -798,7 +788,7 @@ void FunctionPrinter::instruction(const Instruction& inst) {
         // -- memory --
         case spv::OpLoad: {
             const uint32_t pointer = o.at(0);
-            const spv::StorageClass storage = storage_of(pointer);
+            const spv::StorageClass storage = pointer_type(pointer).storage;
             const uint32_t t = m_.type(inst.type).op;
             if (t == spv::OpTypeSampledImage) {
                 const std::string texture = ref(pointer);
@@ -827,7 +817,7 @@ void FunctionPrinter::instruction(const Instruction& inst) {
         case spv::OpInBoundsAccessChain: {
             const uint32_t base = o.at(0);
             std::string text;
-            uint32_t current = pointee(base);
+            uint32_t current = pointer_type(base).element;
             size_t first = 1;
             // gl_PerVertex-style output blocks are split into one local per member.
             bool handled = false;
@@ -1085,13 +1075,9 @@ void FunctionPrinter::instruction(const Instruction& inst) {
         case spv::OpFunctionCall: {
             std::vector<std::string> args;
             for (size_t i = 1; i < o.size(); ++i) {
-                if (refs_.count(o[i])) {
-                    const std::string r = refs_[o[i]];
-                    args.push_back(r.rfind("(*", 0) == 0 && r.back() == ')' && r.find(')') == r.size() - 1
-                                       ? r.substr(2, r.size() - 3) : "&" + r);
-                } else {
-                    args.push_back(value(o[i]).text);
-                }
+                if (auto p = pointer_params_.find(o[i]); p != pointer_params_.end()) args.push_back(p->second);  // already a pointer
+                else if (refs_.count(o[i])) args.push_back("&" + refs_[o[i]]);
+                else args.push_back(value(o[i]).text);
             }
             const std::string call = mod_.function_names.at(o.at(0)) + "(" + join_list(args) + ")";
             if (m_.type(inst.type).op == spv::OpTypeVoid) line(call + ";");

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -525,15 +526,9 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
     // Merge: identical declarations are shared; two different ones at one binding are an error.
     WgslModule out;
     std::string text;
-    for (const auto& line : {options.header_comment}) {
-        if (line.empty()) continue;
-        size_t start = 0;
-        while (start <= line.size()) {
-            size_t end = line.find('\n', start);
-            if (end == std::string::npos) end = line.size();
-            text += "// " + line.substr(start, end - start) + "\n";
-            start = end + 1;
-        }
+    if (!options.header_comment.empty()) {
+        std::istringstream lines(options.header_comment);
+        for (std::string line; std::getline(lines, line);) text += "// " + line + "\n";
         text += "\n";
     }
     bool diagnostic_off = false;

@@ -1,9 +1,10 @@
 #include "targets/wgsl/wgsl_names.hpp"
 
-#include <charconv>
-#include <cstring>
+#include <bit>
 
 #include <fmt/format.h>
+
+#include "crtforge/value.hpp"
 
 namespace crtforge::wgsl {
 
@@ -66,14 +67,8 @@ std::string unique_identifier(const std::string& wanted, std::set<std::string>& 
 }
 
 std::string f32_literal(uint32_t bits) {
-    float value;
-    std::memcpy(&value, &bits, sizeof value);
-    if ((bits & 0x7f800000u) == 0x7f800000u) return fmt::format("bitcast<f32>({}u)", fmt::format("0x{:08x}", bits));
-    char buffer[64];
-    auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-    std::string text(buffer, end);
-    if (text.find_first_of(".e") == std::string::npos) text += ".0";
-    return text;
+    if ((bits & 0x7f800000u) == 0x7f800000u) return fmt::format("bitcast<f32>(0x{:08x}u)", bits);
+    return float_literal(std::bit_cast<float>(bits));
 }
 
 std::string i32_literal(int32_t value) {
