@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -368,25 +367,4 @@ TEST_CASE("dawn: threads sharing one engine each get their own result", "[runtim
     }
     for (std::thread& thread : threads) thread.join();
     CHECK(failures == std::vector<int>(4, 0));
-}
-
-// Not run by ctest: `crtforge_tests "[.dawn-timing]" -s` prints the start-up and render times.
-TEST_CASE("dawn: timing of start-up and a 320x240 render", "[.dawn-timing]") {
-    using Clock = std::chrono::steady_clock;
-    const auto t0 = Clock::now();
-    auto created = DawnEngine::create();
-    const auto t1 = Clock::now();
-    REQUIRE(created.ok());
-    Image input = Image::make(320, 240, {0.25f, 0.5f, 0.75f, 1});
-    DawnJob job = make_job(sampling_module(320, 240), 320, 240, input, SamplerFilter::Linear);
-    REQUIRE(created.value()->render(job).ok());  // the first render compiles the GL program
-    const auto t2 = Clock::now();
-    for (int i = 0; i < 5; ++i) REQUIRE(created.value()->render(job).ok());
-    const auto t3 = Clock::now();
-    created.value().reset();
-    const auto t4 = Clock::now();
-    auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
-    WARN("start " << ms(t1 - t0) << " ms, first 320x240 render " << ms(t2 - t1) << " ms, then "
-                  << ms(t3 - t2) / 5 << " ms each, shutdown " << ms(t4 - t3) << " ms; "
-                  << engine().adapter_description());
 }
