@@ -43,6 +43,18 @@ const TargetInfo& target_info(TargetId id) {
     return all_targets().front();
 }
 
+const std::vector<std::string>& shader_roles(TargetId id) {
+    static const std::vector<std::string> stages = {"vertex", "fragment"};
+    static const std::vector<std::string> godot = {"shader", "screenShader"};
+    static const std::vector<std::string> module = {"shader"};
+    switch (id) {
+        case TargetId::Godot4:
+        case TargetId::Godot3: return godot;
+        case TargetId::Wgsl: return module;
+        default: return stages;
+    }
+}
+
 Result<TargetOutput> generate_target(TargetId id, const TargetInput& input) {
     switch (id) {
         case TargetId::Spirv: return spirv::Generate(input);

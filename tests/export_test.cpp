@@ -67,11 +67,9 @@ TEST_CASE("the manifest lists files, uniform layout and baked values", "[export]
         for (const TargetInfo& t : all_targets()) {
             INFO(name << " " << t.name);
             const json& entry = preset["targets"][t.name];
-            const bool godot = std::string(t.name).rfind("godot", 0) == 0;
-            const std::vector<const char*> roles = godot ? std::vector<const char*>{"shader", "screenShader", "material", "readme"}
-                                                 : t.id == TargetId::Wgsl ? std::vector<const char*>{"shader"}
-                                                                          : std::vector<const char*>{"vertex", "fragment"};
-            for (const char* role : roles) {
+            std::vector<std::string> roles = shader_roles(t.id);
+            if (t.id == TargetId::Godot4 || t.id == TargetId::Godot3) roles.insert(roles.end(), {"material", "readme"});
+            for (const std::string& role : roles) {
                 REQUIRE(entry.contains(role));
                 CHECK(files.count(entry[role].get<std::string>()) == 1);
             }

@@ -86,7 +86,8 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     const Preset* preset = job.work->preset;
     const std::string target = target_info(job.target).name;
     auto fail_all = [&](const std::string& message) {
-        for (const char* c : {"compile:vertex", "compile:fragment"}) results.push_back({preset->name, target, c, false, message, {}, {}});
+        for (const std::string& role : shader_roles(job.target))
+            results.push_back({preset->name, target, "compile:" + role, false, message, {}, {}});
         for (const GoldenData* g : job.goldens)
             results.push_back({preset->name, target, "render:" + g->entry->id, false, message, {}, g->entry->id});
         return results;

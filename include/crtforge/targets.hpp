@@ -25,6 +25,10 @@ const TargetInfo* find_target(const std::string& name);
 Result<const TargetInfo*> lookup_target(const std::string& name);
 const TargetInfo& target_info(TargetId id);
 
+// The manifest roles of the shader files a target emits, in order — one consumer compile check
+// each: vertex + fragment, Godot's node + screen shaders, or WGSL's single module.
+const std::vector<std::string>& shader_roles(TargetId id);
+
 // One emitted file. `data` is text for source targets and raw bytes for SPIR-V.
 struct OutputFile {
     ShaderStage stage;
