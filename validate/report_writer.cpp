@@ -228,10 +228,14 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
             if (t == all[i].name) return i;
         return all.size();
     };
+    // Compile checks in the target's shader order, then renders in golden order.
     auto check_rank = [&](const CheckResult& c) -> size_t {
-        if (c.check == "compile:vertex" || c.check == "compile:shader") return 0;
-        if (c.check == "compile:fragment" || c.check == "compile:screenShader") return 1;
-        return 2 + static_cast<size_t>(std::find(golden_order.begin(), golden_order.end(), c.golden_id) - golden_order.begin());
+        const TargetInfo* target = find_target(c.target);
+        const std::vector<std::string> none;
+        const auto& roles = target ? shader_roles(target->id) : none;
+        for (size_t i = 0; i < roles.size(); ++i)
+            if (c.check == "compile:" + roles[i]) return i;
+        return roles.size() + static_cast<size_t>(std::find(golden_order.begin(), golden_order.end(), c.golden_id) - golden_order.begin());
     };
     std::stable_sort(merged.checks.begin(), merged.checks.end(), [&](const CheckResult& a, const CheckResult& b) {
         if (a.preset != b.preset) return a.preset < b.preset;
