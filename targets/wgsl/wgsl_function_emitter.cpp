@@ -318,7 +318,6 @@ void FunctionPrinter::region(uint32_t start, uint32_t stop, const LoopContext* l
                     const uint32_t merge = block.merge->operand(0);
                     const std::string cond = dry_run_ ? std::string() : value(term.operand(0)).text;
                     const std::string cond_operand = dry_run_ ? std::string() : value(term.operand(0)).operand();
-                    if (dry_run_) use_scopes_[term.operand(0)].insert(scope_);
                     const int saved = scope_;
                     ++nesting_;
                     auto branch = [&](uint32_t target) { return capture([&] { arm(b, target, merge, loop, saved); }); };
@@ -360,7 +359,6 @@ void FunctionPrinter::region(uint32_t start, uint32_t stop, const LoopContext* l
                     else g->second.push_back(literal);
                 }
                 const Expr selector = dry_run_ ? Expr{} : value(term.operand(0));
-                if (dry_run_) use_scopes_[term.operand(0)].insert(scope_);
                 const bool is_signed = m_.type(type_of(term.operand(0))).is_signed;
                 line("switch (" + selector.text + ") {");
                 const int saved = scope_;
@@ -419,7 +417,6 @@ void FunctionPrinter::conditional_exit(const Block& block, uint32_t stop, const 
     const Instruction& term = block.terminator;
     const uint32_t b = block.label, t = term.operand(1), f = term.operand(2);
     const bool t_exit = is_exit(t, stop, loop), f_exit = is_exit(f, stop, loop);
-    if (dry_run_) use_scopes_[term.operand(0)].insert(scope_);
 
     // The back edge of a loop at the top level of its continuing block: `break if`.
     if (loop && loop->in_continuing && scope_ == loop->continuing_scope &&
@@ -508,7 +505,6 @@ void FunctionPrinter::loop_construct(uint32_t header) {
             phi_copies(header, header);
         } else if (term.op == spv::OpBranchConditional) {
             const Expr cond = dry_run_ ? Expr{} : value(term.operand(0));
-            if (dry_run_) use_scopes_[term.operand(0)].insert(scope_);
             const bool exit_on_true = term.operand(1) == ctx.merge;
             const std::string exit_text = capture([&] { ++indent_; phi_copies(header, ctx.merge); line("break;"); --indent_; });
             line(exit_on_true ? "if (" + cond.text + ") {" : "if (!" + cond.operand() + ") {");
@@ -659,7 +655,7 @@ void FunctionPrinter::block_instructions(const Block& b) {
             if (inst.result) def_block_[inst.result] = b.label;
             for (uint32_t id : value_operands(inst)) use_scopes_[id].insert(scope_);
         }
-        use_scopes_[0].insert(scope_);
+        // The terminator's operands (conditions, selectors, return values) are read in the block's scope.
         for (uint32_t id : value_operands(b.terminator)) use_scopes_[id].insert(scope_);
         return;
     }
