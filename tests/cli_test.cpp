@@ -159,7 +159,7 @@ TEST_CASE("without Node.js, a WGSL render says which packages to install", "[cli
     check_missing_consumer("wgsl", "PATH=/nonexistent", "nodejs and npm");
 }
 
-TEST_CASE("devices lists lavapipe; golden update writes only when asked", "[cli][golden]") {
+TEST_CASE("devices lists lavapipe, and golden update writes only when asked", "[cli][golden]") {
     auto devices = test::run_crtforge("devices");
     CHECK(devices.exit_code == 0);
     CHECK_THAT(devices.out, Catch::Contains("llvmpipe"));

@@ -445,7 +445,7 @@ TEST_CASE("test inputs have their key properties", "[image][inputs]") {
 // ---- comparison -------------------------------------------------------------------------------
 
 TEST_CASE("identical images compare perfectly", "[image][compare]") {
-    for (const std::string& name : {"plasma", "hdr", "checker"}) {
+    for (const char* name : {"plasma", "hdr", "checker"}) {
         const Image a = input(name, 64, 48);
         auto m = compare_images(a, a);
         REQUIRE(m.ok());

@@ -122,7 +122,7 @@ TEST_CASE("every vignette form darkens monotonically from the centre", "[physica
     }
 }
 
-TEST_CASE("the shadow mask repeats every maskSize pixels; grille stripes are maskSize wide", "[physical]") {
+TEST_CASE("the shadow mask repeats every maskSize pixels and grille stripes are maskSize wide", "[physical]") {
     for (double size : {6.0, 8.0, 12.0}) {
         INFO("maskSize " << size);
         Preset shadow = resolve_inline("name = \"m\"\ndoc = \"d\"\n[stages.mask]\nmaskMode = \"shadow\"\nmaskQuantize = false\nmaskSize = " +

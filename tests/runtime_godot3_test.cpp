@@ -124,7 +124,7 @@ TEST_CASE("godot3: linear filtering interpolates when upscaling 2x1 to 4x1", "[g
     }
 }
 
-TEST_CASE("godot3: UV is top-left, FRAGCOORD and SCREEN_UV bottom-left; pixel sizes", "[godot3]") {
+TEST_CASE("godot3: UV is top-left, FRAGCOORD and SCREEN_UV bottom-left, and the pixel sizes", "[godot3]") {
     // blend_disabled: COLOR is stored as written (the default blend_mix would give rgb * alpha).
     const Image out = render_ok(make_job("shader_type canvas_item;\nrender_mode blend_disabled;\n"
                                          "void fragment() { COLOR = vec4(UV.y, FRAGCOORD.y / 2.0, "

@@ -37,7 +37,7 @@ TEST_CASE("default: runtime-tunable params stay uniforms, the rest is baked", "[
     CHECK(v.builtins == std::vector<Builtin>{Builtin::OutputSize});
 }
 
-TEST_CASE("none bakes everything; all equals every runtime-capable param", "[variant]") {
+TEST_CASE("none bakes everything, and all equals every runtime-capable param", "[variant]") {
     CHECK(uniform_names(variant_or_fail("quiet-frame", "none")).empty());
     CHECK(variant_or_fail("quiet-frame", "none").has_uniform_block());  // outputSize still needed
     CHECK(uniform_names(variant_or_fail("quiet-frame", "all")) ==
