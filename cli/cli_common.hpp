@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "crtforge/crtforge.hpp"
-#include "crtforge/image.hpp"
+#include "crtforge/runtime/image.hpp"
 
 namespace crtforge::cli {
 

@@ -2,14 +2,15 @@
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
-#include "crtforge/golden.hpp"
-#include "crtforge/render_engine.hpp"
+#include "crtforge/paths.hpp"
+#include "crtforge/validate/golden.hpp"
+#include "crtforge/runtime/render_engine.hpp"
 
 namespace crtforge::cli {
 
 std::string default_golden_dir() {
     if (const char* env = std::getenv("CRTFORGE_GOLDEN"); env && *env) return env;
-    return CRTFORGE_DEFAULT_GOLDEN_DIR;
+    return data_path("golden");
 }
 
 Runner add_golden_command(CLI::App& app, const GlobalOptions& g) {

@@ -4,10 +4,10 @@
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
-#include "crtforge/image_io.hpp"
-#include "crtforge/reference_renderer.hpp"
-#include "crtforge/target_render.hpp"
-#include "crtforge/test_inputs.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/reference/reference_renderer.hpp"
+#include "crtforge/validate/target_render.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
 
 namespace crtforge::cli {
 

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "cli/cli_common.hpp"
-#include "crtforge/validation.hpp"
+#include "crtforge/validate/validation.hpp"
 
 namespace crtforge::cli {
 

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/version.hpp"
 
 namespace crtforge::cli {
 

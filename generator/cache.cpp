@@ -1,4 +1,5 @@
 #include "crtforge/cache.hpp"
+#include "crtforge/version.hpp"
 
 #include <link.h>
 
@@ -12,7 +13,7 @@
 #include <fmt/format.h>
 #include <xxhash.h>
 
-#include "generator/file_io.hpp"
+#include "crtforge/files.hpp"
 
 namespace crtforge {
 
@@ -111,7 +112,7 @@ void Cache::put(const std::string& kind, const std::string& key, std::string_vie
     std::string blob(data);
     blob += key;
     // A cache that cannot be written is only slower; never an error for the user.
-    (void)detail::write_file_atomic(dir_ + "/" + kind + "/" + key, blob);
+    (void)write_file_atomic(dir_ + "/" + kind + "/" + key, blob);
 }
 
 }  // namespace crtforge

@@ -1,6 +1,7 @@
 // compile_variant -> emit_target -> run_export: the in-memory export pipeline, with the
 // content-hash cache in front of the two expensive steps (glslang+spirv-opt and SPIRV-Cross).
 #include "crtforge/exporter.hpp"
+#include "crtforge/version.hpp"
 
 #include <cstring>
 #include <atomic>
@@ -12,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/assembler.hpp"
-#include "generator/file_io.hpp"
+#include "crtforge/files.hpp"
 #include "generator/manifest.hpp"
 
 namespace crtforge {
@@ -170,7 +171,7 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
 Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId target, const Cache& cache) {
     TargetInput input{&compiled.variant, &compiled.fragment, &compiled.vertex, &compiled.fragment_glsl};
     if (target == TargetId::Spirv) return generate_target(target, input);  // nothing to cache
-    const std::string key = Cache::key({"target", Cache::build_id(), target_fingerprint(target),
+    const std::string key = Cache::key({"target", Cache::build_id(), target_info(target).fingerprint,
                                         precision_name(compiled.variant.options.precision),
                                         compiled.variant.has_uniform_block() ? "ubo" : "no-ubo",
                                         to_bytes(compiled.fragment), to_bytes(compiled.vertex),
@@ -279,8 +280,8 @@ Status write_files(const std::string& dir, const std::map<std::string, std::stri
     if (!std::filesystem::is_directory(dir, ec)) return make_error("is not a directory", dir, 0, "--out");
     for (const auto& [path, data] : files) {
         // Unchanged files are left alone: re-exports are cheap and keep file times stable.
-        if (auto existing = detail::read_text_file(dir + "/" + path); existing.ok() && existing.value() == data) continue;
-        if (auto s = detail::write_file_atomic(dir + "/" + path, data); !s.ok()) return s;
+        if (auto existing = read_text_file(dir + "/" + path); existing.ok() && existing.value() == data) continue;
+        if (auto s = write_file_atomic(dir + "/" + path, data); !s.ok()) return s;
     }
     return Ok{};
 }

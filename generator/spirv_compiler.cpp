@@ -1,5 +1,6 @@
 // glslang (in-process) -> SPIR-V -> SPIRV-Tools optimise + validate.
 #include "crtforge/spirv_compiler.hpp"
+#include "crtforge/version.hpp"
 
 #include <mutex>
 #include <regex>

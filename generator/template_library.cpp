@@ -6,13 +6,11 @@
 #include <filesystem>
 #include <set>
 
-#include "generator/file_io.hpp"
+#include "crtforge/files.hpp"
+#include "crtforge/paths.hpp"
 
 namespace crtforge {
 
-using detail::file_stem;
-using detail::list_files;
-using detail::read_text_file;
 
 namespace {
 
@@ -28,7 +26,7 @@ const std::set<std::string>& reserved_names() {
 
 std::string TemplateLibrary::default_dir() {
     if (const char* env = std::getenv("CRTFORGE_TEMPLATES"); env && *env) return env;
-    return CRTFORGE_DEFAULT_TEMPLATE_DIR;
+    return data_path("templates");
 }
 
 const StageSpec* TemplateLibrary::find_stage(const std::string& name) const {

@@ -5,8 +5,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "crtforge/golden.hpp"
-#include "crtforge/image_io.hpp"
+#include "crtforge/validate/golden.hpp"
+#include "crtforge/runtime/image_io.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;

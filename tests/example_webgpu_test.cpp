@@ -14,9 +14,9 @@
 #include <sstream>
 #include <string>
 
-#include "crtforge/image_compare.hpp"
-#include "crtforge/target_render.hpp"
-#include "crtforge/test_inputs.hpp"
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/validate/target_render.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

@@ -67,7 +67,7 @@ TEST_CASE("the manifest lists files, uniform layout and baked values", "[export]
         for (const TargetInfo& t : all_targets()) {
             INFO(name << " " << t.name);
             const json& entry = preset["targets"][t.name];
-            std::vector<std::string> roles = shader_roles(t.id);
+            std::vector<std::string> roles = t.shader_roles;
             if (t.id == TargetId::Godot4 || t.id == TargetId::Godot3) roles.insert(roles.end(), {"material", "readme"});
             for (const std::string& role : roles) {
                 REQUIRE(entry.contains(role));

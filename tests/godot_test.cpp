@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "crtforge/target_render.hpp"
+#include "crtforge/validate/target_render.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;

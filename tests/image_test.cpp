@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "crtforge/image_compare.hpp"
-#include "crtforge/image_io.hpp"
-#include "crtforge/test_inputs.hpp"
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

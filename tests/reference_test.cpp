@@ -2,10 +2,10 @@
 // that must agree within the golden tolerance; plus the reference's own sampling rules.
 #include <catch2/catch.hpp>
 
-#include "crtforge/golden.hpp"
-#include "crtforge/reference_renderer.hpp"
-#include "crtforge/target_render.hpp"
-#include "crtforge/test_inputs.hpp"
+#include "crtforge/validate/golden.hpp"
+#include "crtforge/reference/reference_renderer.hpp"
+#include "crtforge/validate/target_render.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;

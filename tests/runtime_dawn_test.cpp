@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "crtforge/dawn_engine.hpp"
+#include "crtforge/runtime/dawn_engine.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "crtforge/crtforge.hpp"
-#include "crtforge/gl_engine.hpp"
-#include "crtforge/render_engine.hpp"
+#include "crtforge/runtime/gl_engine.hpp"
+#include "crtforge/runtime/render_engine.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

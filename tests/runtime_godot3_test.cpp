@@ -10,7 +10,7 @@
 #include <cmath>
 #include <string>
 
-#include "crtforge/godot3_engine.hpp"
+#include "crtforge/runtime/godot3_engine.hpp"
 
 namespace {
 

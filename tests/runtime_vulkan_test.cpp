@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "crtforge/render_engine.hpp"
+#include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/spirv_compiler.hpp"
 #include "tests/test_support.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "crtforge/target_render.hpp"
+#include "crtforge/validate/target_render.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -23,9 +23,9 @@ TEST_CASE("every preset x target is accepted by the target's consumer", "[target
                 REQUIRE(out.ok());
                 size_t shaders = 0;
                 for (const OutputFile& f : out.value().files) shaders += f.is_shader();
-                REQUIRE(shaders == shader_roles(t.id).size());
+                REQUIRE(shaders == t.shader_roles.size());
                 for (const OutputFile& f : out.value().files)
-                    if (f.is_shader()) CHECK(std::count(shader_roles(t.id).begin(), shader_roles(t.id).end(), f.manifest_role()) == 1);
+                    if (f.is_shader()) CHECK(std::count(t.shader_roles.begin(), t.shader_roles.end(), f.manifest_role()) == 1);
                 for (const OutputFile& f : out.value().files) {
                     INFO(shader_stage_name(f.stage) << " shader:\n" << f.data);
                     auto consumed = consume_output(t.id, f);

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "crtforge/crtforge.hpp"
-#include "crtforge/image.hpp"
-#include "crtforge/render_engine.hpp"
+#include "crtforge/runtime/image.hpp"
+#include "crtforge/runtime/render_engine.hpp"
 
 namespace crtforge::test {
 

@@ -6,9 +6,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "crtforge/golden.hpp"
-#include "crtforge/image_io.hpp"
-#include "crtforge/validation.hpp"
+#include "crtforge/validate/golden.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/validate/validation.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -71,7 +71,7 @@ TEST_CASE("every shipped preset passes on every target against every golden", "[
     const size_t goldens = golden_plan(lib).size();
     // Per target: one compile check per shader file and preset, one render per golden.
     size_t expected = 0;
-    for (const TargetInfo& t : all_targets()) expected += shader_roles(t.id).size() * lib.presets().size() + goldens;
+    for (const TargetInfo& t : all_targets()) expected += t.shader_roles.size() * lib.presets().size() + goldens;
     CHECK(report.value().checks.size() == expected);
     for (const auto& c : report.value().checks) {
         INFO(c.preset << " " << c.target << " " << c.check << ": " << c.message);

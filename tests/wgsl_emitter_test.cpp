@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "crtforge/dawn_engine.hpp"
-#include "crtforge/target_render.hpp"
+#include "crtforge/runtime/dawn_engine.hpp"
+#include "crtforge/validate/target_render.hpp"
 #include "targets/wgsl/wgsl_emitter.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "crtforge/golden.hpp"
+#include "crtforge/validate/golden.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "crtforge/image_io.hpp"
-#include "crtforge/reference_renderer.hpp"
-#include "crtforge/test_inputs.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/reference/reference_renderer.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/uniforms.hpp"
-#include "generator/file_io.hpp"
+#include "crtforge/files.hpp"
 
 namespace crtforge {
 
@@ -100,7 +100,7 @@ Result<Image> render_golden_reference(const TemplateLibrary& library, const Gold
 
 Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
     const std::string path = dir + "/manifest.json";
-    auto text = detail::read_text_file(path);
+    auto text = read_text_file(path);
     if (!text.ok()) return make_error("no golden manifest (run 'crtforge golden update')", path);
     json j = json::parse(text.value(), nullptr, false);
     if (j.is_discarded() || !j.contains("goldens")) return make_error("not a golden manifest", path);
@@ -146,7 +146,7 @@ Result<size_t> update_goldens(const TemplateLibrary& library, const std::string&
                            {"maxOutlierFraction", e.tolerance.max_outlier_fraction}, {"minSsim", e.tolerance.min_ssim},
                            {"why", e.tolerance.why}}}});
     }
-    if (auto s = detail::write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n"); !s.ok()) return s.error();
+    if (auto s = write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n"); !s.ok()) return s.error();
     return images.size();
 }
 

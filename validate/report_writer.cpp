@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "crtforge/validation.hpp"
-#include "generator/file_io.hpp"
+#include "crtforge/validate/validation.hpp"
+#include "crtforge/files.hpp"
 
 namespace crtforge {
 
@@ -163,9 +163,9 @@ std::string report_html(const ValidationReport& report) {
 }  // namespace
 
 Status write_report(const ValidationReport& report, const std::string& dir) {
-    if (auto s = detail::write_file_atomic(dir + "/report.json", report_json(report)); !s.ok()) return s;
-    if (auto s = detail::write_file_atomic(dir + "/junit.xml", junit_xml(report)); !s.ok()) return s;
-    return detail::write_file_atomic(dir + "/report.html", report_html(report));
+    if (auto s = write_file_atomic(dir + "/report.json", report_json(report)); !s.ok()) return s;
+    if (auto s = write_file_atomic(dir + "/junit.xml", junit_xml(report)); !s.ok()) return s;
+    return write_file_atomic(dir + "/report.html", report_html(report));
 }
 
 Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
@@ -174,7 +174,7 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
     std::vector<std::string> golden_order;
     for (const auto& dir : dirs) {
         const std::string path = dir + "/report.json";
-        auto text = detail::read_text_file(path);
+        auto text = read_text_file(path);
         if (!text.ok()) return text.error();
         json j = json::parse(text.value(), nullptr, false);
         if (j.is_discarded() || !j.contains("checks")) return make_error("not a crtforge report", path);
@@ -232,7 +232,7 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
     auto check_rank = [&](const CheckResult& c) -> size_t {
         const TargetInfo* target = find_target(c.target);
         const std::vector<std::string> none;
-        const auto& roles = target ? shader_roles(target->id) : none;
+        const auto& roles = target ? target->shader_roles : none;
         for (size_t i = 0; i < roles.size(); ++i)
             if (c.check == "compile:" + roles[i]) return i;
         return roles.size() + static_cast<size_t>(std::find(golden_order.begin(), golden_order.end(), c.golden_id) - golden_order.begin());

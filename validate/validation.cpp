@@ -1,7 +1,7 @@
 // Enumerates (preset, target) jobs in a fixed order, keeps this shard's share, and runs each job's
 // checks on worker threads: the consumer compiles the target's files, then every golden of the
 // preset is rendered through that consumer and judged.
-#include "crtforge/validation.hpp"
+#include "crtforge/validate/validation.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,9 +12,9 @@
 #include <thread>
 
 #include "crtforge/exporter.hpp"
-#include "crtforge/image_compare.hpp"
-#include "crtforge/image_io.hpp"
-#include "crtforge/target_render.hpp"
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/validate/target_render.hpp"
 
 namespace crtforge {
 
@@ -86,7 +86,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     const Preset* preset = job.work->preset;
     const std::string target = target_info(job.target).name;
     auto fail_all = [&](const std::string& message) {
-        for (const std::string& role : shader_roles(job.target))
+        for (const std::string& role : target_info(job.target).shader_roles)
             results.push_back({preset->name, target, "compile:" + role, false, message, {}, {}});
         for (const GoldenData* g : job.goldens)
             results.push_back({preset->name, target, "render:" + g->entry->id, false, message, {}, g->entry->id});
@@ -102,7 +102,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     for (const OutputFile& f : out.value().files) {
         if (!f.is_shader()) continue;
         CheckResult r{preset->name, target, "compile:" + f.manifest_role(), false, {}, {}, {}};
-        auto consumed = consume_output(job.target, f);
+        auto consumed = renderer.compile(job.target, f);
         r.passed = consumed.ok();
         if (!consumed.ok()) r.message = consumed.error().str();
         compiles = compiles && r.passed;
@@ -206,7 +206,7 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
                     goldens.push_back(&d);
                 }
             }
-            total += 2 + goldens.size();
+            total += target_info(t).shader_roles.size() + goldens.size();
             jobs.push_back(Job{work, t, goldens});
         }
     }

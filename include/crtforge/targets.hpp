@@ -13,10 +13,27 @@ namespace crtforge {
 
 enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60, Godot4, Godot3, Wgsl };
 
+struct TargetInput;
+struct TargetOutput;
+
+// Everything crtforge knows about one target, in one record that the exporter, the cache, the CLI
+// and validation all read (no per-target switch anywhere else). Each targets/<lang>/ folder builds
+// the records of its targets; targets/target_registry.cpp lists the folders.
 struct TargetInfo {
     TargetId id;
     const char* name;         // CLI / manifest name: spirv, glsl450, ...
     const char* description;  // one line for `crtforge list`
+    // The manifest roles of the shader files it emits, in order — one consumer compile check each:
+    // vertex + fragment, Godot's node + screen shaders, or WGSL's single module.
+    std::vector<std::string> shader_roles;
+    // The consumer that proves the output by compiling and rendering it as the target's users do
+    // (validate/consumers/: "vulkan", "gl", "gl-es", "hlsl", "godot4-shim", "godot3", "dawn").
+    const char* consumer;
+    // Turns a compiled variant into the target's files.
+    Result<TargetOutput> (*generate)(const TargetInput& input);
+    // Names the emitter and its options in cache keys: bump it when the output for the same SPIR-V
+    // changes.
+    const char* fingerprint;
 };
 
 const std::vector<TargetInfo>& all_targets();
@@ -24,10 +41,6 @@ const TargetInfo* find_target(const std::string& name);
 // The same, or an error (field --target) that lists the targets there are.
 Result<const TargetInfo*> lookup_target(const std::string& name);
 const TargetInfo& target_info(TargetId id);
-
-// The manifest roles of the shader files a target emits, in order — one consumer compile check
-// each: vertex + fragment, Godot's node + screen shaders, or WGSL's single module.
-const std::vector<std::string>& shader_roles(TargetId id);
 
 // One emitted file. `data` is text for source targets and raw bytes for SPIR-V.
 struct OutputFile {
@@ -65,10 +78,8 @@ struct TargetOutput {
     std::string manifest_json;
 };
 
+// target_info(id).generate(input), with the target's name on any error.
 Result<TargetOutput> generate_target(TargetId id, const TargetInput& input);
-
-// A stable string naming the emitter and its options, folded into cache keys.
-std::string target_fingerprint(TargetId id);
 
 }  // namespace crtforge
 

@@ -7,7 +7,7 @@
 
 namespace crtforge::glsl {
 
-Result<TargetOutput> Generate(const TargetInput& input, const Options& options) {
+Result<TargetOutput> generate(const TargetInput& input, const Options& options) {
     const std::string language = options.es ? fmt::format("GLSL ES {}", options.version) : fmt::format("GLSL {}", options.version);
     const Precision precision = input.variant->options.precision;
     auto out = detail::emit_both_stages(input, ".vert", ".frag", [&](const SpirvBinary& module, ShaderStage stage) {
@@ -34,6 +34,18 @@ Result<TargetOutput> Generate(const TargetInput& input, const Options& options) 
         ? "layout(binding = 1) sampler2D"
         : "sampler2D: set with glUniform1i(glGetUniformLocation(program, \"source\"), unit)"});
     return out;
+}
+
+std::vector<TargetInfo> records() {
+    // Bump a fingerprint whenever that target's output changes for the same SPIR-V.
+    return {
+        {TargetId::Glsl450, "glsl450", "GLSL 4.50 core (OpenGL 4.5)", {"vertex", "fragment"}, "gl",
+         [](const TargetInput& in) { return generate(in, {450, false}); }, "glsl450/spirv-cross-2021.01.15/v2"},
+        {TargetId::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)", {"vertex", "fragment"}, "gl",
+         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v2"},
+        {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)", {"vertex", "fragment"}, "gl-es",
+         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v2"},
+    };
 }
 
 }  // namespace crtforge::glsl

@@ -12,6 +12,9 @@ struct Options {
     bool flip_vertex_y = true;
 };
 
-Result<TargetOutput> Generate(const TargetInput& input, const Options& options);
+Result<TargetOutput> generate(const TargetInput& input, const Options& options);
+
+// The glsl450, glsl330 and glsles300 records (crtforge/targets.hpp).
+std::vector<TargetInfo> records();
 
 }  // namespace crtforge::glsl

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "crtforge/assembler.hpp"
+#include "crtforge/version.hpp"
 
 namespace crtforge::godot {
 

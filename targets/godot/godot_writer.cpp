@@ -55,7 +55,7 @@ std::string readme(int version) {
 
 }  // namespace
 
-Result<std::string> GenerateShader(const TargetInput& input, const Options& options) {
+Result<std::string> generate_shader(const TargetInput& input, const Options& options) {
     try {
         GodotCompiler compiler(*input.fragment, *input.variant, options);
         return compiler.compile_godot();
@@ -65,13 +65,13 @@ Result<std::string> GenerateShader(const TargetInput& input, const Options& opti
     }
 }
 
-Result<TargetOutput> Generate(const TargetInput& input, int version) {
+Result<TargetOutput> generate(const TargetInput& input, int version) {
     const std::string& preset = input.variant->preset->name;
     const std::string ext = shader_extension(version);
     TargetOutput out;
-    auto node = GenerateShader(input, {version, Mode::NodeTexture});
+    auto node = generate_shader(input, {version, Mode::NodeTexture});
     if (!node.ok()) return node.error();
-    auto screen = GenerateShader(input, {version, Mode::Screen});
+    auto screen = generate_shader(input, {version, Mode::Screen});
     if (!screen.ok()) return screen.error();
     out.files.push_back({ShaderStage::Fragment, ext, node.value(), "shader", "addons/crtforge/" + preset + ext});
     out.files.push_back({ShaderStage::Fragment, ".screen" + ext, screen.value(), "screenShader",
@@ -83,6 +83,17 @@ Result<TargetOutput> Generate(const TargetInput& input, int version) {
                                           std::string(version >= 4 ? "screen_texture (hint_screen_texture)" : "SCREEN_TEXTURE") + " at SCREEN_UV"});
     out.bindings.push_back({"params", "one `uniform` per runtime param (inspector hints), set with set_shader_param"});
     return out;
+}
+
+std::vector<TargetInfo> records() {
+    return {
+        {TargetId::Godot4, "godot4", "Godot 4 canvas_item .gdshader + ShaderMaterial (node and screen modes)",
+         {"shader", "screenShader"}, "godot4-shim", [](const TargetInput& in) { return generate(in, 4); },
+         "godot4/spirv-cross-2021.01.15/v2"},
+        {TargetId::Godot3, "godot3", "Godot 3 canvas_item .shader + ShaderMaterial (node and screen modes)",
+         {"shader", "screenShader"}, "godot3", [](const TargetInput& in) { return generate(in, 3); },
+         "godot3/spirv-cross-2021.01.15/v2"},
+    };
 }
 
 }  // namespace crtforge::godot

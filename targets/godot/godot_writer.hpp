@@ -19,10 +19,13 @@ struct Options {
 };
 
 // The shader text for one mode.
-Result<std::string> GenerateShader(const TargetInput& input, const Options& options);
+Result<std::string> generate_shader(const TargetInput& input, const Options& options);
 
 // Both modes, the ShaderMaterial resource (.tres) of the node-texture shader, and a README: the
 // files of addons/crtforge/ for one preset.
-Result<TargetOutput> Generate(const TargetInput& input, int godot_version);
+Result<TargetOutput> generate(const TargetInput& input, int godot_version);
+
+// The godot4 and godot3 records (crtforge/targets.hpp).
+std::vector<TargetInfo> records();
 
 }  // namespace crtforge::godot

@@ -8,7 +8,7 @@
 
 namespace crtforge::hlsl {
 
-Result<TargetOutput> Generate(const TargetInput& input, const Options& options) {
+Result<TargetOutput> generate(const TargetInput& input, const Options& options) {
     const std::string language = fmt::format("HLSL SM {}.{}", options.shader_model / 10, options.shader_model % 10);
     auto out = detail::emit_both_stages(input, ".vs.hlsl", ".ps.hlsl", [&](const SpirvBinary& module, ShaderStage stage) {
         return detail::cross_compile<spirv_cross::CompilerHLSL>(module, stage, language, [&](spirv_cross::CompilerHLSL& c) {
@@ -24,6 +24,15 @@ Result<TargetOutput> Generate(const TargetInput& input, const Options& options) 
     if (input.variant->has_uniform_block()) out.value().bindings.push_back({kUniformBlockName, "cbuffer register(b0)"});
     out.value().bindings.push_back({kSourceTextureName, "Texture2D register(t1) + SamplerState _source_sampler register(s1)"});
     return out;
+}
+
+std::vector<TargetInfo> records() {
+    return {
+        {TargetId::Hlsl50, "hlsl50", "HLSL Shader Model 5.0 (Direct3D 11)", {"vertex", "fragment"}, "hlsl",
+         [](const TargetInput& in) { return generate(in, {50}); }, "hlsl50/spirv-cross-2021.01.15/v2"},
+        {TargetId::Hlsl60, "hlsl60", "HLSL Shader Model 6.0 (Direct3D 12, DXC)", {"vertex", "fragment"}, "hlsl",
+         [](const TargetInput& in) { return generate(in, {60}); }, "hlsl60/spirv-cross-2021.01.15/v2"},
+    };
 }
 
 }  // namespace crtforge::hlsl

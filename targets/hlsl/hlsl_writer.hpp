@@ -11,6 +11,9 @@ struct Options {
     bool flip_vertex_y = true;
 };
 
-Result<TargetOutput> Generate(const TargetInput& input, const Options& options);
+Result<TargetOutput> generate(const TargetInput& input, const Options& options);
+
+// The hlsl50 and hlsl60 records (crtforge/targets.hpp).
+std::vector<TargetInfo> records();
 
 }  // namespace crtforge::hlsl

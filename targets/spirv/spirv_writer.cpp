@@ -11,7 +11,7 @@ std::string as_bytes(const SpirvBinary& words) {
 }
 }  // namespace
 
-Result<TargetOutput> Generate(const TargetInput& input, const Options&) {
+Result<TargetOutput> generate(const TargetInput& input, const Options&) {
     TargetOutput out;
     out.files.push_back({ShaderStage::Vertex, ".vert.spv", as_bytes(*input.vertex), {}, {}});
     out.files.push_back({ShaderStage::Fragment, ".frag.spv", as_bytes(*input.fragment), {}, {}});
@@ -19,6 +19,12 @@ Result<TargetOutput> Generate(const TargetInput& input, const Options&) {
         out.bindings.push_back({kUniformBlockName, "set=0, binding=0 (uniform buffer, std140)"});
     out.bindings.push_back({kSourceTextureName, "set=0, binding=1 (combined image sampler)"});
     return out;
+}
+
+std::vector<TargetInfo> records() {
+    return {{TargetId::Spirv, "spirv", "SPIR-V 1.0 binaries (Vulkan), fragment + full-screen vertex shader",
+             {"vertex", "fragment"}, "vulkan", [](const TargetInput& in) { return generate(in); },
+             "spirv/as-compiled/v1"}};
 }
 
 }  // namespace crtforge::spirv

@@ -7,6 +7,9 @@ namespace crtforge::spirv {
 
 struct Options {};  // the modules are written as compiled; nothing to choose
 
-Result<TargetOutput> Generate(const TargetInput& input, const Options& options = {});
+Result<TargetOutput> generate(const TargetInput& input, const Options& options = {});
+
+// The spirv target's record (crtforge/targets.hpp).
+std::vector<TargetInfo> records();
 
 }  // namespace crtforge::spirv

@@ -78,7 +78,7 @@ Diagnostic locate(const Diagnostic& error, const TargetInput& input, const EmitO
 
 }  // namespace
 
-Result<TargetOutput> Generate(const TargetInput& input) {
+Result<TargetOutput> generate(const TargetInput& input) {
     const EmitOptions options = emit_options(*input.variant);
     auto module = emit_wgsl({{input.vertex, kVertexEntry}, {input.fragment, kFragmentEntry}}, options);
     if (!module.ok()) return locate(module.error(), input, options);
@@ -88,6 +88,11 @@ Result<TargetOutput> Generate(const TargetInput& input) {
         out.bindings.push_back({b.name, fmt::format("@group({}) @binding({}) {}", b.group, b.binding, b.wgsl_type)});
     out.manifest_json = manifest_extra(module.value(), input.variant->preset->filter == Filter::Nearest).dump();
     return out;
+}
+
+std::vector<TargetInfo> records() {
+    return {{TargetId::Wgsl, "wgsl", "WGSL for WebGPU: one module, vs_main + fs_main (crtforge's own emitter)",
+             {"shader"}, "dawn", [](const TargetInput& in) { return generate(in); }, "wgsl/crtforge-emitter/v1"}};
 }
 
 }  // namespace crtforge::wgsl

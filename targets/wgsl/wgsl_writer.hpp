@@ -10,6 +10,9 @@ namespace crtforge::wgsl {
 inline constexpr const char* kVertexEntry = "vs_main";
 inline constexpr const char* kFragmentEntry = "fs_main";
 
-Result<TargetOutput> Generate(const TargetInput& input);
+Result<TargetOutput> generate(const TargetInput& input);
+
+// The wgsl record (crtforge/targets.hpp).
+std::vector<TargetInfo> records();
 
 }  // namespace crtforge::wgsl

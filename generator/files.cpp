@@ -1,0 +1,70 @@
+#include "crtforge/files.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace crtforge {
+
+Result<std::string> read_text_file(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return make_error("is a directory, expected a file", path);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return make_error(std::string("cannot open: ") + std::strerror(errno), path);
+    std::ostringstream out;
+    out << in.rdbuf();
+    if (in.bad()) return make_error("read failed", path);
+    return out.str();
+}
+
+Result<std::vector<std::string>> list_files(const std::string& dir, const std::string& ext) {
+    std::error_code ec;
+    std::vector<std::string> out;
+    fs::directory_iterator it(dir, ec);
+    if (ec) return make_error("cannot list directory: " + ec.message(), dir);
+    for (const auto& entry : it) {
+        const std::string name = entry.path().filename().string();
+        if (entry.is_regular_file(ec) && name.size() > ext.size() &&
+            name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
+            out.push_back(dir + "/" + name);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+Status write_file_atomic(const std::string& path, std::string_view data) {
+    std::error_code ec;
+    fs::path p(path);
+    if (p.has_parent_path()) {
+        fs::create_directories(p.parent_path(), ec);
+        if (ec) return make_error("cannot create directory: " + ec.message(), p.parent_path().string());
+    }
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) return make_error(std::string("cannot write: ") + std::strerror(errno), path);
+        out.write(data.data(), static_cast<std::streamsize>(data.size()));
+        out.close();
+        if (!out) {
+            fs::remove(tmp, ec);
+            return make_error("write failed (disk full?)", path);
+        }
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        return make_error("cannot rename into place: " + ec.message(), path);
+    }
+    return Ok{};
+}
+
+std::string file_stem(const std::string& path) { return fs::path(path).stem().string(); }
+
+}  // namespace crtforge

@@ -1,0 +1,21 @@
+// File helpers with Result errors, shared by the generator, validation and the CLI: reading a
+// whole file, a sorted directory listing, and atomic writes (temp file + rename).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+
+namespace crtforge {
+
+Result<std::string> read_text_file(const std::string& path);
+// Regular files in dir whose names end with `ext`, sorted by name (deterministic order).
+Result<std::vector<std::string>> list_files(const std::string& dir, const std::string& ext);
+// Writes to "<path>.tmp-<pid>" then renames, so readers never see a half-written file; creates the
+// parent directories.
+Status write_file_atomic(const std::string& path, std::string_view data);
+std::string file_stem(const std::string& path);  // "a/b/classic.toml" -> "classic"
+
+}  // namespace crtforge

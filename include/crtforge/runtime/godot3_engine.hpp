@@ -1,0 +1,71 @@
+// The Godot 3 render engine: the Godot 3 canvas_item target proven by a real Godot 3 (Debian's
+// `godot3`, 3.2.3, GLES3 video driver) drawing it with Mesa llvmpipe on a private Xvfb X server.
+//
+// One render_godot3() call is one Godot process, started on the runner project in
+// tools/godot3-runner/ (see its README.md) and run in a fresh temporary directory that the call
+// removes before it returns:
+//   1. the job's shader, input pixels (raw float32) and params (JSON) are written there, with a
+//      copy of the runner project, so Godot never writes into the source tree;
+//   2. `Xvfb -displayfd` starts on a free display; `godot3` runs the runner on it, which puts the
+//      input on a TextureRect filling an off-screen HDR Viewport of exactly width x height, with a
+//      ShaderMaterial made of `shader_code`, renders `frames` frames and writes the pixels back;
+//   3. Godot and Xvfb are waited for (no zombies); Godot is killed after `timeout_seconds`.
+// No exception escapes; every failure is a Result error. Thread-safe: calls share nothing.
+//
+// What the shader sees (measured on 3.2.3, see tools/godot3-runner/README.md):
+//  - TEXTURE is the input (RGBA32F, clamp to edge, no mipmaps, bilinear only for Linear) and UV is
+//    (0, 0) at its top-left; COLOR on entry is the vertex colour (white), not the texture sample;
+//  - FRAGCOORD and SCREEN_UV have a BOTTOM-left origin; SCREEN_PIXEL_SIZE = 1 / output size
+//    (of the padded 2-pixel viewport when width or height is 1); TEXTURE_PIXEL_SIZE = 1 / input;
+//  - the viewport is cleared to transparent black and the default `blend_mix` render mode applies,
+//    so a COLOR with alpha a comes back as (rgb * a, a); write `render_mode blend_disabled;` (or
+//    alpha 1) to get COLOR back unchanged.
+// The read-back is half float (Godot's HDR viewport is RGBA16F): values above 1 and below 0 survive,
+// with about 3 decimal digits (relative error < 2^-10: llvmpipe rounds to half toward zero, so 0.3
+// comes back as 0.2998).
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/runtime/image.hpp"
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/value.hpp"
+
+namespace crtforge {
+
+struct Godot3Job {
+    // A complete Godot 3 shader starting with `shader_type canvas_item;`.
+    std::string shader_code;
+    // The picture the shader reads through TEXTURE. An empty image gives a 1x1 transparent-black
+    // texture, for shaders that sample nothing.
+    Image input;
+    SamplerFilter filter = SamplerFilter::Linear;
+    int width = 0, height = 0;  // output size in pixels, 1..16384
+    // Uniform name -> value, set with ShaderMaterial.set_shader_param. Every name must be a uniform
+    // the shader declares, and the value must fit its type: double -> float, int64_t -> int (or
+    // float), bool -> bool, Color -> `vec4 : hint_color` (alpha 1) or vec3. Enum names (strings)
+    // are refused: pass the enum's index as int64_t.
+    std::map<std::string, Value> params;
+    int frames = 2;             // frames rendered before the read-back, 1..1000
+    int timeout_seconds = 60;   // Godot is killed after this long and the call fails
+};
+
+// Renders the job and returns the output image (width x height, row 0 = top, linear floats).
+// Errors, all one line:
+//  - godot3 or Xvfb not on PATH: ErrorKind::Input, naming the Debian packages godot3 and xvfb;
+//  - a bad job (size, inconsistent input, empty shader, a param that is NaN or a string):
+//    ErrorKind::Input with field "job.<name>";
+//  - Godot's shader compiler rejects the code: ErrorKind::Validation,
+//    "Godot 3 rejected the shader: line N: <Godot's message>"; an error the GL driver raises on
+//    the code Godot generated: "Godot 3's GL driver rejected the shader: <log line>";
+//  - a param Godot cannot set (no such uniform, wrong type): ErrorKind::Input;
+//  - Godot crashes, times out or gives no pixels: ErrorKind::Validation.
+Result<Image> render_godot3(const Godot3Job& job);
+
+// The version `godot3 --version` prints, e.g. "3.2.3.stable.custom_build" on Debian 12; "" when
+// godot3 is not installed. Runs godot3 once per process (the answer is cached).
+std::string godot3_version();
+
+}  // namespace crtforge

@@ -1,0 +1,91 @@
+// The render engine: runs one full-screen pass of a SPIR-V vertex + fragment pair over an input
+// image and reads the result back as floats. The Vulkan implementation is the harness that proves
+// every generated shader on a real driver (Mesa lavapipe by default, any Vulkan GPU by choice).
+//
+// Lifecycle (the GPU work sits behind this interface so callers can be tested with a stub):
+//   1. create  — create_vulkan_engine() opens an instance and one device; it fails with a one-line
+//                Diagnostic (missing driver, missing validation layer, no matching device).
+//   2. render  — render(job) any number of times, one job at a time (not thread-safe: use one
+//                engine per thread). The instance and device are reused; everything a job needs
+//                (pipeline, images, buffers) is created for that call and destroyed before it
+//                returns, so a failed job leaves the engine usable for the next one.
+//   3. destroy — the destructor waits for the device and releases it.
+// No exception escapes any of these calls; every failure is a Result error.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/runtime/image.hpp"
+
+namespace crtforge {
+
+// Format of the offscreen colour target the fragment shader writes.
+enum class OutputFormat {
+    Rgba8Unorm,   // bytes; read back as byte / 255 (values are clamped to [0, 1] by the hardware)
+    Rgba8Srgb,    // bytes stored sRGB-encoded by the hardware; read back DECODED to linear, i.e.
+                  // the value the shader wrote, quantised to the sRGB byte grid
+    Rgba16Float,  // half floats; read back exactly (HDR values above 1.0 survive)
+};
+
+enum class SamplerFilter { Nearest, Linear };
+
+// One full-screen pass. Conventions shared with the generator:
+//  - the vertex shader draws a full-screen triangle from gl_VertexIndex (vkCmdDraw(3), no vertex
+//    buffers) and the fragment shader writes location 0;
+//  - texture coordinate (0, 0) is the top-left of `input`, and output row 0 is the top row;
+//  - both modules use the entry point "main".
+struct RenderJob {
+    std::vector<uint32_t> vertex_spirv, fragment_spirv;
+    // Uploaded as an RGBA32F sampled texture (RGBA16F where the device cannot sample/filter
+    // RGBA32F), clamp-to-edge addressing, no mipmaps. An empty image binds a 1x1 transparent-black
+    // texture, for shaders that sample nothing.
+    Image input;
+    SamplerFilter filter = SamplerFilter::Linear;
+    int width = 0, height = 0;  // output size in pixels
+    OutputFormat format = OutputFormat::Rgba8Unorm;
+    // The bytes of the std140 uniform block, as laid out by the shader. Empty = the shader has no
+    // uniform block. It must cover every byte of the block the shader declares.
+    std::vector<uint8_t> uniform_data;
+    // Where the uniform block and the combined image sampler live. The shader may use no other
+    // descriptors (and no push constants or vertex attributes).
+    uint32_t uniform_binding = 0, texture_binding = 1, descriptor_set = 0;
+};
+
+struct DeviceInfo {
+    uint32_t index = 0;  // position in the Vulkan loader's enumeration; EngineOptions::device accepts it
+    std::string name;    // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string type;    // "cpu", "integrated", "discrete", "virtual" or "other"
+    std::string driver;  // driver name and version info, e.g. "llvmpipe (Mesa 22.3.6 (LLVM 15.0.6))"
+};
+
+class RenderEngine {
+public:
+    virtual ~RenderEngine() = default;
+    // The device every render() runs on.
+    virtual const DeviceInfo& device() const = 0;
+    // Renders `job` and returns the output image (job.width x job.height, linear floats).
+    // A bad job (zero or oversized output, malformed SPIR-V, no "main" entry point, a descriptor
+    // the job does not provide, a too-short uniform buffer) returns an error before any GPU work.
+    virtual Result<Image> render(const RenderJob& job) = 0;
+};
+
+struct EngineOptions {
+    // "" = prefer Mesa lavapipe (llvmpipe), else the first device. A string of digits selects a
+    // device by index (see list_vulkan_devices); anything else is a case-insensitive substring of
+    // the device name.
+    std::string device;
+    // Enable VK_LAYER_KHRONOS_validation. Every warning or error it reports while a job runs turns
+    // that render() into an error (the first message is quoted), so a clean render is a proof.
+    bool validation = false;
+};
+
+Result<std::unique_ptr<RenderEngine>> create_vulkan_engine(const EngineOptions& options);
+
+// Every Vulkan device the loader can see, in enumeration order.
+Result<std::vector<DeviceInfo>> list_vulkan_devices();
+
+}  // namespace crtforge

@@ -1,0 +1,30 @@
+// Generated test inputs: the pictures the CRT shaders are rendered over. Each is a pure function of
+// (name, width, height) — no randomness, no files — so goldens made from them are reproducible.
+// Every input is opaque (alpha 1) and, except "hdr", within 0..1.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/runtime/image.hpp"
+
+namespace crtforge {
+
+// The native size of the "pixel_art" frame (an NES screen); other sizes are nearest-neighbour
+// scalings of it, so 1024 x 896 is an exact x4.
+inline constexpr int kPixelArtWidth = 256;
+inline constexpr int kPixelArtHeight = 224;
+
+// All input names, in a fixed order: color_bars, zone_plate, grey_ramp, pixel_art, hdr, mandelbrot,
+// plasma, flat_grey, checker.
+const std::vector<std::string>& test_input_names();
+
+// One line saying what the input is for; empty for an unknown name.
+std::string test_input_doc(const std::string& name);
+
+// Renders input `name` at width x height (each 1..16384). Errors: unknown name (the message lists
+// the valid ones) or a size out of range.
+Result<Image> make_test_input(const std::string& name, int width, int height);
+
+}  // namespace crtforge

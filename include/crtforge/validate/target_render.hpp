@@ -1,0 +1,62 @@
+// Renders a target's emitted shaders through the consumer that proves them (TargetInfo::consumer,
+// validate/consumers/): SPIR-V on Vulkan (lavapipe by default); GLSL on Mesa's OpenGL / OpenGL ES
+// driver through EGL surfaceless; HLSL through glslang's HLSL front end to SPIR-V on Vulkan (D3D's
+// y-up clip space emulated); Godot 4 through a shim of Godot's builtins on Vulkan; Godot 3 in a real
+// Godot 3 under Xvfb; WGSL in Dawn (Chromium's WebGPU) on Mesa's GLES driver.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "crtforge/exporter.hpp"
+#include "crtforge/runtime/image.hpp"
+#include "crtforge/reflection.hpp"
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/uniforms.hpp"
+
+namespace crtforge {
+
+// Feeds one emitted shader file to the compiler of its target's consumer, as a host would: SPIR-V
+// through spirv-val, GLSL re-parsed by glslang in the profile of its #version line, HLSL compiled by
+// glslang's HLSL front end (then spirv-val), Godot shaders through the shim, WGSL compiled by Dawn,
+// which must report no error and no warning. Rejections are ErrorKind::Validation; files that are
+// not shaders (materials, READMEs) pass.
+Status consume_output(TargetId target, const OutputFile& file);
+
+class DawnEngine;
+// The process's Dawn engine (one Node.js runner for every thread; its calls are serialised),
+// started on first use. A failure to start is returned and retried on the next call.
+Result<DawnEngine*> shared_dawn_engine();
+
+struct TargetRenderRequest {
+    const CompiledVariant* compiled = nullptr;
+    TargetId target = TargetId::Spirv;
+    // The emitted files of that target; spirv renders the compiled modules and needs none.
+    const TargetOutput* output = nullptr;
+    Image input;
+    SamplerFilter filter = SamplerFilter::Linear;
+    int width = 0, height = 0;
+    double time = 0.0;
+    OutputFormat format = OutputFormat::Rgba16Float;  // float output: no 8-bit quantisation in comparisons
+    std::map<std::string, Value> overrides;
+};
+
+class ConsumerEngines;
+
+// Owns the engines of one thread, created on first use and reused.
+class TargetRenderer {
+public:
+    explicit TargetRenderer(EngineOptions vulkan_options = {});
+    ~TargetRenderer();
+    Result<Image> render(const TargetRenderRequest& request);
+    // consume_output() with this renderer's engines.
+    Status compile(TargetId target, const OutputFile& file);
+    // One line naming the consumer used for a target (for reports).
+    std::string consumer(TargetId target);
+
+private:
+    std::unique_ptr<ConsumerEngines> engines_;
+};
+
+}  // namespace crtforge

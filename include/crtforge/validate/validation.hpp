@@ -1,0 +1,68 @@
+// crtforge validate: every preset x target is proven by something that consumes it — its compiler
+// accepts it, and its render through the real consumer matches the golden reference images — and
+// the results are gathered into a report (report.json, junit.xml, report.html) CI can fail on.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "crtforge/cache.hpp"
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/validate/golden.hpp"
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/targets.hpp"
+#include "crtforge/template_library.hpp"
+#include "crtforge/variant.hpp"
+
+namespace crtforge {
+
+struct CheckResult {
+    std::string preset;
+    std::string target;
+    std::string check;      // "compile:<role>" (vertex, fragment, shader, screenShader) or "render:<golden id>"
+    bool passed = false;
+    std::string message;    // one line: what failed and why
+    std::optional<Verdict> verdict;  // render checks
+    std::string golden_id;           // render checks
+};
+
+struct ValidationReport {
+    std::vector<CheckResult> checks;              // fixed order: preset, target, check
+    std::vector<GoldenEntry> goldens;             // the goldens this run rendered against
+    std::vector<std::pair<std::string, std::string>> consumers;  // target -> consumer description
+    size_t failed() const;
+    size_t passed() const { return checks.size() - failed(); }
+};
+
+struct Shard {
+    unsigned index = 1, count = 1;  // 1-based: "--shard 2/4" is index 2 of 4
+    static Result<Shard> parse(const std::string& text);
+};
+
+struct ValidateRequest {
+    std::vector<std::string> presets;  // empty = all
+    std::vector<TargetId> targets;     // empty = all
+    std::vector<std::string> inputs;   // golden inputs to render; empty = all
+    bool render = true;                // false: compile checks only
+    std::string golden_dir;            // where golden/manifest.json lives
+    std::string report_dir;            // when set, render/golden/diff pictures go to <report_dir>/images
+    EngineOptions vulkan;              // --device
+    Shard shard;
+    unsigned jobs = 1;                 // worker threads, each with its own engines
+};
+
+using ProgressFn = std::function<void(size_t done, size_t total, const CheckResult&)>;
+
+Result<ValidationReport> run_validation(const TemplateLibrary& library, const ValidateRequest& request,
+                                        const Cache& cache, const ProgressFn& progress = {});
+
+// report.json, junit.xml and report.html into dir. No timestamps or timings: the same results give
+// byte-identical files.
+Status write_report(const ValidationReport& report, const std::string& dir);
+
+// Concatenates shard reports (their report.json files) into one report, in the full run's order.
+Result<ValidationReport> merge_reports(const std::vector<std::string>& report_dirs);
+
+}  // namespace crtforge

@@ -1,0 +1,165 @@
+// Stage formulas, transcribed from the source documents' mathematics (see the spec docs in
+// templates/stages/*.toml). Double precision throughout; literal constants are the documents'.
+#include "reference/reference_stages.hpp"
+
+namespace crtforge::reference {
+
+double Params::num(const std::string& name) const {
+    const Value& v = values_.at(name);
+    if (auto d = std::get_if<double>(&v)) return *d;
+    return static_cast<double>(std::get<int64_t>(v));
+}
+bool Params::flag(const std::string& name) const { return std::get<bool>(values_.at(name)); }
+Vec3 Params::color(const std::string& name) const {
+    const Color& c = std::get<Color>(values_.at(name));
+    return {c[0], c[1], c[2]};
+}
+const std::string& Params::choice(const std::string& name) const { return std::get<std::string>(values_.at(name)); }
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kArticlePi = 3.14159;  // the Atari and Quiet Frame articles' literal
+
+Vec3 one_hot(int channel) { return {channel == 0 ? 1.0 : 0.0, channel == 1 ? 1.0 : 0.0, channel == 2 ? 1.0 : 0.0}; }
+}  // namespace
+
+bool warp_curvature(const std::string& form, const Params& p, Vec2& uv) {
+    const double k = p.num("curvature");
+    if (form == "atari") {  // r measured on the -1..1 square
+        Vec2 c = uv * 2.0 - Vec2{1, 1};
+        c = c * (1.0 + k * dot(c, c));
+        uv = c * 0.5 + Vec2{0.5, 0.5};
+    } else if (form == "crt_effect") {  // factor anchored to 1 on the unit circle
+        Vec2 c = uv * 2.0 - Vec2{1, 1};
+        c = c * (1.0 + (dot(c, c) - 1.0) * k);
+        uv = c * 0.5 + Vec2{0.5, 0.5};
+    } else if (form == "quiet_frame") {  // r measured on the -0.5..0.5 square
+        Vec2 c = uv - Vec2{0.5, 0.5};
+        c = c * (1.0 + dot(c, c) * k);
+        uv = c + Vec2{0.5, 0.5};
+    } else {
+        return false;
+    }
+    return true;
+}
+
+bool shadow_cell_uv(const Params& p, const Fragment& f, Vec2& sample_uv) {
+    if (!p.flag("maskQuantize")) return true;
+    const double size = p.num("maskSize");
+    const Vec2 coord{sample_uv.x * f.output_size.x / size, sample_uv.y * f.output_size.y / size};
+    const double stagger = fract(std::floor(coord.x) * 0.5);  // odd cell columns shift half a cell
+    const Vec2 cell{std::floor(coord.x) + 0.5, std::floor(coord.y + stagger) - stagger + 0.5};
+    sample_uv = {cell.x * size / f.output_size.x, cell.y * size / f.output_size.y};
+    return true;
+}
+
+bool fetch_aberration(const std::string& form, const Params& p, const Sampler& tex, const Fragment& f,
+                      Vec2 sample_uv, Vec3& color) {
+    double offset = 0;
+    if (form == "pixels") offset = p.num("aberration") / f.output_size.x;  // pixels -> uv
+    else if (form == "uv") offset = p.num("rgbOffset");
+    else return false;
+    color.r = tex.rgb(sample_uv + Vec2{offset, 0}).r;
+    color.b = tex.rgb(sample_uv - Vec2{offset, 0}).b;  // green stays the centred sample
+    return true;
+}
+
+void fetch_bloom(const Params& p, const Sampler& tex, Vec2 sample_uv, Vec3& color) {
+    const double d = p.num("bloomOffset"), threshold = p.num("bloomThreshold"), strength = p.num("bloomStrength");
+    const Vec3 right = tex.rgb(sample_uv + Vec2{d, 0}), below = tex.rgb(sample_uv + Vec2{0, d});
+    color.r += std::max((right.r + below.r) * 0.5 - threshold, 0.0) * strength;
+    color.g += std::max((right.g + below.g) * 0.5 - threshold, 0.0) * strength;
+    color.b += std::max((right.b + below.b) * 0.5 - threshold, 0.0) * strength;
+}
+
+void tonemap_saturate(Vec3& c) {
+    c = {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
+}
+
+bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
+    if (form == "period") {
+        // One full bright-to-bright period every scanlinePeriodPx device pixels.
+        const double freq = f.output_size.y * 2.0 * kPi / p.num("scanlinePeriodPx");
+        color = color * (1.0 - p.num("scanlineStrength") * (0.5 + 0.5 * std::sin(f.uv.y * freq)));
+    } else if (form == "atari") {
+        // iResolution is the source texture's size.
+        double s = std::sin(f.uv.y * f.source_size.y * kArticlePi) * 0.5 + 0.5;
+        s = std::pow(s, p.num("scanlineSharpness"));
+        color = color * mix(1.0, s, p.num("scanlineIntensity"));
+    } else if (form == "crt_effect") {
+        double s = std::sin(f.pixel.y * kPi / p.num("scanlineSpacing")) * 0.5 + 0.5;
+        s = std::pow(s, p.num("scanlineSharpness"));
+        const double bright = 0.299 * color.r + 0.587 * color.g + 0.114 * color.b;
+        const double intensity = p.num("scanlineIntensity");
+        color = color * mix(1.0 - intensity, 1.0, s * mix(1.0, bright, p.num("scanlineBrightBoost")));
+    } else if (form == "quiet_frame") {
+        const double s = std::sin(f.pixel.y * kArticlePi);
+        color = color * (1.0 - p.num("scanlineIntensity") * 0.5 * (1.0 - s));
+    } else {
+        return false;
+    }
+    return true;
+}
+
+bool apply_mask(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
+    if (form == "shadow") {
+        const double size = p.num("maskSize"), border_k = p.num("maskBorder");
+        const Vec2 coord = f.pixel * (1.0 / size);
+        const Vec2 sub{coord.x * 3.0, coord.y};
+        const double stagger = fract(std::floor(coord.x) * 0.5);
+        const int channel = static_cast<int>(glsl_mod(std::floor(sub.x), 3.0));
+        const Vec2 cell{fract(sub.x) * 2.0 - 1.0, fract(sub.y + stagger) * 2.0 - 1.0};
+        const double border = (1.0 - cell.x * cell.x * border_k) * (1.0 - cell.y * cell.y * border_k);
+        const Vec3 m = one_hot(channel) * (3.0 * border);
+        const double k = p.num("maskIntensity");
+        color = color * Vec3{1.0 + (m.r - 1.0) * k, 1.0 + (m.g - 1.0) * k, 1.0 + (m.b - 1.0) * k};
+    } else if (form == "grille") {
+        const double stripe = fract(f.pixel.x / p.num("maskSize") * 0.333333);
+        const int channel = static_cast<int>(std::floor(stripe * 3.0));
+        const double edge = std::abs(fract(stripe * 3.0) * 2.0 - 1.0);
+        const Vec3 m = one_hot(channel) * (3.0 * (1.0 - edge * edge * p.num("maskBorder")));
+        const double k = p.num("maskIntensity");
+        color = color * Vec3{1.0 + (m.r - 1.0) * k, 1.0 + (m.g - 1.0) * k, 1.0 + (m.b - 1.0) * k};
+    } else if (form == "atari_grille") {
+        const int channel = static_cast<int>(glsl_mod(std::floor(f.uv.x * f.source_size.x), 3.0));
+        const double dim = p.num("maskDim"), blend = p.num("maskBlend");
+        auto tint = [&](int c) { return mix(1.0, channel == c ? 1.0 : dim, blend); };
+        color = color * Vec3{tint(0), tint(1), tint(2)};
+    } else if (form == "slot") {
+        const int column = static_cast<int>(glsl_mod(f.pixel.x, 3.0));
+        const double dim = p.num("maskDim");
+        color = color * Vec3{column == 0 ? 1.0 : dim, column == 1 ? 1.0 : dim, column == 2 ? 1.0 : dim};
+    } else {
+        return false;
+    }
+    return true;
+}
+
+void apply_glow(const Params& p, const Fragment& f, Vec3& color) {
+    color = color * (1.0 + p.num("pulseIntensity") * std::cos(f.pixel.x / p.num("pulseWidth") + f.time * p.num("pulseSpeed")));
+}
+
+bool apply_vignette(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
+    if (form == "atari") {
+        const Vec2 v = f.screen_uv * 2.0 - Vec2{1, 1};
+        color = color * (1.0 - dot(v, v) * p.num("vignetteStrength"));
+    } else if (form == "crt_effect") {
+        const double ex = std::max(1.0 - f.centered.x * f.centered.x, 0.0);
+        const double ey = std::max(1.0 - f.centered.y * f.centered.y, 0.0);
+        color = color * std::pow(ex * ey, p.num("vignetteExponent"));
+    } else if (form == "quiet_frame") {
+        // smoothstep(0.85, 0.4, r): 1 at the centre, falling to 0 toward the edge.
+        const Vec2 d = f.uv - Vec2{0.5, 0.5};
+        const double r = std::sqrt(dot(d, d)) * p.num("vignetteScale");
+        color = color * (1.0 - smoothstep(0.4, 0.85, r));
+    } else {
+        return false;
+    }
+    return true;
+}
+
+void apply_bezel(const Params& p, const Fragment& f, Vec3& color) {
+    if (f.uv.x < 0.0 || f.uv.x > 1.0 || f.uv.y < 0.0 || f.uv.y > 1.0) color = p.color("bezelColor");
+}
+
+}  // namespace crtforge::reference

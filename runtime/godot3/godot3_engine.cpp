@@ -1,0 +1,498 @@
+// The Godot 3 engine: write the job into a temporary directory, start a private Xvfb, run the
+// runner project in tools/godot3-runner/ with godot3 on it, read the pixels back, and turn Godot's
+// output into one-line diagnostics.
+//
+// Processes are started with posix_spawn from argument vectors (no shell, so paths may hold any
+// character) and always waited for. xvfb-run is not used: it loses the command's exit status and
+// leaves its Xvfb running when its own clean-up fails (seen on Debian 12), and its display-number
+// probing races between concurrent runs; `Xvfb -displayfd` picks a free display itself.
+#include "crtforge/runtime/godot3_engine.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "crtforge/paths.hpp"
+#include "runtime/common/job_checks.hpp"
+#include "runtime/common/process_util.hpp"
+
+extern char** environ;
+
+
+namespace crtforge {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using detail::job_error;
+using detail::child_environment;
+using detail::spawn;
+using detail::SpawnSpec;
+using detail::describe_status;
+using detail::find_on_path;
+using detail::trim;
+using detail::wait_until;
+using detail::write_file;
+
+constexpr const char* kPackages = "the Debian packages godot3 and xvfb";
+constexpr const char* kRunnerPrefix = "crtforge-godot3-runner: ";
+constexpr const char* kOutputMagic = "CRTG3PX1";
+constexpr std::size_t kOutputHeaderBytes = 24;
+constexpr std::size_t kMaxLogBytes = 4u << 20;  // Godot's output kept for diagnostics
+constexpr int kMaxExtent = 16384;               // the runner's limit, and llvmpipe's texture size
+constexpr int kXvfbStartSeconds = 15;
+
+// ---- small helpers --------------------------------------------------------------------------
+
+std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        lines.push_back(std::move(line));
+    }
+    return lines;
+}
+
+bool contains_nocase(const std::string& text, const std::string& needle) {
+    auto it = std::search(text.begin(), text.end(), needle.begin(), needle.end(), [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    });
+    return it != text.end();
+}
+
+Status write_text(const fs::path& path, const std::string& text) { return write_file(path, text.data(), text.size()); }
+
+// A fresh directory under the system temp directory, removed with everything in it at scope exit.
+class ScratchDir {
+public:
+    static Result<ScratchDir> create() {
+        std::error_code ec;
+        fs::path base = fs::temp_directory_path(ec);
+        if (ec) base = "/tmp";
+        std::string pattern = (base / "crtforge-godot3-XXXXXX").string();
+        std::vector<char> buffer(pattern.begin(), pattern.end());
+        buffer.push_back('\0');
+        if (::mkdtemp(buffer.data()) == nullptr)
+            return make_error(fmt::format("cannot create a temporary directory in '{}': {}", base.string(),
+                                          std::strerror(errno)));
+        return ScratchDir(fs::path(buffer.data()));
+    }
+    ScratchDir(ScratchDir&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
+    ScratchDir& operator=(ScratchDir&&) = delete;
+    ScratchDir(const ScratchDir&) = delete;
+    ~ScratchDir() {
+        if (path_.empty()) return;
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    explicit ScratchDir(fs::path path) : path_(std::move(path)) {}
+    fs::path path_;
+};
+
+// ---- processes --------------------------------------------------------------------------------
+
+struct Pipe {
+    int read = -1, write = -1;
+    ~Pipe() { close_both(); }
+    void close_read() { if (read >= 0) ::close(read); read = -1; }
+    void close_write() { if (write >= 0) ::close(write); write = -1; }
+    void close_both() { close_read(); close_write(); }
+};
+
+Status open_pipe(Pipe& pipe) {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return make_error(fmt::format("pipe() failed: {}", std::strerror(errno)));
+    pipe.read = fds[0];
+    pipe.write = fds[1];
+    return Ok{};
+}
+
+// waitpid() that retries on EINTR; the wait status, or -1.
+int wait_blocking(pid_t pid) {
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) return -1;
+    }
+    return status;
+}
+
+// A started child that is stopped (signal, then SIGKILL after a grace period) and reaped when the
+// guard goes out of scope, unless it was already reaped.
+class ChildGuard {
+public:
+    ChildGuard(pid_t pid, int stop_signal) : pid_(pid), stop_signal_(stop_signal) {}
+    ChildGuard(const ChildGuard&) = delete;
+    ChildGuard& operator=(const ChildGuard&) = delete;
+    ~ChildGuard() { stop(); }
+    pid_t pid() const { return pid_; }
+    void reaped() { pid_ = -1; }
+    void stop() {
+        if (pid_ <= 0) return;
+        ::kill(pid_, stop_signal_);
+        if (stop_signal_ == SIGKILL || !wait_until(pid_, Clock::now() + std::chrono::seconds(3))) {
+            ::kill(pid_, SIGKILL);
+            wait_blocking(pid_);
+        }
+        pid_ = -1;
+    }
+
+private:
+    pid_t pid_;
+    int stop_signal_;
+};
+
+// Reads `fd` until EOF (or, with `stop_at_newline`, a newline) or `deadline`; false on timeout.
+// Keeps at most kMaxLogBytes.
+bool read_until_eof(int fd, Clock::time_point deadline, std::string& out, bool stop_at_newline = false) {
+    char buffer[8192];
+    for (;;) {
+        auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        if (left <= 0) return false;
+        pollfd p{fd, POLLIN, 0};
+        int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+        if (r < 0 && errno != EINTR) return true;
+        if (r <= 0) continue;
+        ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+        if (n <= 0) return true;
+        if (out.size() < kMaxLogBytes) out.append(buffer, std::min<std::size_t>(static_cast<std::size_t>(n), kMaxLogBytes - out.size()));
+        if (stop_at_newline && out.find('\n') != std::string::npos) return true;
+    }
+}
+
+// ---- Xvfb -------------------------------------------------------------------------------------
+
+struct XServer {
+    std::unique_ptr<ChildGuard> process;
+    std::string display;  // ":N"
+};
+
+Result<XServer> start_xvfb(const std::string& xvfb, const fs::path& scratch) {
+    Pipe ready;
+    if (auto s = open_pipe(ready); !s.ok()) return s.error();
+    const int child_fd = ready.write == 3 ? 4 : 3;
+    const fs::path log_path = scratch / "xvfb.log";
+    int log_fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (log_fd < 0) return make_error(fmt::format("cannot write '{}': {}", log_path.string(), std::strerror(errno)));
+    SpawnSpec spec;
+    spec.executable = xvfb;
+    // No -auth: the server accepts local clients only (-nolisten tcp), which is all Godot needs.
+    spec.args = {"-displayfd", std::to_string(child_fd), "-screen", "0", "64x64x24", "-nolisten", "tcp"};
+    spec.env = child_environment({}, {"XAUTHORITY"});
+    spec.output_fd = log_fd;
+    spec.extra_fd = std::make_pair(ready.write, child_fd);
+    auto pid = spawn(spec);
+    ::close(log_fd);
+    ready.close_write();
+    if (!pid.ok()) return pid.error();
+    XServer server;
+    server.process = std::make_unique<ChildGuard>(pid.value(), SIGTERM);
+
+    // Xvfb writes the display number and a newline once it accepts connections.
+    std::string number;
+    const auto deadline = Clock::now() + std::chrono::seconds(kXvfbStartSeconds);
+    read_until_eof(ready.read, deadline, number, true);
+    number = trim(number);
+    if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos) {
+        server.process->stop();
+        std::ifstream log(log_path);
+        std::string last, line;
+        while (std::getline(log, line))
+            if (!trim(line).empty()) last = trim(line);
+        return make_error(fmt::format("Xvfb (from {}) did not start{}", kPackages,
+                                      last.empty() ? std::string() : ": " + last));
+    }
+    server.display = ":" + number;
+    return server;
+}
+
+// ---- job files --------------------------------------------------------------------------------
+
+std::string json_escape(const std::string& text) {
+    std::string out;
+    for (unsigned char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += static_cast<char>(c);
+        } else if (c < 0x20) {
+            out += fmt::format("\\u{:04x}", c);
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out;
+}
+
+Result<std::string> params_json(const std::map<std::string, Value>& params) {
+    std::string json = "{";
+    bool first = true;
+    for (const auto& [name, value] : params) {
+        const std::string field = "params." + name;
+        std::string text;
+        if (const double* d = std::get_if<double>(&value)) {
+            if (!std::isfinite(*d)) return job_error(fmt::format("param '{}' is not finite", name), "params");
+            text = fmt::format("{}", *d);
+        } else if (const int64_t* i = std::get_if<int64_t>(&value)) {
+            text = fmt::format("{}", *i);
+        } else if (const bool* b = std::get_if<bool>(&value)) {
+            text = *b ? "true" : "false";
+        } else if (const Color* c = std::get_if<Color>(&value)) {
+            for (double v : *c)
+                if (!std::isfinite(v)) return job_error(fmt::format("param '{}' has a colour channel that is not finite", name), "params");
+            text = fmt::format("[{}, {}, {}]", (*c)[0], (*c)[1], (*c)[2]);
+        } else {
+            return job_error(fmt::format("param '{}' is an enum name; Godot uniforms take the enum's index as an int", name),
+                             "params");
+        }
+        json += fmt::format("{}\n  \"{}\": {}", first ? "" : ",", json_escape(name), text);
+        first = false;
+    }
+    json += first ? "}\n" : "\n}\n";
+    return json;
+}
+
+// Copies the runner project's files (not its folders) so Godot runs on a private copy.
+Status copy_runner(const fs::path& from, const fs::path& to) {
+    std::error_code ec;
+    if (!fs::is_regular_file(from / "project.godot", ec))
+        return make_error(fmt::format("the Godot 3 runner project is missing: no '{}'", (from / "project.godot").string()));
+    fs::create_directories(to, ec);
+    if (ec) return make_error(fmt::format("cannot create '{}': {}", to.string(), ec.message()));
+    for (const fs::directory_entry& entry : fs::directory_iterator(from, ec)) {
+        if (!entry.is_regular_file()) continue;
+        fs::copy_file(entry.path(), to / entry.path().filename(), fs::copy_options::overwrite_existing, ec);
+        if (ec) return make_error(fmt::format("cannot copy '{}': {}", entry.path().string(), ec.message()));
+    }
+    if (ec) return make_error(fmt::format("cannot list '{}': {}", from.string(), ec.message()));
+    return Ok{};
+}
+
+Status check_job(const Godot3Job& job) {
+    if (job.shader_code.empty()) return job_error("shader code is empty", "shader_code");
+    const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Godot 3", "the Godot 3 runner's limit"};
+    if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s;
+    if (job.frames < 1 || job.frames > 1000)
+        return job_error(fmt::format("frames must be between 1 and 1000; got {}", job.frames), "frames");
+    if (job.timeout_seconds < 1)
+        return job_error(fmt::format("timeout_seconds must be at least 1; got {}", job.timeout_seconds), "timeout_seconds");
+    return Ok{};
+}
+
+// ---- reading Godot's output -------------------------------------------------------------------
+
+// "SHADER ERROR: (null): Expected expression, found: PERIOD" + "   At: :3." ->
+// "line 3: Expected expression, found: PERIOD".
+std::string shader_error_text(const std::vector<std::string>& lines, std::size_t index) {
+    std::string text = trim(lines[index].substr(lines[index].find("SHADER ERROR:") + std::strlen("SHADER ERROR:")));
+    // Godot prefixes the shader's resource path, "(null)" for a shader made in a script.
+    if (text.rfind("(null): ", 0) == 0) text = text.substr(8);
+    if (index + 1 < lines.size()) {
+        const std::string at = trim(lines[index + 1]);
+        std::size_t colon = at.rfind(':');
+        if (at.rfind("At:", 0) == 0 && colon != std::string::npos) {
+            std::string number = at.substr(colon + 1);
+            if (!number.empty() && number.back() == '.') number.pop_back();
+            if (!number.empty() && number.find_first_not_of("0123456789") == std::string::npos)
+                text = "line " + number + ": " + text;
+        }
+    }
+    return text;
+}
+
+// The error Godot's output reports about the shader, if any: its own compiler's "SHADER ERROR",
+// or the GL driver refusing the GLSL Godot generated from it.
+std::optional<Diagnostic> shader_diagnostic(const std::vector<std::string>& lines) {
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (lines[i].find("SHADER ERROR:") != std::string::npos)
+            return make_validation_error("Godot 3 rejected the shader: " + shader_error_text(lines, i));
+    }
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (!contains_nocase(lines[i], "compilation failed") && !contains_nocase(lines[i], "link failed")) continue;
+        std::string detail = trim(lines[i]);
+        for (std::size_t j = i + 1; j < lines.size() && j < i + 200; ++j) {
+            if (contains_nocase(lines[j], "error")) {
+                detail = trim(lines[j]);
+                break;
+            }
+        }
+        return make_validation_error("Godot 3's GL driver rejected the shader: " + detail);
+    }
+    return std::nullopt;
+}
+
+// The runner's own one-line message, or the last "ERROR:" line Godot printed that is not known noise.
+std::string last_message(const std::vector<std::string>& lines) {
+    for (const std::string& line : lines) {
+        std::size_t at = line.find(kRunnerPrefix);
+        if (at != std::string::npos) return trim(line.substr(at + std::strlen(kRunnerPrefix)));
+    }
+    std::string last;
+    for (const std::string& line : lines) {
+        const std::string t = trim(line);
+        bool error = t.rfind("ERROR:", 0) == 0 || t.rfind("SCRIPT ERROR:", 0) == 0 || t.rfind("FATAL", 0) == 0;
+        if (!error || contains_nocase(t, "locale") || contains_nocase(t, "make_dir_recursive")) continue;
+        last = t;
+    }
+    return last;
+}
+
+Result<Image> read_output(const fs::path& path, int width, int height) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return make_validation_error("Godot 3 exited without writing the output pixels");
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t floats = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
+    if (bytes.size() != kOutputHeaderBytes + floats * sizeof(float) ||
+        std::memcmp(bytes.data(), kOutputMagic, 8) != 0)
+        return make_validation_error(fmt::format("the Godot 3 runner wrote a malformed output file ({} bytes)", bytes.size()));
+    uint32_t header[4];
+    std::memcpy(header, bytes.data() + 8, sizeof header);
+    if (header[0] != static_cast<uint32_t>(width) || header[1] != static_cast<uint32_t>(height))
+        return make_validation_error(fmt::format("the Godot 3 runner wrote {}x{} pixels, expected {}x{}", header[0],
+                                                 header[1], width, height));
+    Image image = Image::make(width, height);
+    std::memcpy(image.rgba.data(), bytes.data() + kOutputHeaderBytes, floats * sizeof(float));
+    return image;
+}
+
+}  // namespace
+
+Result<Image> render_godot3(const Godot3Job& job) {
+    static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
+    if (auto s = check_job(job); !s.ok()) return s.error();
+    auto params = params_json(job.params);
+    if (!params.ok()) return params.error();
+
+    const std::string godot = find_on_path("godot3");
+    const std::string xvfb = find_on_path("Xvfb");
+    if (godot.empty() || xvfb.empty())
+        return make_error(fmt::format("Godot 3 rendering needs {} ('{}' is not on PATH)", kPackages,
+                                      godot.empty() ? "godot3" : "Xvfb"));
+
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    const fs::path dir = scratch.value().path();
+    const fs::path project = dir / "project";
+    if (auto s = copy_runner(data_path("tools/godot3-runner"), project); !s.ok()) return s.error();
+
+    std::vector<std::string> user_args = {
+        "--shader=" + (dir / "shader.gdshader").string(),
+        "--width=" + std::to_string(job.width),
+        "--height=" + std::to_string(job.height),
+        std::string("--filter=") + (job.filter == SamplerFilter::Linear ? "linear" : "nearest"),
+        "--params=" + (dir / "params.json").string(),
+        "--frames=" + std::to_string(job.frames),
+        "--output=" + (dir / "output.raw").string(),
+    };
+    if (auto s = write_text(dir / "shader.gdshader", job.shader_code); !s.ok()) return s.error();
+    if (auto s = write_text(dir / "params.json", params.value()); !s.ok()) return s.error();
+    if (!job.input.empty()) {
+        if (auto s = write_file(dir / "input.raw", job.input.rgba.data(), job.input.rgba.size() * sizeof(float)); !s.ok())
+            return s.error();
+        user_args.push_back("--input=" + (dir / "input.raw").string());
+        user_args.push_back("--input-width=" + std::to_string(job.input.width));
+        user_args.push_back("--input-height=" + std::to_string(job.input.height));
+    }
+
+    auto server = start_xvfb(xvfb, dir);
+    if (!server.ok()) return server.error();
+
+    Pipe output;
+    if (auto s = open_pipe(output); !s.ok()) return s.error();
+    SpawnSpec spec;
+    spec.executable = godot;
+    spec.args = {"--path", project.string(), "--video-driver", "GLES3", "--audio-driver", "Dummy", "--"};
+    spec.args.insert(spec.args.end(), user_args.begin(), user_args.end());
+    // Godot's user:// and settings folders go to the scratch directory, not the user's home.
+    spec.env = child_environment({{"DISPLAY", server.value().display},
+                                  {"XDG_DATA_HOME", (dir / "data").string()},
+                                  {"XDG_CONFIG_HOME", (dir / "config").string()}});
+    spec.output_fd = output.write;
+    auto pid = spawn(spec);
+    output.close_write();
+    if (!pid.ok()) return pid.error();
+    ChildGuard godot_process(pid.value(), SIGKILL);
+
+    const auto deadline = Clock::now() + std::chrono::seconds(job.timeout_seconds);
+    std::string log;
+    bool finished = read_until_eof(output.read, deadline, log);
+    std::optional<int> status = finished ? wait_until(pid.value(), deadline) : std::nullopt;
+    if (!status) {
+        godot_process.stop();
+        return make_validation_error(fmt::format("Godot 3 did not finish within {} s and was killed", job.timeout_seconds));
+    }
+    godot_process.reaped();
+    server.value().process->stop();
+
+    const std::vector<std::string> lines = split_lines(log);
+    if (auto diagnostic = shader_diagnostic(lines)) return *diagnostic;
+    const std::string message = last_message(lines);
+    if (!WIFEXITED(*status) || WEXITSTATUS(*status) != 0) {
+        const std::string how = describe_status(*status);
+        // The runner's own refusals: 2 = the job's params or files, 3 = the shader or the render.
+        if (WIFEXITED(*status) && WEXITSTATUS(*status) == 2 && !message.empty())
+            return make_error("Godot 3 runner: " + message);
+        if (WIFEXITED(*status) && WEXITSTATUS(*status) == 3 && !message.empty())
+            return make_validation_error("Godot 3 runner: " + message);
+        bool crashed = WIFSIGNALED(*status) || log.find("handle_crash") != std::string::npos;
+        return make_validation_error(fmt::format("Godot 3 {} ({}){}", crashed ? "crashed" : "failed", how,
+                                                 message.empty() ? std::string() : ": " + message));
+    }
+    return read_output(dir / "output.raw", job.width, job.height);
+}
+
+std::string godot3_version() {
+    static const std::string version = [] {
+        const std::string godot = find_on_path("godot3");
+        if (godot.empty()) return std::string();
+        Pipe output;
+        if (!open_pipe(output).ok()) return std::string();
+        SpawnSpec spec;
+        spec.executable = godot;
+        spec.args = {"--version"};
+        spec.env = child_environment({}, {"XAUTHORITY"});
+        spec.output_fd = output.write;
+        auto pid = spawn(spec);
+        output.close_write();
+        if (!pid.ok()) return std::string();
+        ChildGuard process(pid.value(), SIGKILL);
+        const auto deadline = Clock::now() + std::chrono::seconds(10);
+        std::string text;
+        if (!read_until_eof(output.read, deadline, text) || !wait_until(pid.value(), deadline)) return std::string();
+        process.reaped();
+        // The version is the first line; Godot's locale complaints may follow on stderr.
+        for (const std::string& line : split_lines(text)) {
+            std::string t = trim(line);
+            if (!t.empty() && std::isdigit(static_cast<unsigned char>(t[0]))) return t;
+        }
+        return std::string();
+    }();
+    return version;
+}
+
+}  // namespace crtforge

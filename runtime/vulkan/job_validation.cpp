@@ -1,0 +1,169 @@
+#include "runtime/vulkan/job_validation.hpp"
+
+#include "runtime/common/job_checks.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "runtime/vulkan/spirv_inspect.hpp"
+
+namespace crtforge::vulkan {
+namespace {
+
+using detail::job_error;
+using detail::output_format_name;
+
+// The smallest of the limits an image of this size has to satisfy along one axis.
+uint32_t max_extent(const VkPhysicalDeviceLimits& limits, bool horizontal) {
+    uint32_t limit = limits.maxImageDimension2D;
+    limit = std::min(limit, horizontal ? limits.maxFramebufferWidth : limits.maxFramebufferHeight);
+    limit = std::min(limit, limits.maxViewportDimensions[horizontal ? 0 : 1]);
+    return limit;
+}
+
+Status check_size(const VulkanContext& context, const RenderJob& job) {
+    const auto& limits = context.limits();
+    auto clamp_int = [](uint32_t v) { return static_cast<int>(std::min<uint32_t>(v, 1u << 30)); };
+    detail::JobLimits job_limits{clamp_int(max_extent(limits, true)), clamp_int(max_extent(limits, false)),
+                                 clamp_int(limits.maxImageDimension2D), context.info().name,
+                                 "the device's maxImageDimension2D"};
+    return detail::check_job_extent(job.width, job.height, job.input, job_limits);
+}
+
+Status check_bindings(const VulkanContext& context, const RenderJob& job) {
+    const auto& limits = context.limits();
+    if (job.descriptor_set >= limits.maxBoundDescriptorSets) {
+        return job_error(fmt::format("descriptor set {} is beyond the device's maxBoundDescriptorSets of {}",
+                                     job.descriptor_set, limits.maxBoundDescriptorSets),
+                         "descriptor_set");
+    }
+    if (!job.uniform_data.empty() && job.uniform_binding == job.texture_binding) {
+        return job_error(fmt::format("uniform buffer and texture cannot share binding {}", job.uniform_binding),
+                         "uniform_binding");
+    }
+    if (job.uniform_data.size() > limits.maxUniformBufferRange) {
+        return job_error(fmt::format("uniform data is {} bytes, over the device's maxUniformBufferRange of {}",
+                                     job.uniform_data.size(), limits.maxUniformBufferRange),
+                         "uniform_data");
+    }
+    return Ok{};
+}
+
+// Every descriptor the module declares must be one the job provides, of the matching kind.
+Status check_resources(const SpirvInterface& module, const char* what, const RenderJob& job) {
+    for (const SpirvResource& r : module.resources) {
+        const std::string label = fmt::format("{} '{}' (set {}, binding {})", resource_kind_name(r.kind), r.name,
+                                              r.set, r.binding);
+        if (r.set != job.descriptor_set) {
+            return job_error(fmt::format("{} uses {}, but the job binds its resources in set {}", what, label,
+                                         job.descriptor_set),
+                             "descriptor_set");
+        }
+        if (r.array_size != 1) {
+            return job_error(fmt::format("{} declares {} as an array of descriptors; the engine binds single ones",
+                                         what, label),
+                             "descriptor_set");
+        }
+        if (r.binding == job.texture_binding && r.kind == SpirvResourceKind::CombinedImageSampler) continue;
+        if (r.binding == job.uniform_binding && r.kind == SpirvResourceKind::UniformBuffer) {
+            if (job.uniform_data.empty()) {
+                return job_error(fmt::format("{} declares {} but the job has no uniform data", what, label),
+                                 "uniform_data");
+            }
+            if (r.block_bytes > job.uniform_data.size()) {
+                return job_error(fmt::format("{} reads {} bytes of {} but the job's uniform data has only {}", what,
+                                             r.block_bytes, label, job.uniform_data.size()),
+                                 "uniform_data");
+            }
+            continue;
+        }
+        return job_error(fmt::format("{} uses {}, which the job does not provide (it binds a uniform buffer at {} "
+                                     "and a combined image sampler at {})",
+                                     what, label, job.uniform_binding, job.texture_binding),
+                         r.binding == job.uniform_binding ? "uniform_binding" : "texture_binding");
+    }
+    return Ok{};
+}
+
+Status check_module(const std::vector<uint32_t>& spirv, ExecutionModel model, const RenderJob& job) {
+    const bool vertex = model == ExecutionModel::Vertex;
+    const char* what = vertex ? "vertex shader" : "fragment shader";
+    const char* field = vertex ? "vertex_spirv" : "fragment_spirv";
+
+    auto inspected = inspect_spirv(spirv, what);
+    if (!inspected) return make_error(inspected.error().message, {}, 0, fmt::format("job.{}", field));
+    const SpirvInterface& module = inspected.value();
+
+    if (!has_entry_point(module, model, "main")) {
+        std::string found;
+        for (const auto& e : module.entry_points) found += (found.empty() ? "'" : ", '") + e.name + "'";
+        return job_error(fmt::format("{} has no {} entry point named 'main' (entry points: {})", what,
+                                     vertex ? "Vertex" : "Fragment", found.empty() ? "none" : found),
+                         field);
+    }
+    if (module.push_constants) {
+        return job_error(fmt::format("{} uses push constants; the engine passes parameters in a uniform block", what),
+                         field);
+    }
+    if (vertex && module.user_inputs) {
+        return job_error("vertex shader reads vertex attributes; the engine binds no vertex buffers "
+                         "(derive positions from gl_VertexIndex)",
+                         field);
+    }
+    return check_resources(module, what, job);
+}
+
+Result<VkFormat> pick_texture_format(const VulkanContext& context, const RenderJob& job, TextureTexels* texels) {
+    VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    if (job.filter == SamplerFilter::Linear) needed |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    // Full float where the device can sample (and filter) it; half float, which every Vulkan device
+    // can filter, otherwise.
+    if ((context.optimal_tiling_features(VK_FORMAT_R32G32B32A32_SFLOAT) & needed) == needed) {
+        *texels = TextureTexels::Rgba32Float;
+        return VK_FORMAT_R32G32B32A32_SFLOAT;
+    }
+    if ((context.optimal_tiling_features(VK_FORMAT_R16G16B16A16_SFLOAT) & needed) == needed) {
+        *texels = TextureTexels::Rgba16Float;
+        return VK_FORMAT_R16G16B16A16_SFLOAT;
+    }
+    return job_error(fmt::format("device '{}' cannot sample an RGBA32F or RGBA16F texture with this filter",
+                                 context.info().name),
+                     "filter");
+}
+
+}  // namespace
+
+VkFormat output_vk_format(OutputFormat format) {
+    switch (format) {
+        case OutputFormat::Rgba8Unorm: return VK_FORMAT_R8G8B8A8_UNORM;
+        case OutputFormat::Rgba8Srgb: return VK_FORMAT_R8G8B8A8_SRGB;
+        case OutputFormat::Rgba16Float: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    }
+    return VK_FORMAT_UNDEFINED;
+}
+
+Result<JobPlan> check_job(const VulkanContext& context, const RenderJob& job) {
+    if (auto s = check_size(context, job); !s) return s.error();
+    if (auto s = check_bindings(context, job); !s) return s.error();
+    if (auto s = check_module(job.vertex_spirv, ExecutionModel::Vertex, job); !s) return s.error();
+    if (auto s = check_module(job.fragment_spirv, ExecutionModel::Fragment, job); !s) return s.error();
+
+    JobPlan plan;
+    plan.output_format = output_vk_format(job.format);
+    const VkFormatFeatureFlags target_needs = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
+    if (plan.output_format == VK_FORMAT_UNDEFINED ||
+        (context.optimal_tiling_features(plan.output_format) & target_needs) != target_needs) {
+        return job_error(fmt::format("device '{}' cannot render to {}", context.info().name,
+                                     output_format_name(job.format)),
+                         "format");
+    }
+    auto texture = pick_texture_format(context, job, &plan.texels);
+    if (!texture) return texture.error();
+    plan.texture_format = texture.value();
+    return plan;
+}
+
+}  // namespace crtforge::vulkan

@@ -1,0 +1,44 @@
+#include "runtime/vulkan/vulkan_check.hpp"
+
+#include <fmt/core.h>
+
+namespace crtforge::vulkan {
+
+std::string vk_result_name(VkResult result) {
+    switch (result) {
+#define CRTFORGE_VK_RESULT(name) \
+    case name: return #name;
+        CRTFORGE_VK_RESULT(VK_SUCCESS)
+        CRTFORGE_VK_RESULT(VK_NOT_READY)
+        CRTFORGE_VK_RESULT(VK_TIMEOUT)
+        CRTFORGE_VK_RESULT(VK_EVENT_SET)
+        CRTFORGE_VK_RESULT(VK_EVENT_RESET)
+        CRTFORGE_VK_RESULT(VK_INCOMPLETE)
+        CRTFORGE_VK_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY)
+        CRTFORGE_VK_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        CRTFORGE_VK_RESULT(VK_ERROR_INITIALIZATION_FAILED)
+        CRTFORGE_VK_RESULT(VK_ERROR_DEVICE_LOST)
+        CRTFORGE_VK_RESULT(VK_ERROR_MEMORY_MAP_FAILED)
+        CRTFORGE_VK_RESULT(VK_ERROR_LAYER_NOT_PRESENT)
+        CRTFORGE_VK_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT)
+        CRTFORGE_VK_RESULT(VK_ERROR_FEATURE_NOT_PRESENT)
+        CRTFORGE_VK_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER)
+        CRTFORGE_VK_RESULT(VK_ERROR_TOO_MANY_OBJECTS)
+        CRTFORGE_VK_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        CRTFORGE_VK_RESULT(VK_ERROR_FRAGMENTED_POOL)
+        CRTFORGE_VK_RESULT(VK_ERROR_UNKNOWN)
+        CRTFORGE_VK_RESULT(VK_ERROR_OUT_OF_POOL_MEMORY)
+        CRTFORGE_VK_RESULT(VK_ERROR_INVALID_EXTERNAL_HANDLE)
+        CRTFORGE_VK_RESULT(VK_ERROR_FRAGMENTATION)
+        CRTFORGE_VK_RESULT(VK_ERROR_INVALID_SHADER_NV)
+        CRTFORGE_VK_RESULT(VK_ERROR_VALIDATION_FAILED_EXT)
+#undef CRTFORGE_VK_RESULT
+        default: return fmt::format("VkResult({})", static_cast<int>(result));
+    }
+}
+
+Diagnostic vk_error(std::string_view call, VkResult result) {
+    return make_error(fmt::format("{} failed: {}", call, vk_result_name(result)));
+}
+
+}  // namespace crtforge::vulkan

@@ -1,0 +1,152 @@
+#include "runtime/vulkan/vulkan_commands.hpp"
+
+#include <cstdint>
+
+#include "runtime/vulkan/vulkan_check.hpp"
+#include "runtime/vulkan/vulkan_handle.hpp"
+
+namespace crtforge::vulkan {
+namespace {
+
+constexpr VkImageSubresourceRange kColorRange{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+constexpr VkImageSubresourceLayers kColorLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+
+void image_barrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkImageLayout to,
+                   VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
+                   VkPipelineStageFlags dst_stage) {
+    VkImageMemoryBarrier barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    barrier.srcAccessMask = src_access;
+    barrier.dstAccessMask = dst_access;
+    barrier.oldLayout = from;
+    barrier.newLayout = to;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image;
+    barrier.subresourceRange = kColorRange;
+    vkCmdPipelineBarrier(commands, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+}
+
+// Tightly packed copy region covering a whole single-layer image.
+VkBufferImageCopy whole_image(const DeviceImage& image) {
+    VkBufferImageCopy region{};
+    region.bufferOffset = 0;
+    region.bufferRowLength = 0;    // 0 = rows are packed: width texels apart
+    region.bufferImageHeight = 0;
+    region.imageSubresource = kColorLayers;
+    region.imageOffset = {0, 0, 0};
+    region.imageExtent = {image.extent.width, image.extent.height, 1};
+    return region;
+}
+
+void record_upload(VkCommandBuffer commands, const HostBuffer& staging, const DeviceImage& texture) {
+    image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    const VkBufferImageCopy region = whole_image(texture);
+    vkCmdCopyBufferToImage(commands, staging.buffer.get(), texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           1, &region);
+    // Sampled from both stages' point of view: the vertex shader could sample too.
+    image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+}
+
+void record_draw(VkCommandBuffer commands, const PassCommands& c) {
+    VkClearValue clear{};
+    clear.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    VkRenderPassBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    begin.renderPass = c.pass.render_pass.get();
+    begin.framebuffer = c.framebuffer;
+    begin.renderArea = {{0, 0}, c.target.extent};
+    begin.clearValueCount = 1;
+    begin.pClearValues = &clear;
+    vkCmdBeginRenderPass(commands, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, c.pass.pipeline.get());
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, c.pass.pipeline_layout.get(),
+                            c.descriptor_set_index, 1, &c.descriptor_set, 0, nullptr);
+    vkCmdDraw(commands, 3, 1, 0, 0);  // one triangle covering the viewport, positions from gl_VertexIndex
+    vkCmdEndRenderPass(commands);     // leaves the target in TRANSFER_SRC_OPTIMAL
+}
+
+void record_readback(VkCommandBuffer commands, const DeviceImage& target, const HostBuffer& readback) {
+    const VkBufferImageCopy region = whole_image(target);
+    vkCmdCopyImageToBuffer(commands, target.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           readback.buffer.get(), 1, &region);
+    // Make the copy visible to the host's reads after the fence.
+    VkBufferMemoryBarrier barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.buffer = readback.buffer.get();
+    barrier.offset = 0;
+    barrier.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
+                         &barrier, 0, nullptr);
+}
+
+}  // namespace
+
+void record_pass(VkCommandBuffer commands, const PassCommands& pass) {
+    record_upload(commands, pass.staging, pass.texture);
+    record_draw(commands, pass);
+    record_readback(commands, pass.target, pass.readback);
+}
+
+Status submit_and_wait(const VulkanContext& context, const std::function<void(VkCommandBuffer)>& record) {
+    const VkDevice device = context.device();
+
+    VkCommandPoolCreateInfo pool_info{};
+    pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pool_info.queueFamilyIndex = context.queue_family();
+    VkCommandPool pool_handle = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateCommandPool(device, &pool_info, nullptr, &pool_handle); r != VK_SUCCESS) {
+        return vk_error("vkCreateCommandPool", r);
+    }
+    UniqueCommandPool pool(device, pool_handle);  // frees the command buffer with it
+
+    VkCommandBufferAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    alloc.commandPool = pool.get();
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer commands = VK_NULL_HANDLE;
+    if (VkResult r = vkAllocateCommandBuffers(device, &alloc, &commands); r != VK_SUCCESS) {
+        return vk_error("vkAllocateCommandBuffers", r);
+    }
+
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    if (VkResult r = vkBeginCommandBuffer(commands, &begin); r != VK_SUCCESS) return vk_error("vkBeginCommandBuffer", r);
+    record(commands);
+    if (VkResult r = vkEndCommandBuffer(commands); r != VK_SUCCESS) return vk_error("vkEndCommandBuffer", r);
+
+    VkFenceCreateInfo fence_info{};
+    fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    VkFence fence_handle = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateFence(device, &fence_info, nullptr, &fence_handle); r != VK_SUCCESS) {
+        return vk_error("vkCreateFence", r);
+    }
+    UniqueFence fence(device, fence_handle);
+
+    VkSubmitInfo submit{};
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands;
+    if (VkResult r = vkQueueSubmit(context.queue(), 1, &submit, fence.get()); r != VK_SUCCESS) {
+        return vk_error("vkQueueSubmit", r);
+    }
+    // No timeout: returning early would free objects the device may still be using. A shader
+    // that never terminates hangs here, and the caller's own timeout (CTest's) has to catch it.
+    if (VkResult r = vkWaitForFences(device, 1, &fence_handle, VK_TRUE, UINT64_MAX); r != VK_SUCCESS) {
+        return vk_error("vkWaitForFences", r);
+    }
+    return Ok{};
+}
+
+}  // namespace crtforge::vulkan

@@ -1,0 +1,34 @@
+// Recording and running the command buffer of one job:
+//   upload the input texture -> render the full-screen triangle -> copy the target to a
+//   host-visible buffer, each step ordered after the previous one by a barrier.
+#pragma once
+
+#include <functional>
+
+#include <vulkan/vulkan.h>
+
+#include "crtforge/diagnostic.hpp"
+#include "runtime/vulkan/vulkan_context.hpp"
+#include "runtime/vulkan/vulkan_pipeline.hpp"
+#include "runtime/vulkan/vulkan_resources.hpp"
+
+namespace crtforge::vulkan {
+
+struct PassCommands {
+    const HostBuffer& staging;       // input texels, tightly packed
+    const DeviceImage& texture;      // receives `staging`, then is sampled
+    const GraphicsPass& pass;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
+    uint32_t descriptor_set_index = 0;
+    const DeviceImage& target;       // the colour attachment
+    const HostBuffer& readback;      // receives `target`, tightly packed
+};
+
+void record_pass(VkCommandBuffer commands, const PassCommands& pass);
+
+// Records with `record` into a fresh one-time command buffer, submits it to the context's queue
+// and blocks until the device has finished it.
+Status submit_and_wait(const VulkanContext& context, const std::function<void(VkCommandBuffer)>& record);
+
+}  // namespace crtforge::vulkan

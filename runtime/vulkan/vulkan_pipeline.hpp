@@ -1,0 +1,40 @@
+// The graphics pipeline for one full-screen pass and the descriptor set that feeds it.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/runtime/render_engine.hpp"
+#include "runtime/vulkan/vulkan_context.hpp"
+#include "runtime/vulkan/vulkan_handle.hpp"
+#include "runtime/vulkan/vulkan_resources.hpp"
+
+namespace crtforge::vulkan {
+
+// Members are declared in creation order, so they are destroyed pipeline-first.
+struct GraphicsPass {
+    UniqueRenderPass render_pass;
+    UniqueDescriptorSetLayout empty_set_layout;  // fills sets below job.descriptor_set
+    UniqueDescriptorSetLayout set_layout;        // the job's uniform buffer + combined image sampler
+    UniquePipelineLayout pipeline_layout;
+    UniquePipeline pipeline;
+};
+
+// One colour attachment of `color_format`, cleared to transparent black and left in
+// TRANSFER_SRC_OPTIMAL for the readback copy; viewport and scissor fixed to the job's size.
+Result<GraphicsPass> create_graphics_pass(const VulkanContext& context, const RenderJob& job, VkFormat color_format);
+
+Result<UniqueFramebuffer> create_framebuffer(const VulkanContext& context, VkRenderPass render_pass,
+                                             const DeviceImage& target);
+
+struct DescriptorSet {
+    UniqueDescriptorPool pool;  // owns `set`
+    VkDescriptorSet set = VK_NULL_HANDLE;
+};
+
+// Writes the job's bindings: `uniforms` (null when the job has no uniform data) and the texture.
+Result<DescriptorSet> create_descriptor_set(const VulkanContext& context, const GraphicsPass& pass,
+                                            const RenderJob& job, const HostBuffer* uniforms,
+                                            const DeviceImage& texture, VkSampler sampler);
+
+}  // namespace crtforge::vulkan

@@ -1,0 +1,170 @@
+#include "runtime/vulkan/vulkan_resources.hpp"
+
+#include <fmt/core.h>
+
+#include "runtime/vulkan/vulkan_check.hpp"
+
+namespace crtforge::vulkan {
+namespace {
+
+// The first memory type allowed by `type_bits` that has all of `required`; nullopt-like -1 if none.
+int find_memory_type(const VkPhysicalDeviceMemoryProperties& memory, uint32_t type_bits,
+                     VkMemoryPropertyFlags required) {
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+        if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & required) == required) {
+            return static_cast<int>(i);
+        }
+    }
+    return -1;
+}
+
+Result<UniqueMemory> allocate(const VulkanContext& context, const VkMemoryRequirements& needs, int type,
+                              const char* what) {
+    if (type < 0) return make_error(fmt::format("Vulkan device '{}' has no memory type for the {}", context.info().name, what));
+    VkMemoryAllocateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    info.allocationSize = needs.size;
+    info.memoryTypeIndex = static_cast<uint32_t>(type);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    if (VkResult r = vkAllocateMemory(context.device(), &info, nullptr, &memory); r != VK_SUCCESS) {
+        return make_error(fmt::format("cannot allocate {} bytes for the {}: vkAllocateMemory failed: {}", needs.size,
+                                      what, vk_result_name(r)));
+    }
+    return UniqueMemory(context.device(), memory);
+}
+
+VkMappedMemoryRange whole_range(const HostBuffer& buffer) {
+    VkMappedMemoryRange range{};
+    range.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE;
+    range.memory = buffer.memory.get();
+    range.offset = 0;
+    range.size = VK_WHOLE_SIZE;  // whole mapping: sidesteps nonCoherentAtomSize alignment rules
+    return range;
+}
+
+}  // namespace
+
+Result<HostBuffer> create_host_buffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage) {
+    const VkDevice device = context.device();
+    HostBuffer out;
+    out.size = size;
+
+    VkBufferCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    info.size = size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateBuffer(device, &info, nullptr, &buffer); r != VK_SUCCESS) return vk_error("vkCreateBuffer", r);
+    out.buffer = UniqueBuffer(device, buffer);
+
+    VkMemoryRequirements needs{};
+    vkGetBufferMemoryRequirements(device, buffer, &needs);
+    // Prefer coherent memory (no flush/invalidate); any host-visible type still works.
+    int type = find_memory_type(context.memory_properties(), needs.memoryTypeBits,
+                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    if (type < 0) {
+        type = find_memory_type(context.memory_properties(), needs.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+        out.coherent = false;
+    }
+    auto memory = allocate(context, needs, type, "host-visible buffer");
+    if (!memory) return memory.error();
+    out.memory = std::move(memory).value();
+
+    if (VkResult r = vkBindBufferMemory(device, buffer, out.memory.get(), 0); r != VK_SUCCESS) {
+        return vk_error("vkBindBufferMemory", r);
+    }
+    if (VkResult r = vkMapMemory(device, out.memory.get(), 0, VK_WHOLE_SIZE, 0, &out.mapped); r != VK_SUCCESS) {
+        return vk_error("vkMapMemory", r);
+    }
+    return out;
+}
+
+Status flush(const VulkanContext& context, const HostBuffer& buffer) {
+    if (buffer.coherent) return Ok{};
+    VkMappedMemoryRange range = whole_range(buffer);
+    if (VkResult r = vkFlushMappedMemoryRanges(context.device(), 1, &range); r != VK_SUCCESS) {
+        return vk_error("vkFlushMappedMemoryRanges", r);
+    }
+    return Ok{};
+}
+
+Status invalidate(const VulkanContext& context, const HostBuffer& buffer) {
+    if (buffer.coherent) return Ok{};
+    VkMappedMemoryRange range = whole_range(buffer);
+    if (VkResult r = vkInvalidateMappedMemoryRanges(context.device(), 1, &range); r != VK_SUCCESS) {
+        return vk_error("vkInvalidateMappedMemoryRanges", r);
+    }
+    return Ok{};
+}
+
+Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat format, uint32_t width,
+                                        uint32_t height, VkImageUsageFlags usage) {
+    const VkDevice device = context.device();
+    DeviceImage out;
+    out.format = format;
+    out.extent = {width, height};
+
+    VkImageCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width, height, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage image = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateImage(device, &info, nullptr, &image); r != VK_SUCCESS) return vk_error("vkCreateImage", r);
+    out.image = UniqueImage(device, image);
+
+    VkMemoryRequirements needs{};
+    vkGetImageMemoryRequirements(device, image, &needs);
+    // Device-local where the device has it; a CPU device like lavapipe may not flag any type so.
+    int type = find_memory_type(context.memory_properties(), needs.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type < 0) type = find_memory_type(context.memory_properties(), needs.memoryTypeBits, 0);
+    auto memory = allocate(context, needs, type, "image");
+    if (!memory) return memory.error();
+    out.memory = std::move(memory).value();
+    if (VkResult r = vkBindImageMemory(device, image, out.memory.get(), 0); r != VK_SUCCESS) {
+        return vk_error("vkBindImageMemory", r);
+    }
+
+    VkImageViewCreateInfo view{};
+    view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+    view.image = image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = format;
+    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView handle = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateImageView(device, &view, nullptr, &handle); r != VK_SUCCESS) {
+        return vk_error("vkCreateImageView", r);
+    }
+    out.view = UniqueImageView(device, handle);
+    return out;
+}
+
+Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter) {
+    const VkFilter vk_filter = filter == SamplerFilter::Linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    VkSamplerCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
+    info.magFilter = vk_filter;
+    info.minFilter = vk_filter;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.minLod = 0.0f;
+    info.maxLod = 0.0f;  // one level only
+    info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
+    VkSampler sampler = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateSampler(context.device(), &info, nullptr, &sampler); r != VK_SUCCESS) {
+        return vk_error("vkCreateSampler", r);
+    }
+    return UniqueSampler(context.device(), sampler);
+}
+
+}  // namespace crtforge::vulkan

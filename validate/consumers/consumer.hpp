@@ -1,0 +1,97 @@
+// A consumer proves a target's output by doing with it what the target's users do: the compiler of
+// its language accepts every shader file, and it renders frames that are judged against the
+// goldens. Each lives in its own file in this folder; a TargetInfo names its consumer by key, and
+// consumer_registry.cpp maps the keys to them.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "crtforge/reflection.hpp"
+#include "crtforge/runtime/dawn_engine.hpp"
+#include "crtforge/runtime/gl_engine.hpp"
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/spirv_compiler.hpp"
+#include "crtforge/validate/target_render.hpp"
+
+namespace crtforge {
+
+// The engines one validation thread works with, created on first use and reused (Vulkan, GL core,
+// GL ES; Dawn is one per process), and the SPIR-V that consumer front ends (HLSL, the Godot shim)
+// made of a target's text — compiled once per distinct source, since every golden of a preset
+// renders the same shader.
+class ConsumerEngines {
+public:
+    explicit ConsumerEngines(EngineOptions vulkan_options) : vulkan_options_(std::move(vulkan_options)) {}
+
+    Result<RenderEngine*> vulkan();
+    Result<GlEngine*> gl(bool es);
+    Result<DawnEngine*> dawn() { return shared_dawn_engine(); }
+    // "llvmpipe (LLVM 15.0.6, 256 bits)", or "unavailable".
+    std::string vulkan_device_name();
+
+    struct Module {
+        SpirvBinary spirv;
+        Reflection reflection;
+    };
+    // glslang (GLSL or HLSL front end) on a consumer's source; a rejection is ErrorKind::Validation.
+    Result<const Module*> front_end(const std::string& source, const CompileOptions& options);
+
+private:
+    EngineOptions vulkan_options_;
+    std::unique_ptr<RenderEngine> vulkan_;
+    std::unique_ptr<GlEngine> gl_core_, gl_es_;
+    std::map<std::string, Module> modules_;
+};
+
+class Consumer {
+public:
+    virtual ~Consumer() = default;
+    // Feeds one shader file (OutputFile::is_shader()) to the compiler its users run. A rejection is
+    // ErrorKind::Validation; a missing tool (no driver, no Node.js) keeps its own kind.
+    virtual Status compile(const OutputFile& file, ConsumerEngines& engines) const = 0;
+    // Renders the request's frame with the target's files, as a host of that language would.
+    virtual Result<Image> render(const TargetRenderRequest& request, ConsumerEngines& engines) const = 0;
+    // One line naming what really runs the shader, for reports.
+    virtual std::string describe(ConsumerEngines& engines) const = 0;
+};
+
+// The consumer registered under `key`, or nullptr.
+const Consumer* find_consumer(const std::string& key);
+
+// The consumers, one function per file of this folder.
+const Consumer& vulkan_consumer();
+const Consumer& gl_consumer();
+const Consumer& gl_es_consumer();
+const Consumer& hlsl_consumer();
+const Consumer& godot4_shim_consumer();
+const Consumer& godot3_consumer();
+const Consumer& dawn_consumer();
+
+// ---- shared by the consumers -------------------------------------------------------------------
+
+// The file of `output` with manifest role `role`; an error naming the target when there is none.
+Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, const std::string& role);
+
+// The std140 bytes of the variant's uniform block for the request's frame (empty: no block).
+Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& request);
+
+// The fields the Vulkan, GL and Dawn jobs share, from the request.
+template <typename Job>
+Job request_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms) {
+    Job job;
+    job.input = r.input;
+    job.filter = r.filter;
+    job.width = r.width;
+    job.height = r.height;
+    job.format = r.format;
+    job.uniform_data = std::move(uniforms);
+    return job;
+}
+
+// The same diagnostic as a validation failure: crtforge's output was rejected.
+Diagnostic as_validation(Diagnostic d);
+
+}  // namespace crtforge

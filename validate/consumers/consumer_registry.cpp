@@ -1,0 +1,73 @@
+// Consumer keys (as TargetInfo::consumer names them) -> consumers, and what the consumers share.
+#include <map>
+
+#include "crtforge/cache.hpp"
+#include "crtforge/uniforms.hpp"
+#include "validate/consumers/consumer.hpp"
+
+namespace crtforge {
+
+const Consumer* find_consumer(const std::string& key) {
+    static const std::map<std::string, const Consumer*> consumers = {
+        {"vulkan", &vulkan_consumer()},   {"gl", &gl_consumer()},          {"gl-es", &gl_es_consumer()},
+        {"hlsl", &hlsl_consumer()},       {"godot4-shim", &godot4_shim_consumer()},
+        {"godot3", &godot3_consumer()},   {"dawn", &dawn_consumer()},
+    };
+    auto it = consumers.find(key);
+    return it == consumers.end() ? nullptr : it->second;
+}
+
+Result<RenderEngine*> ConsumerEngines::vulkan() {
+    if (!vulkan_) {
+        auto engine = create_vulkan_engine(vulkan_options_);
+        if (!engine.ok()) return engine.error();
+        vulkan_ = std::move(engine.value());
+    }
+    return vulkan_.get();
+}
+
+Result<GlEngine*> ConsumerEngines::gl(bool es) {
+    auto& slot = es ? gl_es_ : gl_core_;
+    if (!slot) {
+        auto engine = create_gl_engine(es ? GlApi::Es : GlApi::DesktopCore);
+        if (!engine.ok()) return engine.error();
+        slot = std::move(engine.value());
+    }
+    return slot.get();
+}
+
+std::string ConsumerEngines::vulkan_device_name() {
+    auto v = vulkan();
+    return v.ok() ? v.value()->device().name : std::string("unavailable");
+}
+
+Result<const ConsumerEngines::Module*> ConsumerEngines::front_end(const std::string& source, const CompileOptions& options) {
+    const std::string key = Cache::key({source, shader_stage_name(options.stage),
+                                        options.language == SourceLanguage::Hlsl ? "hlsl" : "glsl"});
+    auto found = modules_.find(key);
+    if (found != modules_.end()) return &found->second;
+    auto spirv = compile_to_spirv(source, options);
+    if (!spirv.ok()) return as_validation(spirv.error());
+    auto reflection = reflect(spirv.value());
+    if (!reflection.ok()) return reflection.error();
+    return &modules_.emplace(key, Module{std::move(spirv.value()), std::move(reflection.value())}).first->second;
+}
+
+Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, const std::string& role) {
+    if (!request.output) return make_error(std::string("render request without the files of target ") + target_info(request.target).name);
+    for (const auto& f : request.output->files)
+        if (f.manifest_role() == role) return &f;
+    return make_error(std::string(target_info(request.target).name) + " output has no " + role + " file");
+}
+
+Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& r) {
+    FrameInfo frame{r.width, r.height, r.input.width, r.input.height, r.time};
+    return pack_uniforms(*r.compiled, frame, r.overrides);
+}
+
+Diagnostic as_validation(Diagnostic d) {
+    d.kind = ErrorKind::Validation;
+    return d;
+}
+
+}  // namespace crtforge

@@ -1,0 +1,44 @@
+// The Godot shim: turns a crtforge canvas_item shader back into Vulkan GLSL by wrapping it in a
+// prelude that declares what Godot itself would provide — TEXTURE / screen texture, UV / SCREEN_UV,
+// COLOR, TEXTURE_PIXEL_SIZE, SCREEN_PIXEL_SIZE, TIME — and turning each `uniform T name : hint =
+// value;` into a member of one std140 block. Used to compile-check both dialects and to render
+// godot4 (no Godot 4 is installable here).
+//
+// Limits: it understands the dialect crtforge emits (one uniform declaration per line, no
+// render_mode, no vertex()/light() functions, no varyings); it does not implement Godot's own
+// compiler checks, so it proves the shader is valid GLSL with Godot's builtins and renders the same
+// math, not that every Godot version accepts every construct.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/value.hpp"
+
+namespace crtforge {
+class ConsumerEngines;
+}
+
+namespace crtforge::consumers {
+
+struct ShimUniform {
+    std::string type;     // float, int, vec3, vec4, sampler2D
+    std::string name;
+    std::string value;    // the declaration's default, as written (may be empty)
+};
+
+struct ShimShader {
+    std::string glsl;                    // Vulkan GLSL 450 for glslang
+    std::vector<ShimUniform> uniforms;   // non-sampler uniforms, in declaration order
+    bool screen_mode = false;            // reads SCREEN_UV and the screen texture
+};
+
+Result<ShimShader> wrap_in_shim(const std::string& godot_shader, int godot_version);
+
+// The compile check both Godot consumers run on each shader: wrapped in the shim, glslang must
+// accept it. A rejection is ErrorKind::Validation.
+Status compile_through_shim(const std::string& godot_shader, int godot_version, ConsumerEngines& engines);
+
+}  // namespace crtforge::consumers

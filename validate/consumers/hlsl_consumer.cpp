@@ -1,0 +1,65 @@
+// "hlsl": HLSL as a D3D host compiles it, through glslang's HLSL front end — each file must compile
+// (then pass spirv-val), and the pair compiled to SPIR-V renders on Vulkan with D3D's y-up clip
+// space emulated (rows flipped back), as a D3D-to-Vulkan layer would run it.
+#include <fmt/format.h>
+
+#include "validate/consumers/consumer.hpp"
+
+namespace crtforge {
+
+namespace {
+
+void flip_rows(Image& image) {
+    const size_t row = static_cast<size_t>(image.width) * 4;
+    for (int y = 0; y < image.height / 2; ++y)
+        std::swap_ranges(image.rgba.begin() + y * row, image.rgba.begin() + (y + 1) * row,
+                         image.rgba.begin() + (image.height - 1 - y) * row);
+}
+
+class HlslConsumer final : public Consumer {
+public:
+    Status compile(const OutputFile& f, ConsumerEngines&) const override {
+        auto status = check_hlsl(f.data, f.stage, "main");
+        if (!status.ok()) return as_validation(status.error());
+        return status;
+    }
+
+    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
+        auto uniforms = variant_uniforms(r);
+        if (!uniforms.ok()) return uniforms.error();
+        auto job = request_job<RenderJob>(r, std::move(uniforms.value()));
+        for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
+            auto file = file_with_role(r, stage == ShaderStage::Vertex ? "vertex" : "fragment");
+            if (!file.ok()) return file.error();
+            CompileOptions options;
+            options.stage = stage;
+            options.language = SourceLanguage::Hlsl;
+            options.optimize = false;
+            options.source_name = fmt::format("<{} {}>", target_info(r.target).name, shader_stage_name(stage));
+            auto module = engines.front_end(file.value()->data, options);
+            if (!module.ok()) return module.error();
+            (stage == ShaderStage::Vertex ? job.vertex_spirv : job.fragment_spirv) = module.value()->spirv;
+        }
+        auto engine = engines.vulkan();
+        if (!engine.ok()) return engine.error();
+        auto image = engine.value()->render(job);
+        if (!image.ok()) return as_validation(image.error());
+        // The vertex shader targets D3D's y-up clip space; on Vulkan that draws the picture upside
+        // down, exactly as D3D would show it the right way up. Flip back to compare.
+        flip_rows(image.value());
+        return image;
+    }
+
+    std::string describe(ConsumerEngines& engines) const override {
+        return "glslang HLSL -> SPIR-V -> Vulkan: " + engines.vulkan_device_name();
+    }
+};
+
+}  // namespace
+
+const Consumer& hlsl_consumer() {
+    static const HlslConsumer consumer;
+    return consumer;
+}
+
+}  // namespace crtforge
