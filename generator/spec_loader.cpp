@@ -23,6 +23,14 @@ const char* hook_name(Hook hook) {
     return "?";
 }
 
+const char* param_role_name(ParamRole role) {
+    switch (role) {
+        case ParamRole::None: return "";
+        case ParamRole::AngularSpeed: return "angular_speed";
+    }
+    return "?";
+}
+
 const char* builtin_name(Builtin builtin) {
     switch (builtin) {
         case Builtin::OutputSize: return "outputSize";
@@ -63,7 +71,7 @@ const FormSpec* StageSpec::find_form(const std::string& form) const {
 namespace {
 
 Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const std::string& prefix) {
-    if (auto s = r.only_keys(t, {"name", "type", "range", "step", "values", "default", "unit", "doc", "runtime"}, prefix); !s.ok())
+    if (auto s = r.only_keys(t, {"name", "type", "range", "step", "values", "default", "unit", "doc", "runtime", "role"}, prefix); !s.ok())
         return s.error();
     ParamSpec p;
     p.where = {r.path(), r.line_of(t)};
@@ -131,6 +139,16 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
     auto runtime = r.boolean(t, "runtime", field);
     if (!runtime.ok()) return runtime.error();
     p.runtime = runtime.value().value_or(false);
+    auto role = r.string(t, "role", field, false);
+    if (!role.ok()) return role.error();
+    if (role.value() == param_role_name(ParamRole::AngularSpeed)) {
+        if (p.type != ParamType::Float)
+            return r.error(t.get("role"), join_field(field, "role"), "an angular_speed param must be a float");
+        p.role = ParamRole::AngularSpeed;
+    } else if (!role.value().empty()) {
+        return r.error(t.get("role"), join_field(field, "role"),
+                       "'" + role.value() + "' is not a role (angular_speed: radians per second multiplied by time)");
+    }
     // Enums and bools select code at generation time; WGSL also has no bool in uniform buffers.
     if (p.runtime && (p.type == ParamType::Enum || p.type == ParamType::Bool))
         return r.error(t.get("runtime"), join_field(field, "runtime"),
@@ -254,6 +272,17 @@ Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& p
                            "the values of '" + stage.selector + "' must be the form names, in the same order");
     }
 
+    // A speed multiplied by time belongs to forms that read time.
+    for (const auto& p : stage.params) {
+        if (p.role != ParamRole::AngularSpeed) continue;
+        for (const auto& f : stage.forms) {
+            const bool reads = std::find(f.params.begin(), f.params.end(), p.name) != f.params.end() ||
+                               std::find(stage.common_params.begin(), stage.common_params.end(), p.name) != stage.common_params.end();
+            if (reads && std::find(f.builtins.begin(), f.builtins.end(), Builtin::Time) == f.builtins.end())
+                return make_error("has role angular_speed but form '" + f.name + "' reads it without the time builtin",
+                                  path, p.where.line, "param." + p.name + ".role");
+        }
+    }
     // Every param must be read by something; an unused param is a spec bug.
     for (const auto& p : stage.params) {
         bool used = p.name == stage.selector ||

@@ -127,3 +127,33 @@ TEST_CASE("the shim rejects what is not a crtforge canvas_item shader", "[godot]
     CHECK(r.error().kind == ErrorKind::Validation);
     CHECK_THAT(r.error().message, Catch::Contains("undefinedThing"));
 }
+
+TEST_CASE("the TIME-wrap rule follows the spec's angular_speed role, not a param's name", "[godot]") {
+    test::ScratchTemplates scratch;
+    auto rename = [&](const std::string& rel) {
+        std::string text = scratch.read(rel);
+        for (size_t at = text.find("pulseSpeed"); at != std::string::npos; at = text.find("pulseSpeed", at))
+            text.replace(at, 10, "scrollRate");
+        scratch.write(rel, text);
+    };
+    for (const char* rel : {"stages/glow.toml", "stages/glow.glsl", "presets/crt-pulse.toml"}) rename(rel);
+    auto emit_shader = [&]() {
+        auto lib = scratch.load();
+        REQUIRE(lib.ok());
+        CompiledVariant c = test::compile_or_fail(*lib.value(), "crt-pulse");
+        auto out = emit_target(c, TargetId::Godot4, Cache());
+        REQUIRE(out.ok());
+        return file(out.value(), "shader").data;
+    };
+    const std::string renamed = emit_shader();
+    CHECK_THAT(renamed, Catch::Contains("round(scrollRate * 3600.0 / 6.28318530717959)"));
+    CHECK_THAT(renamed, Catch::Contains("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): scrollRate is"));
+
+    // Without the role the speed is just a number: TIME goes in as it is.
+    std::string spec = scratch.read("stages/glow.toml");
+    spec.erase(spec.find("role = \"angular_speed\"\n"), std::string("role = \"angular_speed\"\n").size());
+    scratch.write("stages/glow.toml", spec);
+    const std::string plain = emit_shader();
+    CHECK_THAT(plain, !Catch::Contains("round(scrollRate"));
+    CHECK_THAT(plain, Catch::Contains("TIME * scrollRate"));
+}

@@ -154,6 +154,11 @@ TEST_CASE("invalid stage specs name file, line and field", "[spec][errors]") {
         {"selector values differ from forms", mutate("values = [\"one\", \"two\"]", "values = [\"two\", \"one\"]"), 4, "selector", "form names"},
         {"selector not enum", mutate("selector = \"demoForm\"", "selector = \"gain\""), 4, "selector", "enum param"},
         {"unused param", mutate("params = [\"taps\", \"flip\"]", "params = [\"taps\"]"), 31, "param.flip", "not read by any form"},
+        {"unknown role", mutate("unit = \"x\"", "unit = \"x\"\nrole = \"speed\""), 21, "param.gain.role", "not a role"},
+        {"angular_speed on an int", mutate("doc = \"Number of taps\"", "doc = \"Number of taps\"\nrole = \"angular_speed\""), 30,
+         "param.taps.role", "must be a float"},
+        {"angular_speed read without time", mutate("unit = \"x\"", "unit = \"x\"\nrole = \"angular_speed\""), 14,
+         "param.gain.role", "without the time builtin"},
         {"no forms", std::string(kValidSpec).substr(0, std::string(kValidSpec).find("[[form]]")), 1, "form", "at least one"},
     };
     for (const Case& c : cases) {

@@ -51,10 +51,10 @@ std::string ScratchTemplates::read(const std::string& rel) const {
     return ss.str();
 }
 
-CommandResult run_crtforge(const std::string& args, const std::string& env) {
+CommandResult run_command(const std::string& command) {
     TempDir tmp;
     const std::string out = tmp / "out.txt", err = tmp / "err.txt";
-    const std::string cmd = env + (env.empty() ? "" : " ") + std::string("'") + CRTFORGE_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+    const std::string cmd = "(" + command + ") >'" + out + "' 2>'" + err + "' </dev/null";
     int status = std::system(cmd.c_str());
     CommandResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -67,6 +67,10 @@ CommandResult run_crtforge(const std::string& args, const std::string& env) {
     r.out = slurp(out);
     r.err = slurp(err);
     return r;
+}
+
+CommandResult run_crtforge(const std::string& args, const std::string& env) {
+    return run_command(env + (env.empty() ? "" : " ") + std::string("'") + CRTFORGE_BINARY + "' " + args);
 }
 
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset_name,

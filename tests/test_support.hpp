@@ -50,6 +50,9 @@ struct CommandResult {
     std::string out, err;
 };
 
+// Runs a shell command line, capturing both streams.
+CommandResult run_command(const std::string& command);
+
 // Runs build/crtforge with the given arguments (a shell-quoted string), capturing both streams.
 // `env` is prepended as environment assignments (e.g. "VK_ICD_FILENAMES=/nonexistent.json").
 CommandResult run_crtforge(const std::string& args, const std::string& env = {});

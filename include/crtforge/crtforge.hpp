@@ -5,6 +5,8 @@
 #include "crtforge/cache.hpp"
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/exporter.hpp"
+#include "crtforge/files.hpp"
+#include "crtforge/paths.hpp"
 #include "crtforge/preset.hpp"
 #include "crtforge/reflection.hpp"
 #include "crtforge/spec.hpp"
@@ -13,3 +15,4 @@
 #include "crtforge/template_library.hpp"
 #include "crtforge/value.hpp"
 #include "crtforge/variant.hpp"
+#include "crtforge/version.hpp"

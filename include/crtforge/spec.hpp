@@ -15,6 +15,17 @@ struct SourceLocation {
     int line = 0;
 };
 
+// What a param means to code outside its stage, declared in the spec (`role = "..."`) so that no
+// emitter has to recognise a param by its name.
+enum class ParamRole {
+    None,
+    // A rate in radians per second that the stage multiplies by the time builtin: a host whose
+    // clock wraps (Godot's TIME) keeps the phase continuous by rounding the rate to whole turns
+    // per wrap. Float params of a form that reads `time` only.
+    AngularSpeed,
+};
+const char* param_role_name(ParamRole role);  // "", "angular_speed"
+
 struct ParamSpec {
     std::string name;                      // valid GLSL identifier, unique across all stages
     ParamType type = ParamType::Float;
@@ -25,6 +36,7 @@ struct ParamSpec {
     std::string unit;                      // "px", "uv", "" ...
     std::string doc;                       // one line
     bool runtime = false;                  // may stay a runtime uniform (modulation candidate)
+    ParamRole role = ParamRole::None;
     SourceLocation where;
 
     int enum_index(const std::string& name) const;  // -1 if not a value of this enum

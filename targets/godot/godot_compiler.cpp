@@ -12,8 +12,9 @@ namespace crtforge::godot {
 namespace {
 
 // TIME wraps (rendering/limits/time/time_rollover_secs, 3600 s by default). A phase TIME * speed
-// stays continuous across the wrap when speed * 3600 is a whole number of turns, so the pulse speed
-// is rounded to the nearest multiple of 2*pi/3600 rad/s (a change below 0.0009 rad/s).
+// stays continuous across the wrap when speed * 3600 is a whole number of turns, so the speed
+// is rounded to the nearest multiple of 2*pi/3600 rad/s (a change below 0.0009 rad/s). Which param is
+// that speed, the spec says (role = "angular_speed").
 constexpr const char* kRollover = "3600.0";
 constexpr const char* kTau = "6.28318530717959";
 
@@ -33,9 +34,11 @@ std::string GodotCompiler::builtin_expression(const std::string& member) const {
     }
     if (member == "sourceSize") return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "(1.0 / TEXTURE_PIXEL_SIZE)";
     if (member == "time") {
+        // The spec marks the speed the time feeds (role angular_speed); compile_godot() refused
+        // variants with more than one, since one TIME expression can keep only one phase whole.
         for (const VariantParam& p : variant_.params) {
-            if (p.spec->name != "pulseSpeed") continue;
-            const std::string speed = p.uniform ? "pulseSpeed" : float_literal(std::get<double>(p.value));
+            if (p.spec->role != ParamRole::AngularSpeed) continue;
+            const std::string speed = p.uniform ? p.spec->name : float_literal(std::get<double>(p.value));
             return fmt::format("(TIME * (round({0} * {1} / {2}) * {2} / {1}) / {0})", speed, kRollover, kTau);
         }
         return "TIME";
@@ -110,6 +113,12 @@ void GodotCompiler::prepare() {
 }
 
 std::string GodotCompiler::compile_godot() {
+    std::vector<std::string> speeds;
+    for (const VariantParam& p : variant_.params)
+        if (p.spec->role == ParamRole::AngularSpeed) speeds.push_back(p.spec->name);
+    if (speeds.size() > 1)
+        throw spirv_cross::CompilerError("Godot's TIME wraps, and one TIME expression can keep only one angular speed's "
+                                         "phase continuous across the wrap; this variant has " + join_list(speeds));
     prepare();
     std::string text = compile();
     static const std::regex access(std::string("\\b") + kBlockMarker + "\\.(\\w+)");
@@ -143,8 +152,15 @@ void GodotCompiler::emit_header() {
     bool uses_time = false;
     for (Builtin b : variant_.builtins) uses_time = uses_time || b == Builtin::Time;
     if (uses_time) {
-        statement("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): the pulse speed is");
-        statement("// rounded to a multiple of 2*pi/3600 rad/s so the glow stays continuous across the wrap.");
+        std::string speed;
+        for (const VariantParam& p : variant_.params)
+            if (p.spec->role == ParamRole::AngularSpeed) speed = p.spec->name;
+        if (!speed.empty()) {
+            statement("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): ", speed, " is");
+            statement("// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.");
+        } else {
+            statement("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default).");
+        }
     }
     statement("shader_type canvas_item;");
     statement("");
