@@ -27,8 +27,8 @@ Runner add_golden_command(CLI::App& app, const GlobalOptions& g) {
         if (!lib) return code;
         auto written = update_goldens(*lib, *dir, *filter);
         if (!written.ok()) return report(written.error());
-        fmt::print("golden update: {} reference images written to {} (manifest lists {})\n", written.value(), *dir,
-                   golden_plan(*lib).size());
+        fmt::print("golden update: {} reference images written to {} (manifest lists {})\n", written.value().written, *dir,
+                   written.value().planned);
         return kExitOk;
     };
 }

@@ -165,18 +165,23 @@ TEST_CASE("devices lists lavapipe, and golden update writes only when asked", "[
     CHECK_THAT(devices.out, Catch::Contains("llvmpipe"));
 
     test::TempDir dir;
+    auto no_plan = test::run_crtforge("golden update --dir '" + dir.path() + "'");
+    CHECK(no_plan.exit_code == 2);
+    CHECK_THAT(no_plan.err, Catch::Contains("plan.toml"));
+    fs::copy_file(std::string(CRTFORGE_SOURCE_DIR) + "/golden/plan.toml", dir / "plan.toml");
     auto update = test::run_crtforge("golden update --dir '" + dir.path() + "' --filter webgpu-post.color_bars");
     CHECK(update.exit_code == 0);
     CHECK(fs::exists(dir / "webgpu-post.color_bars.320x240.f0.png"));
     CHECK_FALSE(fs::exists(dir / "classic.color_bars.320x240.f0.png"));
     auto manifest = load_golden_manifest(dir.path());
     REQUIRE(manifest.ok());
-    CHECK(manifest.value().size() == golden_plan(test::shipped_library()).size());
+    CHECK(manifest.value().size() == test::golden_plan_or_fail(test::shipped_library(), dir.path()).size());
 }
 
 TEST_CASE("validate exits 1 on a failing comparison and 2 on bad arguments", "[cli][validate]") {
     test::TempDir golden;
     // A golden set where one image is wrong: validate must fail it, with a report.
+    fs::copy_file(std::string(CRTFORGE_SOURCE_DIR) + "/golden/plan.toml", golden / "plan.toml");
     REQUIRE(test::run_crtforge("golden update --dir '" + golden.path() + "' --filter webgpu-post.color_bars").exit_code == 0);
     Image wrong = Image::make(320, 240, {1.0f, 0.0f, 1.0f, 1.0f});
     REQUIRE(write_png(golden / "webgpu-post.color_bars.320x240.f0.png", wrong, 16).ok());

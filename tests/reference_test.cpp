@@ -56,7 +56,7 @@ TEST_CASE("every preset: Vulkan render agrees with the fp64 reference within tol
             r.time = FrameInfo::time_of_frame(7);
             auto image = renderer.render(r);
             REQUIRE(image.ok());
-            auto verdict = judge(image.value(), reference.value(), golden_plan(lib).front().tolerance);
+            auto verdict = judge(image.value(), reference.value(), test::golden_plan_or_fail(lib, std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance);
             REQUIRE(verdict.ok());
             INFO("rmse " << verdict.value().metrics.rmse << " ssim " << verdict.value().metrics.ssim << " outliers "
                          << verdict.value().outlier_fraction << ": " << verdict.value().reason);

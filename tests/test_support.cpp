@@ -82,6 +82,12 @@ CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& p
     return std::move(compiled.value());
 }
 
+std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const std::string& golden_dir) {
+    auto plan = golden_plan(lib, golden_dir);
+    if (!plan.ok()) FAIL(plan.error().str());
+    return plan.value();
+}
+
 Image require_image(Result<Image> image, int width, int height) {
     INFO((image.ok() ? std::string() : image.error().str()));
     REQUIRE(image.ok());

@@ -9,6 +9,7 @@
 #include "crtforge/crtforge.hpp"
 #include "crtforge/runtime/image.hpp"
 #include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/validate/golden.hpp"
 
 namespace crtforge::test {
 
@@ -72,6 +73,9 @@ Job frame_job(Image input, int width, int height, OutputFormat format, SamplerFi
 // The image of a render that must succeed (the test stops otherwise, quoting the error), checked
 // to be width x height and consistent.
 Image require_image(Result<Image> image, int width, int height);
+
+// The golden plan of a golden directory; fails the test on any error.
+std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const std::string& golden_dir);
 
 // Compiles and emits one preset through every target; fails the test on any error.
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,

@@ -44,7 +44,7 @@ TEST_CASE("the shipped goldens are current: the reference renders them bit for b
     const TemplateLibrary& lib = test::shipped_library();
     auto manifest = load_golden_manifest(golden_dir());
     REQUIRE(manifest.ok());
-    const auto plan = golden_plan(lib);
+    const auto plan = test::golden_plan_or_fail(lib, golden_dir());
     REQUIRE(manifest.value().size() == plan.size());
     for (size_t i = 0; i < plan.size(); ++i) CHECK(manifest.value()[i].id == plan[i].id);
     // Re-rendering every golden takes a while on 2 cores; a spread sample covers each preset.
@@ -68,7 +68,7 @@ TEST_CASE("every shipped preset passes on every target against every golden", "[
     request.jobs = 2;
     auto report = run_validation(lib, request, Cache());
     REQUIRE(report.ok());
-    const size_t goldens = golden_plan(lib).size();
+    const size_t goldens = test::golden_plan_or_fail(lib, golden_dir()).size();
     // Per target: one compile check per shader file and preset, one render per golden.
     size_t expected = 0;
     for (const TargetInfo& t : all_targets()) expected += t.shader_roles.size() * lib.presets().size() + goldens;

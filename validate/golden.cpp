@@ -32,46 +32,21 @@ Tolerance default_tolerance() {
             "(floor in masks, bezel edge, texel steps) may flip up to 0.5% of pixels by more than 0.05; luma SSIM >= 0.99"};
 }
 
-GoldenEntry make_entry(const std::string& preset, const std::string& input, int w, int h, int frame) {
+}  // namespace
+
+GoldenEntry make_golden_entry(const std::string& preset, const std::string& input, int w, int h, int input_width,
+                              int input_height, int frame) {
     GoldenEntry e;
     e.preset = preset;
     e.input = input;
     e.width = w;
     e.height = h;
+    e.input_width = input_width;
+    e.input_height = input_height;
     e.frame = frame;
-    // Pixel art keeps its native NES frame size; the other inputs are made at the output size.
-    e.input_width = input == "pixel_art" ? 256 : w;
-    e.input_height = input == "pixel_art" ? 224 : h;
     e.id = fmt::format("{}.{}.{}x{}.f{}", preset, input, w, h, frame);
     e.tolerance = default_tolerance();
     return e;
-}
-
-}  // namespace
-
-std::vector<GoldenEntry> golden_plan(const TemplateLibrary& library) {
-    // Sized to keep the repository lean (16-bit PNGs of CRT patterns compress poorly): every preset
-    // on colour bars and pixel art; each document's own system also on an HDR frame; the noisier
-    // and larger cases only where they test something the others do not.
-    auto in = [](const std::string& name, std::initializer_list<const char*> set) {
-        return std::find(set.begin(), set.end(), name) != set.end();
-    };
-    const auto systems = {"atari-crt", "webgpu-post", "crt-shadow-mask", "crt-aperture-grille", "crt-pulse", "quiet-frame"};
-    std::vector<GoldenEntry> plan;
-    for (const Preset& p : library.presets()) {
-        plan.push_back(make_entry(p.name, "color_bars", 320, 240, 0));
-        plan.push_back(make_entry(p.name, "pixel_art", 320, 240, 0));
-        if (in(p.name, systems)) plan.push_back(make_entry(p.name, "hdr", 320, 240, 0));
-        // The Atari article's own demo scene; smooth colour gradients under every mask kind.
-        if (in(p.name, {"atari-crt", "crt-shadow-mask", "quiet-frame"})) plan.push_back(make_entry(p.name, "mandelbrot", 320, 240, 0));
-        // Aliasing: fixed-period scanlines and a shadow mask over a zone plate.
-        if (in(p.name, {"webgpu-post", "crt-shadow-mask"})) plan.push_back(make_entry(p.name, "zone_plate", 320, 240, 0));
-        // A second size: pixel-sized effects must not depend on the resolution.
-        if (in(p.name, {"webgpu-post", "quiet-frame"})) plan.push_back(make_entry(p.name, "pixel_art", 640, 480, 0));
-        // Time-driven stages at a later frame.
-        if (p.find_stage("glow")) plan.push_back(make_entry(p.name, "plasma", 320, 240, 30));
-    }
-    return plan;
 }
 
 Result<Image> golden_input(const GoldenEntry& entry) {
@@ -107,9 +82,8 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
     std::vector<GoldenEntry> out;
     try {
         for (const auto& g : j["goldens"]) {
-            GoldenEntry e = make_entry(g.at("preset"), g.at("input"), g.at("width"), g.at("height"), g.at("frame"));
-            e.input_width = g.at("inputWidth");
-            e.input_height = g.at("inputHeight");
+            GoldenEntry e = make_golden_entry(g.at("preset"), g.at("input"), g.at("width"), g.at("height"),
+                                              g.at("inputWidth"), g.at("inputHeight"), g.at("frame"));
             const auto& t = g.at("tolerance");
             e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"), t.at("why")};
             if (g.at("id") != e.id) return make_error("golden id '" + g.at("id").get<std::string>() + "' does not match its fields", path);
@@ -121,8 +95,10 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
     return out;
 }
 
-Result<size_t> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter) {
-    const auto plan = golden_plan(library);
+Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter) {
+    auto planned = golden_plan(library, dir);
+    if (!planned.ok()) return planned.error();
+    const auto& plan = planned.value();
     // Render everything first: a failure must not leave a half-updated golden set.
     std::vector<std::pair<const GoldenEntry*, Image>> images;
     for (const GoldenEntry& e : plan) {
@@ -147,7 +123,7 @@ Result<size_t> update_goldens(const TemplateLibrary& library, const std::string&
                            {"why", e.tolerance.why}}}});
     }
     if (auto s = write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n"); !s.ok()) return s.error();
-    return images.size();
+    return GoldenUpdate{images.size(), plan.size()};
 }
 
 Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& t) {

@@ -31,16 +31,24 @@ struct GoldenEntry {
     std::string file() const { return id + ".png"; }
 };
 
-// The goldens crtforge ships: every preset on a set of generated inputs at 320x240, every preset on
-// pixel art at 640x480, and the time-driven preset at a later frame.
-std::vector<GoldenEntry> golden_plan(const TemplateLibrary& library);
+// An entry with its id ("<preset>.<input>.<w>x<h>.f<frame>") and the default tolerance.
+GoldenEntry make_golden_entry(const std::string& preset, const std::string& input, int width, int height,
+                              int input_width, int input_height, int frame);
+
+// The goldens a golden directory plans: <dir>/plan.toml (see golden/plan.toml) expanded over the
+// library's presets, in preset order, then plan order. Errors name plan.toml's line and field.
+Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, const std::string& golden_dir);
 
 Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir);
 
-// Renders the plan's references on the CPU and writes golden/<id>.png (16-bit) + manifest.json.
+// Renders the plan's references on the CPU and writes <dir>/<id>.png (16-bit) + manifest.json.
 // Only entries whose id contains `filter` (empty = all) are re-rendered; the manifest always lists
 // the whole plan. Returns the number of images written.
-Result<size_t> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter);
+struct GoldenUpdate {
+    size_t written = 0;  // images rendered and written
+    size_t planned = 0;  // entries in the plan (and the manifest)
+};
+Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter);
 
 // Renders one entry's reference image (CPU, double precision), clamped to 0..1 like a display.
 Result<Image> render_golden_reference(const TemplateLibrary& library, const GoldenEntry& entry);
