@@ -222,6 +222,33 @@ TEST_CASE("wgsl: loops with continue, break and loop-carried values", "[wgsl]") 
     CHECK(px[2] == 4.0f);
 }
 
+TEST_CASE("wgsl: a value built inside a loop and read after it is hoisted out of the loop", "[wgsl][regression]") {
+    // The shape Dawn once rejected ("unresolved value"): s is a composite insert inside the loop,
+    // and the loop's only exit is the break, so SPIR-V reads the insert's result after the loop
+    // directly (no phi). It must live in a function-scope var, with or without the optimiser.
+    Uniforms u;
+    u.a[0] = 0.25f;
+    u.i[0] = 3;  // the loop runs k = 0..3 and leaves with k = 4
+    for (bool optimize : {true, false}) {
+        INFO("optimised: " << optimize);
+        auto r = check_construct(R"(void main() {
+            vec4 s = vec4(0.0, 0.0, 0.0, 1.0);
+            int k = 0;
+            while (true) {
+                s.y = float(k) * p.a.x + vTexCoord.x;
+                k++;
+                if (k > p.i.x) break;
+            }
+            s.x = float(k) / 8.0;
+            fragColor = s;
+        })", u, optimize);
+        CHECK_THAT(r.wgsl, Contains("loop {"));
+        const auto px = pixel(r.dawn, 0, 0);
+        CHECK(px[0] == 0.5f);                                  // k = 4 after the loop
+        CHECK(px[1] == Approx(3 * 0.25f + 0.5f / kSize));      // the last pass's s.y
+    }
+}
+
 TEST_CASE("wgsl: early return and discard end their paths", "[wgsl]") {
     Uniforms u;
     auto r = check_construct(R"(void main() {

@@ -1,6 +1,6 @@
 // Internal to the WGSL emitter: the per-stage state shared by the module-level printer
-// (wgsl_module_emitter.cpp: types, constants, resources, entry points) and the function printer
-// (wgsl_function_emitter.cpp: structured control flow and instructions).
+// (wgsl_module_emitter.cpp: types, constants, resources, entry points) and the function pipeline
+// (wgsl_structure -> wgsl_analysis -> wgsl_printer: control flow, scopes and uses, then text).
 #pragma once
 
 #include <map>
@@ -22,12 +22,23 @@ struct EmitError {
 [[noreturn]] void fail(const std::string& message, const SourceLine& line = {});
 [[noreturn]] void unsupported(const Instruction& inst, const std::string& why = {});
 
-// A value as the function printer refers to it: the text of an expression, and whether that text
-// can be used as an operand without parentheses.
+// A value as the function printer refers to it: the text of an expression and how tightly it
+// binds, so that an operand gets parentheses exactly when it needs them.
 struct Expr {
+    enum class Kind {
+        Primary,  // a name, literal, call, constructor, member access or index
+        Unary,    // -x, !x, ~x
+        Binary,   // a op b
+    };
     std::string text;
-    bool atom = true;
-    std::string operand() const { return atom ? text : "(" + text + ")"; }
+    Kind kind = Kind::Primary;
+    bool named = false;  // a let, var or parameter name, or a constant: free to repeat
+
+    static Expr primary(std::string text) { return {std::move(text), Kind::Primary, false}; }
+    static Expr unary(std::string text) { return {std::move(text), Kind::Unary, false}; }
+    static Expr binary(std::string text) { return {std::move(text), Kind::Binary, false}; }
+    static Expr name(std::string text) { return {std::move(text), Kind::Primary, true}; }
+    std::string operand() const { return kind == Kind::Primary ? text : "(" + text + ")"; }
 };
 
 // What one stage's entry function reads and writes.

@@ -210,10 +210,10 @@ std::string ModuleEmitter::declare_struct(uint32_t id) {
 Expr ModuleEmitter::constant(uint32_t id) {
     const Constant& c = m.constants.at(id);
     const Type& t = type(c.type);
-    auto zero = [&]() -> Expr { return {type_name(c.type) + "()", true}; };
+    auto zero = [&]() -> Expr { return Expr::name(type_name(c.type) + "()"); };
     switch (c.op) {
-        case spv::OpConstantTrue: return {"true", true};
-        case spv::OpConstantFalse: return {"false", true};
+        case spv::OpConstantTrue: return Expr::name("true");
+        case spv::OpConstantFalse: return Expr::name("false");
         case spv::OpConstantNull:
         case spv::OpUndef: return zero();
         case spv::OpConstant: {
@@ -221,11 +221,11 @@ Expr ModuleEmitter::constant(uint32_t id) {
             if (t.op == spv::OpTypeFloat) {
                 if (t.width != 32) fail("only 32-bit float constants are supported");
                 std::string text = f32_literal(bits);
-                return {text[0] == '-' ? "(" + text + ")" : text, true};
+                return Expr::name(text[0] == '-' ? "(" + text + ")" : text);
             }
             if (t.op == spv::OpTypeInt) {
                 if (t.width != 32) fail("only 32-bit integer constants are supported");
-                return {t.is_signed ? i32_literal(static_cast<int32_t>(bits)) : u32_literal(bits), true};
+                return Expr::name(t.is_signed ? i32_literal(static_cast<int32_t>(bits)) : u32_literal(bits));
             }
             fail("constant of an unexpected type");
         }
@@ -234,10 +234,10 @@ Expr ModuleEmitter::constant(uint32_t id) {
             for (uint32_t part : c.words) parts.push_back(constant(part).text);
             // A vector of one repeated value reads better as a splat.
             if (t.op == spv::OpTypeVector && std::all_of(parts.begin(), parts.end(), [&](auto& p) { return p == parts[0]; }))
-                return {type_name(c.type) + "(" + parts[0] + ")", true};
+                return Expr::name(type_name(c.type) + "(" + parts[0] + ")");
             std::string text = type_name(c.type) + "(";
             for (size_t i = 0; i < parts.size(); ++i) text += (i ? ", " : "") + parts[i];
-            return {text + ")", true};
+            return Expr::name(text + ")");
         }
         default: fail("unsupported constant " + opcode_name(c.op));
     }
@@ -521,6 +521,9 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
         }
     } catch (const EmitError& e) {
         return make_validation_error("WGSL emitter: " + e.message, e.line.file, e.line.line);
+    } catch (const std::exception& e) {
+        // An id or index the module refers to but never defines: malformed SPIR-V, not a crash.
+        return make_validation_error(std::string("WGSL emitter: malformed SPIR-V (") + e.what() + ")");
     }
 
     // Merge: identical declarations are shared; two different ones at one binding are an error.
