@@ -15,8 +15,9 @@ Result<std::pair<int, int>> parse_size(const std::string& text) {
     int w = 0, h = 0, consumed = 0;
     char x = 0;
     if (std::sscanf(text.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || (x != 'x' && x != 'X') ||
-        consumed != static_cast<int>(text.size()) || w < 1 || h < 1 || w > 16384 || h > 16384)
-        return make_error("'" + text + "' must be WIDTHxHEIGHT, each 1..16384 (e.g. 640x480)", {}, 0, "--size");
+        consumed != static_cast<int>(text.size()) || w < 1 || h < 1 || w > kMaxImageDimension || h > kMaxImageDimension)
+        return make_error(fmt::format("'{}' must be WIDTHxHEIGHT, each 1..{} (e.g. 640x480)", text, kMaxImageDimension), {}, 0,
+                          "--size");
     return std::make_pair(w, h);
 }
 

@@ -30,17 +30,6 @@ bool parse_param_type(const std::string& text, ParamType& out) {
     return false;
 }
 
-bool value_matches(const Value& value, ParamType type) {
-    switch (type) {
-        case ParamType::Float: return std::holds_alternative<double>(value);
-        case ParamType::Int: return std::holds_alternative<int64_t>(value);
-        case ParamType::Bool: return std::holds_alternative<bool>(value);
-        case ParamType::Enum: return std::holds_alternative<std::string>(value);
-        case ParamType::Color: return std::holds_alternative<Color>(value);
-    }
-    return false;
-}
-
 namespace {
 template <typename F>
 std::string shortest_float_literal(F v) {

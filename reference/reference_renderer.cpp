@@ -25,9 +25,9 @@ Diagnostic unmodelled(const StagePlan& s) {
 
 Result<Image> render_reference(const ReferenceJob& job) {
     if (!job.variant || !job.variant->preset) return make_error("reference job without a variant");
-    if (job.width <= 0 || job.height <= 0 || job.width > 16384 || job.height > 16384)
+    if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension)
         return make_error("output size " + std::to_string(job.width) + "x" + std::to_string(job.height) +
-                          " is outside 1..16384", {}, 0, "--size");
+                          " is outside 1.." + std::to_string(kMaxImageDimension), {}, 0, "--size");
     if (job.input.width <= 0 || job.input.height <= 0 ||
         job.input.rgba.size() != static_cast<size_t>(job.input.width) * job.input.height * 4)
         return make_error("reference job has an empty or inconsistent input image");

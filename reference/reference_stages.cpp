@@ -14,7 +14,6 @@ Vec3 Params::color(const std::string& name) const {
     const Color& c = std::get<Color>(values_.at(name));
     return {c[0], c[1], c[2]};
 }
-const std::string& Params::choice(const std::string& name) const { return std::get<std::string>(values_.at(name)); }
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;

@@ -17,7 +17,6 @@ public:
     double num(const std::string& name) const;       // float or int param
     bool flag(const std::string& name) const;
     Vec3 color(const std::string& name) const;
-    const std::string& choice(const std::string& name) const;  // enum param
 
 private:
     const std::map<std::string, Value>& values_;

@@ -18,9 +18,6 @@ using Color = std::array<double, 3>;  // linear RGB, each 0..1
 // One param value. Enum values are stored by name.
 using Value = std::variant<double, int64_t, bool, std::string, Color>;
 
-// The type a Value holds, for checks. Enum and string share a representation; the spec decides.
-bool value_matches(const Value& value, ParamType type);
-
 // Text for humans and JSON-free contexts: 0.3, 4, true, "shadow", #ff8000.
 std::string value_to_string(const Value& value);
 

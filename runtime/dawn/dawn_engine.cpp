@@ -58,7 +58,7 @@ using json = nlohmann::json;
 using detail::job_error;
 
 constexpr const char* kWebgpuVersion = "0.6.2";  // tools/wgsl-runner/package.json pins it
-constexpr int kMaxExtent = 16384;                 // llvmpipe's maxTextureDimension2D
+constexpr int kMaxExtent = kMaxImageDimension;    // llvmpipe's maxTextureDimension2D
 constexpr int kStartSeconds = 60;
 constexpr int kRequestSeconds = 120;
 constexpr int kStopSeconds = 2;

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "crtforge/paths.hpp"
 #include "runtime/common/job_checks.hpp"
@@ -61,7 +62,7 @@ constexpr const char* kRunnerPrefix = "crtforge-godot3-runner: ";
 constexpr const char* kOutputMagic = "CRTG3PX1";
 constexpr std::size_t kOutputHeaderBytes = 24;
 constexpr std::size_t kMaxLogBytes = 4u << 20;  // Godot's output kept for diagnostics
-constexpr int kMaxExtent = 16384;               // the runner's limit, and llvmpipe's texture size
+constexpr int kMaxExtent = kMaxImageDimension;  // the runner's limit too (tools/godot3-runner)
 constexpr int kXvfbStartSeconds = 15;
 
 // ---- small helpers --------------------------------------------------------------------------
@@ -234,47 +235,27 @@ Result<XServer> start_xvfb(const std::string& xvfb, const fs::path& scratch) {
 
 // ---- job files --------------------------------------------------------------------------------
 
-std::string json_escape(const std::string& text) {
-    std::string out;
-    for (unsigned char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += static_cast<char>(c);
-        } else if (c < 0x20) {
-            out += fmt::format("\\u{:04x}", c);
-        } else {
-            out += static_cast<char>(c);
-        }
-    }
-    return out;
-}
-
+// The params file the runner reads: uniform name -> number, bool or [r, g, b].
 Result<std::string> params_json(const std::map<std::string, Value>& params) {
-    std::string json = "{";
-    bool first = true;
+    nlohmann::ordered_json json = nlohmann::ordered_json::object();
     for (const auto& [name, value] : params) {
-        const std::string field = "params." + name;
-        std::string text;
         if (const double* d = std::get_if<double>(&value)) {
             if (!std::isfinite(*d)) return job_error(fmt::format("param '{}' is not finite", name), "params");
-            text = fmt::format("{}", *d);
+            json[name] = *d;
         } else if (const int64_t* i = std::get_if<int64_t>(&value)) {
-            text = fmt::format("{}", *i);
+            json[name] = *i;
         } else if (const bool* b = std::get_if<bool>(&value)) {
-            text = *b ? "true" : "false";
+            json[name] = *b;
         } else if (const Color* c = std::get_if<Color>(&value)) {
             for (double v : *c)
                 if (!std::isfinite(v)) return job_error(fmt::format("param '{}' has a colour channel that is not finite", name), "params");
-            text = fmt::format("[{}, {}, {}]", (*c)[0], (*c)[1], (*c)[2]);
+            json[name] = {(*c)[0], (*c)[1], (*c)[2]};
         } else {
             return job_error(fmt::format("param '{}' is an enum name; Godot uniforms take the enum's index as an int", name),
                              "params");
         }
-        json += fmt::format("{}\n  \"{}\": {}", first ? "" : ",", json_escape(name), text);
-        first = false;
     }
-    json += first ? "}\n" : "\n}\n";
-    return json;
+    return json.dump(2) + "\n";
 }
 
 // Copies the runner project's files (not its folders) so Godot runs on a private copy.

@@ -479,7 +479,7 @@ Result<Image> make_test_input(const std::string& name, int width, int height) {
         if (g.name != name) continue;
         if (width < 1 || height < 1 || width > kMaxImageDimension || height > kMaxImageDimension) {
             return make_error("test input size " + std::to_string(width) + "x" + std::to_string(height) +
-                                  " is out of range (each side 1..16384)",
+                                  " is out of range (each side 1.." + std::to_string(kMaxImageDimension) + ")",
                               {}, 0, "input");
         }
         return g.make(width, height);

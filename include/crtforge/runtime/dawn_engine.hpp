@@ -51,7 +51,7 @@ struct DawnJob {
     // Ignored when uses_texture is false.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
-    int width = 0, height = 0;  // output size in pixels, 1..16384
+    int width = 0, height = 0;  // output size in pixels, 1..kMaxImageDimension
     // Rgba16Float: half floats, read back exactly; Rgba8Unorm: byte / 255; Rgba8Srgb: the
     // rgba8unorm-srgb target, read back decoded to linear (as the Vulkan engine does).
     OutputFormat format = OutputFormat::Rgba16Float;
@@ -82,7 +82,7 @@ public:
 
     // Renders the job and returns the output image (width x height, row 0 = top, linear floats).
     // Errors, all one line:
-    //  - a bad job (size <= 0 or > 16384, inconsistent input, empty WGSL or entry point, clashing
+    //  - a bad job (size <= 0 or > kMaxImageDimension, inconsistent input, empty WGSL or entry point, clashing
     //    bindings): ErrorKind::Input with field "job.<name>", before any work;
     //  - a compile error: ErrorKind::Validation, "Dawn rejected the WGSL: L:C: <message>" with
     //    Diagnostic::line/column set (warnings do not fail a render: see compile());

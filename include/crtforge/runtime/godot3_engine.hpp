@@ -42,7 +42,7 @@ struct Godot3Job {
     // texture, for shaders that sample nothing.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
-    int width = 0, height = 0;  // output size in pixels, 1..16384
+    int width = 0, height = 0;  // output size in pixels, 1..kMaxImageDimension
     // Uniform name -> value, set with ShaderMaterial.set_shader_param. Every name must be a uniform
     // the shader declares, and the value must fit its type: double -> float, int64_t -> int (or
     // float), bool -> bool, Color -> `vec4 : hint_color` (alpha 1) or vec3. Enum names (strings)

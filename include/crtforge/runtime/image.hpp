@@ -8,6 +8,10 @@
 
 namespace crtforge {
 
+// Largest width or height of any image crtforge reads, renders or writes: llvmpipe's largest 2D
+// texture and render target (a 16384 x 16384 RGBA float image is already 4 GiB).
+inline constexpr int kMaxImageDimension = 16384;
+
 // Row-major, row 0 is the TOP row, 4 floats per pixel (R, G, B, A). Values are linear (never
 // sRGB-encoded) and may exceed 1.0 or go below 0.0 (HDR intermediates), so nothing clamps them.
 struct Image {

@@ -13,9 +13,6 @@
 
 namespace crtforge {
 
-// Largest width or height read_image accepts (a 16384 x 16384 RGBA float image is already 4 GiB).
-inline constexpr int kMaxImageDimension = 16384;
-
 // Reads the first subimage of any file OpenImageIO can read. 1 channel = grey (copied to R, G, B),
 // 2 = grey + alpha, 3 = RGB, 4 = RGBA; beyond 4 only the first four are kept. Missing alpha is 1.
 // Straight (unassociated) alpha is returned as stored: PNG colours are not premultiplied.

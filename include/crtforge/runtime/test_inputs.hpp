@@ -23,7 +23,7 @@ const std::vector<std::string>& test_input_names();
 // One line saying what the input is for; empty for an unknown name.
 std::string test_input_doc(const std::string& name);
 
-// Renders input `name` at width x height (each 1..16384). Errors: unknown name (the message lists
+// Renders input `name` at width x height (each 1..kMaxImageDimension). Errors: unknown name (the message lists
 // the valid ones) or a size out of range.
 Result<Image> make_test_input(const std::string& name, int width, int height);
 
