@@ -1,0 +1,24 @@
+#version 330
+#ifdef GL_ARB_shading_language_420pack
+#extension GL_ARB_shading_language_420pack : require
+#endif
+
+layout(binding = 0, std140) uniform CrtParams
+{
+    vec2 outputSize;
+    float time;
+    float shapeScale;
+    float pulseDepth;
+    float pulseRate;
+} crt;
+
+layout(binding = 1) uniform sampler2D source;
+
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    fragColor = vec4((texture(source, vTexCoord).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale)) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.02500000037252902984619140625 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
+}
+

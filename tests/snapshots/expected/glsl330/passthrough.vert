@@ -1,0 +1,15 @@
+#version 330
+#ifdef GL_ARB_shading_language_420pack
+#extension GL_ARB_shading_language_420pack : require
+#endif
+
+out vec2 vTexCoord;
+
+void main()
+{
+    vec2 _22 = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    vTexCoord = _22;
+    gl_Position = vec4((_22 * 2.0) - vec2(1.0), 0.0, 1.0);
+    gl_Position.y = -gl_Position.y;
+}
+

@@ -1,0 +1,22 @@
+#version 450
+
+layout(binding = 0, std140) uniform CrtParams
+{
+    vec2 outputSize;
+    float time;
+    float shapeScale;
+    float pulseDepth;
+    float pulseRate;
+} crt;
+
+layout(binding = 1) uniform sampler2D source;
+
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    vec2 _145 = abs((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale;
+    fragColor = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(_145.x, _145.y), 0.800000011920928955078125, 0.20000000298023223876953125))) * fma(crt.pulseDepth, sin(fma((vTexCoord * crt.outputSize).y, 0.02500000037252902984619140625, crt.time * crt.pulseRate)), 1.0), 1.0);
+}
+

@@ -1,0 +1,21 @@
+#version 450
+
+layout(binding = 0, std140) uniform CrtParams
+{
+    vec2 outputSize;
+    float time;
+    float shapeScale;
+    float pulseDepth;
+    float pulseRate;
+} crt;
+
+layout(binding = 1) uniform sampler2D source;
+
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    fragColor = vec4((texture(source, vTexCoord).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale)) * fma(crt.pulseDepth, sin(fma((vTexCoord * crt.outputSize).y, 0.02500000037252902984619140625, crt.time * crt.pulseRate)), 1.0), 1.0);
+}
+

@@ -1,0 +1,24 @@
+#version 300 es
+precision highp float;
+precision highp int;
+
+layout(std140) uniform CrtParams
+{
+    vec2 outputSize;
+    float time;
+    float shapeScale;
+    float pulseDepth;
+    float pulseRate;
+} crt;
+
+uniform highp sampler2D source;
+
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    vec2 _145 = abs((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale;
+    fragColor = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(_145.x, _145.y), 0.800000011920928955078125, 0.20000000298023223876953125))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.02500000037252902984619140625 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
+}
+

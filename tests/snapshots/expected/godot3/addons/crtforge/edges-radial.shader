@@ -1,0 +1,20 @@
+// crtforge 0.1.0: preset edges-radial. shape (radial, not inverted) and the scrolling pulse
+// Godot 3 canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.
+// Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);
+// set the node's texture filter to linear.
+// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): pulseRate is
+// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.
+shader_type canvas_item;
+
+// shape: Multiplier on the distance from the centre
+uniform float shapeScale : hint_range(0.0, 2.0, 0.01) = 1.1;
+// pulse: Amplitude of the wave
+uniform float pulseDepth : hint_range(0.0, 0.2, 0.005) = 0.04;
+// pulse: Phase speed of the wave (rad/s)
+uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 5.0;
+
+void fragment()
+{
+    COLOR = vec4((texture(TEXTURE, UV).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((UV * 2.0) - vec2(1.0)) * shapeScale)) * (pulseDepth * sin((UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))).y * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0), 1.0);
+}
+

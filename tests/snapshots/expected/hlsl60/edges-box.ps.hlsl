@@ -1,0 +1,39 @@
+cbuffer CrtParams : register(b0, space0)
+{
+    float2 crt_outputSize : packoffset(c0);
+    float crt_time : packoffset(c0.z);
+    float crt_shapeScale : packoffset(c0.w);
+    float crt_pulseDepth : packoffset(c1);
+    float crt_pulseRate : packoffset(c1.y);
+};
+
+Texture2D<float4> source : register(t1, space0);
+SamplerState _source_sampler : register(s1, space0);
+
+static float2 vTexCoord;
+static float4 fragColor;
+
+struct SPIRV_Cross_Input
+{
+    float2 vTexCoord : TEXCOORD0;
+};
+
+struct SPIRV_Cross_Output
+{
+    float4 fragColor : SV_Target0;
+};
+
+void frag_main()
+{
+    float2 _145 = abs((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale;
+    fragColor = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - clamp(1.5f - max(_145.x, _145.y), 0.800000011920928955078125f, 0.20000000298023223876953125f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.02500000037252902984619140625f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
+}
+
+SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)
+{
+    vTexCoord = stage_input.vTexCoord;
+    frag_main();
+    SPIRV_Cross_Output stage_output;
+    stage_output.fragColor = fragColor;
+    return stage_output;
+}

@@ -1,0 +1,29 @@
+Texture2D<float4> source : register(t1, space0);
+SamplerState _source_sampler : register(s1, space0);
+
+static float4 fragColor;
+static float2 vTexCoord;
+
+struct SPIRV_Cross_Input
+{
+    float2 vTexCoord : TEXCOORD0;
+};
+
+struct SPIRV_Cross_Output
+{
+    float4 fragColor : SV_Target0;
+};
+
+void frag_main()
+{
+    fragColor = source.Sample(_source_sampler, vTexCoord);
+}
+
+SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)
+{
+    vTexCoord = stage_input.vTexCoord;
+    frag_main();
+    SPIRV_Cross_Output stage_output;
+    stage_output.fragColor = fragColor;
+    return stage_output;
+}

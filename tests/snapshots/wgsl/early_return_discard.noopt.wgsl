@@ -1,0 +1,56 @@
+// GLSL samples with implicit derivatives inside non-uniform control flow (after the bezel's early
+// exit); WGSL would reject that, so the check is off, as GLSL never had it.
+diagnostic(off, derivative_uniformity);
+
+struct VertexOutput {
+  @location(0) vTexCoord: vec2<f32>,
+  @builtin(position) gl_Position: vec4<f32>,
+}
+
+struct Params {
+  a: vec4<f32>,  // offset 0
+  b: vec4<f32>,  // offset 16
+  i: vec4<i32>,  // offset 32
+}
+
+@group(0) @binding(0) var<uniform> p: Params;
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
+  var vTexCoord: vec2<f32>;
+  var gl_Position: vec4<f32>;
+  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = _22;
+  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
+}
+
+@fragment
+fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
+  var fragColor: vec4<f32>;
+  var outside: bool;
+  var _63: vec4<f32>;
+  if (vTexCoord.x < 0.25) {
+    fragColor = vec4<f32>(1.0, 0.0, 0.0, 1.0);
+    return fragColor;
+  }
+  if (vTexCoord.x > 0.75) {
+    discard;
+    return fragColor;
+  }
+  let _48 = vTexCoord < p.a.xy;
+  let _53 = vTexCoord > p.a.zw;
+  outside = any(vec4<bool>(_48.x, _48.y, _53.x, _53.y));
+  let _61 = outside;
+  if (_61) {
+    _63 = p.b;
+  } else {
+    _63 = textureSample(source, source_sampler, vTexCoord);
+  }
+  let _77 = _63;
+  fragColor = _77;
+  return fragColor;
+}

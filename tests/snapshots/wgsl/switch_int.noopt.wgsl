@@ -1,0 +1,48 @@
+struct VertexOutput {
+  @location(0) vTexCoord: vec2<f32>,
+  @builtin(position) gl_Position: vec4<f32>,
+}
+
+struct Params {
+  a: vec4<f32>,  // offset 0
+  b: vec4<f32>,  // offset 16
+  i: vec4<i32>,  // offset 32
+}
+
+@group(0) @binding(0) var<uniform> p: Params;
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
+  var vTexCoord: vec2<f32>;
+  var gl_Position: vec4<f32>;
+  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = _22;
+  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
+}
+
+@fragment
+fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
+  var fragColor: vec4<f32>;
+  var v: f32;
+  switch (p.i.x) {
+    case 0i: {
+      v = 0.1;
+    }
+    case 1i, 2i: {
+      v = 0.2;
+    }
+    case (-3i): {
+      v = vTexCoord.x;
+    }
+    default: {
+      v = 0.3;
+    }
+  }
+  let _42 = v;
+  fragColor = vec4<f32>(_42, vTexCoord.x, vTexCoord.y, 1.0);
+  return fragColor;
+}
