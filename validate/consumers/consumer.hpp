@@ -91,6 +91,9 @@ Job request_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms) {
     return job;
 }
 
+// Renders a job on this thread's Vulkan engine; a failed render is a validation failure.
+Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines);
+
 // The same diagnostic as a validation failure: crtforge's output was rejected.
 Diagnostic as_validation(Diagnostic d);
 

@@ -65,6 +65,14 @@ Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& r) {
     return pack_uniforms(*r.compiled, frame, r.overrides);
 }
 
+Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines) {
+    auto engine = engines.vulkan();
+    if (!engine.ok()) return engine.error();
+    auto image = engine.value()->render(job);
+    if (!image.ok()) return as_validation(image.error());
+    return image;
+}
+
 Diagnostic as_validation(Diagnostic d) {
     d.kind = ErrorKind::Validation;
     return d;

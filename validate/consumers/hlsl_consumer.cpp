@@ -40,10 +40,8 @@ public:
             if (!module.ok()) return module.error();
             (stage == ShaderStage::Vertex ? job.vertex_spirv : job.fragment_spirv) = module.value()->spirv;
         }
-        auto engine = engines.vulkan();
-        if (!engine.ok()) return engine.error();
-        auto image = engine.value()->render(job);
-        if (!image.ok()) return as_validation(image.error());
+        auto image = render_on_vulkan(job, engines);
+        if (!image.ok()) return image;
         // The vertex shader targets D3D's y-up clip space; on Vulkan that draws the picture upside
         // down, exactly as D3D would show it the right way up. Flip back to compare.
         flip_rows(image.value());

@@ -25,11 +25,7 @@ public:
         auto job = request_job<RenderJob>(r, std::move(uniforms.value()));
         job.vertex_spirv = r.compiled->vertex;
         job.fragment_spirv = r.compiled->fragment;
-        auto engine = engines.vulkan();
-        if (!engine.ok()) return engine.error();
-        auto image = engine.value()->render(job);
-        if (!image.ok()) return as_validation(image.error());
-        return image;
+        return render_on_vulkan(job, engines);
     }
 
     std::string describe(ConsumerEngines& engines) const override { return "Vulkan: " + engines.vulkan_device_name(); }
