@@ -31,10 +31,14 @@ void print_readable(const TemplateLibrary& lib) {
     }
     fmt::print("\nPresets:\n");
     for (const Preset& p : lib.presets()) {
-        std::string stages;
-        for (const auto& rs : p.stages)
-            stages += (stages.empty() ? "" : ", ") + rs.stage->name + "(" + rs.form->name + ")";
-        fmt::print("  {:<20} {}\n  {:<20} stages: {}\n", p.name, p.doc, "", stages.empty() ? "none (passthrough)" : stages);
+        fmt::print("  {:<20} {}\n", p.name, p.doc);
+        for (const Pass& pass : p.passes) {
+            std::string stages;
+            for (const auto& rs : pass.stages)
+                stages += (stages.empty() ? "" : ", ") + rs.stage->name + "(" + rs.form->name + ")";
+            const std::string label = p.single_pass() ? "stages:" : "pass " + pass.alias + ":";
+            fmt::print("  {:<20} {} {}\n", "", label, stages.empty() ? "none (passthrough)" : stages);
+        }
     }
     fmt::print("\nTargets:\n");
     for (const TargetInfo& t : all_targets()) fmt::print("  {:<10} {}\n", t.name, t.description);

@@ -23,6 +23,7 @@ const char* builtin_comment(Builtin b) {
         case Builtin::OutputSize: return "output size in pixels";
         case Builtin::SourceSize: return "source texture size in texels";
         case Builtin::Time: return "seconds since start";
+        case Builtin::FrameCount: return "frames since start (modulo the pass's frame_count_mod)";
     }
     return "";
 }
@@ -33,11 +34,14 @@ std::string declarations(const Variant& variant) {
     out += "layout(location = 0) out vec4 fragColor;\n";
     out += fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};\n", kDescriptorSet,
                        kTextureBinding, kSourceTextureName);
+    for (size_t i = 0; i < variant.textures.size(); ++i)
+        out += fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};\n", kDescriptorSet,
+                           kTextureBinding + 1 + i, variant.textures[i]);
     if (variant.has_uniform_block()) {
         out += fmt::format("\nlayout(std140, set = {}, binding = {}) uniform {} {{\n", kDescriptorSet,
                            kUniformBinding, kUniformBlockName);
         for (Builtin b : variant.builtins) {
-            const char* type = b == Builtin::Time ? "float" : "vec2";
+            const char* type = b == Builtin::Time ? "float" : b == Builtin::FrameCount ? "int" : "vec2";
             out += fmt::format("    {} {};  // builtin: {}\n", type, builtin_name(b), builtin_comment(b));
         }
         for (const VariantParam* p : variant.uniforms()) {
@@ -64,16 +68,16 @@ std::string declarations(const Variant& variant) {
 
 // The fixed pass order: warp, sample position, fetch, colour stages, finish.
 std::string main_body(const Variant& variant) {
-    const Preset& preset = *variant.preset;
+    const Pass& pass = *variant.pass;
     std::string out = "void main() {\n";
-    if (preset.stages.empty()) {
+    if (pass.stages.empty()) {
         out += fmt::format("    fragColor = texture({}, {});  // CRT off: plain passthrough blit\n",
                            kSourceTextureName, kTexCoordName);
         return out + "}\n";
     }
     auto calls = [&](Hook hook, const std::string& pattern) {
         std::string text;
-        for (const ResolvedStage& rs : preset.stages) {
+        for (const ResolvedStage& rs : pass.stages) {
             const std::string& fn = rs.form->functions[static_cast<int>(hook)];
             if (fn.empty()) continue;
             text += "    " + fmt::format(fmt::runtime(pattern), fn) +
@@ -108,8 +112,11 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
     for (const auto& n : preset.lineage) lineage += (lineage.empty() ? "" : " <- ") + n;
     src += fmt::format("// crtforge: preset {} ({}), precision {}, uniforms {}\n", preset.name, lineage,
                        precision_name(variant.options.precision), variant.options.uniforms.str());
+    if (!preset.single_pass())
+        src += fmt::format("// pass {} of {}: {}\n", variant.pass_index + 1, preset.passes.size(), variant.pass->alias);
+    const Pass& pass = *variant.pass;
     if (variant.options.precision == Precision::Medium) src += "precision mediump float;\n";
-    for (const ResolvedStage& rs : preset.stages)
+    for (const ResolvedStage& rs : pass.stages)
         src += fmt::format("#define CRT_FORM_{}_{} 1\n", rs.stage->name, rs.form->name);
     src += declarations(variant);
 
@@ -120,11 +127,12 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
         src += line_directive(1, file);
         src += text;
     };
-    if (!preset.stages.empty()) {
+    if (!pass.stages.empty()) {
         include(library.prelude_path(), library.prelude_source());
-        for (const ResolvedStage& rs : preset.stages) include(rs.stage->glsl_path, rs.stage->glsl_source);
+        for (const ResolvedStage& rs : pass.stages) include(rs.stage->glsl_path, rs.stage->glsl_source);
     }
-    include("<generated main for preset " + preset.name + ">", main_body(variant));
+    include("<generated main for preset " + preset.name + (preset.single_pass() ? "" : " pass " + pass.alias) + ">",
+            main_body(variant));
 
     AssembledShader out;
     out.fragment = std::move(src);

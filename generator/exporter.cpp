@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/assembler.hpp"
+#include "crtforge/luts.hpp"
 #include "crtforge/files.hpp"
 #include "generator/manifest.hpp"
 
@@ -133,10 +134,36 @@ std::optional<TargetOutput> deserialize(std::string_view in) {
     return out;
 }
 
+// A preset's LUT files: generated ones as PNG, file ones copied as they are.
+Result<std::map<std::string, std::string>> export_luts(const Preset& preset) {
+    std::map<std::string, std::string> files;
+    for (const LutSpec& lut : preset.luts) {
+        if (!lut.generator.empty()) {
+            auto image = generate_lut(lut.generator, lut.params);
+            if (!image.ok()) {
+                Diagnostic d = image.error();
+                d.file = lut.where.file;
+                d.line = lut.where.line;
+                d.field = "lut." + lut.name;
+                return d;
+            }
+            files[lut_export_path(preset, lut)] = encode_png(image.value());
+            continue;
+        }
+        auto data = read_text_file(lut_file_path(lut));
+        if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
+                                          "lut." + lut.name + ".file");
+        files[lut_export_path(preset, lut)] = std::move(data.value());
+    }
+    return files;
+}
+
 // Everything besides the SPIR-V that a target may print: Godot files carry the preset's name, doc,
 // filter and every uniform's default, and two presets can share one SPIR-V module.
 std::string variant_fingerprint(const Variant& v) {
-    std::string out = v.preset->name + "\n" + v.preset->doc + "\n" + filter_name(v.preset->filter) + "\n";
+    std::string out = v.file_stem() + "\n" + v.preset->doc + "\n";
+    for (const PassInput& input : v.pass->inputs)
+        out += input.binding + ":" + input.from.str() + ":" + filter_name(input.filter) + ":" + wrap_name(input.wrap) + "\n";
     for (const VariantParam& p : v.params) {
         // Exact values: value_to_string rounds colours to 8 bits.
         std::string value = value_to_string(p.value);
@@ -149,14 +176,14 @@ std::string variant_fingerprint(const Variant& v) {
 }  // namespace
 
 Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Preset& preset,
-                                        const VariantOptions& options, const Cache& cache) {
-    auto variant = make_variant(library, preset, options);
+                                        const VariantOptions& options, const Cache& cache, size_t pass_index) {
+    auto variant = make_variant(library, preset, options, pass_index);
     if (!variant.ok()) return variant.error();
     CompiledVariant out;
     out.variant = std::move(variant.value());
     AssembledShader src = assemble(library, out.variant);
     out.fragment_glsl = src.fragment;
-    auto frag = compile_cached(src.fragment, ShaderStage::Fragment, "<preset " + preset.name + ">", cache);
+    auto frag = compile_cached(src.fragment, ShaderStage::Fragment, "<preset " + out.variant.file_stem() + ">", cache);
     if (!frag.ok()) return frag.error();
     out.fragment = std::move(frag.value());
     auto vert = compile_cached(src.vertex, ShaderStage::Vertex, library.vertex_path(), cache);
@@ -166,6 +193,17 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
     if (!reflection.ok()) return reflection.error();
     out.reflection = std::move(reflection.value());
     return out;
+}
+
+Result<std::vector<CompiledVariant>> compile_scene(const TemplateLibrary& library, const Preset& preset,
+                                                   const VariantOptions& options, const Cache& cache) {
+    std::vector<CompiledVariant> passes;
+    for (size_t i = 0; i < preset.passes.size(); ++i) {
+        auto compiled = compile_variant(library, preset, options, cache, i);
+        if (!compiled.ok()) return compiled.error();
+        passes.push_back(std::move(compiled.value()));
+    }
+    return passes;
 }
 
 Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId target, const Cache& cache) {
@@ -185,8 +223,19 @@ Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId targe
     return out;
 }
 
-std::string export_path(const std::string& preset, TargetId target, const std::string& suffix) {
-    return std::string(target_info(target).name) + "/" + preset + suffix;
+std::string export_path(const std::string& stem, TargetId target, const std::string& suffix) {
+    return std::string(target_info(target).name) + "/" + stem + suffix;
+}
+
+std::string lut_file_path(const LutSpec& lut) {
+    const std::filesystem::path file(lut.file);
+    if (file.is_absolute()) return lut.file;
+    return (std::filesystem::path(lut.where.file).parent_path() / file).string();
+}
+
+std::string lut_export_path(const Preset& preset, const LutSpec& lut) {
+    const std::string ext = lut.generator.empty() ? std::filesystem::path(lut.file).extension().string() : ".png";
+    return "luts/" + preset.name + "." + lut.name + ext;
 }
 
 Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequest& request, const Cache& cache) {
@@ -207,7 +256,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
     ExportResult result;
     json manifest;
     manifest["generator"] = std::string("crtforge ") + CRTFORGE_VERSION;
-    manifest["manifestVersion"] = 1;
+    manifest["manifestVersion"] = 2;
     manifest["options"] = json{{"uniforms", request.options.uniforms.str()},
                                {"precision", precision_name(request.options.precision)}};
     json target_names = json::array();
@@ -226,31 +275,41 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
     auto work = [&](size_t i) {
         const Preset* preset = presets[i];
         PresetOutput& po = outputs[i];
-        auto compiled = compile_variant(library, *preset, request.options, cache);
+        auto compiled = compile_scene(library, *preset, request.options, cache);
         if (!compiled.ok()) {
             po.error = compiled.error();
             return;
         }
-        po.entry = detail::preset_manifest(compiled.value());
-        json files = json::object();
-        for (TargetId target : targets) {
-            auto out = emit_target(compiled.value(), target, cache);
-            if (!out.ok()) {
-                Diagnostic d = out.error();
-                d.message = "preset " + preset->name + ", target " + target_info(target).name + ": " + d.message;
-                po.error = d;
-                return;
-            }
-            detail::ManifestTargetEntry te{target, {}, out.value().bindings, out.value().manifest_json};
-            for (const OutputFile& f : out.value().files) {
-                const std::string path = f.path.empty() ? export_path(preset->name, target, f.suffix)
-                                                        : std::string(target_info(target).name) + "/" + f.path;
-                te.files[f.manifest_role()] = path;
-                po.files[path] = f.data;
-            }
-            files[target_info(target).name] = detail::target_manifest(te);
+        auto luts = export_luts(*preset);
+        if (!luts.ok()) {
+            po.error = luts.error();
+            return;
         }
-        po.entry["targets"] = std::move(files);
+        po.files = std::move(luts.value());
+        po.entry = detail::preset_manifest(*preset, compiled.value());
+        for (size_t pass = 0; pass < compiled.value().size(); ++pass) {
+            const CompiledVariant& variant = compiled.value()[pass];
+            json files = json::object();
+            for (TargetId target : targets) {
+                auto out = emit_target(variant, target, cache);
+                if (!out.ok()) {
+                    Diagnostic d = out.error();
+                    d.message = "preset " + preset->name + (preset->single_pass() ? "" : ", pass " + variant.variant.pass->alias) +
+                                ", target " + target_info(target).name + ": " + d.message;
+                    po.error = d;
+                    return;
+                }
+                detail::ManifestTargetEntry te{target, {}, out.value().bindings, out.value().manifest_json};
+                for (const OutputFile& f : out.value().files) {
+                    const std::string path = f.path.empty() ? export_path(variant.variant.file_stem(), target, f.suffix)
+                                                            : std::string(target_info(target).name) + "/" + f.path;
+                    te.files[f.manifest_role()] = path;
+                    po.files[path] = f.data;
+                }
+                files[target_info(target).name] = detail::target_manifest(te);
+            }
+            po.entry["passes"][pass]["targets"] = std::move(files);
+        }
     };
     std::atomic<size_t> next{0};
     auto worker = [&] {

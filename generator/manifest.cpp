@@ -1,6 +1,7 @@
 #include "generator/manifest.hpp"
 
 #include "crtforge/assembler.hpp"
+#include "crtforge/luts.hpp"
 
 namespace crtforge::detail {
 
@@ -63,30 +64,73 @@ json uniform_block(const CompiledVariant& compiled) {
     return out;
 }
 
-}  // namespace
+json scale_json(const PassScale& s) { return json{{"type", scale_type_name(s.type)}, {"factor", s.factor}}; }
 
-json preset_manifest(const CompiledVariant& compiled) {
+json pass_manifest(const CompiledVariant& compiled) {
     const Variant& v = compiled.variant;
-    const Preset& preset = *v.preset;
+    const Pass& pass = *v.pass;
     json out;
-    out["doc"] = preset.doc;
-    out["lineage"] = preset.lineage;
-    out["precision"] = precision_name(v.options.precision);
-    out["uniforms"] = v.options.uniforms.str();
+    out["alias"] = pass.alias;
+    out["scale"] = json{{"x", scale_json(pass.scale_x)}, {"y", scale_json(pass.scale_y)}};
+    out["format"] = pixel_format_name(pass.format);
+    out["frameCountMod"] = pass.frame_count_mod;
     json stages = json::array();
-    for (const ResolvedStage& rs : preset.stages)
-        stages.push_back(json{{"stage", rs.stage->name}, {"form", rs.form->name}});
+    for (const ResolvedStage& rs : pass.stages) stages.push_back(json{{"stage", rs.stage->name}, {"form", rs.form->name}});
     out["stages"] = std::move(stages);
     json baked = json::object();
     for (const VariantParam* p : v.baked()) baked[p->spec->name] = value_to_json(p->value);
     out["baked"] = std::move(baked);
     out["uniformBlock"] = uniform_block(compiled);
+    // Every texture the shader declares, with what feeds it and how it is sampled.
     json textures = json::array();
-    for (const ReflectedTexture& t : compiled.reflection.textures)
-        textures.push_back(json{{"name", t.name}, {"set", t.set}, {"binding", t.binding},
-                                {"filter", filter_name(preset.filter)}, {"addressMode", "clamp-to-edge"}});
+    for (const ReflectedTexture& t : compiled.reflection.textures) {
+        json texture{{"name", t.name}, {"set", t.set}, {"binding", t.binding}};
+        if (const PassInput* input = pass.find_input(t.name)) {
+            texture["from"] = input->from.str();
+            texture["filter"] = filter_name(input->filter);
+            texture["wrap"] = wrap_name(input->wrap);
+            texture["mipmap"] = input->mipmap;
+        }
+        textures.push_back(std::move(texture));
+    }
     out["textures"] = std::move(textures);
+    return out;
+}
+
+}  // namespace
+
+json preset_manifest(const Preset& preset, const std::vector<CompiledVariant>& passes) {
+    json out;
+    out["doc"] = preset.doc;
+    out["lineage"] = preset.lineage;
+    if (!passes.empty()) {
+        out["precision"] = precision_name(passes.front().variant.options.precision);
+        out["uniforms"] = passes.front().variant.options.uniforms.str();
+    }
+    const SceneSettings& s = preset.scene;
+    json source{{"pixelAspect", {s.pixel_aspect_x, s.pixel_aspect_y}}, {"fit", source_fit_name(s.source_fit)}};
+    source["size"] = s.source_width ? json::array({s.source_width, s.source_height}) : json(nullptr);
+    json display{{"fit", display_fit_name(s.fit)}};
+    display["aspect"] = s.screen_aspect_x ? json::array({s.screen_aspect_x, s.screen_aspect_y}) : json(nullptr);
+    out["scene"] = json{{"source", std::move(source)}, {"display", std::move(display)}, {"fps", s.fps},
+                        {"historyFrames", preset.history_depth()}, {"feedback", preset.has_feedback()}};
+    json luts = json::object();
+    for (const LutSpec& lut : preset.luts) {
+        json entry{{"file", lut_export_path(preset, lut)}, {"filter", filter_name(lut.filter)}, {"wrap", wrap_name(lut.wrap)}};
+        if (const LutGenerator* g = find_lut_generator(lut.generator)) {
+            entry["generator"] = lut.generator;
+            entry["layout"] = g->layout;
+            json params = json::object();
+            for (const auto& [name, value] : lut.params) params[name] = value;
+            entry["params"] = std::move(params);
+        }
+        luts[lut.name] = std::move(entry);
+    }
+    out["luts"] = std::move(luts);
     out["vertexInput"] = "none: draw 3 vertices; the vertex shader derives a full-screen triangle from the vertex index";
+    json list = json::array();
+    for (const CompiledVariant& c : passes) list.push_back(pass_manifest(c));
+    out["passes"] = std::move(list);
     return out;
 }
 

@@ -21,8 +21,9 @@ struct ManifestTargetEntry {
 
 nlohmann::ordered_json value_to_json(const Value& value);
 
-// The preset-level part (stages, baked values, uniform block, textures).
-nlohmann::ordered_json preset_manifest(const CompiledVariant& compiled);
+// The preset-level part: scene, LUTs, and per pass its stages, baked values, uniform block and
+// textures (the caller adds each pass's "targets").
+nlohmann::ordered_json preset_manifest(const Preset& preset, const std::vector<CompiledVariant>& passes);
 
 nlohmann::ordered_json target_manifest(const ManifestTargetEntry& entry);
 

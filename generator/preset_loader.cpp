@@ -1,23 +1,18 @@
-// Parses preset files (templates/presets/<name>.toml) and resolves inheritance into a Preset.
+// Parses preset files (templates/presets/<name>.toml): stages, passes, the scene's source, display
+// and time, LUTs. Resolving inheritance and the pass graph is preset_resolver.cpp.
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <fmt/format.h>
 
 #include "crtforge/template_library.hpp"
+#include "crtforge/luts.hpp"
 #include "generator/toml_reader.hpp"
 
 namespace crtforge {
 
 using detail::TomlReader;
-
-const char* filter_name(Filter filter) { return filter == Filter::Linear ? "linear" : "nearest"; }
-
-const ResolvedStage* Preset::find_stage(const std::string& stage_name) const {
-    for (const auto& s : stages)
-        if (s.stage->name == stage_name) return &s;
-    return nullptr;
-}
 
 namespace {
 
@@ -31,16 +26,279 @@ bool is_preset_name(const std::string& name) {
 
 }  // namespace
 
+namespace {
+
+// The [stages.<name>] tables of a preset or of a pass: each stage's enable flag and param values.
+Result<std::vector<PresetStageEntry>> parse_stage_entries(const TomlReader& r, const toml::node& stages,
+                                                          const std::string& prefix, const TemplateLibrary* library) {
+    std::vector<PresetStageEntry> out;
+    const toml::table* st = stages.as_table();
+    if (!st) return r.error(&stages, prefix, "must be a table of [" + prefix + ".<name>] sections");
+    // toml++ tables are sorted by key; keep the file's order for readable diagnostics.
+    std::vector<std::pair<std::string, const toml::node*>> entries;
+    for (const auto& [key, node] : *st) entries.emplace_back(std::string(key.str()), &node);
+    std::sort(entries.begin(), entries.end(), [&](const auto& a, const auto& b) {
+        return r.line_of(*a.second) < r.line_of(*b.second);
+    });
+    for (const auto& [stage_name, node] : entries) {
+        const std::string field = prefix + "." + stage_name;
+        const toml::table* t = node->as_table();
+        if (!t) return r.error(node, field, "must be a table");
+        const StageSpec* spec = library ? library->find_stage(stage_name) : nullptr;
+        if (library && !spec) {
+            std::vector<std::string> names;
+            for (const auto& s : library->stages()) names.push_back(s.name);
+            return r.error(node, field, "unknown stage (stages: " + join_list(names) + ")");
+        }
+        PresetStageEntry entry;
+        entry.stage = stage_name;
+        entry.line = r.line_of(*node);
+        for (const auto& [key, value] : *t) {
+            const std::string param = std::string(key.str());
+            const std::string pfield = field + "." + param;
+            if (param == "enabled") {
+                if (!value.is_boolean()) return r.error(&value, pfield, "must be true or false");
+                entry.enabled = value.as_boolean()->get();
+                continue;
+            }
+            const ParamSpec* pspec = spec ? spec->find_param(param) : nullptr;
+            if (!pspec) {
+                std::vector<std::string> names;
+                if (spec)
+                    for (const auto& p : spec->params) names.push_back(p.name);
+                return r.error(&value, pfield, "unknown param of stage '" + stage_name + "' (params: " + join_list(names) + ")");
+            }
+            auto v = r.param_value(value, *pspec, pfield);
+            if (!v.ok()) return v.error();
+            entry.values[param] = v.value();
+            entry.value_lines[param] = r.line_of(value);
+        }
+        if (!entry.enabled && !entry.values.empty()) return r.error(node, field, "a disabled stage cannot also set params");
+        out.push_back(std::move(entry));
+    }
+    return out;
+}
+
+constexpr std::initializer_list<const char*> kFilters = {"linear", "nearest"};
+constexpr std::initializer_list<const char*> kWraps = {"clamp_to_edge", "clamp_to_border", "repeat", "mirrored_repeat"};
+constexpr std::initializer_list<const char*> kFormats = {"rgba8", "rgba8_srgb", "rgba16f"};
+constexpr std::initializer_list<const char*> kScaleTypes = {"source", "viewport", "absolute"};
+
+// scale_type / scale (a number or [x, y]) / scale_type_x / scale_type_y of a [[pass]].
+Status parse_scale(const TomlReader& r, const toml::table& t, const std::string& prefix, PassEntry& pass) {
+    auto both = r.choice(t, "scale_type", prefix, kScaleTypes);
+    if (!both.ok()) return both.error();
+    auto tx = r.choice(t, "scale_type_x", prefix, kScaleTypes);
+    if (!tx.ok()) return tx.error();
+    auto ty = r.choice(t, "scale_type_y", prefix, kScaleTypes);
+    if (!ty.ok()) return ty.error();
+    if (both.value() && (tx.value() || ty.value()))
+        return r.error(t.get("scale_type"), prefix + ".scale_type", "give scale_type or scale_type_x/_y, not both");
+    std::optional<double> fx, fy;
+    if (const toml::node* scale = t.get("scale")) {
+        if (const toml::array* a = scale->as_array()) {
+            if (a->size() != 2 || !a->get(0)->is_number() || !a->get(1)->is_number())
+                return r.error(scale, prefix + ".scale", "must be a number or [x, y]");
+            fx = a->get(0)->value<double>();
+            fy = a->get(1)->value<double>();
+        } else if (scale->is_number()) {
+            fx = fy = scale->value<double>();
+        } else {
+            return r.error(scale, prefix + ".scale", "must be a number or [x, y]");
+        }
+        for (double f : {*fx, *fy})
+            if (!(f > 0.0 && f <= 16384.0))
+                return r.error(scale, prefix + ".scale", "a scale must be above 0 (and at most 16384)");
+    }
+    auto type_of = [](const std::optional<size_t>& i) { return static_cast<PassScale::Type>(*i); };
+    if (both.value() || tx.value() || fx) {
+        PassScale s;
+        s.type = tx.value() ? type_of(tx.value()) : both.value() ? type_of(both.value()) : PassScale::Type::Source;
+        s.factor = fx.value_or(1.0);
+        pass.scale_x = s;
+    }
+    if (both.value() || ty.value() || fy) {
+        PassScale s;
+        s.type = ty.value() ? type_of(ty.value()) : both.value() ? type_of(both.value()) : PassScale::Type::Source;
+        s.factor = fy.value_or(1.0);
+        pass.scale_y = s;
+    }
+    for (const auto& s : {pass.scale_x, pass.scale_y})
+        if (s && s->type == PassScale::Type::Absolute && std::floor(s->factor) != s->factor)
+            return r.error(t.get("scale"), prefix + ".scale", "an absolute scale is a whole number of pixels");
+    return Ok{};
+}
+
+Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t index, const TemplateLibrary* library) {
+    const std::string prefix = "pass[" + std::to_string(index) + "]";
+    if (auto s = r.only_keys(t, {"alias", "preset", "stages", "scale_type", "scale_type_x", "scale_type_y", "scale", "format",
+                                 "input", "filter", "wrap", "mipmap", "textures", "frame_count_mod"},
+                             prefix);
+        !s.ok())
+        return s.error();
+    PassEntry pass;
+    pass.line = r.line_of(t);
+    auto alias = r.string(t, "alias", prefix, true);
+    if (!alias.ok()) return alias.error();
+    if (!detail::is_identifier(alias.value()))
+        return r.error(t.get("alias"), prefix + ".alias", "'" + alias.value() + "' is not an identifier");
+    pass.alias = alias.value();
+    const std::string field = "pass." + pass.alias;
+    auto preset = r.string(t, "preset", field, false);
+    if (!preset.ok()) return preset.error();
+    pass.preset = preset.value();
+    if (const toml::node* stages = t.get("stages")) {
+        auto entries = parse_stage_entries(r, *stages, field + ".stages", library);
+        if (!entries.ok()) return entries.error();
+        pass.stages = std::move(entries.value());
+    }
+    if (auto s = parse_scale(r, t, field, pass); !s.ok()) return s.error();
+    auto format = r.choice(t, "format", field, kFormats);
+    if (!format.ok()) return format.error();
+    if (format.value()) pass.format = static_cast<PixelFormat>(*format.value());
+    if (t.get("input")) {
+        auto input = r.string(t, "input", field, true);
+        if (!input.ok()) return input.error();
+        pass.input = input.value();
+    }
+    auto filter = r.choice(t, "filter", field, kFilters);
+    if (!filter.ok()) return filter.error();
+    if (filter.value()) pass.filter = static_cast<Filter>(*filter.value());
+    auto wrap = r.choice(t, "wrap", field, kWraps);
+    if (!wrap.ok()) return wrap.error();
+    if (wrap.value()) pass.wrap = static_cast<Wrap>(*wrap.value());
+    auto mipmap = r.boolean(t, "mipmap", field);
+    if (!mipmap.ok()) return mipmap.error();
+    pass.mipmap = mipmap.value();
+    if (const toml::node* textures = t.get("textures")) {
+        const toml::table* tt = textures->as_table();
+        if (!tt) return r.error(textures, field + ".textures", "must be a table of name = \"source\"");
+        for (const auto& [name, node] : *tt) {
+            if (!node.is_string())
+                return r.error(&node, field + ".textures." + std::string(name.str()), "must be a string naming a source");
+            pass.textures[std::string(name.str())] = std::string(node.as_string()->get());
+            pass.texture_lines[std::string(name.str())] = r.line_of(node);
+        }
+    }
+    auto mod = r.integer(t, "frame_count_mod", field);
+    if (!mod.ok()) return mod.error();
+    if (mod.value()) {
+        if (*mod.value() < 1 || *mod.value() > (1 << 30))
+            return r.error(t.get("frame_count_mod"), field + ".frame_count_mod", "must be 1..2^30");
+        pass.frame_count_mod = static_cast<int>(*mod.value());
+    }
+    return pass;
+}
+
+Result<LutSpec> parse_lut(const TomlReader& r, const std::string& name, const toml::node& node) {
+    const std::string field = "lut." + name;
+    const toml::table* t = node.as_table();
+    if (!t) return r.error(&node, field, "must be a table");
+    if (!detail::is_identifier(name)) return r.error(&node, field, "'" + name + "' is not an identifier");
+    LutSpec lut;
+    lut.name = name;
+    lut.where = {r.path(), r.line_of(node)};
+    auto generator = r.string(*t, "generator", field, false);
+    if (!generator.ok()) return generator.error();
+    auto file = r.string(*t, "file", field, false);
+    if (!file.ok()) return file.error();
+    if (generator.value().empty() == file.value().empty())
+        return r.error(&node, field, "needs exactly one of generator = \"...\" or file = \"...\"");
+    lut.generator = generator.value();
+    lut.file = file.value();
+    auto filter = r.choice(*t, "filter", field, kFilters);
+    if (!filter.ok()) return filter.error();
+    if (filter.value()) lut.filter = static_cast<Filter>(*filter.value());
+    auto wrap = r.choice(*t, "wrap", field, kWraps);
+    if (!wrap.ok()) return wrap.error();
+    if (wrap.value()) lut.wrap = static_cast<Wrap>(*wrap.value());
+    const LutGenerator* gen = lut.generator.empty() ? nullptr : find_lut_generator(lut.generator);
+    if (!lut.generator.empty() && !gen) {
+        std::vector<std::string> names;
+        for (const auto& g : lut_generators()) names.emplace_back(g.name);
+        return r.error(t->get("generator"), field + ".generator",
+                       "unknown generator '" + lut.generator + "' (generators: " + join_list(names) + ")");
+    }
+    for (const auto& [key, value] : *t) {
+        const std::string k(key.str());
+        if (k == "generator" || k == "file" || k == "filter" || k == "wrap") continue;
+        const LutParam* param = nullptr;
+        if (gen)
+            for (const LutParam& p : gen->params)
+                if (p.name == k) param = &p;
+        if (!param) {
+            std::vector<std::string> names = {"generator", "file", "filter", "wrap"};
+            if (gen)
+                for (const LutParam& p : gen->params) names.push_back(p.name);
+            return r.error(&value, field + "." + k, "unknown key (expected one of: " + join_list(names) + ")");
+        }
+        auto v = r.number(*t, k, field);
+        if (!v.ok()) return v.error();
+        if (*v.value() < param->min || *v.value() > param->max)
+            return r.error(&value, field + "." + k, fmt::format("{} is outside [{}, {}]", *v.value(), param->min, param->max));
+        lut.params[k] = *v.value();
+    }
+    if (gen)
+        for (const LutParam& p : gen->params) lut.params.emplace(p.name, p.default_value);
+    return lut;
+}
+
+// [source], [display] and [time].
+Status parse_scene_tables(const TomlReader& r, const toml::table& root, PresetFile& file) {
+    if (const toml::node* node = root.get("source")) {
+        const toml::table* t = node->as_table();
+        if (!t) return r.error(node, "source", "must be a table");
+        if (auto s = r.only_keys(*t, {"size", "pixel_aspect", "fit"}, "source"); !s.ok()) return s.error();
+        auto size = r.int_pair(*t, "size", "source", 1, kMaxSceneDimension);
+        if (!size.ok()) return size.error();
+        if (size.value()) std::tie(file.source_width, file.source_height) = *size.value();
+        auto par = r.int_pair(*t, "pixel_aspect", "source", 1, 1000);
+        if (!par.ok()) return par.error();
+        if (par.value()) std::tie(file.pixel_aspect_x, file.pixel_aspect_y) = *par.value();
+        auto fit = r.choice(*t, "fit", "source", {"stretch", "width", "height", "contain"});
+        if (!fit.ok()) return fit.error();
+        if (fit.value()) file.source_fit = static_cast<SourceFit>(*fit.value());
+    }
+    if (const toml::node* node = root.get("display")) {
+        const toml::table* t = node->as_table();
+        if (!t) return r.error(node, "display", "must be a table");
+        if (auto s = r.only_keys(*t, {"fit", "aspect"}, "display"); !s.ok()) return s.error();
+        auto fit = r.choice(*t, "fit", "display", {"stretch", "aspect", "integer"});
+        if (!fit.ok()) return fit.error();
+        if (fit.value()) file.fit = static_cast<DisplayFit>(*fit.value());
+        auto aspect = r.int_pair(*t, "aspect", "display", 1, 1000);
+        if (!aspect.ok()) return aspect.error();
+        if (aspect.value()) std::tie(file.screen_aspect_x, file.screen_aspect_y) = *aspect.value();
+    }
+    if (const toml::node* node = root.get("time")) {
+        const toml::table* t = node->as_table();
+        if (!t) return r.error(node, "time", "must be a table");
+        if (auto s = r.only_keys(*t, {"fps"}, "time"); !s.ok()) return s.error();
+        auto fps = r.number(*t, "fps", "time");
+        if (!fps.ok()) return fps.error();
+        if (fps.value()) {
+            if (!(*fps.value() > 0.0 && *fps.value() <= 1000.0)) return r.error(t->get("fps"), "time.fps", "must be above 0 and at most 1000");
+            file.fps = *fps.value();
+        }
+    }
+    return Ok{};
+}
+
+}  // namespace
+
 Result<PresetFile> parse_preset_file(const std::string& text, const std::string& path,
                                      const TemplateLibrary* library) {
     TomlReader r(path);
     auto parsed = r.parse(text);
     if (!parsed.ok()) return parsed.error();
     const toml::table& root = parsed.value();
-    if (auto s = r.only_keys(root, {"name", "doc", "base", "filter", "stages"}, ""); !s.ok()) return s.error();
+    if (auto s = r.only_keys(root, {"name", "doc", "base", "filter", "stages", "pass", "passes", "source", "display", "time", "lut"}, "");
+        !s.ok())
+        return s.error();
 
     PresetFile file;
     file.where = {path, 1};
+    for (const auto& [key, node] : root) file.key_lines[std::string(key.str())] = r.line_of(node);
     auto name = r.string(root, "name", "", true);
     if (!name.ok()) return name.error();
     file.name = name.value();
@@ -55,140 +313,62 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
     auto base = r.string(root, "base", "", false);
     if (!base.ok()) return base.error();
     file.base = base.value();
-    auto filter = r.string(root, "filter", "", false);
+    auto filter = r.choice(root, "filter", "", kFilters);
     if (!filter.ok()) return filter.error();
-    if (filter.value() == "linear") file.filter = Filter::Linear;
-    else if (filter.value() == "nearest") file.filter = Filter::Nearest;
-    else if (!filter.value().empty())
-        return r.error(root.get("filter"), "filter", "must be \"linear\" or \"nearest\"");
+    if (filter.value()) file.filter = static_cast<Filter>(*filter.value());
 
     if (const toml::node* stages = root.get("stages")) {
-        const toml::table* st = stages->as_table();
-        if (!st) return r.error(stages, "stages", "must be a table of [stages.<name>] sections");
-        // toml++ tables are sorted by key; keep the file's order for readable diagnostics.
-        std::vector<std::pair<std::string, const toml::node*>> entries;
-        for (const auto& [key, node] : *st) entries.emplace_back(std::string(key.str()), &node);
-        std::sort(entries.begin(), entries.end(), [&](const auto& a, const auto& b) {
-            return r.line_of(*a.second) < r.line_of(*b.second);
-        });
-        for (const auto& [stage_name, node] : entries) {
-            const std::string field = "stages." + stage_name;
-            const toml::table* t = node->as_table();
-            if (!t) return r.error(node, field, "must be a table");
-            const StageSpec* spec = library ? library->find_stage(stage_name) : nullptr;
-            if (library && !spec) {
-                std::vector<std::string> names;
-                for (const auto& s : library->stages()) names.push_back(s.name);
-                const std::string list = join_list(names);
-                return r.error(node, field, "unknown stage (stages: " + list + ")");
+        auto entries = parse_stage_entries(r, *stages, "stages", library);
+        if (!entries.ok()) return entries.error();
+        file.stages = std::move(entries.value());
+    }
+    if (const toml::node* passes = root.get("pass")) {
+        const toml::array* a = passes->as_array();
+        if (!a || !a->is_array_of_tables() || a->empty()) return r.error(passes, "pass", "must be [[pass]] tables");
+        if (root.get("stages"))
+            return r.error(root.get("stages"), "stages", "a preset with [[pass]] sets its stages in each pass ([pass.stages.<name>])");
+        size_t index = 0;
+        for (const toml::node& node : *a) {
+            auto pass = parse_pass(r, *node.as_table(), index++, library);
+            if (!pass.ok()) return pass.error();
+            for (const PassEntry& other : file.passes)
+                if (other.alias == pass.value().alias)
+                    return r.error(node.as_table()->get("alias"), "pass." + other.alias + ".alias",
+                                   "alias '" + other.alias + "' is already used at line " + std::to_string(other.line));
+            file.passes.push_back(std::move(pass.value()));
+        }
+    }
+    if (const toml::node* overrides = root.get("passes")) {
+        const toml::table* t = overrides->as_table();
+        if (!t) return r.error(overrides, "passes", "must be a table of [passes.<alias>.stages.<stage>] sections");
+        if (root.get("pass"))
+            return r.error(overrides, "passes", "[passes.<alias>] changes a base preset's passes; this file defines its own [[pass]]");
+        for (const auto& [alias, node] : *t) {
+            const std::string field = "passes." + std::string(alias.str());
+            const toml::table* pt = node.as_table();
+            if (!pt) return r.error(&node, field, "must be a table");
+            if (auto s = r.only_keys(*pt, {"stages"}, field); !s.ok()) return s.error();
+            std::vector<PresetStageEntry> entries;
+            if (const toml::node* stages = pt->get("stages")) {
+                auto parsed_entries = parse_stage_entries(r, *stages, field + ".stages", library);
+                if (!parsed_entries.ok()) return parsed_entries.error();
+                entries = std::move(parsed_entries.value());
             }
-            PresetStageEntry entry;
-            entry.stage = stage_name;
-            entry.line = r.line_of(*node);
-            for (const auto& [key, value] : *t) {
-                const std::string param = std::string(key.str());
-                const std::string pfield = field + "." + param;
-                if (param == "enabled") {
-                    if (!value.is_boolean()) return r.error(&value, pfield, "must be true or false");
-                    entry.enabled = value.as_boolean()->get();
-                    continue;
-                }
-                const ParamSpec* pspec = spec ? spec->find_param(param) : nullptr;
-                if (!pspec) {
-                    std::vector<std::string> names;
-                    if (spec)
-                        for (const auto& p : spec->params) names.push_back(p.name);
-                    return r.error(&value, pfield, "unknown param of stage '" + stage_name + "' (params: " + join_list(names) + ")");
-                }
-                auto v = r.param_value(value, *pspec, pfield);
-                if (!v.ok()) return v.error();
-                entry.values[param] = v.value();
-                entry.value_lines[param] = r.line_of(value);
-            }
-            if (!entry.enabled && !entry.values.empty())
-                return r.error(node, field, "a disabled stage cannot also set params");
-            file.stages.push_back(std::move(entry));
+            file.pass_overrides[std::string(alias.str())] = std::move(entries);
+            file.pass_override_lines[std::string(alias.str())] = r.line_of(node);
+        }
+    }
+    if (auto s = parse_scene_tables(r, root, file); !s.ok()) return s.error();
+    if (const toml::node* luts = root.get("lut")) {
+        const toml::table* t = luts->as_table();
+        if (!t) return r.error(luts, "lut", "must be a table of [lut.<name>] sections");
+        for (const auto& [name, node] : *t) {
+            auto lut = parse_lut(r, std::string(name.str()), node);
+            if (!lut.ok()) return lut.error();
+            file.luts.push_back(std::move(lut.value()));
         }
     }
     return file;
-}
-
-Result<Preset> TemplateLibrary::resolve(const std::vector<PresetFile>& files, const std::string& name) const {
-    auto find_file = [&](const std::string& n) -> const PresetFile* {
-        for (const auto& f : files)
-            if (f.name == n) return &f;
-        return nullptr;
-    };
-    const PresetFile* leaf = find_file(name);
-    if (!leaf) return make_error("unknown preset '" + name + "'");
-
-    // Walk to the root of the inheritance chain, refusing cycles.
-    std::vector<const PresetFile*> chain{leaf};
-    std::set<std::string> seen{leaf->name};
-    while (!chain.back()->base.empty()) {
-        const PresetFile* child = chain.back();
-        const PresetFile* base = find_file(child->base);
-        if (!base) return make_error("base preset '" + child->base + "' does not exist", child->where.file, child->where.line, "base");
-        if (!seen.insert(base->name).second)
-            return make_error("inheritance cycle through '" + base->name + "'", child->where.file, child->where.line, "base");
-        chain.push_back(base);
-    }
-
-    Preset preset;
-    preset.name = leaf->name;
-    preset.doc = leaf->doc;
-    preset.where = leaf->where;
-    for (const auto* f : chain) preset.lineage.push_back(f->name);
-
-    // Apply from the root down: later (more derived) files override.
-    std::map<std::string, std::map<std::string, Value>> enabled;
-    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-        if ((*it)->filter) preset.filter = *(*it)->filter;
-        for (const auto& entry : (*it)->stages) {
-            if (!entry.enabled) {
-                enabled.erase(entry.stage);
-                continue;
-            }
-            auto& values = enabled[entry.stage];
-            for (const auto& [k, v] : entry.values) values[k] = v;
-        }
-    }
-
-    for (const StageSpec& spec : stages_) {
-        auto found = enabled.find(spec.name);
-        if (found == enabled.end()) continue;
-        const auto& set_values = found->second;
-        ResolvedStage rs;
-        rs.stage = &spec;
-        if (spec.selector.empty()) {
-            rs.form = &spec.forms.front();
-        } else {
-            auto sel = set_values.find(spec.selector);
-            const Value& v = sel != set_values.end() ? sel->second : spec.find_param(spec.selector)->default_value;
-            rs.form = spec.find_form(std::get<std::string>(v));
-        }
-        std::vector<std::string> reads = spec.common_params;
-        reads.insert(reads.end(), rs.form->params.begin(), rs.form->params.end());
-        if (!spec.selector.empty()) reads.push_back(spec.selector);
-        for (const auto& p : reads) {
-            auto v = set_values.find(p);
-            rs.values[p] = v != set_values.end() ? v->second : spec.find_param(p)->default_value;
-        }
-        // A value this file sets that the chosen form never reads is almost always a mistake.
-        for (const auto& entry : leaf->stages) {
-            if (entry.stage != spec.name) continue;
-            for (const auto& [k, v] : entry.values) {
-                if (!rs.values.count(k)) {
-                    const std::string list = join_list(reads);
-                    return make_error(fmt::format("is not read by form '{}' of stage '{}' (it reads: {})",
-                                                  rs.form->name, spec.name, list),
-                                      leaf->where.file, entry.value_lines.at(k), "stages." + spec.name + "." + k);
-                }
-            }
-        }
-        preset.stages.push_back(std::move(rs));
-    }
-    return preset;
 }
 
 }  // namespace crtforge

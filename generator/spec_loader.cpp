@@ -36,12 +36,13 @@ const char* builtin_name(Builtin builtin) {
         case Builtin::OutputSize: return "outputSize";
         case Builtin::SourceSize: return "sourceSize";
         case Builtin::Time: return "time";
+        case Builtin::FrameCount: return "frameCount";
     }
     return "?";
 }
 
 bool parse_builtin(const std::string& text, Builtin& out) {
-    for (Builtin b : {Builtin::OutputSize, Builtin::SourceSize, Builtin::Time}) {
+    for (Builtin b : {Builtin::OutputSize, Builtin::SourceSize, Builtin::Time, Builtin::FrameCount}) {
         if (text == builtin_name(b)) {
             out = b;
             return true;
@@ -158,7 +159,7 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
 
 Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const StageSpec& stage) {
     const std::string prefix = "form";
-    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "warp", "sample_uv", "fetch", "color", "finish"}, prefix); !s.ok())
+    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "warp", "sample_uv", "fetch", "color", "finish"}, prefix); !s.ok())
         return s.error();
     FormSpec f;
     f.where = {r.path(), r.line_of(t)};
@@ -183,8 +184,18 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
         Builtin builtin{};
         if (!parse_builtin(b, builtin))
             return r.error(t.get("builtins"), join_field(field, "builtins"),
-                           "'" + b + "' is not a builtin (outputSize, sourceSize, time)");
+                           "'" + b + "' is not a builtin (outputSize, sourceSize, time, frameCount)");
         f.builtins.push_back(builtin);
+    }
+    auto textures = r.strings(t, "textures", field);
+    if (!textures.ok()) return textures.error();
+    for (const auto& name : textures.value()) {
+        if (!detail::is_identifier(name) || name == "source")
+            return r.error(t.get("textures"), join_field(field, "textures"),
+                           "'" + name + "' must be an identifier other than source (the main input)");
+        if (std::find(f.textures.begin(), f.textures.end(), name) != f.textures.end())
+            return r.error(t.get("textures"), join_field(field, "textures"), "'" + name + "' is listed twice");
+        f.textures.push_back(name);
     }
     bool any = false;
     for (Hook hook : kAllHooks) {

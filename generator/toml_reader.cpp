@@ -57,6 +57,44 @@ Result<std::optional<bool>> TomlReader::boolean(const toml::table& owner, const 
     return std::optional<bool>{node->as_boolean()->get()};
 }
 
+Result<std::optional<double>> TomlReader::number(const toml::table& owner, const std::string& key,
+                                                 const std::string& prefix) const {
+    const toml::node* node = owner.get(key);
+    if (!node) return std::optional<double>{};
+    if (node->is_integer()) return std::optional<double>{static_cast<double>(node->as_integer()->get())};
+    if (!node->is_floating_point() || !std::isfinite(node->as_floating_point()->get()))
+        return error(node, join_field(prefix, key), "must be a finite number");
+    return std::optional<double>{node->as_floating_point()->get()};
+}
+
+Result<std::optional<std::pair<int, int>>> TomlReader::int_pair(const toml::table& owner, const std::string& key,
+                                                                const std::string& prefix, int min, int max) const {
+    const toml::node* node = owner.get(key);
+    if (!node) return std::optional<std::pair<int, int>>{};
+    const toml::array* a = node->as_array();
+    const std::string field = join_field(prefix, key);
+    if (!a || a->size() != 2 || !a->get(0)->is_integer() || !a->get(1)->is_integer())
+        return error(node, field, "must be [a, b] of two integers");
+    const int64_t x = a->get(0)->as_integer()->get(), y = a->get(1)->as_integer()->get();
+    if (x < min || x > max || y < min || y > max)
+        return error(node, field, fmt::format("[{}, {}] is outside {}..{}", x, y, min, max));
+    return std::optional<std::pair<int, int>>{std::make_pair(static_cast<int>(x), static_cast<int>(y))};
+}
+
+Result<std::optional<size_t>> TomlReader::choice(const toml::table& owner, const std::string& key, const std::string& prefix,
+                                                 std::initializer_list<const char*> names) const {
+    auto text = string(owner, key, prefix, false);
+    if (!text.ok()) return text.error();
+    if (!owner.get(key)) return std::optional<size_t>{};
+    size_t i = 0;
+    for (const char* n : names) {
+        if (text.value() == n) return std::optional<size_t>{i};
+        ++i;
+    }
+    return error(owner.get(key), join_field(prefix, key),
+                 "'" + text.value() + "' is not one of: " + join_list(std::vector<std::string>(names.begin(), names.end())));
+}
+
 Result<std::vector<std::string>> TomlReader::strings(const toml::table& owner, const std::string& key,
                                                      const std::string& prefix) const {
     std::vector<std::string> out;

@@ -36,6 +36,14 @@ public:
                                            const std::string& prefix) const;
     Result<std::optional<bool>> boolean(const toml::table& owner, const std::string& key,
                                         const std::string& prefix) const;
+    Result<std::optional<double>> number(const toml::table& owner, const std::string& key,
+                                         const std::string& prefix) const;
+    // [a, b] of integers, each within [min, max]; missing = nullopt.
+    Result<std::optional<std::pair<int, int>>> int_pair(const toml::table& owner, const std::string& key,
+                                                        const std::string& prefix, int min, int max) const;
+    // A string that must be one of `names`; returns its index (nullopt when missing).
+    Result<std::optional<size_t>> choice(const toml::table& owner, const std::string& key, const std::string& prefix,
+                                         std::initializer_list<const char*> names) const;
     // An array of strings; missing = empty.
     Result<std::vector<std::string>> strings(const toml::table& owner, const std::string& key,
                                              const std::string& prefix) const;

@@ -40,6 +40,15 @@ std::string UniformSelection::str() const {
     return "default";
 }
 
+std::string Variant::file_stem() const {
+    return preset->single_pass() ? preset->name : preset->name + "." + pass->alias;
+}
+
+Filter Variant::texture_filter(const std::string& name) const {
+    const PassInput* input = pass->find_input(name);
+    return input ? input->filter : preset->filter;
+}
+
 bool Variant::has_uniform_block() const { return !builtins.empty() || !uniforms().empty(); }
 
 std::vector<const VariantParam*> Variant::uniforms() const {
@@ -57,14 +66,19 @@ std::vector<const VariantParam*> Variant::baked() const {
 }
 
 Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
-                             const VariantOptions& options) {
+                             const VariantOptions& options, size_t pass_index) {
+    if (pass_index >= preset.passes.size())
+        return make_error("preset '" + preset.name + "' has no pass " + std::to_string(pass_index));
     Variant variant;
     variant.preset = &preset;
+    variant.pass = &preset.passes[pass_index];
+    variant.pass_index = pass_index;
     variant.options = options;
+    variant.textures = variant.pass->texture_names();
 
     std::set<std::string> used;
-    bool needs_time = false, needs_source_size = false;
-    for (const ResolvedStage& rs : preset.stages) {
+    bool needs_time = false, needs_source_size = false, needs_frame_count = false;
+    for (const ResolvedStage& rs : variant.pass->stages) {
         // Params in declaration order of the spec, so layouts are stable and readable.
         for (const ParamSpec& spec : rs.stage->params) {
             auto v = rs.values.find(spec.name);
@@ -89,6 +103,7 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
         for (Builtin b : rs.form->builtins) {
             needs_time = needs_time || b == Builtin::Time;
             needs_source_size = needs_source_size || b == Builtin::SourceSize;
+            needs_frame_count = needs_frame_count || b == Builtin::FrameCount;
         }
     }
 
@@ -100,16 +115,20 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
             if (!spec->runtime)
                 return make_error("'" + name + "' cannot be a runtime uniform (runtime = false at " +
                                   spec->where.file + ":" + std::to_string(spec->where.line) + ")", {}, 0, "--uniforms");
-            if (!used.count(name))
+            bool anywhere = used.count(name) != 0;
+            for (const Pass& p : preset.passes)
+                for (const ResolvedStage& rs : p.stages) anywhere = anywhere || rs.values.count(name) != 0;
+            if (!anywhere)
                 return make_error("'" + name + "' is not used by preset '" + preset.name +
                                   "' (its stage is off or its form does not read it)", {}, 0, "--uniforms");
         }
     }
 
     // outputSize is always present when any stage runs: the pixel grid every stage works on.
-    if (!preset.stages.empty()) variant.builtins.push_back(Builtin::OutputSize);
+    if (!variant.pass->stages.empty()) variant.builtins.push_back(Builtin::OutputSize);
     if (needs_source_size) variant.builtins.push_back(Builtin::SourceSize);
     if (needs_time) variant.builtins.push_back(Builtin::Time);
+    if (needs_frame_count) variant.builtins.push_back(Builtin::FrameCount);
     return variant;
 }
 

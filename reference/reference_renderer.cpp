@@ -18,7 +18,7 @@ struct StagePlan {
 
 Diagnostic unmodelled(const StagePlan& s) {
     return make_error("the reference renderer has no model of stage '" + s.stage + "' form '" + s.form +
-                      "'; add one in runtime/reference/reference_stages.cpp");
+                      "'; add one in reference/reference_stages.cpp");
 }
 
 }  // namespace
@@ -36,7 +36,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
     const Params params(values);
     const Sampler tex(job.input, job.filter);
     std::vector<StagePlan> plan;
-    for (const ResolvedStage& rs : job.variant->preset->stages) plan.push_back({rs.stage->name, rs.form->name});
+    for (const ResolvedStage& rs : job.variant->pass->stages) plan.push_back({rs.stage->name, rs.form->name});
     auto find = [&](const char* stage) -> const StagePlan* {
         for (const auto& s : plan)
             if (s.stage == stage) return &s;

@@ -64,9 +64,10 @@ TEST_CASE("the manifest lists files, uniform layout and baked values", "[export]
     json m = json::parse(files.at("manifest.json"));
     REQUIRE(m["presets"].size() == lib.presets().size());
     for (const auto& [name, preset] : m["presets"].items()) {
+        REQUIRE(preset["passes"].size() == lib.find_preset(name)->passes.size());
         for (const TargetInfo& t : all_targets()) {
             INFO(name << " " << t.name);
-            const json& entry = preset["targets"][t.name];
+            const json& entry = preset["passes"][0]["targets"][t.name];
             std::vector<std::string> roles = t.shader_roles;
             if (t.id == TargetId::Godot4 || t.id == TargetId::Godot3) roles.insert(roles.end(), {"material", "readme"});
             for (const std::string& role : roles) {
@@ -75,7 +76,16 @@ TEST_CASE("the manifest lists files, uniform layout and baked values", "[export]
             }
         }
     }
-    const json& shadow = m["presets"]["crt-shadow-mask"];
+    CHECK(m["manifestVersion"] == 2);
+    const json& shadow_preset = m["presets"]["crt-shadow-mask"];
+    CHECK(shadow_preset["scene"]["fps"] == 60.0);
+    CHECK(shadow_preset["scene"]["display"]["fit"] == "stretch");
+    const json& shadow = shadow_preset["passes"][0];
+    CHECK(shadow["alias"] == "main");
+    CHECK(shadow["format"] == "rgba8");
+    CHECK(shadow["scale"]["x"]["type"] == "viewport");
+    CHECK(shadow["textures"][0]["from"] == "original");
+    CHECK(shadow["textures"][0]["wrap"] == "clamp_to_edge");
     CHECK(shadow["baked"]["maskBorder"] == 0.8);
     CHECK(shadow["baked"]["maskMode"] == "shadow");
     CHECK(shadow["baked"]["maskQuantize"] == true);
@@ -98,7 +108,7 @@ TEST_CASE("the manifest lists files, uniform layout and baked values", "[export]
     CHECK(mask_size["unit"] == "px");
     CHECK(mask_size["stage"] == "mask");
     CHECK(shadow["textures"][0]["binding"] == 1);
-    CHECK(m["presets"]["passthrough"]["uniformBlock"].is_null());
+    CHECK(m["presets"]["passthrough"]["passes"][0]["uniformBlock"].is_null());
     CHECK(shadow["targets"]["hlsl50"]["bindings"]["CrtParams"] == "cbuffer register(b0)");
 }
 

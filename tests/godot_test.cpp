@@ -48,7 +48,7 @@ TEST_CASE("Godot 4 shaders are canvas_item code with no GLSL plumbing", "[godot]
                 CHECK_THAT(text, !Catch::Contains(banned));
         }
         CHECK_THAT(file(out, "shader").data, Catch::Contains("UV"));
-        if (!p.stages.empty()) {
+        if (!p.passes.front().stages.empty()) {
             CHECK_THAT(file(out, "screenShader").data,
                        Catch::Contains("uniform sampler2D screen_texture : hint_screen_texture, filter_linear, repeat_disable;"));
             CHECK_THAT(file(out, "screenShader").data, Catch::Contains("SCREEN_UV"));

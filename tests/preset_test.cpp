@@ -40,7 +40,7 @@ TEST_CASE("every shipped preset resolves and names its source document", "[prese
     CHECK_THAT(lib.find_preset("webgpu-post")->doc, Catch::Contains("crt.ts"));
     CHECK_THAT(lib.find_preset("classic")->doc, Catch::Contains("Retro CRT Effects"));
     CHECK_THAT(lib.find_preset("crt-shadow-mask")->doc, Catch::Contains("CRT effect"));
-    CHECK(lib.find_preset("passthrough")->stages.empty());
+    CHECK(lib.find_preset("passthrough")->passes.front().stages.empty());
 }
 
 TEST_CASE("the Atari article's preset table is reproduced", "[preset]") {
@@ -124,10 +124,10 @@ vignetteForm = "crt_effect"
     SECTION("stages come out in pass order whatever the file order") {
         auto p = resolve_texts({{"o.toml", "name = \"o\"\ndoc = \"O\"\n[stages.vignette]\n[stages.curvature]\n[stages.mask]\n"}}, "o");
         REQUIRE(p.ok());
-        REQUIRE(p.value().stages.size() == 3);
-        CHECK(p.value().stages[0].stage->name == "curvature");
-        CHECK(p.value().stages[1].stage->name == "mask");
-        CHECK(p.value().stages[2].stage->name == "vignette");
+        REQUIRE(p.value().passes.front().stages.size() == 3);
+        CHECK(p.value().passes.front().stages[0].stage->name == "curvature");
+        CHECK(p.value().passes.front().stages[1].stage->name == "mask");
+        CHECK(p.value().passes.front().stages[2].stage->name == "vignette");
     }
 }
 

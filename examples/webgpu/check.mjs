@@ -89,6 +89,8 @@ try {
 }
 preset = manifest.presets?.[args.preset];
 if (!preset) fail(`preset '${args.preset}' is not in the manifest (${Object.keys(manifest.presets ?? {}).join(', ')})`);
+if (preset.passes?.length !== 1) fail(`preset '${args.preset}' is a scene of ${preset.passes?.length} passes; this check runs single-pass presets`);
+preset = preset.passes[0];
 if (!preset.targets?.wgsl) fail(`preset '${args.preset}' has no wgsl target in the manifest (export with --target wgsl)`);
 try {
   wgsl = readFileSync(path.join(args.export, preset.targets.wgsl.shader), 'utf8');

@@ -6,7 +6,8 @@
 //
 // Everything it needs comes from `crtforge export`:
 //   wgsl   - the text of wgsl/<preset>.wgsl
-//   preset - manifest.json's presets.<preset> object (uniform block, textures, targets.wgsl)
+//   preset - a pass of manifest.json's presets.<preset>.passes (uniform block, textures, targets.wgsl);
+//            a single-pass preset has one
 //
 //   const pass = createCrtPass(device, { wgsl, preset, format: 'bgra8unorm' });
 //   pass.setParam('scanlineIntensity', 0.7);

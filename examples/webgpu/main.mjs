@@ -66,7 +66,7 @@ async function main() {
   } catch (e) {
     return showMessage(`Cannot load ${new URL('manifest.json', exportDir)} (${e.message}).\nRun scripts/run-main.sh or build/crtforge export --out out/export, serve the repository root, or pass ?export=DIR.`);
   }
-  const names = Object.keys(manifest.presets).filter((n) => manifest.presets[n].targets?.wgsl);
+  const names = Object.keys(manifest.presets).filter((n) => manifest.presets[n].passes?.length === 1 && manifest.presets[n].passes[0].targets?.wgsl);
   if (!names.length) return showMessage('The manifest has no preset with a wgsl target (export with --target wgsl or all targets).');
 
   const canvas = $('screen');
@@ -97,7 +97,7 @@ async function main() {
   let crt = null;
   const wgslCache = new Map();
   async function choosePreset(name) {
-    const preset = manifest.presets[name];
+    const preset = manifest.presets[name].passes[0];
     if (!wgslCache.has(name)) {
       const response = await fetch(new URL(preset.targets.wgsl.shader, exportDir));
       if (!response.ok) throw new Error(`cannot fetch ${preset.targets.wgsl.shader}: HTTP ${response.status}`);

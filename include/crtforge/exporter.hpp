@@ -23,8 +23,13 @@ struct CompiledVariant {
     Reflection reflection;
 };
 
+// One pass of a preset (the only pass of a single-pass preset).
 Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Preset& preset,
-                                        const VariantOptions& options, const Cache& cache);
+                                        const VariantOptions& options, const Cache& cache, size_t pass_index = 0);
+
+// Every pass of a preset, in order.
+Result<std::vector<CompiledVariant>> compile_scene(const TemplateLibrary& library, const Preset& preset,
+                                                   const VariantOptions& options, const Cache& cache);
 
 // Emits one target (using the cache for the text).
 Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId target,
@@ -49,7 +54,13 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
 // Writes files under dir atomically per file; refuses to write anything if dir cannot be created.
 Status write_files(const std::string& dir, const std::map<std::string, std::string>& files);
 
-// Relative path of one exported file: "<target>/<preset><suffix>".
-std::string export_path(const std::string& preset, TargetId target, const std::string& suffix);
+// Relative path of one exported file: "<target>/<stem><suffix>" (stem: Variant::file_stem()).
+std::string export_path(const std::string& stem, TargetId target, const std::string& suffix);
+
+// A file LUT's path: as written when absolute, else relative to the preset file's folder.
+std::string lut_file_path(const LutSpec& lut);
+
+// Relative path of a preset's LUT file: "luts/<preset>.<lut>.png" (or the source file's extension).
+std::string lut_export_path(const Preset& preset, const LutSpec& lut);
 
 }  // namespace crtforge

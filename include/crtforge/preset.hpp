@@ -1,5 +1,13 @@
-// Presets: which stages are on, which form each uses, and param values. A preset may inherit from
-// another (base = "classic") and override; templates/presets/<name>.toml.
+// Presets: a scene of one or more passes, each a list of stages with one form each and param
+// values. A preset may inherit from another (base = "classic") and override;
+// templates/presets/<name>.toml. docs/scenes.md describes the file format.
+//
+// The scene model says what a RetroArch .slangp preset says — per pass: scale type and factor per
+// axis (source, viewport, absolute), framebuffer format (8-bit, sRGB, float), input filter, wrap
+// mode and mipmaps, an alias, frame-count modulo; inputs by name: the original frame, earlier
+// passes, the previous frame of any pass (feedback), the original's history, lookup textures —
+// plus what a CRT scene needs above a shader chain: the source's size and pixel aspect, how the
+// picture fits the screen and the screen the display, and the frame rate.
 #pragma once
 
 #include <map>
@@ -11,8 +19,47 @@
 
 namespace crtforge {
 
+// Largest source or pass size a preset may name (the engines' largest image).
+inline constexpr int kMaxSceneDimension = 16384;
+
 enum class Filter { Linear, Nearest };
 const char* filter_name(Filter filter);
+
+// How a texture is addressed outside 0..1.
+enum class Wrap { ClampToEdge, ClampToBorder, Repeat, MirroredRepeat };
+const char* wrap_name(Wrap wrap);  // clamp_to_edge, clamp_to_border, repeat, mirrored_repeat
+
+// A pass's framebuffer: what its output is quantised to before the next pass reads it.
+enum class PixelFormat { Rgba8, Rgba8Srgb, Rgba16F };
+const char* pixel_format_name(PixelFormat format);  // rgba8, rgba8_srgb, rgba16f
+
+// A pass's output size on one axis: a factor of its source (main input), of the viewport (the
+// screen's rectangle in the display), or an absolute number of pixels.
+struct PassScale {
+    enum class Type { Source, Viewport, Absolute } type = Type::Viewport;
+    double factor = 1.0;  // Absolute: pixels
+};
+const char* scale_type_name(PassScale::Type type);  // source, viewport, absolute
+
+// Where a pass input comes from, written "original", "original@3" (3 frames back), "<alias>"
+// (an earlier pass's output this frame), "<alias>@previous" (a pass's output of the previous
+// frame: feedback) or "lut:<name>".
+struct TextureSource {
+    enum class Kind { Original, Pass, Feedback, Lut } kind = Kind::Original;
+    std::string name;     // the pass alias (Pass, Feedback) or the LUT name
+    int frames_back = 0;  // Original: 0 = this frame, N = the original of N frames ago
+    std::string str() const;
+};
+
+// One texture a pass reads: its main input ("source") or a texture a stage's form declares.
+struct PassInput {
+    std::string binding;  // "source", or the name in the stage's `textures`
+    TextureSource from;
+    Filter filter = Filter::Linear;
+    Wrap wrap = Wrap::ClampToEdge;
+    bool mipmap = false;  // sampled with a full mip chain (the model holds it; see docs/scenes.md)
+    int line = 0;
+};
 
 // A preset's own settings for one stage, as written in its file (before inheritance).
 struct PresetStageEntry {
@@ -23,12 +70,76 @@ struct PresetStageEntry {
     std::map<std::string, int> value_lines;  // param name -> line in the preset file
 };
 
+// One [[pass]] as written.
+struct PassEntry {
+    std::string alias;
+    std::string preset;  // start from this single-pass preset's stages and filter ("" = none)
+    std::vector<PresetStageEntry> stages;
+    std::optional<PassScale> scale_x, scale_y;
+    std::optional<PixelFormat> format;
+    std::optional<std::string> input;  // the main input, as written (default: the previous pass)
+    std::optional<Filter> filter;
+    std::optional<Wrap> wrap;
+    std::optional<bool> mipmap;
+    std::map<std::string, std::string> textures;  // binding -> source, as written
+    std::map<std::string, int> texture_lines;
+    std::optional<int> frame_count_mod;
+    int line = 0;
+};
+
+// A lookup texture, generated from params ("generator") or read from an image file.
+struct LutSpec {
+    std::string name;
+    std::string generator;                 // "yiq_grade", "atari_ntsc" (generator/luts.hpp), or ""
+    std::string file;                      // with no generator: an image, relative to the preset file
+    std::map<std::string, double> params;  // the generator's params, defaults filled in
+    Filter filter = Filter::Linear;        // how passes sample it
+    Wrap wrap = Wrap::ClampToEdge;
+    SourceLocation where;
+};
+
+// How the picture goes onto the screen when their aspects differ.
+enum class SourceFit {
+    Stretch,  // fill the screen, distorting
+    Width,    // fill the screen's width: crop (or bar) top and bottom (Super Win the Game)
+    Height,   // fill the screen's height: crop (or bar) left and right
+    Contain,  // all of the picture, bars where the aspects differ
+};
+// How the screen goes into the display.
+enum class DisplayFit {
+    Stretch,  // the whole display
+    Aspect,   // the largest rectangle of the screen's aspect, centred (letterbox / pillarbox)
+    Integer,  // as Aspect, with the source's rows at a whole number of display rows
+};
+const char* source_fit_name(SourceFit fit);
+const char* display_fit_name(DisplayFit fit);
+
+struct SceneSettings {
+    int source_width = 0, source_height = 0;  // 0: the input's own size
+    int pixel_aspect_x = 1, pixel_aspect_y = 1;
+    SourceFit source_fit = SourceFit::Stretch;
+    DisplayFit fit = DisplayFit::Stretch;
+    int screen_aspect_x = 0, screen_aspect_y = 0;  // 0: the source's display aspect
+    double fps = 60.0;
+};
+
 struct PresetFile {
     std::string name;
     std::string doc;
     std::string base;                      // empty: no inheritance
     std::optional<Filter> filter;          // source texture filter; inherited when unset
-    std::vector<PresetStageEntry> stages;  // in file order
+    std::vector<PresetStageEntry> stages;  // in file order (single-pass presets)
+    std::vector<PassEntry> passes;         // [[pass]]: this file defines the pass list
+    std::map<std::string, std::vector<PresetStageEntry>> pass_overrides;  // [passes.<alias>.stages.*]
+    std::map<std::string, int> pass_override_lines;
+    // [source], [display], [time]: each key inherited on its own.
+    std::optional<int> source_width, source_height, pixel_aspect_x, pixel_aspect_y, screen_aspect_x,
+        screen_aspect_y;
+    std::optional<SourceFit> source_fit;
+    std::optional<DisplayFit> fit;
+    std::optional<double> fps;
+    std::vector<LutSpec> luts;             // [lut.<name>]
+    std::map<std::string, int> key_lines;  // top-level table -> line, for diagnostics
     SourceLocation where;
 };
 
@@ -39,15 +150,40 @@ struct ResolvedStage {
     std::map<std::string, Value> values;   // every param the form reads, defaults filled in
 };
 
-struct Preset {
-    std::string name;
-    std::string doc;
-    Filter filter = Filter::Linear;
+struct Pass {
+    std::string alias;                     // unique in the preset; "main" for a single-pass preset
     std::vector<ResolvedStage> stages;     // sorted by StageSpec::order
-    std::vector<std::string> lineage;      // this preset, then its bases
+    PassScale scale_x, scale_y;
+    PixelFormat format = PixelFormat::Rgba8;
+    std::vector<PassInput> inputs;         // "source" first, then each texture its stages read
+    int frame_count_mod = 0;               // frameCount reaches the shader modulo this (0 = as is)
     SourceLocation where;
 
     const ResolvedStage* find_stage(const std::string& name) const;
+    const PassInput* find_input(const std::string& binding) const;
+    // The textures the pass's enabled forms declare, in stage order, each once.
+    std::vector<std::string> texture_names() const;
+};
+
+struct Preset {
+    std::string name;
+    std::string doc;
+    Filter filter = Filter::Linear;        // how the first pass samples the original
+    std::vector<Pass> passes;              // in execution order; the last one draws the display
+    SceneSettings scene;
+    std::vector<LutSpec> luts;
+    std::vector<std::string> lineage;      // this preset, then its bases
+    SourceLocation where;
+
+    bool single_pass() const { return passes.size() == 1; }
+    // The first enabled stage of that name in any pass.
+    const ResolvedStage* find_stage(const std::string& name) const;
+    const Pass* find_pass(const std::string& alias) const;
+    const LutSpec* find_lut(const std::string& name) const;
+    // How many frames of the original any pass reads back (0: none), and whether any pass reads a
+    // previous frame's output: what a host must keep between frames.
+    int history_depth() const;
+    bool has_feedback() const;
 };
 
 }  // namespace crtforge

@@ -55,8 +55,12 @@ constexpr Hook kAllHooks[] = {Hook::Warp, Hook::SampleUv, Hook::Fetch, Hook::Col
 constexpr int kHookCount = 5;
 
 // Values the generated code reads from the host besides params.
-enum class Builtin { OutputSize, SourceSize, Time };
-const char* builtin_name(Builtin builtin);  // the uniform member name: outputSize, sourceSize, time
+//   outputSize  vec2   the pass's output size in pixels (the screen's rectangle for the last pass)
+//   sourceSize  vec2   the main input's size in texels
+//   time        float  seconds since the first frame: frame / fps
+//   frameCount  int    frames since the first, modulo the pass's frame_count_mod when it has one
+enum class Builtin { OutputSize, SourceSize, Time, FrameCount };
+const char* builtin_name(Builtin builtin);  // the uniform member name: outputSize, sourceSize, time, frameCount
 bool parse_builtin(const std::string& text, Builtin& out);
 
 struct FormSpec {
@@ -64,6 +68,9 @@ struct FormSpec {
     std::string doc;                       // which document and formula
     std::vector<std::string> params;       // params this form reads (besides always-on stage params)
     std::vector<Builtin> builtins;         // builtins this form reads (outputSize is always present)
+    // Textures this form samples besides `source` (the pass's main input): each a sampler2D of
+    // that name, bound by the preset's pass to a pass output, feedback, history or LUT.
+    std::vector<std::string> textures;
     std::string functions[kHookCount];     // indexed by Hook; empty = none
     SourceLocation where;
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ public:
     Result<Preset> resolve(const std::vector<PresetFile>& files, const std::string& name) const;
 
 private:
+    // resolve(), tracking the presets being resolved (`preset = "..."` references nest).
+    Result<Preset> resolve_preset(const std::vector<PresetFile>& files, const std::string& name,
+                                  std::set<std::string>& visiting) const;
+
     std::string dir_;
     std::vector<StageSpec> stages_;  // sorted by order
     std::vector<Preset> presets_;

@@ -1,5 +1,6 @@
-// A variant: a resolved preset plus build options — which params are baked as constants and which
-// stay runtime uniforms, and the float precision.
+// A variant: one pass of a resolved preset plus build options — which params are baked as
+// constants and which stay runtime uniforms, and the float precision. A single-pass preset is one
+// variant; a scene has one per pass.
 #pragma once
 
 #include <string>
@@ -38,11 +39,20 @@ struct VariantParam {
 
 struct Variant {
     const Preset* preset = nullptr;
+    const Pass* pass = nullptr;         // the pass this variant draws
+    size_t pass_index = 0;
     VariantOptions options;
     std::vector<VariantParam> params;   // every param the enabled forms read, in pass order
     std::vector<Builtin> builtins;      // builtins in the uniform block, in declaration order
+    // Textures besides `source`, bound at 2, 3, ... in this order (the pass's texture_names()).
+    std::vector<std::string> textures;
 
     bool has_uniform_block() const;
+    // What the pass's files are named after: the preset ("classic") for a single-pass preset, the
+    // preset and the pass alias ("super-win.trails") in a scene of several passes.
+    std::string file_stem() const;
+    // The filter the pass samples a texture with ("source" or a name in `textures`).
+    Filter texture_filter(const std::string& name) const;
     std::vector<const VariantParam*> uniforms() const;
     std::vector<const VariantParam*> baked() const;
 };
@@ -51,6 +61,6 @@ struct Variant {
 // All: every runtime-capable param is a uniform. None: everything baked.
 // Names: exactly the listed params are uniforms; each must be runtime-capable and used.
 Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
-                             const VariantOptions& options);
+                             const VariantOptions& options, size_t pass_index = 0);
 
 }  // namespace crtforge

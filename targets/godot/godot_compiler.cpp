@@ -147,7 +147,7 @@ void GodotCompiler::emit_header() {
         statement("// Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.");
     } else {
         statement("// Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);");
-        statement("// set the node's texture filter to ", filter_name(preset.filter), ".");
+        statement("// set the node's texture filter to ", filter_name(variant_.texture_filter("source")), ".");
     }
     bool uses_time = false;
     for (Builtin b : variant_.builtins) uses_time = uses_time || b == Builtin::Time;
@@ -165,7 +165,7 @@ void GodotCompiler::emit_header() {
     statement("shader_type canvas_item;");
     statement("");
     if (screen && options_.godot_version >= 4)
-        statement("uniform sampler2D screen_texture : hint_screen_texture, filter_", filter_name(preset.filter), ", repeat_disable;");
+        statement("uniform sampler2D screen_texture : hint_screen_texture, filter_", filter_name(variant_.texture_filter("source")), ", repeat_disable;");
     for (const VariantParam* p : variant_.uniforms()) {
         statement("// ", p->stage->name, ": ", p->spec->doc, p->spec->unit.empty() ? "" : " (" + p->spec->unit + ")");
         statement(uniform_declaration(*p));

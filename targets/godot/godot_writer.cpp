@@ -15,7 +15,7 @@ const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : 
 // A ShaderMaterial resource with every runtime param at the preset's value.
 std::string material_resource(const Variant& variant, int version) {
     const Preset& preset = *variant.preset;
-    const std::string shader_path = "res://addons/crtforge/" + preset.name + shader_extension(version);
+    const std::string shader_path = "res://addons/crtforge/" + variant.file_stem() + shader_extension(version);
     std::string out;
     if (version >= 4) {
         out += "[gd_resource type=\"ShaderMaterial\" load_steps=2 format=3]\n\n";
@@ -66,7 +66,7 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
 }
 
 Result<TargetOutput> generate(const TargetInput& input, int version) {
-    const std::string& preset = input.variant->preset->name;
+    const std::string preset = input.variant->file_stem();
     const std::string ext = shader_extension(version);
     TargetOutput out;
     auto node = generate_shader(input, {version, Mode::NodeTexture});

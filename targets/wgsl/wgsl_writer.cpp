@@ -20,15 +20,16 @@ EmitOptions emit_options(const Variant& variant) {
         "{}\n"
         "Draw 3 vertices with no vertex buffers: {} makes a full-screen triangle, {} shades it.\n"
         "Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.",
-        variant.preset->name, variant.preset->doc, kVertexEntry, kFragmentEntry);
+        variant.file_stem(), variant.preset->doc, kVertexEntry, kFragmentEntry);
     if (variant.options.precision == Precision::Medium)
         options.header_comment += "\nMedium precision: WGSL has no relaxed precision, so this is the full-precision f32 shader.";
     return options;
 }
 
-// `nearest`: a nearest-filtered preset can take any float texture, rgba32float included, so its
-// layout asks for unfilterable-float with a non-filtering sampler (valid without float32-filterable).
-json manifest_extra(const WgslModule& module, bool nearest) {
+// A nearest-filtered texture can be any float texture, rgba32float included, so its layout entry
+// asks for unfilterable-float with a non-filtering sampler (valid without float32-filterable).
+json manifest_extra(const WgslModule& module, const Variant& variant) {
+    auto nearest = [&](const std::string& texture) { return variant.texture_filter(texture) == Filter::Nearest; };
     json layout = json::array();
     json uniform_buffer = nullptr;
     for (const WgslBinding& b : module.bindings) {
@@ -45,11 +46,11 @@ json manifest_extra(const WgslModule& module, bool nearest) {
                                   {"note", "little-endian f32/i32/u32; bytes between members are padding"},
                                   {"members", std::move(members)}};
         } else if (b.kind == "texture") {
-            const std::string sample_type = nearest && b.sample_type == "float" ? "unfilterable-float" : b.sample_type;
+            const std::string sample_type = nearest(b.name) && b.sample_type == "float" ? "unfilterable-float" : b.sample_type;
             entry["texture"] = json{{"sampleType", sample_type}, {"viewDimension", "2d"}, {"multisampled", false}};
             if (!b.paired_with.empty()) entry["pairedSampler"] = b.paired_with;
         } else {
-            entry["sampler"] = json{{"type", nearest ? "non-filtering" : "filtering"}};
+            entry["sampler"] = json{{"type", nearest(b.paired_with) ? "non-filtering" : "filtering"}};
             if (!b.paired_with.empty()) entry["pairedTexture"] = b.paired_with;
         }
         layout.push_back(std::move(entry));
@@ -86,7 +87,7 @@ Result<TargetOutput> generate(const TargetInput& input) {
     out.files.push_back({ShaderStage::Fragment, ".wgsl", module.value().text, "shader", ""});
     for (const WgslBinding& b : module.value().bindings)
         out.bindings.push_back({b.name, fmt::format("@group({}) @binding({}) {}", b.group, b.binding, b.wgsl_type)});
-    out.manifest_json = manifest_extra(module.value(), input.variant->preset->filter == Filter::Nearest).dump();
+    out.manifest_json = manifest_extra(module.value(), *input.variant).dump();
     return out;
 }
 

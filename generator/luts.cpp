@@ -1,0 +1,192 @@
+// The LUT generators and the PNG writer for their files (see crtforge/luts.hpp).
+#include "crtforge/luts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace crtforge {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+uint8_t to_byte(double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+double param(const std::map<std::string, double>& p, const char* name) { return p.at(name); }
+
+// FCC NTSC YIQ <-> R'G'B' (gamma-encoded signal values, as the NTSC signal carries them).
+struct Yiq {
+    double y, i, q;
+};
+Yiq rgb_to_yiq(double r, double g, double b) {
+    return {0.299 * r + 0.587 * g + 0.114 * b, 0.596 * r - 0.274 * g - 0.322 * b, 0.211 * r - 0.523 * g + 0.312 * b};
+}
+void yiq_to_rgb(const Yiq& c, double rgb[3]) {
+    rgb[0] = c.y + 0.956 * c.i + 0.621 * c.q;
+    rgb[1] = c.y - 0.272 * c.i - 0.647 * c.q;
+    rgb[2] = c.y - 1.106 * c.i + 1.703 * c.q;
+}
+
+LutImage yiq_grade(const std::map<std::string, double>& p) {
+    const double hue = param(p, "hue") * kPi / 180.0, saturation = param(p, "saturation"),
+                 contrast = param(p, "contrast"), brightness = param(p, "brightness"), gamma = param(p, "gamma");
+    constexpr int n = 32;
+    LutImage out;
+    out.width = n * n;
+    out.height = n;
+    out.rgba.resize(static_cast<size_t>(out.width) * out.height * 4);
+    for (int g = 0; g < n; ++g)
+        for (int b = 0; b < n; ++b)
+            for (int r = 0; r < n; ++r) {
+                Yiq c = rgb_to_yiq(r / 31.0, g / 31.0, b / 31.0);
+                // Tint: rotate the chroma; colour: scale it; contrast about mid-grey, then brightness.
+                const double i = c.i * std::cos(hue) - c.q * std::sin(hue), q = c.i * std::sin(hue) + c.q * std::cos(hue);
+                c = {(c.y - 0.5) * contrast + 0.5 + brightness, i * saturation, q * saturation};
+                double rgb[3];
+                yiq_to_rgb(c, rgb);
+                uint8_t* px = &out.rgba[(static_cast<size_t>(g) * out.width + static_cast<size_t>(b * n + r)) * 4];
+                for (int k = 0; k < 3; ++k) px[k] = to_byte(std::pow(std::clamp(rgb[k], 0.0, 1.0), gamma));
+                px[3] = 255;
+            }
+    return out;
+}
+
+LutImage atari_ntsc(const std::map<std::string, double>& p) {
+    const double burst = param(p, "burstPhase") * kPi / 180.0, step = param(p, "hueStep") * kPi / 180.0,
+                 saturation = param(p, "saturation"), lum_min = param(p, "lumMin"), lum_max = param(p, "lumMax");
+    LutImage out;
+    out.width = 128;
+    out.height = 1;
+    out.rgba.resize(128 * 4);
+    for (int hue = 0; hue < 16; ++hue)
+        for (int lum = 0; lum < 8; ++lum) {
+            const double y = lum_min + (lum_max - lum_min) * lum / 7.0;
+            // Hue 0 carries no colour; hue 1 is in phase with the colour burst (gold), and every
+            // further hue is delayed by one more step.
+            const double phase = burst + (hue - 1) * step;
+            const double chroma = hue == 0 ? 0.0 : saturation;
+            double rgb[3];
+            yiq_to_rgb({y, chroma * std::cos(phase), chroma * std::sin(phase)}, rgb);
+            uint8_t* px = &out.rgba[static_cast<size_t>(hue * 8 + lum) * 4];
+            for (int k = 0; k < 3; ++k) px[k] = to_byte(rgb[k]);
+            px[3] = 255;
+        }
+    return out;
+}
+
+// ---- PNG ----------------------------------------------------------------------------------
+
+uint32_t crc32(const uint8_t* data, size_t size, uint32_t crc = 0) {
+    static const auto table = [] {
+        std::vector<uint32_t> t(256);
+        for (uint32_t n = 0; n < 256; ++n) {
+            uint32_t c = n;
+            for (int k = 0; k < 8; ++k) c = c & 1 ? 0xedb88320u ^ (c >> 1) : c >> 1;
+            t[n] = c;
+        }
+        return t;
+    }();
+    crc = ~crc;
+    for (size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
+    return ~crc;
+}
+
+void put32(std::string& out, uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((v >> shift) & 0xffu);
+}
+
+void chunk(std::string& out, const char* type, const std::string& data) {
+    put32(out, static_cast<uint32_t>(data.size()));
+    std::string body = std::string(type, 4) + data;
+    out += body;
+    put32(out, crc32(reinterpret_cast<const uint8_t*>(body.data()), body.size()));
+}
+
+}  // namespace
+
+const std::vector<LutGenerator>& lut_generators() {
+    static const std::vector<LutGenerator> generators = {
+        {"yiq_grade",
+         "Super Win the Game's colour grade: RGB -> YIQ, hue rotation, saturation, contrast, brightness, back to RGB, gamma",
+         "1024x32: 32 slices of 32x32 side by side; texel (blue * 32 + red, green) holds the graded colour of "
+         "(red, green, blue) / 31",
+         {{"hue", -45.0, 45.0, 0.0, "Rotation of the chroma (I, Q) in degrees: tint"},
+          {"saturation", 0.0, 2.0, 1.25, "Scale of the chroma: colour"},
+          {"contrast", 0.5, 2.0, 1.2, "Luma contrast about mid-grey"},
+          {"brightness", -0.5, 0.5, -0.03, "Luma offset"},
+          {"gamma", 0.5, 2.5, 1.1, "Exponent on the decoded RGB: above 1 deepens shadows and midtones"}},
+         yiq_grade},
+        {"atari_ntsc",
+         "The Atari 2600 NTSC palette from its generation rule: hue 0 grey, hues 1..15 one phase step apart from "
+         "the colour burst (gold), 8 luminances, one saturation, YIQ -> RGB",
+         "128x1: texel (hue * 8 + luminance)",
+         {{"burstPhase", -180.0, 180.0, -57.0, "Phase of hue 1 (gold, the colour burst: -U) in the I/Q plane, degrees"},
+          {"hueStep", 20.0, 30.0, 24.0, "Phase delay between successive hues, degrees (24: 15 hues evenly round)"},
+          {"saturation", 0.0, 0.6, 0.3, "Chroma amplitude of hues 1..15"},
+          {"lumMin", 0.0, 0.5, 0.0, "Luma of luminance 0"},
+          {"lumMax", 0.5, 1.0, 1.0, "Luma of luminance 7"}},
+         atari_ntsc},
+    };
+    return generators;
+}
+
+const LutGenerator* find_lut_generator(const std::string& name) {
+    for (const auto& g : lut_generators())
+        if (name == g.name) return &g;
+    return nullptr;
+}
+
+Result<LutImage> generate_lut(const std::string& generator, const std::map<std::string, double>& given) {
+    const LutGenerator* g = find_lut_generator(generator);
+    if (!g) return make_error("unknown LUT generator '" + generator + "'");
+    std::map<std::string, double> params;
+    for (const LutParam& p : g->params) {
+        auto it = given.find(p.name);
+        const double v = it == given.end() ? p.default_value : it->second;
+        if (!(v >= p.min && v <= p.max))
+            return make_error("LUT param '" + p.name + "' is outside [" + std::to_string(p.min) + ", " + std::to_string(p.max) + "]");
+        params[p.name] = v;
+    }
+    for (const auto& [name, value] : given)
+        if (!params.count(name)) return make_error("LUT generator '" + generator + "' has no param '" + name + "'");
+    return g->generate(params);
+}
+
+std::string encode_png(const LutImage& image) {
+    std::string png("\x89PNG\r\n\x1a\n", 8);
+    std::string header;
+    put32(header, static_cast<uint32_t>(image.width));
+    put32(header, static_cast<uint32_t>(image.height));
+    header += std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, no filter method, no interlace
+    chunk(png, "IHDR", header);
+    // Scanlines (filter type 0) in stored (uncompressed) deflate blocks of at most 65535 bytes.
+    std::string raw;
+    const size_t row = static_cast<size_t>(image.width) * 4;
+    for (int y = 0; y < image.height; ++y) {
+        raw += '\0';
+        raw.append(reinterpret_cast<const char*>(image.rgba.data()) + y * row, row);
+    }
+    std::string z("\x78\x01", 2);
+    for (size_t at = 0; at < raw.size() || at == 0; at += 65535) {
+        const size_t n = std::min<size_t>(65535, raw.size() - at);
+        const bool last = at + n >= raw.size();
+        z += static_cast<char>(last ? 1 : 0);
+        z += static_cast<char>(n & 0xffu);
+        z += static_cast<char>((n >> 8) & 0xffu);
+        z += static_cast<char>(~n & 0xffu);
+        z += static_cast<char>((~n >> 8) & 0xffu);
+        z.append(raw, at, n);
+        if (last) break;
+    }
+    uint32_t a = 1, b = 0;  // Adler-32 of the uncompressed stream
+    for (unsigned char c : raw) {
+        a = (a + c) % 65521;
+        b = (b + a) % 65521;
+    }
+    put32(z, (b << 16) | a);
+    chunk(png, "IDAT", z);
+    chunk(png, "IEND", "");
+    return png;
+}
+
+}  // namespace crtforge
