@@ -1,7 +1,11 @@
 // Variant -> GLSL 450 source for glslang.
 #include "crtforge/assembler.hpp"
 
+#include <array>
+
 #include <fmt/format.h>
+
+#include "crtforge/scene.hpp"
 
 namespace crtforge {
 
@@ -66,6 +70,22 @@ std::string declarations(const Variant& variant) {
     return out;
 }
 
+// How the source picture's coordinate follows the screen's ([source] fit): a baked constant, and
+// a function stages can call. Emitted only where main() or a stage's snippet uses it: even an
+// unused function would renumber the optimised SPIR-V of every other shader.
+std::string source_mapping(const Variant& variant) {
+    const bool screen_pass = screen_pass_index(*variant.preset) == variant.pass_index;
+    const auto scale = screen_pass ? source_uv_scale(*variant.preset) : std::array<double, 2>{1.0, 1.0};
+    return fmt::format("\n// The source picture's coordinate at a screen coordinate ([source] fit).\n"
+                       "const vec2 crtSourceScale = vec2({}, {});\n"
+                       "vec2 crt_source_uv(vec2 uv) {{ return (uv - 0.5) * crtSourceScale + 0.5; }}\n",
+                       float_literal(scale[0]), float_literal(scale[1]));
+}
+
+bool maps_source(const Variant& variant) {
+    return screen_pass_index(*variant.preset) == variant.pass_index && source_uv_scale(*variant.preset) != std::array<double, 2>{1.0, 1.0};
+}
+
 // The fixed pass order: warp, sample position, fetch, colour stages, finish.
 std::string main_body(const Variant& variant) {
     const Pass& pass = *variant.pass;
@@ -93,6 +113,7 @@ std::string main_body(const Variant& variant) {
     out += "    frag.centered = frag.uv * 2.0 - 1.0;\n";
     out += "    vec2 sampleUv = frag.uv;\n";
     out += calls(Hook::SampleUv, "sampleUv = {}(sampleUv, frag);");
+    if (maps_source(variant)) out += "    sampleUv = crt_source_uv(sampleUv);  // the picture on the screen ([source] fit)\n";
     out += fmt::format("    vec3 color = texture({}, sampleUv).rgb;\n", kSourceTextureName);
     out += calls(Hook::Fetch, "color = {}(color, sampleUv);");
     out += calls(Hook::Color, "color = {}(color, frag);");
@@ -129,6 +150,9 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
     };
     if (!pass.stages.empty()) {
         include(library.prelude_path(), library.prelude_source());
+        bool used = maps_source(variant);
+        for (const ResolvedStage& rs : pass.stages) used = used || rs.stage->glsl_source.find("crt_source_uv") != std::string::npos;
+        if (used) src += source_mapping(variant);
         for (const ResolvedStage& rs : pass.stages) include(rs.stage->glsl_path, rs.stage->glsl_source);
     }
     include("<generated main for preset " + preset.name + (preset.single_pass() ? "" : " pass " + pass.alias) + ">",

@@ -301,6 +301,9 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
                                   "': only a [[pass]] can bind it ([pass.textures] " + t + " = \"...\")",
                               leaf->where.file, 1, "stages");
         preset.passes.push_back(std::move(pass));
+        if (preset.scene.source_fit != SourceFit::Stretch && !preset.scene.source_width)
+            return make_error("a source fit other than stretch needs the source's size ([source] size = [w, h])",
+                              leaf->where.file, leaf->key_lines.count("source") ? leaf->key_lines.at("source") : 1, "source.fit");
         visiting.erase(name);
         return preset;
     }
@@ -443,6 +446,9 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
     preset.passes.erase(std::remove_if(preset.passes.begin(), preset.passes.end(), [&](const Pass& p) { return !live.count(p.alias); }),
                         preset.passes.end());
     preset.filter = preset.passes.front().inputs.front().filter;
+    if (preset.scene.source_fit != SourceFit::Stretch && !preset.scene.source_width)
+        return make_error("a source fit other than stretch needs the source's size ([source] size = [w, h])", leaf->where.file,
+                          leaf->key_lines.count("source") ? leaf->key_lines.at("source") : 1, "source.fit");
     visiting.erase(name);
     return preset;
 }

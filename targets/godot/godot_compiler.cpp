@@ -90,9 +90,12 @@ void GodotCompiler::prepare() {
         set_remapped_variable_state(out.id, true);
         set_name(out.id, "COLOR");
     }
+    // The main input becomes the node's TEXTURE or the screen; any other texture keeps its name
+    // and emit_header() declares it as a Godot uniform with its sampling hints.
     for (const auto& img : resources.sampled_images) {
         set_remapped_variable_state(img.id, true);
-        set_name(img.id, !screen ? "TEXTURE" : options_.godot_version >= 4 ? "screen_texture" : "SCREEN_TEXTURE");
+        if (get_name(img.id) == kSourceTextureName)
+            set_name(img.id, !screen ? "TEXTURE" : options_.godot_version >= 4 ? "screen_texture" : "SCREEN_TEXTURE");
     }
     // The uniform block disappears: each member becomes a plain `uniform` (emit_header) or a Godot
     // builtin expression. SPIRV-Cross writes member accesses as <block>.<member>; the block gets a
@@ -169,6 +172,16 @@ void GodotCompiler::emit_header() {
     for (const VariantParam* p : variant_.uniforms()) {
         statement("// ", p->stage->name, ": ", p->spec->doc, p->spec->unit.empty() ? "" : " (" + p->spec->unit + ")");
         statement(uniform_declaration(*p));
+    }
+    for (const std::string& texture : variant_.textures) {
+        const PassInput* input = variant_.pass->find_input(texture);
+        statement("// ", texture, ": ", input ? input->from.str() : std::string("set by the host"),
+                  options_.godot_version >= 4 ? "" : " (set its filter and repeat flags on the texture)");
+        if (options_.godot_version >= 4)
+            statement("uniform sampler2D ", texture, " : filter_", filter_name(variant_.texture_filter(texture)),
+                      input && input->wrap == Wrap::Repeat ? ", repeat_enable;" : ", repeat_disable;");
+        else
+            statement("uniform sampler2D ", texture, ";");
     }
     statement("");
 }

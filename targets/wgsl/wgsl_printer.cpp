@@ -139,13 +139,7 @@ void FunctionPrinter::statement(const Statement& s) {
 void FunctionPrinter::if_statement(const Statement& s) {
     const Expr cond = value(s.value);
     const std::string then_text = nested(s.then_body), else_text = nested(s.else_body);
-    if (s.flag) {  // both ways leave the construct: kept as SPIR-V has it
-        line("if (" + cond.text + ") {");
-        out_ += then_text;
-        line("} else {");
-        out_ += else_text;
-        line("}");
-    } else if (then_text.empty() && !else_text.empty()) {
+    if (then_text.empty() && !else_text.empty()) {
         line("if (!" + cond.operand() + ") {");
         out_ += else_text;
         line("}");

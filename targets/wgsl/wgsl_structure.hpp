@@ -42,8 +42,8 @@ struct Statement {
     // If: the branch leaves the construct on one way or both (break, continue, or the end of the
     // region), rather than choosing between two arms of a selection.
     bool exits = false;
-    // If: printed even when both arms are empty (two-way exits print `if (c) {} else {}` as SPIR-V
-    // wrote them). BreakIf: true when the condition leaves the loop (`break if c`, else `break if !c`).
+    // If: both ways leave the construct. BreakIf: true when the condition leaves the loop
+    // (`break if c`, else `break if !c`).
     bool flag = false;
     Body then_body, else_body;   // If arms; BreakIf: the copies of the back edge / of leaving the loop
     Body header, body, continuing;  // Loop: the header block's part, the body, the continue construct
