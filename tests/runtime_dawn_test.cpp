@@ -368,3 +368,189 @@ TEST_CASE("dawn: threads sharing one engine each get their own result", "[runtim
     for (std::thread& thread : threads) thread.join();
     CHECK(failures == std::vector<int>(4, 0));
 }
+
+// ---- several textures, wrap modes, viewport and clear colour -------------------------------------
+
+namespace {
+
+// A full-screen triangle that also passes the texture coordinate on, (0, 0) at the top-left of
+// the viewport, as the generated vertex shaders do.
+const std::string kVertexUv = R"(
+struct VOut { @builtin(position) pos: vec4f, @location(0) uv: vec2f, }
+@vertex fn vs_main(@builtin(vertex_index) i: u32) -> VOut {
+  let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
+  var o: VOut;
+  o.pos = vec4f(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
+  o.uv = uv;
+  return o;
+}
+)";
+
+// A width x 1 image whose red channel holds `values` (the other channels 0, alpha 1).
+Image row_of(std::initializer_list<float> values) {
+    Image image = Image::make(static_cast<int>(values.size()), 1);
+    int x = 0;
+    for (float v : values) image.set_pixel(x++, 0, {v, 0.0f, 0.0f, 1.0f});
+    return image;
+}
+
+TextureInput texture_input(uint32_t binding, uint32_t sampler_binding, Image image, SamplerFilter filter,
+                           WrapMode wrap = WrapMode::ClampToEdge) {
+    TextureInput texture;
+    texture.binding = binding;
+    texture.sampler_binding = sampler_binding;
+    texture.image = std::move(image);
+    texture.filter = filter;
+    texture.wrap = wrap;
+    return texture;
+}
+
+}  // namespace
+
+TEST_CASE("dawn: extra textures are read at their own bindings with their own filters", "[runtime][dawn]") {
+    const std::string code = kVertexUv + R"(
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+@group(0) @binding(3) var texA: texture_2d<f32>;
+@group(0) @binding(4) var samplerA: sampler;
+@group(0) @binding(6) var texB: texture_2d<f32>;
+@group(0) @binding(5) var samplerB: sampler;
+@fragment fn fs_main(@location(0) uv: vec2f) -> @location(0) vec4f {
+  return vec4f(textureSample(texA, samplerA, uv).r, textureSample(texB, samplerB, uv).r,
+               textureSample(source, source_sampler, uv).r, 1.0);
+}
+)";
+    // Two output columns sample u = 1/4 and 3/4: the centres of texA's two texels (nearest), and
+    // exactly halfway between texB's texels 0|1 and 2|3 (linear: their averages).
+    DawnJob job = make_job(code, 2, 2, Image::make(1, 1, {0.125f, 0, 0, 1}));
+    job.textures.push_back(texture_input(3, 4, row_of({0.25f, 0.75f}), SamplerFilter::Nearest));
+    job.textures.push_back(texture_input(6, 5, row_of({0.0f, 1.0f, 0.5f, 0.25f}), SamplerFilter::Linear));
+    const Image out = render_ok(job);
+    for (int y = 0; y < 2; ++y) {
+        INFO("row " << y);
+        CHECK(out.pixel(0, y)[0] == 0.25f);
+        CHECK(out.pixel(1, y)[0] == 0.75f);
+        CHECK(out.pixel(0, y)[1] == Approx(0.5).margin(1.0 / 256));
+        CHECK(out.pixel(1, y)[1] == Approx(0.375).margin(1.0 / 256));
+        CHECK(out.pixel(0, y)[2] == 0.125f);  // the input is still at texture_binding
+        CHECK(out.pixel(1, y)[2] == 0.125f);
+    }
+}
+
+TEST_CASE("dawn: each wrap mode returns its texel outside 0..1, for the input and an extra texture",
+          "[runtime][dawn]") {
+    // Column 0 samples u = -0.375, column 1 u = 1.375: the centres of texels -2 and 5 of a 4-texel
+    // row (texel centres, not the edges at -0.25 / 1.25, where nearest may round either way).
+    const std::string code = kVertexUv + R"(
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+@group(0) @binding(3) var extra: texture_2d<f32>;
+@group(0) @binding(4) var extra_sampler: sampler;
+@fragment fn fs_main(@location(0) uv: vec2f) -> @location(0) vec4f {
+  let at = vec2f(select(1.375, -0.375, uv.x < 0.5), 0.5);
+  return vec4f(textureSample(source, source_sampler, at).r, textureSample(extra, extra_sampler, at).r, 0.0, 1.0);
+}
+)";
+    const Image texels = row_of({0.125f, 0.25f, 0.5f, 1.0f});
+    struct Case {
+        WrapMode wrap;
+        float left, right;
+    };
+    const Case cases[] = {{WrapMode::ClampToEdge, 0.125f, 1.0f},     // texel 0 / texel 3
+                          {WrapMode::Repeat, 0.5f, 0.25f},           // -2 -> 2, 5 -> 1
+                          {WrapMode::MirroredRepeat, 0.25f, 0.5f}};  // -2 -> 1, 5 -> 2
+    DawnJob job = make_job(code, 2, 1, texels, SamplerFilter::Nearest);
+    for (const Case& c : cases) {
+        INFO("wrap mode " << static_cast<int>(c.wrap));
+        job.wrap = c.wrap;
+        job.textures = {texture_input(3, 4, texels, SamplerFilter::Nearest, c.wrap)};
+        const Image out = render_ok(job);
+        CHECK(out.pixel(0, 0) == P{c.left, c.left, 0.0f, 1.0f});
+        CHECK(out.pixel(1, 0) == P{c.right, c.right, 0.0f, 1.0f});
+    }
+}
+
+TEST_CASE("dawn: a viewport draws a pasted full render and keeps the clear colour around it", "[runtime][dawn]") {
+    const std::string code = kVertexUv + R"(
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+@fragment fn fs_main(@location(0) uv: vec2f) -> @location(0) vec4f {
+  return vec4f(textureSample(source, source_sampler, uv).rg, uv);
+}
+)";
+    Image input = Image::make(8, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) input.set_pixel(x, y, {(x + 1) / 8.0f, (y + 1) / 4.0f, 0.0f, 1.0f});
+    const Image full = render_ok(make_job(code, 8, 4, input));
+
+    DawnJob job = make_job(code, 16, 8, input);
+    job.viewport = {4, 2, 8, 4};
+    job.clear_color = {0, 0, 0, 1};
+    const Image out = render_ok(job);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            INFO("pixel " << x << ", " << y);
+            const bool inside = x >= 4 && x < 12 && y >= 2 && y < 6;
+            CHECK(out.pixel(x, y) == (inside ? full.pixel(x - 4, y - 2) : P{0, 0, 0, 1}));
+        }
+    }
+    CHECK(out.pixel(4, 2)[0] == input.pixel(0, 0)[0]);  // the viewport's top-left is the input's
+    CHECK(out.pixel(4, 2)[1] == input.pixel(0, 0)[1]);
+    // The clear colour is linear like the shader's output: an sRGB target stores it encoded.
+    job.format = OutputFormat::Rgba8Srgb;
+    job.clear_color = {0.5f, 0.25f, 0.0f, 1.0f};
+    const Image srgb = render_ok(job);
+    CHECK(srgb.pixel(15, 7)[0] == Approx(0.5).margin(0.004));
+    CHECK(srgb.pixel(15, 7)[1] == Approx(0.25).margin(0.004));
+}
+
+TEST_CASE("dawn: bad textures, viewports and clear colours are input errors", "[runtime][dawn]") {
+    const std::string code = kVertexUv + R"(
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+@group(0) @binding(3) var lut: texture_2d<f32>;
+@group(0) @binding(4) var lut_sampler: sampler;
+@fragment fn fs_main(@location(0) uv: vec2f) -> @location(0) vec4f {
+  return textureSample(source, source_sampler, uv) + textureSample(lut, lut_sampler, uv);
+}
+)";
+    DawnJob good = make_job(code, 16, 8, Image::make(2, 2, {0.25f, 0, 0, 1}));
+    good.textures = {texture_input(3, 4, Image::make(2, 1, {0.5f, 0, 0, 0}), SamplerFilter::Linear)};
+    auto expect = [](const DawnJob& job, const std::string& field) {
+        const Diagnostic error = render_error(job);
+        INFO(error.str());
+        CHECK(error.kind == ErrorKind::Input);
+        CHECK(error.field == field);
+    };
+    DawnJob job = good;
+    job.viewport = {12, 2, 8, 4};  // 12 + 8 > 16
+    expect(job, "job.viewport");
+    job.viewport = {0, 0, 0, 4};  // a zero side
+    expect(job, "job.viewport");
+    job.viewport = {4, 2, -8, 4};
+    expect(job, "job.viewport");
+
+    job = good;
+    job.textures.push_back(texture_input(3, 7, Image{}, SamplerFilter::Nearest));  // texture at texture 0's binding
+    expect(job, "job.textures[1].binding");
+    job = good;
+    job.textures[0].sampler_binding = 2;  // the input's sampler
+    expect(job, "job.textures[0].sampler_binding");
+    job = good;
+    job.textures[0].binding = 0;
+    job.uniform_data = float_bytes({1.0f, 2.0f, 3.0f, 4.0f});  // the uniform buffer's
+    expect(job, "job.textures[0].binding");
+
+    job = good;
+    job.textures[0].image.rgba.pop_back();
+    expect(job, "job.textures[0].image");
+    job.textures[0].image = Image::make(kMaxImageDimension + 1, 1);
+    expect(job, "job.textures[0].image");
+
+    job = good;
+    job.clear_color[3] = -INFINITY;
+    expect(job, "job.clear_color");
+
+    const Image out = render_ok(good);  // the engine carries on
+    CHECK(out.pixel(0, 0)[0] == 0.75f);
+}

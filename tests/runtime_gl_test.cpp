@@ -582,3 +582,170 @@ TEST_CASE("the generated GLSL 330 renders in GL as its SPIR-V does in Vulkan", "
         CHECK(target_difference <= 2.0f / 255.0f + 1e-6f);
     }
 }
+
+// ---- several textures, wrap modes, viewport and clear colour -------------------------------------
+
+namespace {
+
+using P = std::array<float, 4>;
+
+// A GLSL 330 fragment shader around `body` (which writes fragColor) with `declarations` before it.
+std::string fragment330(const std::string& declarations, const std::string& body) {
+    return "#version 330\n" + declarations + "\nin vec2 vTexCoord;\nlayout(location = 0) out vec4 fragColor;\n"
+           "void main()\n{\n" + body + "\n}\n";
+}
+
+// A width x 1 image whose red channel holds `values` (the other channels 0, alpha 1).
+Image row_of(std::initializer_list<float> values) {
+    Image image = Image::make(static_cast<int>(values.size()), 1);
+    int x = 0;
+    for (float v : values) image.set_pixel(x++, 0, {v, 0.0f, 0.0f, 1.0f});
+    return image;
+}
+
+TextureInput texture_input(std::string name, Image image, SamplerFilter filter, WrapMode wrap = WrapMode::ClampToEdge) {
+    TextureInput texture;
+    texture.name = std::move(name);
+    texture.image = std::move(image);
+    texture.filter = filter;
+    texture.wrap = wrap;
+    return texture;
+}
+
+}  // namespace
+
+TEST_CASE("extra textures are bound by name with their own filters", "[gl]") {
+    // Bindings in the source that differ from the units the engine picks: it binds by name.
+    const std::string shader = fragment330(
+        "uniform sampler2D source;\nuniform sampler2D texA;\nuniform sampler2D texB;",
+        "    fragColor = vec4(texture(texA, vTexCoord).r, texture(texB, vTexCoord).r,\n"
+        "                     texture(source, vTexCoord).r, 1.0);");
+    // Two output columns sample u = 1/4 and 3/4: the centres of texA's two texels (nearest), and
+    // exactly halfway between texB's texels 0|1 and 2|3 (linear: their averages).
+    for (GlApi api : {GlApi::DesktopCore, GlApi::Es}) {
+        INFO((api == GlApi::Es ? "ES" : "desktop"));
+        std::string fragment = shader;
+        if (api == GlApi::Es) fragment.replace(0, 13, "#version 300 es\nprecision highp float;\n");
+        GlRenderJob job = make_job(api == GlApi::Es ? kVertexEs300 : kVertex330, fragment,
+                                   Image::make(1, 1, {0.125f, 0, 0, 1}), 2, 2, OutputFormat::Rgba16Float);
+        job.textures.push_back(texture_input("texA", row_of({0.25f, 0.75f}), SamplerFilter::Nearest));
+        job.textures.push_back(texture_input("texB", row_of({0.0f, 1.0f, 0.5f, 0.25f}), SamplerFilter::Linear));
+        const Image out = render_ok(api, job);
+        for (int y = 0; y < 2; ++y) {
+            INFO("row " << y);
+            CHECK(out.pixel(0, y)[0] == 0.25f);
+            CHECK(out.pixel(1, y)[0] == 0.75f);
+            CHECK(out.pixel(0, y)[1] == Approx(0.5).margin(1.0 / 256));
+            CHECK(out.pixel(1, y)[1] == Approx(0.375).margin(1.0 / 256));
+            CHECK(out.pixel(0, y)[2] == 0.125f);  // the input is still on unit 0
+            CHECK(out.pixel(1, y)[2] == 0.125f);
+        }
+    }
+}
+
+TEST_CASE("each GL wrap mode returns its texel outside 0..1, for the input and an extra texture", "[gl]") {
+    // Column 0 samples u = -0.375, column 1 u = 1.375: the centres of texels -2 and 5 of a 4-texel
+    // row (texel centres, not the edges at -0.25 / 1.25, where nearest may round either way).
+    const std::string shader =
+        fragment330("uniform sampler2D source;\nuniform sampler2D extra;",
+                    "    vec2 uv = vec2(vTexCoord.x < 0.5 ? -0.375 : 1.375, 0.5);\n"
+                    "    fragColor = vec4(texture(source, uv).r, texture(extra, uv).r, 0.0, 1.0);");
+    const Image texels = row_of({0.125f, 0.25f, 0.5f, 1.0f});
+    struct Case {
+        WrapMode wrap;
+        float left, right;
+    };
+    const Case cases[] = {{WrapMode::ClampToEdge, 0.125f, 1.0f},     // texel 0 / texel 3
+                          {WrapMode::Repeat, 0.5f, 0.25f},           // -2 -> 2, 5 -> 1
+                          {WrapMode::MirroredRepeat, 0.25f, 0.5f}};  // -2 -> 1, 5 -> 2
+    GlRenderJob job = make_job(kVertex330, shader, texels, 2, 1, OutputFormat::Rgba16Float);
+    for (const Case& c : cases) {
+        INFO("wrap mode " << static_cast<int>(c.wrap));
+        job.wrap = c.wrap;
+        job.textures = {texture_input("extra", texels, SamplerFilter::Nearest, c.wrap)};
+        const Image out = render_ok(GlApi::DesktopCore, job);
+        CHECK(out.pixel(0, 0) == P{c.left, c.left, 0.0f, 1.0f});
+        CHECK(out.pixel(1, 0) == P{c.right, c.right, 0.0f, 1.0f});
+    }
+}
+
+TEST_CASE("a GL viewport draws a pasted full render and keeps the clear colour around it", "[gl]") {
+    const std::string shader =
+        fragment330("uniform sampler2D source;", "    fragColor = vec4(texture(source, vTexCoord).rg, vTexCoord);");
+    Image input = Image::make(8, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) input.set_pixel(x, y, {(x + 1) / 8.0f, (y + 1) / 4.0f, 0.0f, 1.0f});
+    for (GlApi api : {GlApi::DesktopCore, GlApi::Es}) {
+        INFO((api == GlApi::Es ? "ES" : "desktop"));
+        GlRenderJob job = make_job(kVertex330, shader, input, 8, 4, OutputFormat::Rgba16Float);
+        if (api == GlApi::Es) {
+            job.vertex_source = kVertexEs300;
+            job.fragment_source.replace(0, 13, "#version 300 es\nprecision highp float;\n");
+        }
+        const Image full = render_ok(api, job);
+        job.width = 16;
+        job.height = 8;
+        job.viewport = {4, 2, 8, 4};
+        job.clear_color = {0, 0, 0, 1};
+        const Image out = render_ok(api, job);
+        for (int y = 0; y < 8; ++y) {
+            for (int x = 0; x < 16; ++x) {
+                INFO("pixel " << x << ", " << y);
+                const bool inside = x >= 4 && x < 12 && y >= 2 && y < 6;
+                CHECK(out.pixel(x, y) == (inside ? full.pixel(x - 4, y - 2) : P{0, 0, 0, 1}));
+            }
+        }
+        CHECK(out.pixel(4, 2)[0] == input.pixel(0, 0)[0]);  // the viewport's top-left is the input's
+        CHECK(out.pixel(4, 2)[1] == input.pixel(0, 0)[1]);
+        // The clear colour is linear like the shader's output: an sRGB target stores it encoded.
+        job.format = OutputFormat::Rgba8Srgb;
+        job.clear_color = {0.5f, 0.25f, 0.0f, 1.0f};
+        const Image srgb = render_ok(api, job);
+        CHECK(srgb.pixel(15, 7)[0] == Approx(0.5).margin(0.004));
+        CHECK(srgb.pixel(15, 7)[1] == Approx(0.25).margin(0.004));
+    }
+}
+
+TEST_CASE("bad GL textures, viewports and clear colours are input errors", "[gl]") {
+    const std::string shader = fragment330("uniform sampler2D source;\nuniform sampler2D lut;",
+                                           "    fragColor = texture(source, vTexCoord) + texture(lut, vTexCoord);");
+    GlRenderJob good =
+        make_job(kVertex330, shader, Image::make(2, 2, {0.25f, 0, 0, 1}), 16, 8, OutputFormat::Rgba16Float);
+    good.textures = {texture_input("lut", Image::make(2, 1, {0.5f, 0, 0, 0}), SamplerFilter::Linear)};
+    auto expect = [](const GlRenderJob& job, const std::string& field) {
+        const Diagnostic error = render_error(GlApi::DesktopCore, job);
+        INFO(error.str());
+        CHECK(error.kind == ErrorKind::Input);
+        CHECK(error.field == field);
+    };
+    GlRenderJob job = good;
+    job.viewport = {4, 6, 8, 4};  // 6 + 4 > 8
+    expect(job, "job.viewport");
+    job.viewport = {4, 2, 8, 0};  // a zero side
+    expect(job, "job.viewport");
+    job.viewport = {0, -2, 4, 4};
+    expect(job, "job.viewport");
+
+    job = good;
+    job.textures[0].name.clear();
+    expect(job, "job.textures[0].name");
+    job = good;
+    job.textures.push_back(texture_input("lut", Image{}, SamplerFilter::Nearest));  // one name, two textures
+    expect(job, "job.textures[1].name");
+    job = good;
+    job.textures[0].name = "source";  // the input's sampler
+    expect(job, "job.textures[0].name");
+
+    job = good;
+    job.textures[0].image.rgba.resize(3);
+    expect(job, "job.textures[0].image");
+    job.textures[0].image = Image::make(kMaxImageDimension + 1, 1);
+    expect(job, "job.textures[0].image");
+
+    job = good;
+    job.clear_color[0] = std::nanf("");
+    expect(job, "job.clear_color");
+
+    const Image out = render_ok(GlApi::DesktopCore, good);  // the engine carries on
+    CHECK(out.pixel(0, 0)[0] == 0.75f);
+}

@@ -332,3 +332,187 @@ void main() { fragColor = texture(source, vTexCoord) * p.tint; }
     const Image output = render_ok(job);
     CHECK(output.pixel(1, 0) == std::array<float, 4>{2.0f, 1.0f, 0.5f, 0.5f});
 }
+
+// ---- several textures, wrap modes, viewport and clear colour -------------------------------------
+
+namespace {
+
+using P = std::array<float, 4>;
+
+// A width x 1 image whose red channel holds `values` (the other channels 0, alpha 1).
+Image row_of(std::initializer_list<float> values) {
+    Image image = Image::make(static_cast<int>(values.size()), 1);
+    int x = 0;
+    for (float v : values) image.set_pixel(x++, 0, {v, 0.0f, 0.0f, 1.0f});
+    return image;
+}
+
+TextureInput texture_input(std::string name, uint32_t binding, Image image, SamplerFilter filter,
+                           WrapMode wrap = WrapMode::ClampToEdge) {
+    TextureInput texture;
+    texture.name = std::move(name);
+    texture.binding = binding;
+    texture.image = std::move(image);
+    texture.filter = filter;
+    texture.wrap = wrap;
+    return texture;
+}
+
+Diagnostic render_diagnostic(const RenderJob& job) {
+    auto image = engine().render(job);
+    REQUIRE_FALSE(image.ok());
+    CHECK(image.error().str().find('\n') == std::string::npos);  // one line
+    return image.error();
+}
+
+}  // namespace
+
+TEST_CASE("extra textures are read at their own bindings with their own filters", "[runtime][vulkan]") {
+    const char* shader = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+layout(set = 0, binding = 3) uniform sampler2D texA;
+layout(set = 0, binding = 5) uniform sampler2D texB;
+void main() {
+    fragColor = vec4(texture(texA, vTexCoord).r, texture(texB, vTexCoord).r, texture(source, vTexCoord).r, 1.0);
+}
+)";
+    // Two output columns sample u = 1/4 and 3/4: the centres of texA's two texels (nearest), and
+    // exactly halfway between texB's texels 0|1 and 2|3 (linear: their averages).
+    RenderJob job = make_job(shader, Image::make(1, 1, {0.125f, 0, 0, 1}), 2, 2, OutputFormat::Rgba16Float);
+    job.textures.push_back(texture_input("texA", 3, row_of({0.25f, 0.75f}), SamplerFilter::Nearest));
+    job.textures.push_back(texture_input("texB", 5, row_of({0.0f, 1.0f, 0.5f, 0.25f}), SamplerFilter::Linear));
+    const Image output = render_ok(job);
+    for (int y = 0; y < 2; ++y) {
+        INFO("row " << y);
+        CHECK(output.pixel(0, y)[0] == 0.25f);
+        CHECK(output.pixel(1, y)[0] == 0.75f);
+        CHECK(output.pixel(0, y)[1] == Approx(0.5).margin(1.0 / 256));
+        CHECK(output.pixel(1, y)[1] == Approx(0.375).margin(1.0 / 256));
+        CHECK(output.pixel(0, y)[2] == 0.125f);  // the main input is still at texture_binding
+        CHECK(output.pixel(1, y)[2] == 0.125f);
+    }
+}
+
+TEST_CASE("each wrap mode returns its texel outside 0..1, for the input and an extra texture", "[runtime][vulkan]") {
+    // Column 0 samples u = -0.375, column 1 u = 1.375: the centres of texels -2 and 5 of a 4-texel
+    // row (texel centres, not the edges at -0.25 / 1.25, where nearest may round either way).
+    const char* shader = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+layout(set = 0, binding = 2) uniform sampler2D extra;
+void main() {
+    vec2 uv = vec2(vTexCoord.x < 0.5 ? -0.375 : 1.375, 0.5);
+    fragColor = vec4(texture(source, uv).r, texture(extra, uv).r, 0.0, 1.0);
+}
+)";
+    const Image texels = row_of({0.125f, 0.25f, 0.5f, 1.0f});
+    struct Case {
+        WrapMode wrap;
+        float left, right;
+    };
+    const Case cases[] = {{WrapMode::ClampToEdge, 0.125f, 1.0f},  // texel 0 / texel 3
+                          {WrapMode::Repeat, 0.5f, 0.25f},        // -2 -> 2, 5 -> 1
+                          {WrapMode::MirroredRepeat, 0.25f, 0.5f}};  // -2 -> 1, 5 -> 2
+    RenderJob job = make_job(shader, texels, 2, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
+    for (const Case& c : cases) {
+        INFO("wrap mode " << static_cast<int>(c.wrap));
+        job.wrap = c.wrap;
+        job.textures = {texture_input("extra", 2, texels, SamplerFilter::Nearest, c.wrap)};
+        const Image output = render_ok(job);
+        CHECK(output.pixel(0, 0) == P{c.left, c.left, 0.0f, 1.0f});
+        CHECK(output.pixel(1, 0) == P{c.right, c.right, 0.0f, 1.0f});
+    }
+}
+
+TEST_CASE("a viewport draws a pasted full render and keeps the clear colour around it", "[runtime][vulkan]") {
+    const char* shader = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+void main() { fragColor = vec4(texture(source, vTexCoord).rg, vTexCoord); }
+)";
+    Image input = Image::make(8, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) input.set_pixel(x, y, {(x + 1) / 8.0f, (y + 1) / 4.0f, 0.0f, 1.0f});
+    const Image full = render_ok(make_job(shader, input, 8, 4, OutputFormat::Rgba16Float));
+
+    RenderJob job = make_job(shader, input, 16, 8, OutputFormat::Rgba16Float);
+    job.viewport = {4, 2, 8, 4};
+    job.clear_color = {0, 0, 0, 1};
+    const Image output = render_ok(job);
+    for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            INFO("pixel " << x << ", " << y);
+            const bool inside = x >= 4 && x < 12 && y >= 2 && y < 6;
+            CHECK(output.pixel(x, y) == (inside ? full.pixel(x - 4, y - 2) : P{0, 0, 0, 1}));
+        }
+    }
+    CHECK(output.pixel(4, 2)[0] == input.pixel(0, 0)[0]);  // the viewport's top-left is the input's
+    CHECK(output.pixel(4, 2)[1] == input.pixel(0, 0)[1]);
+    // The clear colour is linear like the shader's output: an sRGB target stores it encoded.
+    job.format = OutputFormat::Rgba8Srgb;
+    job.clear_color = {0.5f, 0.25f, 0.0f, 1.0f};
+    const Image srgb = render_ok(job);
+    CHECK(srgb.pixel(15, 7)[0] == Approx(0.5).margin(0.004));
+    CHECK(srgb.pixel(15, 7)[1] == Approx(0.25).margin(0.004));
+}
+
+TEST_CASE("bad textures, viewports and clear colours are input errors", "[runtime][vulkan]") {
+    const char* shader = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+layout(set = 0, binding = 2) uniform sampler2D lut;
+void main() { fragColor = texture(source, vTexCoord) + texture(lut, vTexCoord); }
+)";
+    RenderJob good = make_job(shader, Image::make(2, 2, {0.25f, 0, 0, 1}), 16, 8, OutputFormat::Rgba16Float);
+    good.textures = {texture_input("lut", 2, Image::make(2, 1, {0.5f, 0, 0, 0}), SamplerFilter::Linear)};
+    auto expect = [](const RenderJob& job, const std::string& field) {
+        const Diagnostic error = render_diagnostic(job);
+        INFO(error.str());
+        CHECK(error.kind == ErrorKind::Input);
+        CHECK(error.field == field);
+        return error.str();
+    };
+    RenderJob job = good;
+    job.viewport = {10, 2, 8, 4};  // 10 + 8 > 16
+    expect(job, "job.viewport");
+    job.viewport = {4, 2, 0, 4};  // a zero side
+    expect(job, "job.viewport");
+    job.viewport = {-1, 0, 4, 4};
+    expect(job, "job.viewport");
+
+    job = good;
+    job.textures.push_back(texture_input("other", 2, Image{}, SamplerFilter::Nearest));
+    CHECK_THAT(expect(job, "job.textures[1].binding"), Contains("job.textures[0].binding"));
+    job = good;
+    job.textures[0].binding = 1;  // the main input's
+    expect(job, "job.textures[0].binding");
+    job = good;
+    job.textures[0].binding = 0;
+    job.uniform_data = floats_as_bytes({1.0f, 2.0f, 3.0f, 4.0f});  // the uniform buffer's
+    expect(job, "job.textures[0].binding");
+
+    job = good;
+    job.textures[0].image.rgba.pop_back();
+    expect(job, "job.textures[0].image");
+    job.textures[0].image = Image::make(kMaxImageDimension + 1, 1);
+    expect(job, "job.textures[0].image");
+
+    job = good;
+    job.clear_color[2] = std::nanf("");
+    expect(job, "job.clear_color");
+    job.clear_color[2] = INFINITY;
+    expect(job, "job.clear_color");
+
+    // A sampler the shader declares that neither the input nor a texture provides, named.
+    job = good;
+    job.textures[0].binding = 4;
+    CHECK_THAT(expect(job, "job.texture_binding"), Contains("'lut'") && Contains("binding 2") && Contains("1, 4"));
+
+    const Image output = render_ok(good);  // the engine is still usable
+    CHECK(output.pixel(0, 0)[0] == 0.75f);
+}

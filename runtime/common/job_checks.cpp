@@ -1,10 +1,12 @@
 #include "runtime/common/job_checks.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 namespace crtforge::detail {
 
-Diagnostic job_error(std::string message, const char* field) {
+Diagnostic job_error(std::string message, const std::string& field) {
     return make_error(std::move(message), {}, 0, fmt::format("job.{}", field));
 }
 
@@ -13,6 +15,15 @@ const char* output_format_name(OutputFormat format) {
         case OutputFormat::Rgba8Unorm: return "Rgba8Unorm";
         case OutputFormat::Rgba8Srgb: return "Rgba8Srgb";
         case OutputFormat::Rgba16Float: return "Rgba16Float";
+    }
+    return "?";
+}
+
+const char* wrap_mode_name(WrapMode wrap) {
+    switch (wrap) {
+        case WrapMode::ClampToEdge: return "ClampToEdge";
+        case WrapMode::Repeat: return "Repeat";
+        case WrapMode::MirroredRepeat: return "MirroredRepeat";
     }
     return "?";
 }
@@ -27,15 +38,79 @@ Status check_job_extent(int width, int height, const Image& input, const JobLimi
                                          limits.device, size),
                              field);
     }
-    if (!input.consistent() || input.width < 0 || input.height < 0)
-        return job_error(fmt::format("input image is {}x{} but holds {} floats (expected width * height * 4)",
-                                     input.width, input.height, input.rgba.size()),
-                         "input");
-    if (input.width > limits.max_input || input.height > limits.max_input)
-        return job_error(fmt::format("input image {}x{} exceeds {} of {}", input.width, input.height,
+    return check_texture_image(input, limits, "input image", "input");
+}
+
+Status check_texture_image(const Image& image, const JobLimits& limits, const std::string& what,
+                           const std::string& field) {
+    if (!image.consistent() || image.width < 0 || image.height < 0)
+        return job_error(fmt::format("{} is {}x{} but holds {} floats (expected width * height * 4)", what,
+                                     image.width, image.height, image.rgba.size()),
+                         field);
+    if (image.width > limits.max_input || image.height > limits.max_input)
+        return job_error(fmt::format("{} {}x{} exceeds {} of {}", what, image.width, image.height,
                                      limits.input_limit_name, limits.max_input),
-                         "input");
+                         field);
     return Ok{};
+}
+
+Status check_texture_images(const std::vector<TextureInput>& textures, const JobLimits& device_limits) {
+    // kMaxImageDimension bounds every image crtforge handles, whatever a device would take.
+    JobLimits limits = device_limits;
+    if (limits.max_input > kMaxImageDimension) {
+        limits.max_input = kMaxImageDimension;
+        limits.input_limit_name = "kMaxImageDimension";
+    }
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+        const std::string what = fmt::format("texture {} ('{}') image", i, textures[i].name);
+        if (auto s = check_texture_image(textures[i].image, limits, what, texture_field(i, "image")); !s.ok()) return s;
+    }
+    return Ok{};
+}
+
+Status check_viewport(const Viewport& viewport, int width, int height) {
+    const Viewport& v = viewport;
+    if (v.full()) {
+        if (v.x != 0 || v.y != 0)
+            return job_error(fmt::format("viewport has an offset ({}, {}) but no size (0x0 means the whole target)",
+                                         v.x, v.y),
+                             "viewport");
+        return Ok{};
+    }
+    // 64-bit sums: x + width must not overflow on a hostile job.
+    const int64_t right = int64_t{v.x} + v.width, bottom = int64_t{v.y} + v.height;
+    if (v.width <= 0 || v.height <= 0 || v.x < 0 || v.y < 0 || right > width || bottom > height)
+        return job_error(fmt::format("viewport {}x{} at ({}, {}) must have positive sides and lie inside the {}x{} "
+                                     "target",
+                                     v.width, v.height, v.x, v.y, width, height),
+                         "viewport");
+    return Ok{};
+}
+
+Status check_clear_color(const std::array<float, 4>& color) {
+    for (float c : color) {
+        if (!std::isfinite(c))
+            return job_error(fmt::format("clear colour ({}, {}, {}, {}) is not finite", color[0], color[1], color[2],
+                                         color[3]),
+                             "clear_color");
+    }
+    return Ok{};
+}
+
+Status check_distinct_bindings(const std::vector<BindingUse>& uses) {
+    for (std::size_t i = 0; i < uses.size(); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+            if (uses[i].number == uses[j].number)
+                return job_error(fmt::format("binding {} of job.{} is also the binding of job.{}", uses[i].number,
+                                             uses[i].field, uses[j].field),
+                                 uses[i].field);
+        }
+    }
+    return Ok{};
+}
+
+std::string texture_field(std::size_t index, const char* member) {
+    return fmt::format("textures[{}].{}", index, member);
 }
 
 }  // namespace crtforge::detail

@@ -95,6 +95,18 @@ const char* format_name(OutputFormat format) {
     return "?";
 }
 
+const char* filter_name(SamplerFilter filter) { return filter == SamplerFilter::Linear ? "linear" : "nearest"; }
+
+// WebGPU's address modes.
+const char* wrap_name(WrapMode wrap) {
+    switch (wrap) {
+        case WrapMode::ClampToEdge: return "clamp-to-edge";
+        case WrapMode::Repeat: return "repeat";
+        case WrapMode::MirroredRepeat: return "mirror-repeat";
+    }
+    return "?";
+}
+
 Status check_job(const DawnJob& job) {
     if (trim(job.wgsl).empty()) return job_error("the WGSL module is empty", "wgsl");
     if (job.vertex_entry.empty()) return job_error("the vertex entry point name is empty", "vertex_entry");
@@ -102,29 +114,28 @@ Status check_job(const DawnJob& job) {
     const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Dawn", "maxTextureDimension2D"};
     if (auto s = detail::check_job_extent(job.width, job.height, job.uses_texture ? job.input : Image{}, limits); !s.ok())
         return s;
+    if (auto s = detail::check_texture_images(job.textures, limits); !s.ok()) return s;
+    if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;
+    if (auto s = detail::check_clear_color(job.clear_color); !s.ok()) return s;
     if (job.format != OutputFormat::Rgba8Unorm && job.format != OutputFormat::Rgba8Srgb &&
         job.format != OutputFormat::Rgba16Float)
         return job_error("unknown output format", "format");
-    struct Binding {
-        uint32_t number;
-        const char* field;
-    };
-    std::vector<Binding> used;
+    std::vector<detail::BindingUse> used;
     if (!job.uniform_data.empty()) used.push_back({job.uniform_binding, "uniform_binding"});
     if (job.uses_texture) {
         used.push_back({job.texture_binding, "texture_binding"});
         used.push_back({job.sampler_binding, "sampler_binding"});
     }
-    for (std::size_t i = 0; i < used.size(); ++i) {
-        if (used[i].number > 1000)
-            return job_error(fmt::format("binding {} is above 1000 (Dawn's maxBindingsPerBindGroup)", used[i].number),
-                             used[i].field);
-        for (std::size_t j = 0; j < i; ++j) {
-            if (used[i].number == used[j].number)
-                return job_error(fmt::format("binding {} is also the {}", used[i].number, used[j].field), used[i].field);
-        }
+    for (std::size_t i = 0; i < job.textures.size(); ++i) {
+        used.push_back({job.textures[i].binding, detail::texture_field(i, "binding")});
+        used.push_back({job.textures[i].sampler_binding, detail::texture_field(i, "sampler_binding")});
     }
-    return Ok{};
+    for (const detail::BindingUse& use : used) {
+        if (use.number > 1000)
+            return job_error(fmt::format("binding {} is above 1000 (Dawn's maxBindingsPerBindGroup)", use.number),
+                             use.field);
+    }
+    return detail::check_distinct_bindings(used);
 }
 
 }  // namespace
@@ -409,13 +420,17 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
             {"width", job.width},
             {"height", job.height},
             {"format", format_name(job.format)},
-            {"filter", job.filter == SamplerFilter::Linear ? "linear" : "nearest"},
+            {"filter", filter_name(job.filter)},
+            {"wrap", wrap_name(job.wrap)},
             {"texture", job.uses_texture},
             {"uniform_binding", job.uniform_binding},
             {"texture_binding", job.texture_binding},
             {"sampler_binding", job.sampler_binding},
             {"output", output.string()},
+            {"clear", {job.clear_color[0], job.clear_color[1], job.clear_color[2], job.clear_color[3]}},
         };
+        if (!job.viewport.full())
+            message["viewport"] = {job.viewport.x, job.viewport.y, job.viewport.width, job.viewport.height};
         if (!job.uniform_data.empty()) {
             if (auto s = write_file(uniform, job.uniform_data.data(), job.uniform_data.size()); !s.ok()) return s.error();
             message["uniform"] = uniform.string();
@@ -427,6 +442,25 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
             message["input_width"] = job.input.width;
             message["input_height"] = job.input.height;
         }
+        // Each extra texture travels as the input does: raw float32 RGBA in a file of its own.
+        json textures = json::array();
+        for (std::size_t i = 0; i < job.textures.size(); ++i) {
+            const TextureInput& t = job.textures[i];
+            json entry = {{"binding", t.binding},
+                          {"sampler_binding", t.sampler_binding},
+                          {"filter", filter_name(t.filter)},
+                          {"wrap", wrap_name(t.wrap)}};
+            if (!t.image.empty()) {
+                const fs::path file = dir / fmt::format("texture{}.f32", i);
+                if (auto s = write_file(file, t.image.rgba.data(), t.image.rgba.size() * sizeof(float)); !s.ok())
+                    return s.error();
+                entry["image"] = file.string();
+                entry["width"] = t.image.width;
+                entry["height"] = t.image.height;
+            }
+            textures.push_back(std::move(entry));
+        }
+        if (!textures.empty()) message["textures"] = std::move(textures);
         auto reply = impl_->request(message, "render");
         if (!reply.ok()) return reply.error();
         const json& r = reply.value();

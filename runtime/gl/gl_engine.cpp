@@ -1,6 +1,7 @@
-// The GL GlEngine: check the job, compile and link the pair, create the job's texture, uniform
-// buffer and framebuffer, draw one full-screen triangle, read the target back. The EGL display
-// and context (GlContext) live as long as the engine; every GL object lives for one render().
+// The GL GlEngine: check the job, compile and link the pair, create the job's textures, uniform
+// buffer and framebuffer, clear, draw one full-screen triangle, read the target back. The EGL
+// display and context (GlContext) live as long as the engine; every GL object lives for one
+// render().
 #include "crtforge/runtime/gl_engine.hpp"
 
 #include <algorithm>
@@ -45,6 +46,30 @@ int max_output_extent(const GlContextFacts& facts, bool horizontal) {
     return std::min({facts.max_texture_size, facts.max_renderbuffer_size, facts.max_viewport[horizontal ? 0 : 1]});
 }
 
+// Extra textures are bound by name to units 1, 2, ...: each needs a name no other sampler of the
+// job has (two at one name would be two textures at one binding) and a unit the context has.
+Status check_textures(const GlRenderJob& job, const detail::JobLimits& limits, const GlContextFacts& facts) {
+    if (auto s = detail::check_texture_images(job.textures, limits); !s.ok()) return s;
+    if (job.textures.size() + 1 > static_cast<size_t>(std::max(facts.max_texture_units, 1))) {
+        return job_error(fmt::format("the job binds {} textures, over GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS of {}",
+                                     job.textures.size() + 1, facts.max_texture_units),
+                         "textures");
+    }
+    for (size_t i = 0; i < job.textures.size(); ++i) {
+        const std::string& name = job.textures[i].name;
+        const std::string field = detail::texture_field(i, "name");
+        if (name.empty())
+            return job_error(fmt::format("texture {} has no sampler name (the engine binds by name)", i), field);
+        if (name == job.sampler)
+            return job_error(fmt::format("texture {} is named '{}', the name of the input's sampler", i, name), field);
+        for (size_t j = 0; j < i; ++j) {
+            if (job.textures[j].name == name)
+                return job_error(fmt::format("textures {} and {} are both named '{}'", j, i, name), field);
+        }
+    }
+    return Ok{};
+}
+
 // Everything that can be said about a job before the driver sees its shaders.
 Status check_job(const GlContext& context, const GlRenderJob& job) {
     const GlContextFacts& facts = context.facts();
@@ -53,6 +78,9 @@ Status check_job(const GlContext& context, const GlRenderJob& job) {
     const detail::JobLimits limits{max_output_extent(facts, true), max_output_extent(facts, false),
                                    facts.max_texture_size, facts.renderer, "GL_MAX_TEXTURE_SIZE"};
     if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s;
+    if (auto s = check_textures(job, limits, facts); !s.ok()) return s;
+    if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;
+    if (auto s = detail::check_clear_color(job.clear_color); !s.ok()) return s;
     if (!job.uniform_data.empty()) {
         if (job.uniform_block.empty()) return job_error("uniform data is given but no uniform block is named", "uniform_block");
         if (job.uniform_data.size() > static_cast<size_t>(facts.max_uniform_block_size)) {
@@ -64,7 +92,7 @@ Status check_job(const GlContext& context, const GlRenderJob& job) {
     return Ok{};
 }
 
-// How the input is uploaded: RGBA32F, unless ES cannot filter it (OES_texture_float_linear).
+// How a texture is uploaded: RGBA32F, unless ES cannot filter it (OES_texture_float_linear).
 struct TextureUpload {
     GLenum internal_format = GL_RGBA32F;
     GLenum type = GL_FLOAT;
@@ -79,26 +107,40 @@ TextureUpload choose_upload(const GlContext& context, SamplerFilter filter) {
     return {};
 }
 
-UniqueTexture create_input_texture(const GlContext& context, const GlRenderJob& job) {
+GLint gl_wrap(WrapMode wrap) {
+    switch (wrap) {
+        case WrapMode::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case WrapMode::Repeat: return GL_REPEAT;
+        case WrapMode::MirroredRepeat: return GL_MIRRORED_REPEAT;
+    }
+    return GL_CLAMP_TO_EDGE;
+}
+
+// The one upload path of the input and of every extra texture: `image` (empty = a 1x1
+// transparent-black texture, for shaders that sample nothing) bound to texture unit `unit`, where
+// it stays for the draw.
+UniqueTexture create_sampled_texture(const GlContext& context, const Image& image, SamplerFilter filter, WrapMode wrap,
+                                     GLuint unit) {
     const GlFunctions& gl = context.functions();
-    const Image blank = Image::make(1, 1);  // for shaders that sample nothing
-    const Image& input = job.input.empty() ? blank : job.input;
-    const TextureUpload upload = choose_upload(context, job.filter);
-    std::vector<unsigned char> texels(input.pixel_count() * vulkan::texel_bytes(upload.texels));
-    vulkan::write_texels(input, upload.texels, texels.data());  // row 0 first: t = 0 is the top row
+    const Image blank = Image::make(1, 1);
+    const Image& source = image.empty() ? blank : image;
+    const TextureUpload upload = choose_upload(context, filter);
+    std::vector<unsigned char> texels(source.pixel_count() * vulkan::texel_bytes(upload.texels));
+    vulkan::write_texels(source, upload.texels, texels.data());  // row 0 first: t = 0 is the top row
 
     UniqueTexture texture = make_texture(gl);
-    gl.ActiveTexture(GL_TEXTURE0);
+    gl.ActiveTexture(GL_TEXTURE0 + unit);
     gl.BindTexture(GL_TEXTURE_2D, texture.get());
-    gl.TexStorage2D(GL_TEXTURE_2D, 1, upload.internal_format, input.width, input.height);
+    gl.TexStorage2D(GL_TEXTURE_2D, 1, upload.internal_format, source.width, source.height);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, input.width, input.height, GL_RGBA, upload.type, texels.data());
-    const GLint filter = job.filter == SamplerFilter::Linear ? GL_LINEAR : GL_NEAREST;
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, source.width, source.height, GL_RGBA, upload.type, texels.data());
+    const GLint gl_filter = filter == SamplerFilter::Linear ? GL_LINEAR : GL_NEAREST;
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, gl_filter);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, gl_filter);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(wrap));
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(wrap));
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl.ActiveTexture(GL_TEXTURE0);
     return texture;
 }
 
@@ -164,7 +206,12 @@ private:
 
         auto program = build_program(gl, job.vertex_source, job.fragment_source);
         if (!program) return program.error();
-        auto bindings = bind_program_interface(gl, program.value().get(), job.uniform_block, job.sampler);
+        // The input on unit 0, the extra textures on 1, 2, ... in order.
+        std::vector<SamplerUnit> samplers{{job.sampler, 0}};
+        for (size_t i = 0; i < job.textures.size(); ++i) {
+            samplers.push_back({job.textures[i].name, static_cast<GLint>(i + 1)});
+        }
+        auto bindings = bind_program_interface(gl, program.value().get(), job.uniform_block, samplers);
         if (!bindings) return bindings.error();
         // std140 rounds a block's GL_UNIFORM_BLOCK_DATA_SIZE up to 16 bytes, where SPIR-V
         // reflection (and so the Vulkan engine) ends it at its last member: data that covers every
@@ -177,8 +224,6 @@ private:
                              "uniform_data");
         }
 
-        const UniqueTexture input = create_input_texture(*context_, job);
-
         UniqueBuffer uniforms;
         if (block) {
             std::vector<uint8_t> data = job.uniform_data;
@@ -190,9 +235,17 @@ private:
         }
 
         const UniqueTexture target = make_texture(gl);
+        gl.ActiveTexture(GL_TEXTURE0);
         gl.BindTexture(GL_TEXTURE_2D, target.get());
         gl.TexStorage2D(GL_TEXTURE_2D, 1, output_internal_format(job.format), job.width, job.height);
-        gl.BindTexture(GL_TEXTURE_2D, input.get());  // unit 0 samples the input again
+        // After the target, so each texture stays bound to its unit (unit 0 holds the input again).
+        std::vector<UniqueTexture> textures;
+        textures.push_back(create_sampled_texture(*context_, job.input, job.filter, job.wrap, 0));
+        for (size_t i = 0; i < job.textures.size(); ++i) {
+            const TextureInput& t = job.textures[i];
+            const auto unit = static_cast<GLuint>(i + 1);
+            textures.push_back(create_sampled_texture(*context_, t.image, t.filter, t.wrap, unit));
+        }
 
         const UniqueFramebuffer framebuffer = make_framebuffer(gl);
         gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
@@ -218,7 +271,15 @@ private:
         gl.Disable(GL_CULL_FACE);
         const bool srgb_switch = !context_->is_es() && job.format == OutputFormat::Rgba8Srgb;
         if (srgb_switch) gl.Enable(GL_FRAMEBUFFER_SRGB);  // desktop GL encodes on store only when asked
-        gl.Viewport(0, 0, job.width, job.height);
+        gl.ClearBufferfv(GL_COLOR, 0, job.clear_color.data());  // the whole target: no scissor is on
+        // The job's viewport counts rows from the top; GL's from the bottom (the image is flipped
+        // on readback), so its bottom edge is height - y - h rows up.
+        if (job.viewport.full()) {
+            gl.Viewport(0, 0, job.width, job.height);
+        } else {
+            gl.Viewport(job.viewport.x, job.height - job.viewport.y - job.viewport.height, job.viewport.width,
+                        job.viewport.height);
+        }
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
         if (srgb_switch) gl.Disable(GL_FRAMEBUFFER_SRGB);  // and never decode on read
 

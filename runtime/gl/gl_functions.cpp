@@ -43,6 +43,7 @@ GlContextFacts query_context_facts(const GlFunctions& gl) {
     gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &facts.max_renderbuffer_size);
     gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, facts.max_viewport);
     gl.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &facts.max_uniform_block_size);
+    gl.GetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &facts.max_texture_units);
     return facts;
 }
 

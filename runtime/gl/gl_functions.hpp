@@ -24,6 +24,7 @@ namespace crtforge::gl {
     X(PFNGLVIEWPORTPROC, Viewport, "glViewport")                                   \
     X(PFNGLDRAWARRAYSPROC, DrawArrays, "glDrawArrays")                             \
     X(PFNGLREADPIXELSPROC, ReadPixels, "glReadPixels")                             \
+    X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv, "glClearBufferfv")                    \
     X(PFNGLCREATESHADERPROC, CreateShader, "glCreateShader")                       \
     X(PFNGLSHADERSOURCEPROC, ShaderSource, "glShaderSource")                       \
     X(PFNGLCOMPILESHADERPROC, CompileShader, "glCompileShader")                    \
@@ -85,6 +86,7 @@ struct GlContextFacts {
     int max_renderbuffer_size = 0;       // GL_MAX_RENDERBUFFER_SIZE
     int max_viewport[2] = {0, 0};        // GL_MAX_VIEWPORT_DIMS
     int max_uniform_block_size = 0;      // GL_MAX_UNIFORM_BLOCK_SIZE
+    int max_texture_units = 0;           // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
 
     bool has_extension(const std::string& name) const;
 };

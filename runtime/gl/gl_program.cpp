@@ -165,7 +165,7 @@ Result<UniqueProgram> build_program(const GlFunctions& gl, const std::string& ve
 }
 
 Result<ProgramBindings> bind_program_interface(const GlFunctions& gl, GLuint program, const std::string& uniform_block,
-                                               const std::string& sampler) {
+                                               const std::vector<SamplerUnit>& samplers) {
     ProgramBindings out;
     GLint blocks = 0;
     gl.GetProgramiv(program, GL_ACTIVE_UNIFORM_BLOCKS, &blocks);
@@ -187,9 +187,12 @@ Result<ProgramBindings> bind_program_interface(const GlFunctions& gl, GLuint pro
     }
 
     gl.UseProgram(program);
-    const GLint location = sampler.empty() ? -1 : gl.GetUniformLocation(program, sampler.c_str());
-    if (location != -1) gl.Uniform1i(location, 0);  // texture unit 0
-    out.samples_texture = location != -1;
+    for (size_t i = 0; i < samplers.size(); ++i) {
+        const SamplerUnit& sampler = samplers[i];
+        const GLint location = sampler.name.empty() ? -1 : gl.GetUniformLocation(program, sampler.name.c_str());
+        if (location != -1) gl.Uniform1i(location, sampler.unit);
+        if (i == 0) out.samples_texture = location != -1;
+    }
     return out;
 }
 

@@ -1,12 +1,13 @@
 // Compiling and linking a GLSL vertex + fragment pair with the GL driver, and binding the linked
-// program's interface by name: the uniform block to uniform-buffer binding 0 and the sampler to
-// texture unit 0, whatever layout(binding = ...) the source carries (GLSL 330 output only has
-// them under GL_ARB_shading_language_420pack, GLSL ES 300 never).
+// program's interface by name: the uniform block to uniform-buffer binding 0 and the samplers to
+// their texture units (the input's to unit 0), whatever layout(binding = ...) the source carries
+// (GLSL 330 output only has them under GL_ARB_shading_language_420pack, GLSL ES 300 never).
 #pragma once
 
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "crtforge/diagnostic.hpp"
 #include "runtime/gl/gl_functions.hpp"
@@ -31,12 +32,19 @@ struct ProgramBindings {
         size_t used_size = 0;  // where its last active member ends (= data_size if unknown)
     };
     std::optional<Block> uniform_block;
-    bool samples_texture = false;  // the sampler uniform is active (location != -1)
+    bool samples_texture = false;  // the first sampler (the job's input) is active (location != -1)
 };
 
-// Binds the block named `uniform_block` and the sampler named `sampler` (program in use after the
-// call). Any other active uniform block is an Input error: the job cannot feed it.
+// A sampler2D uniform and the texture unit it reads.
+struct SamplerUnit {
+    std::string name;  // "" = none (nothing is bound)
+    GLint unit = 0;
+};
+
+// Binds the block named `uniform_block` and each of `samplers` to its unit (program in use after
+// the call); a sampler the program does not use is skipped. Any other active uniform block is an
+// Input error: the job cannot feed it.
 Result<ProgramBindings> bind_program_interface(const GlFunctions& gl, GLuint program, const std::string& uniform_block,
-                                               const std::string& sampler);
+                                               const std::vector<SamplerUnit>& samplers);
 
 }  // namespace crtforge::gl

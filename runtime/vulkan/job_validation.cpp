@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -30,7 +31,10 @@ Status check_size(const VulkanContext& context, const RenderJob& job) {
     detail::JobLimits job_limits{clamp_int(max_extent(limits, true)), clamp_int(max_extent(limits, false)),
                                  clamp_int(limits.maxImageDimension2D), context.info().name,
                                  "the device's maxImageDimension2D"};
-    return detail::check_job_extent(job.width, job.height, job.input, job_limits);
+    if (auto s = detail::check_job_extent(job.width, job.height, job.input, job_limits); !s.ok()) return s;
+    if (auto s = detail::check_texture_images(job.textures, job_limits); !s.ok()) return s;
+    if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;
+    return detail::check_clear_color(job.clear_color);
 }
 
 Status check_bindings(const VulkanContext& context, const RenderJob& job) {
@@ -44,12 +48,40 @@ Status check_bindings(const VulkanContext& context, const RenderJob& job) {
         return job_error(fmt::format("uniform buffer and texture cannot share binding {}", job.uniform_binding),
                          "uniform_binding");
     }
+    std::vector<detail::BindingUse> uses{{job.texture_binding, "texture_binding"}};
+    if (!job.uniform_data.empty()) uses.push_back({job.uniform_binding, "uniform_binding"});
+    for (size_t i = 0; i < job.textures.size(); ++i) {
+        uses.push_back({job.textures[i].binding, detail::texture_field(i, "binding")});
+    }
+    if (auto s = detail::check_distinct_bindings(uses); !s.ok()) return s;
+    const uint64_t samplers = job.textures.size() + 1;
+    const uint32_t sampler_limit =
+        std::min({limits.maxPerStageDescriptorSamplers, limits.maxPerStageDescriptorSampledImages,
+                  limits.maxDescriptorSetSamplers, limits.maxDescriptorSetSampledImages});
+    if (samplers > sampler_limit) {
+        return job_error(fmt::format("the job binds {} textures, over the device's limit of {} per stage and set",
+                                     samplers, sampler_limit),
+                         "textures");
+    }
     if (job.uniform_data.size() > limits.maxUniformBufferRange) {
         return job_error(fmt::format("uniform data is {} bytes, over the device's maxUniformBufferRange of {}",
                                      job.uniform_data.size(), limits.maxUniformBufferRange),
                          "uniform_data");
     }
     return Ok{};
+}
+
+bool provides_texture(const RenderJob& job, uint32_t binding) {
+    if (binding == job.texture_binding) return true;
+    return std::any_of(job.textures.begin(), job.textures.end(),
+                       [binding](const TextureInput& t) { return t.binding == binding; });
+}
+
+// "1" or "1, 3, 4": the input's binding, then the extra textures'.
+std::string texture_bindings(const RenderJob& job) {
+    std::string out = std::to_string(job.texture_binding);
+    for (const TextureInput& t : job.textures) out += ", " + std::to_string(t.binding);
+    return out;
 }
 
 // Every descriptor the module declares must be one the job provides, of the matching kind.
@@ -67,7 +99,7 @@ Status check_resources(const SpirvInterface& module, const char* what, const Ren
                                          what, label),
                              "descriptor_set");
         }
-        if (r.binding == job.texture_binding && r.kind == SpirvResourceKind::CombinedImageSampler) continue;
+        if (r.kind == SpirvResourceKind::CombinedImageSampler && provides_texture(job, r.binding)) continue;
         if (r.binding == job.uniform_binding && r.kind == SpirvResourceKind::UniformBuffer) {
             if (job.uniform_data.empty()) {
                 return job_error(fmt::format("{} declares {} but the job has no uniform data", what, label),
@@ -81,8 +113,8 @@ Status check_resources(const SpirvInterface& module, const char* what, const Ren
             continue;
         }
         return job_error(fmt::format("{} uses {}, which the job does not provide (it binds a uniform buffer at {} "
-                                     "and a combined image sampler at {})",
-                                     what, label, job.uniform_binding, job.texture_binding),
+                                     "and combined image samplers at {})",
+                                     what, label, job.uniform_binding, texture_bindings(job)),
                          r.binding == job.uniform_binding ? "uniform_binding" : "texture_binding");
     }
     return Ok{};
@@ -116,22 +148,21 @@ Status check_module(const std::vector<uint32_t>& spirv, ExecutionModel model, co
     return check_resources(module, what, job);
 }
 
-Result<VkFormat> pick_texture_format(const VulkanContext& context, const RenderJob& job, TextureTexels* texels) {
+// The one format choice for the input and every extra texture: full float where the device can
+// sample (and filter) it; half float, which every Vulkan device can filter, otherwise. `field`
+// names the filter that could not be met.
+Result<TexturePlan> pick_texture_format(const VulkanContext& context, SamplerFilter filter, const std::string& field) {
     VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    if (job.filter == SamplerFilter::Linear) needed |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-    // Full float where the device can sample (and filter) it; half float, which every Vulkan device
-    // can filter, otherwise.
+    if (filter == SamplerFilter::Linear) needed |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     if ((context.optimal_tiling_features(VK_FORMAT_R32G32B32A32_SFLOAT) & needed) == needed) {
-        *texels = TextureTexels::Rgba32Float;
-        return VK_FORMAT_R32G32B32A32_SFLOAT;
+        return TexturePlan{VK_FORMAT_R32G32B32A32_SFLOAT, TextureTexels::Rgba32Float};
     }
     if ((context.optimal_tiling_features(VK_FORMAT_R16G16B16A16_SFLOAT) & needed) == needed) {
-        *texels = TextureTexels::Rgba16Float;
-        return VK_FORMAT_R16G16B16A16_SFLOAT;
+        return TexturePlan{VK_FORMAT_R16G16B16A16_SFLOAT, TextureTexels::Rgba16Float};
     }
     return job_error(fmt::format("device '{}' cannot sample an RGBA32F or RGBA16F texture with this filter",
                                  context.info().name),
-                     "filter");
+                     field);
 }
 
 }  // namespace
@@ -160,9 +191,14 @@ Result<JobPlan> check_job(const VulkanContext& context, const RenderJob& job) {
                                      output_format_name(job.format)),
                          "format");
     }
-    auto texture = pick_texture_format(context, job, &plan.texels);
-    if (!texture) return texture.error();
-    plan.texture_format = texture.value();
+    auto input = pick_texture_format(context, job.filter, "filter");
+    if (!input) return input.error();
+    plan.textures.push_back(input.value());
+    for (size_t i = 0; i < job.textures.size(); ++i) {
+        auto texture = pick_texture_format(context, job.textures[i].filter, detail::texture_field(i, "filter"));
+        if (!texture) return texture.error();
+        plan.textures.push_back(texture.value());
+    }
     return plan;
 }
 

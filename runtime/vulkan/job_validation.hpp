@@ -3,6 +3,8 @@
 // every job the engine accepts is one the Vulkan spec says is valid to run.
 #pragma once
 
+#include <vector>
+
 #include <vulkan/vulkan.h>
 
 #include "crtforge/diagnostic.hpp"
@@ -12,11 +14,16 @@
 
 namespace crtforge::vulkan {
 
+// How one sampled texture is uploaded.
+struct TexturePlan {
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    TextureTexels texels = TextureTexels::Rgba32Float;
+};
+
 // What an accepted job will use.
 struct JobPlan {
     VkFormat output_format = VK_FORMAT_UNDEFINED;
-    VkFormat texture_format = VK_FORMAT_UNDEFINED;
-    TextureTexels texels = TextureTexels::Rgba32Float;
+    std::vector<TexturePlan> textures;  // [0] the input, then job.textures in order
 };
 
 VkFormat output_vk_format(OutputFormat format);

@@ -54,7 +54,7 @@ void record_upload(VkCommandBuffer commands, const HostBuffer& staging, const De
 
 void record_draw(VkCommandBuffer commands, const PassCommands& c) {
     VkClearValue clear{};
-    clear.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    clear.color = {{c.clear_color[0], c.clear_color[1], c.clear_color[2], c.clear_color[3]}};
     VkRenderPassBeginInfo begin{};
     begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
     begin.renderPass = c.pass.render_pass.get();
@@ -91,7 +91,7 @@ void record_readback(VkCommandBuffer commands, const DeviceImage& target, const 
 }  // namespace
 
 void record_pass(VkCommandBuffer commands, const PassCommands& pass) {
-    record_upload(commands, pass.staging, pass.texture);
+    for (const SampledTexture& texture : pass.textures) record_upload(commands, texture.staging, texture.image);
     record_draw(commands, pass);
     record_readback(commands, pass.target, pass.readback);
 }

@@ -1,9 +1,11 @@
 // Recording and running the command buffer of one job:
-//   upload the input texture -> render the full-screen triangle -> copy the target to a
+//   upload the textures -> clear the target, render the full-screen triangle -> copy the target to a
 //   host-visible buffer, each step ordered after the previous one by a barrier.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -15,14 +17,14 @@
 namespace crtforge::vulkan {
 
 struct PassCommands {
-    const HostBuffer& staging;       // input texels, tightly packed
-    const DeviceImage& texture;      // receives `staging`, then is sampled
+    const std::vector<SampledTexture>& textures;  // each image receives its staging, then is sampled
     const GraphicsPass& pass;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
     uint32_t descriptor_set_index = 0;
     const DeviceImage& target;       // the colour attachment
     const HostBuffer& readback;      // receives `target`, tightly packed
+    std::array<float, 4> clear_color{};  // the whole target's value before the draw
 };
 
 void record_pass(VkCommandBuffer commands, const PassCommands& pass);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <exception>
 #include <optional>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -21,10 +22,8 @@ namespace {
 
 // The buffers and images of one job, in creation order (destroyed in reverse).
 struct JobResources {
-    HostBuffer staging;                 // input texels on their way to `texture`
-    DeviceImage texture;
-    UniqueSampler sampler;
-    std::optional<HostBuffer> uniforms; // absent when the job has no uniform data
+    std::vector<SampledTexture> textures;  // [0] the input, then job.textures in order
+    std::optional<HostBuffer> uniforms;    // absent when the job has no uniform data
     DeviceImage target;
     HostBuffer readback;
 };
@@ -32,25 +31,17 @@ struct JobResources {
 Result<JobResources> create_job_resources(const VulkanContext& context, const RenderJob& job, const JobPlan& plan) {
     JobResources out;
 
-    // A shader that samples nothing still gets a valid descriptor: a 1x1 transparent-black texture.
-    const Image blank = Image::make(1, 1);
-    const Image& input = job.input.empty() ? blank : job.input;
-    auto staging = create_host_buffer(context, input.pixel_count() * texel_bytes(plan.texels),
-                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    if (!staging) return staging.error();
-    out.staging = std::move(staging).value();
-    write_texels(input, plan.texels, out.staging.mapped);
-    if (auto s = flush(context, out.staging); !s) return s.error();
-
-    auto texture = create_device_image(context, plan.texture_format, static_cast<uint32_t>(input.width),
-                                       static_cast<uint32_t>(input.height),
-                                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    if (!texture) return texture.error();
-    out.texture = std::move(texture).value();
-
-    auto sampler = create_sampler(context, job.filter);
-    if (!sampler) return sampler.error();
-    out.sampler = std::move(sampler).value();
+    out.textures.reserve(job.textures.size() + 1);
+    for (size_t i = 0; i <= job.textures.size(); ++i) {
+        const TexturePlan& format = plan.textures[i];
+        auto texture = i == 0 ? create_sampled_texture(context, job.input, format.format, format.texels, job.filter,
+                                                       job.wrap, job.texture_binding)
+                              : create_sampled_texture(context, job.textures[i - 1].image, format.format, format.texels,
+                                                       job.textures[i - 1].filter, job.textures[i - 1].wrap,
+                                                       job.textures[i - 1].binding);
+        if (!texture) return texture.error();
+        out.textures.push_back(std::move(texture).value());
+    }
 
     if (!job.uniform_data.empty()) {
         auto uniforms = create_host_buffer(context, job.uniform_data.size(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -107,18 +98,18 @@ private:
         if (!pass) return pass.error();
         auto framebuffer = create_framebuffer(context, pass.value().render_pass.get(), r.target);
         if (!framebuffer) return framebuffer.error();
-        auto descriptors = create_descriptor_set(context, pass.value(), job, r.uniforms ? &*r.uniforms : nullptr,
-                                                 r.texture, r.sampler.get());
+        auto descriptors =
+            create_descriptor_set(context, pass.value(), job, r.uniforms ? &*r.uniforms : nullptr, r.textures);
         if (!descriptors) return descriptors.error();
 
-        const PassCommands commands{r.staging,
-                                    r.texture,
+        const PassCommands commands{r.textures,
                                     pass.value(),
                                     framebuffer.value().get(),
                                     descriptors.value().set,
                                     job.descriptor_set,
                                     r.target,
-                                    r.readback};
+                                    r.readback,
+                                    job.clear_color};
         if (auto s = submit_and_wait(context, [&](VkCommandBuffer cb) { record_pass(cb, commands); }); !s) {
             return s.error();
         }

@@ -83,6 +83,9 @@ Status create_layouts(VkDevice device, const RenderJob& job, GraphicsPass& pass)
         bindings.push_back({job.uniform_binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stages, nullptr});
     }
     bindings.push_back({job.texture_binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr});
+    for (const TextureInput& texture : job.textures) {
+        bindings.push_back({texture.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr});
+    }
     auto set_layout = create_set_layout(device, bindings);
     if (!set_layout) return set_layout.error();
     pass.set_layout = std::move(set_layout).value();
@@ -131,11 +134,13 @@ Result<UniquePipeline> create_pipeline(VkDevice device, const RenderJob& job, co
     assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
 
-    // Standard Vulkan viewport: NDC y = -1 lands on framebuffer row 0, the top row, so a shader
-    // that maps NDC y = -1 to v = 0 reproduces the input the right way up.
-    const auto width = static_cast<uint32_t>(job.width), height = static_cast<uint32_t>(job.height);
-    VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, {width, height}};
+    // Standard Vulkan viewport: NDC y = -1 lands on its top row (framebuffer rows count down from
+    // the top), so a shader that maps NDC y = -1 to v = 0 reproduces the input the right way up.
+    // The job's viewport is in the same top-down pixels; the scissor keeps the draw inside it.
+    const Viewport area = job.viewport.full() ? Viewport{0, 0, job.width, job.height} : job.viewport;
+    VkViewport viewport{static_cast<float>(area.x), static_cast<float>(area.y), static_cast<float>(area.width),
+                        static_cast<float>(area.height), 0.0f, 1.0f};
+    VkRect2D scissor{{area.x, area.y}, {static_cast<uint32_t>(area.width), static_cast<uint32_t>(area.height)}};
     VkPipelineViewportStateCreateInfo viewport_state{};
     viewport_state.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
     viewport_state.viewportCount = 1;
@@ -221,9 +226,10 @@ Result<UniqueFramebuffer> create_framebuffer(const VulkanContext& context, VkRen
 
 Result<DescriptorSet> create_descriptor_set(const VulkanContext& context, const GraphicsPass& pass,
                                             const RenderJob& job, const HostBuffer* uniforms,
-                                            const DeviceImage& texture, VkSampler sampler) {
+                                            const std::vector<SampledTexture>& textures) {
     const VkDevice device = context.device();
-    std::vector<VkDescriptorPoolSize> sizes{{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
+    std::vector<VkDescriptorPoolSize> sizes{
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, static_cast<uint32_t>(textures.size())}};
     if (uniforms) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1});
 
     VkDescriptorPoolCreateInfo pool_info{};
@@ -248,21 +254,30 @@ Result<DescriptorSet> create_descriptor_set(const VulkanContext& context, const 
         return vk_error("vkAllocateDescriptorSets", r);
     }
 
-    VkDescriptorImageInfo image{sampler, texture.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    // Sized up front: the writes point into it.
+    std::vector<VkDescriptorImageInfo> images;
+    images.reserve(textures.size());
+    std::vector<VkWriteDescriptorSet> writes;
+    for (const SampledTexture& texture : textures) {
+        images.push_back({texture.sampler.get(), texture.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+        VkWriteDescriptorSet write{};
+        write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        write.dstSet = out.set;
+        write.dstBinding = texture.binding;
+        write.descriptorCount = 1;
+        write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        write.pImageInfo = &images.back();
+        writes.push_back(write);
+    }
     VkDescriptorBufferInfo buffer{};
-    std::vector<VkWriteDescriptorSet> writes(1);
-    writes[0].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    writes[0].dstSet = out.set;
-    writes[0].dstBinding = job.texture_binding;
-    writes[0].descriptorCount = 1;
-    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    writes[0].pImageInfo = &image;
     if (uniforms) {
         buffer = {uniforms->buffer.get(), 0, uniforms->size};
-        VkWriteDescriptorSet write = writes[0];
+        VkWriteDescriptorSet write{};
+        write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        write.dstSet = out.set;
         write.dstBinding = job.uniform_binding;
+        write.descriptorCount = 1;
         write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        write.pImageInfo = nullptr;
         write.pBufferInfo = &buffer;
         writes.push_back(write);
     }

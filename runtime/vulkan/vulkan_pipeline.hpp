@@ -1,6 +1,8 @@
 // The graphics pipeline for one full-screen pass and the descriptor set that feeds it.
 #pragma once
 
+#include <vector>
+
 #include <vulkan/vulkan.h>
 
 #include "crtforge/diagnostic.hpp"
@@ -15,13 +17,14 @@ namespace crtforge::vulkan {
 struct GraphicsPass {
     UniqueRenderPass render_pass;
     UniqueDescriptorSetLayout empty_set_layout;  // fills sets below job.descriptor_set
-    UniqueDescriptorSetLayout set_layout;        // the job's uniform buffer + combined image sampler
+    UniqueDescriptorSetLayout set_layout;        // the job's uniform buffer + combined image samplers
     UniquePipelineLayout pipeline_layout;
     UniquePipeline pipeline;
 };
 
-// One colour attachment of `color_format`, cleared to transparent black and left in
-// TRANSFER_SRC_OPTIMAL for the readback copy; viewport and scissor fixed to the job's size.
+// One colour attachment of `color_format`, cleared (to the job's clear colour, when the pass
+// begins) and left in TRANSFER_SRC_OPTIMAL for the readback copy; viewport and scissor fixed to
+// the job's viewport (its whole size by default).
 Result<GraphicsPass> create_graphics_pass(const VulkanContext& context, const RenderJob& job, VkFormat color_format);
 
 Result<UniqueFramebuffer> create_framebuffer(const VulkanContext& context, VkRenderPass render_pass,
@@ -32,9 +35,10 @@ struct DescriptorSet {
     VkDescriptorSet set = VK_NULL_HANDLE;
 };
 
-// Writes the job's bindings: `uniforms` (null when the job has no uniform data) and the texture.
+// Writes the job's bindings: `uniforms` (null when the job has no uniform data) and every texture
+// at its binding.
 Result<DescriptorSet> create_descriptor_set(const VulkanContext& context, const GraphicsPass& pass,
                                             const RenderJob& job, const HostBuffer* uniforms,
-                                            const DeviceImage& texture, VkSampler sampler);
+                                            const std::vector<SampledTexture>& textures);
 
 }  // namespace crtforge::vulkan

@@ -147,16 +147,19 @@ Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat f
     return out;
 }
 
-Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter) {
+Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap) {
     const VkFilter vk_filter = filter == SamplerFilter::Linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    if (wrap == WrapMode::Repeat) address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    if (wrap == WrapMode::MirroredRepeat) address = VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
     VkSamplerCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
     info.magFilter = vk_filter;
     info.minFilter = vk_filter;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeU = address;
+    info.addressModeV = address;
+    info.addressModeW = address;
     info.minLod = 0.0f;
     info.maxLod = 0.0f;  // one level only
     info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
@@ -165,6 +168,33 @@ Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter
         return vk_error("vkCreateSampler", r);
     }
     return UniqueSampler(context.device(), sampler);
+}
+
+Result<SampledTexture> create_sampled_texture(const VulkanContext& context, const Image& image, VkFormat format,
+                                              TextureTexels texels, SamplerFilter filter, WrapMode wrap,
+                                              uint32_t binding) {
+    SampledTexture out;
+    out.binding = binding;
+    // A shader that samples nothing still gets a valid descriptor: a 1x1 transparent-black texture.
+    const Image blank = Image::make(1, 1);
+    const Image& source = image.empty() ? blank : image;
+    auto staging =
+        create_host_buffer(context, source.pixel_count() * texel_bytes(texels), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    if (!staging) return staging.error();
+    out.staging = std::move(staging).value();
+    write_texels(source, texels, out.staging.mapped);
+    if (auto s = flush(context, out.staging); !s) return s.error();
+
+    auto device_image = create_device_image(context, format, static_cast<uint32_t>(source.width),
+                                            static_cast<uint32_t>(source.height),
+                                            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    if (!device_image) return device_image.error();
+    out.image = std::move(device_image).value();
+
+    auto sampler = create_sampler(context, filter, wrap);
+    if (!sampler) return sampler.error();
+    out.sampler = std::move(sampler).value();
+    return out;
 }
 
 }  // namespace crtforge::vulkan

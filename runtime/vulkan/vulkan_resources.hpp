@@ -6,6 +6,7 @@
 
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/runtime/render_engine.hpp"
+#include "runtime/common/pixel_conversion.hpp"
 #include "runtime/vulkan/vulkan_context.hpp"
 #include "runtime/vulkan/vulkan_handle.hpp"
 
@@ -39,7 +40,23 @@ struct DeviceImage {
 Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat format, uint32_t width,
                                         uint32_t height, VkImageUsageFlags usage);
 
-// Clamp-to-edge, unnormalised coordinates off, no mipmaps, no anisotropy.
-Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter);
+// `wrap` on every axis, unnormalised coordinates off, no mipmaps, no anisotropy.
+Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap);
+
+// One texture a pass samples: its texels on their way up, the image they go to, its sampler.
+// Members are declared so the sampler and image go before the staging buffer.
+struct SampledTexture {
+    HostBuffer staging;  // tightly packed texels, copied into `image` by the command buffer
+    DeviceImage image;
+    UniqueSampler sampler;
+    uint32_t binding = 0;  // of its combined image sampler in the job's set
+};
+
+// The one upload path of the input and of every extra texture: `image` (empty = a 1x1
+// transparent-black texture) written as `texels` into a staging buffer, a `format` image of its
+// size to receive it, and a sampler with `filter` and `wrap`.
+Result<SampledTexture> create_sampled_texture(const VulkanContext& context, const Image& image, VkFormat format,
+                                              TextureTexels texels, SamplerFilter filter, WrapMode wrap,
+                                              uint32_t binding);
 
 }  // namespace crtforge::vulkan

@@ -99,15 +99,22 @@ function adapterInfo() {
 
 // ---- helpers -------------------------------------------------------------------------------
 
-function str(request, key, fallback) {
+// `at` prefixes the key in errors, for fields of a nested object ("textures[1].").
+function str(request, key, fallback, at = '') {
   const v = request[key] ?? fallback;
-  if (typeof v !== 'string' || v === '') throw new RequestError(`"${key}" must be a non-empty string`);
+  if (typeof v !== 'string' || v === '') throw new RequestError(`"${at}${key}" must be a non-empty string`);
   return v;
 }
 
-function int(request, key, fallback, min, max) {
+function int(request, key, fallback, min, max, at = '') {
   const v = request[key] ?? fallback;
-  if (!Number.isInteger(v) || v < min || v > max) throw new RequestError(`"${key}" must be an integer in ${min}..${max}; got ${JSON.stringify(v)}`);
+  if (!Number.isInteger(v) || v < min || v > max) throw new RequestError(`"${at}${key}" must be an integer in ${min}..${max}; got ${JSON.stringify(v)}`);
+  return v;
+}
+
+function oneOf(request, key, fallback, allowed, at = '') {
+  const v = str(request, key, fallback, at);
+  if (!allowed.includes(v)) throw new RequestError(`"${at}${key}" must be one of ${allowed.map((a) => `'${a}'`).join(', ')}; got '${v}'`);
   return v;
 }
 
@@ -231,6 +238,66 @@ function srgbToLinear(byte) {
   return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4;
 }
 
+const FILTERS = ['nearest', 'linear'];
+const ADDRESS_MODES = ['clamp-to-edge', 'repeat', 'mirror-repeat'];
+
+// One texture to sample, read from `spec`: its bindings, filter, address mode and pixels (raw
+// float32 RGBA rows, top first, from the file named by its image key; none = 1x1 transparent
+// black). `keys` renames fields (the input's live at the request's top level under older names).
+function readTexture(spec, keys, defaults, maxDim, at = '') {
+  const texture = {
+    binding: int(spec, keys.binding ?? 'binding', defaults.binding, 0, 1000, at),
+    samplerBinding: int(spec, keys.samplerBinding ?? 'sampler_binding', defaults.samplerBinding, 0, 1000, at),
+    filter: oneOf(spec, 'filter', 'linear', FILTERS, at),
+    wrap: oneOf(spec, 'wrap', 'clamp-to-edge', ADDRESS_MODES, at),
+    width: 1,
+    height: 1,
+    pixels: new Float32Array(4),
+  };
+  const imageKey = keys.image ?? 'image';
+  if (spec[imageKey] != null) {
+    const widthKey = keys.width ?? 'width', heightKey = keys.height ?? 'height';
+    texture.width = int(spec, widthKey, undefined, 1, maxDim, at);
+    texture.height = int(spec, heightKey, undefined, 1, maxDim, at);
+    const bytes = readBytes(str(spec, imageKey, undefined, at), `${at}${imageKey} image`);
+    const expected = texture.width * texture.height * 16;
+    if (bytes.length !== expected)
+      throw new RequestError(`the ${at}${imageKey} image holds ${bytes.length} bytes; ${texture.width}x${texture.height} RGBA float32 needs ${expected}`);
+    texture.pixels = new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length));
+  }
+  return texture;
+}
+
+// The one upload path of the input and of every extra texture. rgba32float when it can be
+// sampled with the filter (nearest always: as unfilterable-float with a non-filtering sampler);
+// otherwise rgba16float converted here. Adds its layout and bind group entries; returns the format.
+function addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy) {
+  const linear = t.filter === 'linear';
+  const float32 = !linear || device.features.has('float32-filterable');
+  const format = float32 ? 'rgba32float' : 'rgba16float';
+  const texture = device.createTexture({
+    size: [t.width, t.height],
+    format,
+    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+  });
+  destroy.push(texture);
+  let data = t.pixels, bytesPerPixel = 16;
+  if (!float32) {
+    data = floatsToHalves(t.pixels);
+    bytesPerPixel = 8;
+  }
+  device.queue.writeTexture({ texture }, data, { bytesPerRow: t.width * bytesPerPixel, rowsPerImage: t.height }, [t.width, t.height]);
+  const sampler = device.createSampler({
+    magFilter: t.filter, minFilter: t.filter, mipmapFilter: 'nearest',
+    addressModeU: t.wrap, addressModeV: t.wrap,
+  });
+  layoutEntries.push({ binding: t.binding, visibility, texture: { sampleType: float32 && !linear ? 'unfilterable-float' : 'float' } });
+  layoutEntries.push({ binding: t.samplerBinding, visibility, sampler: { type: linear ? 'filtering' : 'non-filtering' } });
+  groupEntries.push({ binding: t.binding, resource: texture.createView() });
+  groupEntries.push({ binding: t.samplerBinding, resource: sampler });
+  return format;
+}
+
 const OUTPUT_FORMATS = {
   rgba16float: { gpu: 'rgba16float', bytes: 8 },
   rgba8unorm: { gpu: 'rgba8unorm', bytes: 4 },
@@ -261,24 +328,37 @@ async function opRender(request) {
   if (uniformPath !== null && (typeof uniformPath !== 'string' || uniformPath === '')) throw new RequestError('"uniform" must be a path or null');
   const usesTexture = request.texture ?? true;
   if (typeof usesTexture !== 'boolean') throw new RequestError('"texture" must be true or false');
-  const filter = str(request, 'filter', 'linear');
-  if (filter !== 'nearest' && filter !== 'linear') throw new RequestError(`"filter" must be 'nearest' or 'linear'; got '${filter}'`);
   const uniformBinding = int(request, 'uniform_binding', 0, 0, 1000);
-  const textureBinding = int(request, 'texture_binding', 1, 0, 1000);
-  const samplerBinding = int(request, 'sampler_binding', 2, 0, 1000);
-  const used = [...(uniformPath ? [uniformBinding] : []), ...(usesTexture ? [textureBinding, samplerBinding] : [])];
+  // The input: its fields sit at the top level of the request.
+  const input = usesTexture
+    ? readTexture(request, { binding: 'texture_binding', image: 'input', width: 'input_width', height: 'input_height' },
+      { binding: 1, samplerBinding: 2 }, maxDim)
+    : null;
+  const textureSpecs = request.textures ?? [];
+  if (!Array.isArray(textureSpecs)) throw new RequestError('"textures" must be an array');
+  const textures = textureSpecs.map((spec, i) => {
+    const at = `textures[${i}].`;
+    if (spec === null || typeof spec !== 'object' || Array.isArray(spec)) throw new RequestError(`"textures[${i}]" must be an object`);
+    return readTexture(spec, {}, {}, maxDim, at);
+  });
+  const used = [
+    ...(uniformPath ? [uniformBinding] : []),
+    ...[...(input ? [input] : []), ...textures].flatMap((t) => [t.binding, t.samplerBinding]),
+  ];
   if (new Set(used).size !== used.length) throw new RequestError(`the bindings ${used.join(', ')} must differ`);
 
-  // The input: raw float32 RGBA rows, top first; none = 1x1 transparent black.
-  let inputWidth = 1, inputHeight = 1, pixels = new Float32Array(4);
-  if (usesTexture && request.input != null) {
-    inputWidth = int(request, 'input_width', undefined, 1, maxDim);
-    inputHeight = int(request, 'input_height', undefined, 1, maxDim);
-    const bytes = readBytes(str(request, 'input'), 'input image');
-    const expected = inputWidth * inputHeight * 16;
-    if (bytes.length !== expected) throw new RequestError(`the input image holds ${bytes.length} bytes; ${inputWidth}x${inputHeight} RGBA float32 needs ${expected}`);
-    pixels = new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length));
+  // The rectangle drawn in (x, y, width, height; rows from the top), and the clear colour.
+  let viewport = [0, 0, width, height];
+  if (request.viewport != null) {
+    const v = request.viewport;
+    if (!Array.isArray(v) || v.length !== 4 || !v.every(Number.isInteger) || v[0] < 0 || v[1] < 0 || v[2] < 1 ||
+        v[3] < 1 || v[0] + v[2] > width || v[1] + v[3] > height)
+      throw new RequestError(`"viewport" must be [x, y, width, height] inside the ${width}x${height} target; got ${JSON.stringify(v)}`);
+    viewport = v;
   }
+  const clear = request.clear ?? [0, 0, 0, 0];
+  if (!Array.isArray(clear) || clear.length !== 4 || !clear.every((c) => typeof c === 'number' && Number.isFinite(c)))
+    throw new RequestError(`"clear" must be 4 finite numbers; got ${JSON.stringify(clear)}`);
   let uniformBytes = null;
   if (uniformPath) {
     uniformBytes = readBytes(uniformPath, 'uniform buffer');
@@ -292,12 +372,6 @@ async function opRender(request) {
       messages, line: firstError.lineNum, column: firstError.linePos,
     });
   if (moduleError) throw new RejectError(moduleError, { messages });
-
-  // rgba32float when it can be sampled with the filter (nearest always: as unfilterable-float
-  // with a non-filtering sampler); otherwise rgba16float converted here.
-  const linear = filter === 'linear';
-  const float32 = !linear || device.features.has('float32-filterable');
-  const textureFormat = float32 ? 'rgba32float' : 'rgba16float';
 
   const { result, error } = await withErrorScopes(async () => {
     const visibility = GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT;
@@ -315,28 +389,8 @@ async function opRender(request) {
       // The binding covers exactly the bytes given, so a block larger than the data is refused.
       groupEntries.push({ binding: uniformBinding, resource: { buffer, offset: 0, size: Math.ceil(uniformBytes.length / 4) * 4 } });
     }
-    if (usesTexture) {
-      const texture = device.createTexture({
-        size: [inputWidth, inputHeight],
-        format: textureFormat,
-        usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
-      });
-      destroy.push(texture);
-      let data = pixels, bytesPerPixel = 16;
-      if (textureFormat === 'rgba16float') {
-        data = floatsToHalves(pixels);
-        bytesPerPixel = 8;
-      }
-      device.queue.writeTexture({ texture }, data, { bytesPerRow: inputWidth * bytesPerPixel, rowsPerImage: inputHeight }, [inputWidth, inputHeight]);
-      const sampler = device.createSampler({
-        magFilter: filter, minFilter: filter, mipmapFilter: 'nearest',
-        addressModeU: 'clamp-to-edge', addressModeV: 'clamp-to-edge',
-      });
-      layoutEntries.push({ binding: textureBinding, visibility, texture: { sampleType: float32 && !linear ? 'unfilterable-float' : 'float' } });
-      layoutEntries.push({ binding: samplerBinding, visibility, sampler: { type: linear ? 'filtering' : 'non-filtering' } });
-      groupEntries.push({ binding: textureBinding, resource: texture.createView() });
-      groupEntries.push({ binding: samplerBinding, resource: sampler });
-    }
+    const inputFormat = input ? addSampledTexture(input, visibility, layoutEntries, groupEntries, destroy) : null;
+    const textureFormats = textures.map((t) => addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy));
     const pipelineKey = JSON.stringify([code, vertexEntry, fragmentEntry, format.gpu, layoutEntries]);
     let { bindGroupLayout, pipeline } = pipelineCache.get(pipelineKey) ?? {};
     if (!pipeline) {
@@ -360,16 +414,21 @@ async function opRender(request) {
     destroy.push(readback);
     const encoder = device.createCommandEncoder();
     const pass = encoder.beginRenderPass({
-      colorAttachments: [{ view: target.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] }],
+      colorAttachments: [{ view: target.createView(), loadOp: 'clear', storeOp: 'store', clearValue: clear }],
     });
     pass.setPipeline(pipeline);
+    pass.setViewport(viewport[0], viewport[1], viewport[2], viewport[3], 0, 1);
+    pass.setScissorRect(viewport[0], viewport[1], viewport[2], viewport[3]);
     pass.setBindGroup(0, bindGroup);
     pass.draw(3);
     pass.end();
     encoder.copyTextureToBuffer({ texture: target }, { buffer: readback, bytesPerRow, rowsPerImage: height }, [width, height]);
     device.queue.submit([encoder.finish()]);
     await device.queue.onSubmittedWorkDone();
-    return { readback, bytesPerRow, destroy, cache: () => remember(pipelineCache, pipelineKey, { bindGroupLayout, pipeline }) };
+    return {
+      readback, bytesPerRow, destroy, inputFormat, textureFormats,
+      cache: () => remember(pipelineCache, pipelineKey, { bindGroupLayout, pipeline }),
+    };
   }).catch((e) => ({ result: null, error: oneLine(e.message) }));
 
   const cleanup = () => result?.destroy.forEach((o) => o.destroy());
@@ -378,7 +437,7 @@ async function opRender(request) {
     throw new RejectError(error, { messages });
   }
   result.cache();  // the pipeline, the bind group and the pass were all valid
-  const { readback, bytesPerRow } = result;
+  const { readback, bytesPerRow, inputFormat, textureFormats } = result;
   try {
     await readback.mapAsync(GPUMapMode.READ);
   } catch (e) {
@@ -407,7 +466,7 @@ async function opRender(request) {
   } catch (e) {
     throw new RequestError(`cannot write the output '${output}': ${oneLine(e.message)}`);
   }
-  return { ok: true, messages, width, height, input_format: usesTexture ? textureFormat : null };
+  return { ok: true, messages, width, height, input_format: inputFormat, texture_formats: textureFormats };
 }
 
 async function handle(line) {

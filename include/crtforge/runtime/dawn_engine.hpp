@@ -14,18 +14,22 @@
 //
 // What the shader sees (measured with webgpu 0.6.2 on Mesa 22.3.6 llvmpipe, GLES 3.2):
 //  - @group(0) only: the uniform buffer at uniform_binding (a `var<uniform>`), the input at
-//    texture_binding (`texture_2d<f32>`) and its sampler at sampler_binding, each visible to both
-//    stages; only the bindings the job says are used are in the layout;
+//    texture_binding (`texture_2d<f32>`) and its sampler at sampler_binding, and each of
+//    `textures` as a `texture_2d<f32>` at its `binding` with a `sampler` at its `sampler_binding`,
+//    each visible to both stages; only the bindings the job says are used are in the layout;
 //  - the vertex stage draws a full-screen triangle from @builtin(vertex_index) (draw(3), no
-//    vertex buffers); @builtin(position) in the fragment stage is in pixels with (0.5, 0.5) at the
-//    centre of the TOP-left pixel; texture coordinate (0, 0) is the top-left of the input;
-//  - the input is rgba32float (exact) for Nearest, sampled as unfilterable-float with a
+//    vertex buffers); @builtin(position) in the fragment stage is in pixels of the whole target
+//    (not of the viewport) with (0.5, 0.5) at the centre of the TOP-left pixel; texture coordinate
+//    (0, 0) is the top-left of the input (of every texture);
+//  - every texture is rgba32float (exact) for Nearest, sampled as unfilterable-float with a
 //    non-filtering sampler; for Linear it is rgba16float (converted, round to nearest even)
-//    unless the adapter has 'float32-filterable' (llvmpipe's GLES backend does not);
-//    clamp-to-edge, no mipmaps;
-//  - the target is cleared to transparent black and written without blending.
+//    unless the adapter has 'float32-filterable' (llvmpipe's GLES backend does not); addressed by
+//    its wrap mode (clamp-to-edge, repeat, mirror-repeat), no mipmaps;
+//  - the target is cleared to clear_color, then the triangle is drawn inside `viewport`
+//    (setViewport + setScissorRect, rows from the top) without blending.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,7 +55,14 @@ struct DawnJob {
     // Ignored when uses_texture is false.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
+    WrapMode wrap = WrapMode::ClampToEdge;  // the input's address mode, both axes
+    // More textures, uploaded like `input` with their own filter and wrap: each a texture_2d<f32>
+    // at `binding` plus a sampler at `sampler_binding` (`name` is not used here). Bound whether or
+    // not uses_texture is set.
+    std::vector<TextureInput> textures;
     int width = 0, height = 0;  // output size in pixels, 1..kMaxImageDimension
+    Viewport viewport;          // where inside width x height the pass draws; default: everywhere
+    std::array<float, 4> clear_color = {0, 0, 0, 0};  // linear RGBA the whole target starts as
     // Rgba16Float: half floats, read back exactly; Rgba8Unorm: byte / 255; Rgba8Srgb: the
     // rgba8unorm-srgb target, read back decoded to linear (as the Vulkan engine does).
     OutputFormat format = OutputFormat::Rgba16Float;
@@ -82,8 +93,9 @@ public:
 
     // Renders the job and returns the output image (width x height, row 0 = top, linear floats).
     // Errors, all one line:
-    //  - a bad job (size <= 0 or > kMaxImageDimension, inconsistent input, empty WGSL or entry point, clashing
-    //    bindings): ErrorKind::Input with field "job.<name>", before any work;
+    //  - a bad job (size <= 0 or > kMaxImageDimension, inconsistent input or texture, empty WGSL or
+    //    entry point, clashing bindings, a viewport outside the target, a non-finite clear colour):
+    //    ErrorKind::Input with field "job.<name>", before any work;
     //  - a compile error: ErrorKind::Validation, "Dawn rejected the WGSL: L:C: <message>" with
     //    Diagnostic::line/column set (warnings do not fail a render: see compile());
     //  - a validation error from the pipeline, bind group or pass (wrong entry point, a binding

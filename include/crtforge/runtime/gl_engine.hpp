@@ -16,6 +16,7 @@
 // No exception escapes any of these calls; every failure is a Result error.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -38,16 +39,27 @@ enum class GlApi {
 //    -gl_Position.y), so texture coordinate (0, 0) is the top-left of `input` and of the picture;
 //  - output row 0 is the top row (the same orientation the Vulkan engine returns);
 //  - bindings written in the source (layout(binding = N)) are not relied on: the engine binds the
-//    uniform block by name to uniform buffer binding 0 and the sampler by name to texture unit 0.
+//    uniform block by name to uniform buffer binding 0, the input's sampler by name (`sampler`) to
+//    texture unit 0 and each of `textures` by its `name` to units 1, 2, ... in order;
+//  - the target is cleared to clear_color and the triangle drawn only inside `viewport` (rows
+//    counted from the top, as in render_engine.hpp); gl_FragCoord stays in target pixels with
+//    GL's bottom-left origin, so coordinates come from vTexCoord.
 struct GlRenderJob {
     // Complete GLSL, #version line included.
     std::string vertex_source, fragment_source;
     // Uploaded as an RGBA32F texture (RGBA16F on ES when float32 linear filtering is unavailable
-    // and `filter` is Linear), clamp-to-edge addressing, no mipmaps. An empty image binds a 1x1
-    // transparent-black texture, for shaders that sample nothing.
+    // and `filter` is Linear), addressed by `wrap` (clamp-to-edge by default), no mipmaps. An empty
+    // image binds a 1x1 transparent-black texture, for shaders that sample nothing.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
+    WrapMode wrap = WrapMode::ClampToEdge;
+    // More textures, uploaded like `input` with their own filter and wrap, each bound by its
+    // `name` (non-empty, unique, not `sampler`) to texture unit 1 + its index; `binding` and
+    // `sampler_binding` are not used here. A name the shader does not use is skipped.
+    std::vector<TextureInput> textures;
     int width = 0, height = 0;  // output size in pixels
+    Viewport viewport;          // where inside width x height the pass draws; default: everywhere
+    std::array<float, 4> clear_color = {0, 0, 0, 0};  // linear RGBA the whole target starts as
     // Rgba8Unorm and Rgba16Float always work; Rgba8Srgb is an error where the context cannot
     // render to it. Readback follows render_engine.hpp: bytes / 255, sRGB decoded, halves exact.
     OutputFormat format = OutputFormat::Rgba8Unorm;
@@ -72,7 +84,9 @@ public:
     // starts "GL driver rejected the vertex shader: " / "... fragment shader: " (or "... the
     // program at link: ") followed by the first line of the driver's log. A bad job (zero or
     // oversized output, empty source, too-short uniform data, a uniform block the job does not
-    // provide) is an ErrorKind::Input error; a GL error raised by the pass is reported too.
+    // provide, a texture with no name or a name another sampler has, a malformed or oversized
+    // texture, a viewport outside the target, a non-finite clear colour) is an ErrorKind::Input
+    // error with field "job.<name>"; a GL error raised by the pass is reported too.
     virtual Result<Image> render(const GlRenderJob& job) = 0;
 };
 

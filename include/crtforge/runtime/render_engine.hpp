@@ -13,6 +13,7 @@
 // No exception escapes any of these calls; every failure is a Result error.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -33,25 +34,62 @@ enum class OutputFormat {
 
 enum class SamplerFilter { Nearest, Linear };
 
+// Texture addressing outside [0, 1], on both axes (Vulkan CLAMP_TO_EDGE / REPEAT /
+// MIRRORED_REPEAT, GL the same, WebGPU clamp-to-edge / repeat / mirror-repeat).
+enum class WrapMode { ClampToEdge, Repeat, MirroredRepeat };
+
+// A texture a pass reads besides its main input (a previous pass's output, a lookup table, ...).
+// Uploaded exactly as the main input is (RGBA32F, or RGBA16F where the device cannot filter
+// RGBA32F with a Linear filter), with its own filter and wrap mode, no mipmaps.
+struct TextureInput {
+    std::string name;              // the sampler2D's name in the shader: the GL engine binds by name
+    uint32_t binding = 0;          // the Vulkan descriptor binding of the combined image sampler (in
+                                   // the job's descriptor_set), and the WGSL texture_2d<f32> binding
+    uint32_t sampler_binding = 0;  // the WGSL sampler binding (Dawn only; ignored elsewhere)
+    Image image;                   // empty = a 1x1 transparent-black texture
+    SamplerFilter filter = SamplerFilter::Linear;
+    WrapMode wrap = WrapMode::ClampToEdge;
+};
+
+// The rectangle of the target the full-screen triangle covers, in pixels with the origin at the
+// TOP-left of the output and rows going down; outside it the target keeps the clear colour.
+// Inside it, texture coordinate (0, 0) is the viewport's top-left and vTexCoord spans 0..1 over
+// the viewport: exactly a viewport-sized render pasted at (x, y). 0x0 = the whole target.
+struct Viewport {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool full() const { return width == 0 && height == 0; }
+};
+
 // One full-screen pass. Conventions shared with the generator:
 //  - the vertex shader draws a full-screen triangle from gl_VertexIndex (vkCmdDraw(3), no vertex
 //    buffers) and the fragment shader writes location 0;
-//  - texture coordinate (0, 0) is the top-left of `input`, and output row 0 is the top row;
+//  - texture coordinate (0, 0) is the top-left of `input` (of every texture), and output row 0 is
+//    the top row;
 //  - both modules use the entry point "main".
+// What the shader sees: in `descriptor_set`, the uniform block at uniform_binding (when
+// uniform_data is given), `input` as a combined image sampler at texture_binding and each of
+// `textures` as one at its own binding; the target, cleared to clear_color, is drawn only inside
+// `viewport` (gl_FragCoord stays in target pixels: derive coordinates from vTexCoord).
 struct RenderJob {
     std::vector<uint32_t> vertex_spirv, fragment_spirv;
     // Uploaded as an RGBA32F sampled texture (RGBA16F where the device cannot sample/filter
-    // RGBA32F), clamp-to-edge addressing, no mipmaps. An empty image binds a 1x1 transparent-black
-    // texture, for shaders that sample nothing.
+    // RGBA32F), addressed by `wrap` (clamp-to-edge by default), no mipmaps. An empty image binds a
+    // 1x1 transparent-black texture, for shaders that sample nothing.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
+    WrapMode wrap = WrapMode::ClampToEdge;
+    // More textures, each a combined image sampler at its own binding in descriptor_set (no two
+    // resources of the job may share a binding).
+    std::vector<TextureInput> textures;
     int width = 0, height = 0;  // output size in pixels
+    Viewport viewport;          // where inside width x height the pass draws; default: everywhere
+    std::array<float, 4> clear_color = {0, 0, 0, 0};  // linear RGBA the whole target starts as
     OutputFormat format = OutputFormat::Rgba8Unorm;
     // The bytes of the std140 uniform block, as laid out by the shader. Empty = the shader has no
     // uniform block. It must cover every byte of the block the shader declares.
     std::vector<uint8_t> uniform_data;
-    // Where the uniform block and the combined image sampler live. The shader may use no other
-    // descriptors (and no push constants or vertex attributes).
+    // Where the uniform block and the input's combined image sampler live. The shader may use no
+    // other descriptors than these and `textures` (and no push constants or vertex attributes).
     uint32_t uniform_binding = 0, texture_binding = 1, descriptor_set = 0;
 };
 
@@ -69,7 +107,9 @@ public:
     virtual const DeviceInfo& device() const = 0;
     // Renders `job` and returns the output image (job.width x job.height, linear floats).
     // A bad job (zero or oversized output, malformed SPIR-V, no "main" entry point, a descriptor
-    // the job does not provide, a too-short uniform buffer) returns an error before any GPU work.
+    // the job does not provide, a too-short uniform buffer, two resources at one binding, a
+    // malformed or oversized texture, a viewport outside the target, a non-finite clear colour)
+    // returns an ErrorKind::Input error with field "job.<name>" before any GPU work.
     virtual Result<Image> render(const RenderJob& job) = 0;
 };
 
