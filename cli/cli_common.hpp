@@ -54,7 +54,6 @@ Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::strin
 
 // Shared parsing helpers.
 Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"
-Result<Image> load_input(const std::string& spec);                  // file path or generated input name
 std::string default_golden_dir();                                    // $CRTFORGE_GOLDEN or the source tree's golden/
 
 }  // namespace crtforge::cli

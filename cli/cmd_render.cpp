@@ -1,13 +1,14 @@
-// crtforge render --preset P --target T --input FILE|NAME --output FILE [--size WxH] [--frame N]
+// crtforge render --preset P [--target T] --input FILE|NAME|PATTERN --output FILE|PATTERN
+//                [--size WxH] [--fit stretch|aspect|integer] [--frame N | --frames A:B]
 #include <filesystem>
 
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
-#include "crtforge/runtime/image_io.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
-#include "crtforge/validate/target_render.hpp"
+#include "crtforge/runtime/image_io.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/validate/target_render.hpp"
 
 namespace crtforge::cli {
 
@@ -21,21 +22,66 @@ Result<std::pair<int, int>> parse_size(const std::string& text) {
     return std::make_pair(w, h);
 }
 
-Result<Image> load_input(const std::string& spec) {
-    std::error_code ec;
-    if (std::filesystem::exists(spec, ec)) return read_image(spec);
-    const auto& names = test_input_names();
-    if (std::find(names.begin(), names.end(), spec) != names.end()) {
-        const bool nes = spec == "pixel_art";
-        return make_test_input(spec, nes ? 256 : 640, nes ? 224 : 480);
-    }
-    return make_error("'" + spec + "' is neither an image file nor a generated input (" + join_list(names) + ")", {}, 0, "--input");
-}
-
 namespace {
 
+// "%d" or "%0Nd" (one of them) in a file name: a sequence, one file per frame.
+struct Pattern {
+    std::string before, after;
+    int width = 0;  // zero-padded digits (0: as many as needed)
+    std::string at(int frame) const {
+        std::string digits = std::to_string(frame);
+        if (static_cast<int>(digits.size()) < width) digits.insert(0, static_cast<size_t>(width) - digits.size(), '0');
+        return before + digits + after;
+    }
+};
+
+std::optional<Pattern> parse_pattern(const std::string& text) {
+    const size_t at = text.find('%');
+    if (at == std::string::npos) return std::nullopt;
+    size_t i = at + 1;
+    int width = 0;
+    if (i < text.size() && text[i] == '0') {
+        ++i;
+        while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) && width < 100) width = width * 10 + (text[i++] - '0');
+    }
+    if (i >= text.size() || text[i] != 'd' || text.find('%', i) != std::string::npos) return std::nullopt;
+    return Pattern{text.substr(0, at), text.substr(i + 1), width};
+}
+
+// The input at each frame. A generated input's size: the scene's source size when it states one,
+// else an NES frame for pixel art and 640x480 for the others.
+Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, const Preset* preset) {
+    std::error_code ec;
+    if (auto pattern = parse_pattern(spec); pattern && !std::filesystem::exists(spec, ec)) {
+        const Pattern p = *pattern;
+        return std::function<Result<Image>(int)>([p](int frame) -> Result<Image> {
+            const std::string path = p.at(frame);
+            std::error_code e;
+            if (!std::filesystem::exists(path, e))
+                return make_error("the input sequence has no frame " + std::to_string(frame), path, 0, "--input");
+            return read_image(path);
+        });
+    }
+    if (std::filesystem::exists(spec, ec)) {
+        auto image = read_image(spec);
+        if (!image.ok()) return image.error();
+        Image still = std::move(image.value());
+        return std::function<Result<Image>(int)>([still](int) -> Result<Image> { return still; });
+    }
+    const auto& names = test_input_names();
+    if (std::find(names.begin(), names.end(), spec) != names.end()) {
+        int w = 640, h = 480;
+        if (spec == "pixel_art" || spec == "moving_sprite") std::tie(w, h) = std::make_pair(kPixelArtWidth, kPixelArtHeight);
+        if (preset && preset->scene.source_width) std::tie(w, h) = std::make_pair(preset->scene.source_width, preset->scene.source_height);
+        return std::function<Result<Image>(int)>([spec, w, h](int frame) { return make_test_input(spec, w, h, frame); });
+    }
+    return make_error("'" + spec + "' is neither an image file, a sequence (name_%03d.png) nor a generated input (" +
+                          join_list(names) + ")",
+                      {}, 0, "--input");
+}
+
 struct RenderArgs {
-    std::string preset, target = "spirv", input, output, size, device;
+    std::string preset, target = "spirv", input, output, size, device, frames, fit;
     int frame = 0;
     bool reference = false;
     VariantFlags flags;
@@ -48,17 +94,42 @@ Status write_output(const std::string& path, const Image& image) {
     return make_error("output must end in .png or .exr", path, 0, "--output");
 }
 
+// "A:B" (inclusive, A <= B) or a single frame.
+Result<std::vector<int>> parse_frames(const std::string& text) {
+    int a = 0, b = 0, consumed = 0;
+    char colon = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%n", &a, &colon, &b, &consumed) != 3 || colon != ':' ||
+        consumed != static_cast<int>(text.size()) || a < 0 || b < a || b > 1000000 || b - a >= 10000)
+        return make_error("'" + text + "' must be A:B with 0 <= A <= B <= 1000000 and at most 10000 frames", {}, 0, "--frames");
+    std::vector<int> frames;
+    for (int f = a; f <= b; ++f) frames.push_back(f);
+    return frames;
+}
+
+Result<std::optional<DisplayFit>> parse_fit(const std::string& text) {
+    if (text.empty()) return std::optional<DisplayFit>{};
+    for (DisplayFit f : {DisplayFit::Stretch, DisplayFit::Aspect, DisplayFit::Integer})
+        if (text == display_fit_name(f)) return std::optional<DisplayFit>{f};
+    return make_error("'" + text + "' must be stretch, aspect or integer", {}, 0, "--fit");
+}
+
 }  // namespace
 
 Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     auto a = std::make_shared<RenderArgs>();
-    auto* cmd = app.add_subcommand("render", "Render one preset through one target's consumer onto an image");
+    auto* cmd = app.add_subcommand("render", "Render a preset's scene through one target's consumer onto an image or a sequence");
     cmd->add_option("--preset", a->preset, "Preset name")->required();
     cmd->add_option("--target", a->target, "Target whose consumer renders it")->capture_default_str();
-    cmd->add_option("--input", a->input, "An image file (any format OpenImageIO reads) or a generated input name")->required();
-    cmd->add_option("--output", a->output, "Output image (.png, or .exr to keep HDR)")->required();
-    cmd->add_option("--size", a->size, "Output size WIDTHxHEIGHT (default: the input's size)");
-    cmd->add_option("--frame", a->frame, "Frame number; time = frame / 60 s")->check(CLI::Range(0, 1000000));
+    cmd->add_option("--input", a->input,
+                    "An image file (any format OpenImageIO reads), a sequence of them (in_%03d.png: frame N reads in_00N.png) "
+                    "or a generated input name (moving_sprite moves)")
+        ->required();
+    cmd->add_option("--output", a->output, "Output image (.png, or .exr to keep HDR); with --frames a pattern such as out_%03d.png")
+        ->required();
+    cmd->add_option("--size", a->size, "Display size WIDTHxHEIGHT (default: the input's size)");
+    cmd->add_option("--fit", a->fit, "How the screen fits the display: stretch, aspect or integer (default: the preset's)");
+    auto* frame = cmd->add_option("--frame", a->frame, "Frame number; time = frame / the scene's fps")->check(CLI::Range(0, 1000000));
+    cmd->add_option("--frames", a->frames, "Frames A:B (inclusive): one output file each")->excludes(frame);
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
     cmd->add_flag("--reference", a->reference, "Render with the CPU double-precision reference instead");
     a->flags.add_to(*cmd);
@@ -69,45 +140,94 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         const TargetInfo* target = target_found.value();
         auto options = a->flags.parse();
         if (!options.ok()) return report(options.error());
-        auto input = load_input(a->input);
-        if (!input.ok()) return report(input.error());
-        int w = input.value().width, h = input.value().height;
+        std::vector<int> frames{a->frame};
+        if (!a->frames.empty()) {
+            auto parsed = parse_frames(a->frames);
+            if (!parsed.ok()) return report(parsed.error());
+            frames = parsed.value();
+        }
+        const auto pattern = parse_pattern(a->output);
+        if (!a->frames.empty() && !pattern)
+            return report(make_error("with --frames the output names each frame: put %d (or %04d) in it", a->output, 0, "--output"));
+        auto fit = parse_fit(a->fit);
+        if (!fit.ok()) return report(fit.error());
+        std::optional<std::pair<int, int>> size;
         if (!a->size.empty()) {
-            auto size = parse_size(a->size);
-            if (!size.ok()) return report(size.error());
-            std::tie(w, h) = size.value();
+            auto parsed = parse_size(a->size);
+            if (!parsed.ok()) return report(parsed.error());
+            size = parsed.value();
         }
         auto lib = load_library(g, code);
         if (!lib) return code;
         auto preset_found = lookup_preset(*lib, a->preset);
         if (!preset_found.ok()) return report(preset_found.error());
         const Preset* preset = preset_found.value();
+        auto source = input_source(a->input, preset);
+        if (!source.ok()) return report(source.error());
+        auto first = source.value()(frames.front());
+        if (!first.ok()) return report(first.error());
+        const int w = size ? size->first : first.value().width, h = size ? size->second : first.value().height;
+        std::map<std::string, Image> file_luts;
+        for (const LutSpec& lut : preset->luts) {
+            if (!lut.generator.empty()) continue;
+            auto image = read_image(lut_file_path(lut));
+            if (!image.ok()) return report(image.error());
+            file_luts[lut.name] = std::move(image.value());
+        }
         Cache cache = make_cache(g);
-        auto compiled = compile_variant(*lib, *preset, options.value(), cache);
-        if (!compiled.ok()) return report(compiled.error());
-        const SamplerFilter filter = preset->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
-        Result<Image> image = make_error("not rendered");
+
+        Result<std::vector<Image>> images = make_error("not rendered");
         if (a->reference) {
-            ReferenceJob job{&compiled.value().variant, {}, input.value(), filter, w, h, FrameInfo::time_of_frame(a->frame)};
-            image = render_reference(job);
+            ReferenceSceneJob job;
+            job.library = lib.get();
+            job.preset = preset;
+            job.source = source.value();
+            job.width = w;
+            job.height = h;
+            job.fit = fit.value();
+            job.frames = frames;
+            job.file_luts = file_luts;
+            images = render_reference_scene(job);
         } else {
-            auto out = emit_target(compiled.value(), target->id, cache);
-            if (!out.ok()) return report(out.error());
+            auto compiled = compile_scene(*lib, *preset, options.value(), cache);
+            if (!compiled.ok()) return report(compiled.error());
+            std::vector<TargetOutput> outputs;
+            for (const CompiledVariant& pass : compiled.value()) {
+                auto out = emit_target(pass, target->id, cache);
+                if (!out.ok()) return report(out.error());
+                outputs.push_back(std::move(out.value()));
+            }
             TargetRenderer renderer(EngineOptions{a->device, false});
-            TargetRenderRequest r;
-            r.compiled = &compiled.value();
+            SceneRenderRequest r;
+            r.preset = preset;
+            r.passes = &compiled.value();
             r.target = target->id;
-            r.output = &out.value();
-            r.input = input.value();
-            r.filter = filter;
+            r.outputs = &outputs;
+            r.source = source.value();
             r.width = w;
             r.height = h;
-            r.time = FrameInfo::time_of_frame(a->frame);
-            image = renderer.render(r);
+            r.fit = fit.value();
+            r.frames = frames;
+            r.file_luts = file_luts;
+            images = renderer.render_scene(r);
         }
-        if (!image.ok()) return report(image.error());
-        if (auto s = write_output(a->output, image.value()); !s.ok()) return report(s.error());
-        fmt::print("{}: {} via {} at {}x{}, frame {}\n", a->output, preset->name, a->reference ? "reference" : target->name, w, h, a->frame);
+        if (!images.ok()) return report(images.error());
+        // Every file goes to its temporary name first: a failure part-way leaves none behind.
+        for (size_t i = 0; i < frames.size(); ++i) {
+            const std::string path = pattern ? pattern->at(frames[i]) : a->output;
+            if (auto s = write_output(path, images.value()[i]); !s.ok()) {
+                for (size_t k = 0; k < i; ++k) {
+                    std::error_code ec;
+                    std::filesystem::remove(pattern ? pattern->at(frames[k]) : a->output, ec);
+                }
+                return report(s.error());
+            }
+        }
+        const std::string where = pattern ? pattern->at(frames.front()) + (frames.size() > 1 ? " .. " + pattern->at(frames.back()) : "")
+                                          : a->output;
+        fmt::print("{}: {} via {} at {}x{}, frame{} {}\n", where, preset->name, a->reference ? "reference" : target->name, w, h,
+                   frames.size() > 1 ? "s" : "", frames.size() > 1 ? fmt::format("{}:{}", frames.front(), frames.back())
+                                                                  : std::to_string(frames.front()));
         return kExitOk;
     };
 }

@@ -83,6 +83,8 @@ std::vector<PixelSize> pass_sizes(const Preset& preset, PixelSize source, PixelS
         const PixelSize in = input_size(pass);
         sizes.push_back({axis(pass.scale_x, in.width, screen.width), axis(pass.scale_y, in.height, screen.height)});
     }
+    // The last pass draws the screen, whatever its scale says (as RetroArch's last pass does).
+    if (!sizes.empty()) sizes.back() = {std::max(screen.width, 1), std::max(screen.height, 1)};
     return sizes;
 }
 

@@ -51,6 +51,8 @@ Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, cons
         if (m.name == "sourceSize")
             return MemberData{std::vector<float>{static_cast<float>(frame.source_width), static_cast<float>(frame.source_height)}};
         if (m.name == "time") return MemberData{std::vector<float>{static_cast<float>(frame.time)}};
+        // An int: a 32-bit counter wraps after ~2.3 years of 60 Hz frames; hosts reduce it by the pass's modulo first.
+        if (m.name == "frameCount") return MemberData{static_cast<int32_t>(frame.frame_count & 0x7fffffff)};
         auto v = values.find(m.name);
         if (v == values.end()) return make_error("no value for uniform '" + m.name + "'");
         return member_data(v->second, m.type);

@@ -1,95 +1,298 @@
-// The per-pixel pipeline of the reference renderer, in the CRT-effect document's pass order:
-// warp -> (cell-quantised) sample -> aberration/bloom taps -> tone-map -> scanlines -> mask ->
-// glow -> vignette -> bezel.
+// The reference renderer: one pass evaluated per pixel in the generated main()'s hook order, with
+// each stage's model in the variant's stage order; and a scene evaluated frame by frame.
 #include "crtforge/reference/reference_renderer.hpp"
 
+#include <cmath>
+#include <deque>
+
+#include "crtforge/luts.hpp"
+#include "crtforge/scene.hpp"
 #include "crtforge/uniforms.hpp"
 #include "reference/reference_stages.hpp"
 
 namespace crtforge {
 
+namespace reference {
+
+double Params::num(const std::string& name) const {
+    const Value& v = values_.at(name);
+    if (auto d = std::get_if<double>(&v)) return *d;
+    return static_cast<double>(std::get<int64_t>(v));
+}
+bool Params::flag(const std::string& name) const { return std::get<bool>(values_.at(name)); }
+Vec3 Params::color(const std::string& name) const {
+    const Color& c = std::get<Color>(values_.at(name));
+    return {c[0], c[1], c[2]};
+}
+
+const StageModel* find_stage_model(const std::string& stage) {
+    static const std::vector<StageModel> models = [] {
+        std::vector<StageModel> all;
+        for (auto family : {crt_stage_models, palette_stage_models, super_win_stage_models})
+            for (const StageModel& m : family()) all.push_back(m);
+        return all;
+    }();
+    for (const StageModel& m : models)
+        if (stage == m.stage) return &m;
+    return nullptr;
+}
+
+}  // namespace reference
+
 using namespace reference;
 
 namespace {
 
-struct StagePlan {
-    std::string stage, form;
+Diagnostic unmodelled(const ResolvedStage& rs, const char* hook) {
+    return make_error("the reference renderer has no model of stage '" + rs.stage->name + "' form '" + rs.form->name + "' (" +
+                      hook + "); add one in reference/");
+}
+
+// A stage of the pass with its model, checked against the hooks its form provides.
+struct PlannedStage {
+    const ResolvedStage* resolved;
+    const StageModel* model;
+    bool has(Hook hook) const { return !resolved->form->functions[static_cast<int>(hook)].empty(); }
 };
 
-Diagnostic unmodelled(const StagePlan& s) {
-    return make_error("the reference renderer has no model of stage '" + s.stage + "' form '" + s.form +
-                      "'; add one in reference/reference_stages.cpp");
+// The value an 8-bit UNORM, sRGB or half-float framebuffer stores for `v` (read back as linear).
+double stored(double v, PixelFormat format) {
+    switch (format) {
+        case PixelFormat::Rgba8: return std::round(std::clamp(v, 0.0, 1.0) * 255.0) / 255.0;
+        case PixelFormat::Rgba8Srgb: {
+            const double l = std::clamp(v, 0.0, 1.0);
+            const double e = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+            const double q = std::round(e * 255.0) / 255.0;
+            return q <= 0.04045 ? q / 12.92 : std::pow((q + 0.055) / 1.055, 2.4);
+        }
+        case PixelFormat::Rgba16F: {
+            if (!std::isfinite(v) || v == 0.0) return v;
+            const double a = std::fabs(v);
+            if (a >= 65520.0) return std::copysign(65504.0, v);  // the largest half (rounding would overflow)
+            if (a < 0x1p-14) return std::nearbyint(v * 0x1p24) * 0x1p-24;  // subnormal halves: steps of 2^-24
+            int e = 0;
+            const double m = std::frexp(v, &e);                  // v = m * 2^e, 0.5 <= |m| < 1
+            return std::nearbyint(m * 2048.0) / 2048.0 * std::ldexp(1.0, e);  // 11 significant bits
+        }
+    }
+    return v;
+}
+
+SamplerFilter sampler_filter(Filter f) { return f == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear; }
+
+WrapMode wrap_mode(Wrap w) {
+    switch (w) {
+        case Wrap::Repeat: return WrapMode::Repeat;
+        case Wrap::MirroredRepeat: return WrapMode::MirroredRepeat;
+        default: return WrapMode::ClampToEdge;
+    }
+}
+
+Image lut_image(const LutImage& lut) {
+    Image image = Image::make(lut.width, lut.height);
+    for (size_t i = 0; i < lut.rgba.size(); ++i) image.rgba[i] = static_cast<float>(lut.rgba[i] / 255.0);
+    return image;
 }
 
 }  // namespace
 
 Result<Image> render_reference(const ReferenceJob& job) {
-    if (!job.variant || !job.variant->preset) return make_error("reference job without a variant");
+    if (!job.variant || !job.variant->preset || !job.variant->pass) return make_error("reference job without a variant");
     if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension)
-        return make_error("output size " + std::to_string(job.width) + "x" + std::to_string(job.height) +
-                          " is outside 1.." + std::to_string(kMaxImageDimension), {}, 0, "--size");
+        return make_error("output size " + std::to_string(job.width) + "x" + std::to_string(job.height) + " is outside 1.." +
+                              std::to_string(kMaxImageDimension),
+                          {}, 0, "--size");
     if (job.input.width <= 0 || job.input.height <= 0 ||
         job.input.rgba.size() != static_cast<size_t>(job.input.width) * job.input.height * 4)
         return make_error("reference job has an empty or inconsistent input image");
 
-    const auto values = effective_values(*job.variant, job.overrides);
-    const Params params(values);
-    const Sampler tex(job.input, job.filter);
-    std::vector<StagePlan> plan;
-    for (const ResolvedStage& rs : job.variant->pass->stages) plan.push_back({rs.stage->name, rs.form->name});
-    auto find = [&](const char* stage) -> const StagePlan* {
-        for (const auto& s : plan)
-            if (s.stage == stage) return &s;
-        return nullptr;
-    };
-    const StagePlan* curvature = find("curvature");
-    const StagePlan* aberration = find("aberration");
-    const StagePlan* bloom = find("bloom");
-    const StagePlan* tonemap = find("tonemap");
-    const StagePlan* scanlines = find("scanlines");
-    const StagePlan* mask = find("mask");
-    const StagePlan* glow = find("glow");
-    const StagePlan* vignette = find("vignette");
-    for (const auto& s : plan) {
-        static const char* known[] = {"curvature", "aberration", "bloom", "tonemap", "scanlines", "mask", "glow", "vignette"};
-        if (std::find(std::begin(known), std::end(known), s.stage) == std::end(known)) return unmodelled(s);
+    const Variant& variant = *job.variant;
+    std::vector<PlannedStage> plan;
+    for (const ResolvedStage& rs : variant.pass->stages) {
+        const StageModel* model = find_stage_model(rs.stage->name);
+        if (!model) return unmodelled(rs, "no model of the stage");
+        PlannedStage s{&rs, model};
+        const std::pair<Hook, bool> hooks[] = {{Hook::Warp, model->warp != nullptr},  {Hook::SampleUv, model->sample_uv != nullptr},
+                                               {Hook::Fetch, model->fetch != nullptr}, {Hook::Color, model->color != nullptr},
+                                               {Hook::Finish, model->finish != nullptr}};
+        for (const auto& [hook, modelled] : hooks)
+            if (s.has(hook) && !modelled) return unmodelled(rs, hook_name(hook));
+        plan.push_back(s);
     }
+
+    const auto values = effective_values(variant, job.overrides);
+    const Params params(values);
+    const Sampler source(job.input, job.filter, job.wrap);
+    std::map<std::string, Sampler> samplers;
+    for (const std::string& name : variant.textures) {
+        auto t = job.textures.find(name);
+        if (t == job.textures.end()) return make_error("reference job lacks texture '" + name + "' of the pass");
+        if (!t->second.image.consistent() || t->second.image.empty())
+            return make_error("reference job's texture '" + name + "' is empty or inconsistent");
+        samplers.emplace(name, Sampler(t->second.image, t->second.filter, t->second.wrap));
+    }
+
+    const bool screen_pass = screen_pass_index(*variant.preset) == variant.pass_index;
+    const auto scale = screen_pass ? source_uv_scale(*variant.preset) : std::array<double, 2>{1.0, 1.0};
+    const bool maps_source = scale != std::array<double, 2>{1.0, 1.0};
 
     Image out = Image::make(job.width, job.height);
     Fragment f;
     f.output_size = {static_cast<double>(job.width), static_cast<double>(job.height)};
     f.source_size = {static_cast<double>(job.input.width), static_cast<double>(job.input.height)};
+    f.source_scale = {scale[0], scale[1]};
     f.time = job.time;
+    f.frame_count = job.frame_count;
+    f.source = &source;
+    for (const auto& [name, sampler] : samplers) f.textures[name] = &sampler;
+    auto failed = [&](const PlannedStage& s, Hook hook) { return unmodelled(*s.resolved, hook_name(hook)); };
+
     for (int y = 0; y < job.height; ++y) {
         for (int x = 0; x < job.width; ++x) {
             f.screen_uv = {(x + 0.5) / job.width, (y + 0.5) / job.height};
             f.pixel = {x + 0.5, y + 0.5};
             float* dst = out.at(x, y);
-            if (plan.empty()) {  // CRT off: passthrough, alpha included
-                const Rgba c = tex.sample(f.screen_uv);
+            if (plan.empty()) {  // no stage: a passthrough blit, alpha included
+                const Rgba c = source.sample(f.screen_uv);
                 for (int i = 0; i < 4; ++i) dst[i] = static_cast<float>(c[i]);
                 continue;
             }
             f.uv = f.screen_uv;
-            if (curvature && !warp_curvature(curvature->form, params, f.uv)) return unmodelled(*curvature);
+            for (const PlannedStage& s : plan)
+                if (s.has(Hook::Warp) && !s.model->warp(s.resolved->form->name, params, f, f.uv)) return failed(s, Hook::Warp);
             f.centered = f.uv * 2.0 - Vec2{1, 1};
             Vec2 sample_uv = f.uv;
-            if (mask && mask->form == "shadow") shadow_cell_uv(params, f, sample_uv);
-            Vec3 color = tex.rgb(sample_uv);
-            if (aberration && !fetch_aberration(aberration->form, params, tex, f, sample_uv, color)) return unmodelled(*aberration);
-            if (bloom) fetch_bloom(params, tex, sample_uv, color);
-            if (tonemap) tonemap_saturate(color);
-            if (scanlines && !apply_scanlines(scanlines->form, params, f, color)) return unmodelled(*scanlines);
-            if (mask && !apply_mask(mask->form, params, f, color)) return unmodelled(*mask);
-            if (glow) apply_glow(params, f, color);
-            if (vignette && !apply_vignette(vignette->form, params, f, color)) return unmodelled(*vignette);
-            if (curvature) apply_bezel(params, f, color);
+            for (const PlannedStage& s : plan)
+                if (s.has(Hook::SampleUv) && !s.model->sample_uv(s.resolved->form->name, params, f, sample_uv))
+                    return failed(s, Hook::SampleUv);
+            if (maps_source) sample_uv = f.source_uv(sample_uv);
+            Vec3 color = source.rgb(sample_uv);
+            for (const PlannedStage& s : plan)
+                if (s.has(Hook::Fetch) && !s.model->fetch(s.resolved->form->name, params, f, sample_uv, color))
+                    return failed(s, Hook::Fetch);
+            for (const PlannedStage& s : plan)
+                if (s.has(Hook::Color) && !s.model->color(s.resolved->form->name, params, f, color)) return failed(s, Hook::Color);
+            for (const PlannedStage& s : plan)
+                if (s.has(Hook::Finish) && !s.model->finish(s.resolved->form->name, params, f, color)) return failed(s, Hook::Finish);
             dst[0] = static_cast<float>(color.r);
             dst[1] = static_cast<float>(color.g);
             dst[2] = static_cast<float>(color.b);
             dst[3] = 1.0f;
         }
     }
+    return out;
+}
+
+Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) {
+    if (!job.library || !job.preset || !job.source) return make_error("reference scene job without a preset or a source");
+    if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension)
+        return make_error("display size " + std::to_string(job.width) + "x" + std::to_string(job.height) + " is outside 1.." +
+                              std::to_string(kMaxImageDimension),
+                          {}, 0, "--size");
+    if (job.frames.empty()) return std::vector<Image>{};
+    const Preset& preset = *job.preset;
+    std::vector<Variant> variants;
+    for (size_t i = 0; i < preset.passes.size(); ++i) {
+        auto v = make_variant(*job.library, preset, {}, i);
+        if (!v.ok()) return v.error();
+        variants.push_back(std::move(v.value()));
+    }
+    std::map<std::string, Image> luts;
+    for (const LutSpec& lut : preset.luts) {
+        if (lut.generator.empty()) {
+            auto file = job.file_luts.find(lut.name);
+            if (file == job.file_luts.end()) return make_error("reference scene job lacks the image of file LUT '" + lut.name + "'");
+            luts[lut.name] = file->second;
+            continue;
+        }
+        auto image = generate_lut(lut.generator, lut.params);
+        if (!image.ok()) return image.error();
+        luts[lut.name] = lut_image(image.value());
+    }
+
+    // With state between frames every frame up to the last kept one runs; without, only the kept ones.
+    const bool stateful = preset.has_feedback() || preset.history_depth() > 0;
+    int last = 0;
+    for (int f : job.frames) {
+        if (f < 0) return make_error("frame " + std::to_string(f) + " is negative", {}, 0, "--frames");
+        last = std::max(last, f);
+    }
+    std::vector<int> run;
+    if (stateful)
+        for (int f = 0; f <= last; ++f) run.push_back(f);
+    else
+        run = job.frames;
+
+    std::map<int, Image> kept;
+    std::map<std::string, Image> previous;  // each pass's output of the previous frame
+    std::deque<Image> history;              // the originals of earlier frames, newest first
+    for (int frame : run) {
+        auto original = job.source(frame);
+        if (!original.ok()) return original.error();
+        const PixelSize source{original.value().width, original.value().height};
+        const PixelRect screen = screen_rect(preset, {job.width, job.height}, source, job.fit);
+        const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
+        std::map<std::string, Image> current;
+        auto black = [](PixelSize size) { return Image::make(size.width, size.height, {0, 0, 0, 0}); };
+        auto resolve = [&](const TextureSource& from) -> Image {
+            switch (from.kind) {
+                case TextureSource::Kind::Original:
+                    if (from.frames_back == 0) return original.value();
+                    return static_cast<size_t>(from.frames_back) <= history.size() ? history[from.frames_back - 1] : black(source);
+                case TextureSource::Kind::Pass: return current.at(from.name);
+                case TextureSource::Kind::Feedback: {
+                    auto p = previous.find(from.name);
+                    if (p != previous.end()) return p->second;
+                    for (size_t i = 0; i < preset.passes.size(); ++i)
+                        if (preset.passes[i].alias == from.name) return black(sizes[i]);
+                    return black({1, 1});
+                }
+                case TextureSource::Kind::Lut: return luts.at(from.name);
+            }
+            return black({1, 1});
+        };
+        for (size_t i = 0; i < preset.passes.size(); ++i) {
+            const Pass& pass = preset.passes[i];
+            ReferenceJob rj;
+            rj.variant = &variants[i];
+            rj.overrides = job.overrides;  // a name the pass does not read is never looked up
+            const PassInput& main = pass.inputs.front();
+            rj.input = resolve(main.from);
+            rj.filter = sampler_filter(main.filter);
+            rj.wrap = wrap_mode(main.wrap);
+            for (size_t k = 1; k < pass.inputs.size(); ++k)
+                rj.textures[pass.inputs[k].binding] = {resolve(pass.inputs[k].from), sampler_filter(pass.inputs[k].filter),
+                                                       wrap_mode(pass.inputs[k].wrap)};
+            rj.width = sizes[i].width;
+            rj.height = sizes[i].height;
+            rj.time = frame / preset.scene.fps;
+            rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
+            auto image = render_reference(rj);
+            if (!image.ok()) return image.error();
+            // Every framebuffer but the display's stores its format; the last pass is compared unrounded.
+            if (i + 1 < preset.passes.size())
+                for (size_t c = 0; c < image.value().rgba.size(); ++c)
+                    image.value().rgba[c] = static_cast<float>(stored(image.value().rgba[c], pass.format));
+            current[pass.alias] = std::move(image.value());
+        }
+        if (std::find(job.frames.begin(), job.frames.end(), frame) != job.frames.end()) {
+            const Image& last_pass = current.at(preset.passes.back().alias);
+            Image display = last_pass;
+            if (screen.width != job.width || screen.height != job.height) {
+                display = Image::make(job.width, job.height, {0, 0, 0, 1});
+                for (int y = 0; y < screen.height; ++y)
+                    for (int x = 0; x < screen.width; ++x) display.set_pixel(screen.x + x, screen.y + y, last_pass.pixel(x, y));
+            }
+            kept[frame] = std::move(display);
+        }
+        if (stateful) {
+            previous = std::move(current);
+            history.push_front(original.value());
+            while (static_cast<int>(history.size()) > preset.history_depth()) history.pop_back();
+        }
+    }
+    std::vector<Image> out;
+    for (int f : job.frames) out.push_back(kept.at(f));
     return out;
 }
 

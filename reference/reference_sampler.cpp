@@ -2,15 +2,36 @@
 
 namespace crtforge::reference {
 
+namespace {
+
+// The texel index an out-of-range coordinate addresses (Vulkan's wrapping rules).
+int address(int i, int size, WrapMode wrap) {
+    switch (wrap) {
+        case WrapMode::ClampToEdge: return std::clamp(i, 0, size - 1);
+        case WrapMode::Repeat: return ((i % size) + size) % size;
+        case WrapMode::MirroredRepeat: {
+            const int period = 2 * size;
+            const int m = ((i % period) + period) % period;
+            return m < size ? m : period - 1 - m;
+        }
+    }
+    return std::clamp(i, 0, size - 1);
+}
+
+}  // namespace
+
 Rgba Sampler::texel(int x, int y) const {
-    x = std::clamp(x, 0, image_.width - 1);
-    y = std::clamp(y, 0, image_.height - 1);
+    x = address(x, image_.width, wrap_);
+    y = address(y, image_.height, wrap_);
     const float* p = image_.rgba.data() + (static_cast<size_t>(y) * image_.width + x) * 4;
     return {p[0], p[1], p[2], p[3]};
 }
 
 Rgba Sampler::sample(Vec2 uv) const {
-    const double u = uv.x * image_.width, v = uv.y * image_.height;
+    // Far outside 0..1 (or not finite) every wrap mode has long since settled: keep the texel
+    // arithmetic inside int.
+    auto tame = [](double t) { return std::isfinite(t) ? std::clamp(t, -1e8, 1e8) : 0.0; };
+    const double u = tame(uv.x * image_.width), v = tame(uv.y * image_.height);
     if (filter_ == SamplerFilter::Nearest)
         return texel(static_cast<int>(std::floor(u)), static_cast<int>(std::floor(v)));
     // Bilinear between the four texel centres around (u, v).

@@ -1,5 +1,6 @@
 // Texture sampling as a Vulkan sampler does it: normalised coordinates, texel centres at +0.5,
-// clamp-to-edge addressing, nearest or bilinear filtering — evaluated in double precision.
+// clamp-to-edge, repeat or mirrored-repeat addressing, nearest or bilinear filtering — evaluated in
+// double precision.
 #pragma once
 
 #include <array>
@@ -14,17 +15,22 @@ using Rgba = std::array<double, 4>;
 
 class Sampler {
 public:
-    Sampler(const Image& image, SamplerFilter filter) : image_(image), filter_(filter) {}
+    Sampler(const Image& image, SamplerFilter filter, WrapMode wrap = WrapMode::ClampToEdge)
+        : image_(image), filter_(filter), wrap_(wrap) {}
     Rgba sample(Vec2 uv) const;
     Vec3 rgb(Vec2 uv) const {
         const Rgba c = sample(uv);
         return {c[0], c[1], c[2]};
     }
+    // texelFetch: the texel at integer coordinates (addressed like the sampler's wrap).
+    Rgba texel(int x, int y) const;
+    int width() const { return image_.width; }
+    int height() const { return image_.height; }
 
 private:
-    Rgba texel(int x, int y) const;  // clamped to the edge
     const Image& image_;
     SamplerFilter filter_;
+    WrapMode wrap_;
 };
 
 }  // namespace crtforge::reference

@@ -1,9 +1,13 @@
-// The reference model of each stage, one function per documented formula. Each reads its params by
-// the spec's names; the pipeline (reference_renderer.cpp) calls them in the documented pass order.
+// The reference model of each stage: for every hook a form provides (warp, sample_uv, fetch,
+// color, finish — the generated main()'s fixed order), a function evaluating that form's formula
+// as its document writes it, in double precision. Each reads its params by the spec's names.
+// The models of one family live in one file (reference_crt_stages.cpp, reference_palette.cpp,
+// reference_super_win.cpp); reference_renderer.cpp runs them in the variant's stage order.
 #pragma once
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "crtforge/value.hpp"
 #include "reference/reference_math.hpp"
@@ -14,7 +18,7 @@ namespace crtforge::reference {
 class Params {
 public:
     explicit Params(const std::map<std::string, Value>& values) : values_(values) {}
-    double num(const std::string& name) const;       // float or int param
+    double num(const std::string& name) const;  // float or int param
     bool flag(const std::string& name) const;
     Vec3 color(const std::string& name) const;
 
@@ -23,27 +27,44 @@ private:
 };
 
 // What every stage may read about the fragment being shaded (cf. the CRT-effect document's
-// "pixel", "uv" and "centered").
+// "pixel", "uv" and "centered") and the textures of its pass.
 struct Fragment {
     Vec2 screen_uv;   // unwarped 0..1
     Vec2 pixel;       // output pixel coordinate, centres at +0.5
-    Vec2 uv;          // after curvature
+    Vec2 uv;          // after the warp stages
     Vec2 centered;    // uv * 2 - 1
     Vec2 output_size, source_size;
+    Vec2 source_scale{1, 1};  // the picture on the screen ([source] fit): crt_source_uv()
     double time = 0;
+    long long frame_count = 0;
+    const Sampler* source = nullptr;
+    std::map<std::string, const Sampler*> textures;
+
+    const Sampler& texture(const std::string& name) const { return *textures.at(name); }
+    Vec2 source_uv(Vec2 screen) const {
+        return {(screen.x - 0.5) * source_scale.x + 0.5, (screen.y - 0.5) * source_scale.y + 0.5};
+    }
 };
 
-// Each returns false when it has no model for the requested form.
-bool warp_curvature(const std::string& form, const Params& p, Vec2& uv);
-bool shadow_cell_uv(const Params& p, const Fragment& f, Vec2& sample_uv);
-bool fetch_aberration(const std::string& form, const Params& p, const Sampler& tex, const Fragment& f,
-                      Vec2 sample_uv, Vec3& color);
-void fetch_bloom(const Params& p, const Sampler& tex, Vec2 sample_uv, Vec3& color);
-void tonemap_saturate(Vec3& color);
-bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f, Vec3& color);
-bool apply_mask(const std::string& form, const Params& p, const Fragment& f, Vec3& color);
-void apply_glow(const Params& p, const Fragment& f, Vec3& color);
-bool apply_vignette(const std::string& form, const Params& p, const Fragment& f, Vec3& color);
-void apply_bezel(const Params& p, const Fragment& f, Vec3& color);
+// Each hook returns false when it has no model of `form`; a null hook: the stage has none.
+struct StageModel {
+    const char* stage;
+    bool (*warp)(const std::string& form, const Params& p, const Fragment& f, Vec2& uv) = nullptr;
+    bool (*sample_uv)(const std::string& form, const Params& p, const Fragment& f, Vec2& uv) = nullptr;
+    bool (*fetch)(const std::string& form, const Params& p, const Fragment& f, Vec2 sample_uv, Vec3& color) = nullptr;
+    bool (*color)(const std::string& form, const Params& p, const Fragment& f, Vec3& color) = nullptr;
+    bool (*finish)(const std::string& form, const Params& p, const Fragment& f, Vec3& color) = nullptr;
+};
+
+// The model of a stage, or nullptr when the reference has none.
+const StageModel* find_stage_model(const std::string& stage);
+
+// One list per file.
+std::vector<StageModel> crt_stage_models();
+std::vector<StageModel> palette_stage_models();
+std::vector<StageModel> super_win_stage_models();
+
+inline Vec3 one_hot(int channel) { return {channel == 0 ? 1.0 : 0.0, channel == 1 ? 1.0 : 0.0, channel == 2 ? 1.0 : 0.0}; }
+inline double luma601(Vec3 c) { return 0.299 * c.r + 0.587 * c.g + 0.114 * c.b; }
 
 }  // namespace crtforge::reference

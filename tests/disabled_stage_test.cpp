@@ -30,8 +30,8 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 
 // The variant compiled without optimisation keeps every function's name, so the absence of a
 // stage's functions is visible.
-Reflection unoptimized_reflection(const TemplateLibrary& lib, const Preset& preset, const VariantOptions& options) {
-    auto variant = make_variant(lib, preset, options);
+Reflection unoptimized_reflection(const TemplateLibrary& lib, const Preset& preset, const VariantOptions& options, size_t pass) {
+    auto variant = make_variant(lib, preset, options, pass);
     REQUIRE(variant.ok());
     CompileOptions co;
     co.optimize = false;
@@ -46,13 +46,15 @@ TEST_CASE("disabled stages leave no code and no uniform in any preset", "[disabl
     const TemplateLibrary& lib = test::shipped_library();
     VariantOptions all;
     all.uniforms.mode = UniformSelection::Mode::All;  // the strictest case: every runtime param a uniform
-    for (const Preset& preset : lib.presets()) {
-        const Reflection raw = unoptimized_reflection(lib, preset, all);
-        const Reflection optimized = test::compile_or_fail(lib, preset.name, all).reflection;
-        const auto members = member_names(optimized);
+    for (const Preset& preset : lib.presets())
+      for (size_t pass = 0; pass < preset.passes.size(); ++pass) {
+        const Reflection raw = unoptimized_reflection(lib, preset, all, pass);
+        auto compiled = compile_variant(lib, preset, all, Cache(), pass);
+        REQUIRE(compiled.ok());
+        const auto members = member_names(compiled.value().reflection);
         for (const StageSpec& stage : lib.stages()) {
-            INFO(preset.name << " / " << stage.name);
-            const ResolvedStage* on = preset.find_stage(stage.name);
+            INFO(preset.name << " pass " << preset.passes[pass].alias << " / " << stage.name);
+            const ResolvedStage* on = preset.passes[pass].find_stage(stage.name);
             for (const FormSpec& form : stage.forms) {
                 for (const std::string& fn : form.functions) {
                     if (fn.empty()) continue;
@@ -68,7 +70,7 @@ TEST_CASE("disabled stages leave no code and no uniform in any preset", "[disabl
                 CHECK(contains(members, p.name) == expected);
             }
         }
-        CHECK(contains(members, "time") == (preset.find_stage("glow") != nullptr));
+        CHECK(contains(members, "time") == (preset.passes[pass].find_stage("glow") != nullptr));
     }
 }
 

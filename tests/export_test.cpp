@@ -23,9 +23,11 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     CHECK(first.value().files == cold.value().files);
     CHECK(first.value().files == warm.value().files);
     CHECK(cache.hits() > 0);
-    // 6 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module per
-    // preset, one README per Godot addon, the manifest.
-    CHECK(first.value().files.size() == lib.presets().size() * (6 * 2 + 2 * 3 + 1) + 2 + 1);
+    // Per pass: 6 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module;
+    // each preset's LUTs, one README per Godot addon, the manifest.
+    size_t expected = 2 + 1;
+    for (const Preset& p : lib.presets()) expected += p.passes.size() * (6 * 2 + 2 * 3 + 1) + p.luts.size();
+    CHECK(first.value().files.size() == expected);
 }
 
 TEST_CASE("written files match the in-memory export", "[export]") {

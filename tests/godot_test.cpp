@@ -19,9 +19,11 @@ const OutputFile& file(const TargetOutput& out, const std::string& role) {
     throw;  // unreachable
 }
 
-TargetOutput emit(const std::string& preset, TargetId target) {
-    CompiledVariant c = test::compile_or_fail(test::shipped_library(), preset);
-    auto out = emit_target(c, target, Cache());
+TargetOutput emit(const std::string& preset, TargetId target, size_t pass = 0) {
+    const TemplateLibrary& lib = test::shipped_library();
+    auto c = compile_variant(lib, *lib.find_preset(preset), {}, Cache(), pass);
+    REQUIRE(c.ok());
+    auto out = emit_target(c.value(), target, Cache());
     REQUIRE(out.ok());
     return out.value();
 }
@@ -36,9 +38,10 @@ std::vector<std::string> lines_of(const std::string& text) {
 }  // namespace
 
 TEST_CASE("Godot 4 shaders are canvas_item code with no GLSL plumbing", "[godot]") {
-    for (const Preset& p : test::shipped_library().presets()) {
-        INFO(p.name);
-        const TargetOutput out = emit(p.name, TargetId::Godot4);
+    for (const Preset& p : test::shipped_library().presets())
+      for (size_t pass = 0; pass < p.passes.size(); ++pass) {
+        INFO(p.name << " pass " << p.passes[pass].alias);
+        const TargetOutput out = emit(p.name, TargetId::Godot4, pass);
         for (const char* role : {"shader", "screenShader"}) {
             const std::string& text = file(out, role).data;
             CHECK_THAT(text, Catch::Contains("shader_type canvas_item;"));
@@ -48,9 +51,10 @@ TEST_CASE("Godot 4 shaders are canvas_item code with no GLSL plumbing", "[godot]
                 CHECK_THAT(text, !Catch::Contains(banned));
         }
         CHECK_THAT(file(out, "shader").data, Catch::Contains("UV"));
-        if (!p.passes.front().stages.empty()) {
+        if (!p.passes[pass].stages.empty()) {
+            const std::string filter = filter_name(p.passes[pass].inputs.front().filter);
             CHECK_THAT(file(out, "screenShader").data,
-                       Catch::Contains("uniform sampler2D screen_texture : hint_screen_texture, filter_linear, repeat_disable;"));
+                       Catch::Contains("uniform sampler2D screen_texture : hint_screen_texture, filter_" + filter + ", repeat_disable;"));
             CHECK_THAT(file(out, "screenShader").data, Catch::Contains("SCREEN_UV"));
         }
     }
@@ -79,23 +83,35 @@ TEST_CASE("every runtime param is an inspector uniform with range, step and defa
 TEST_CASE("Godot 3 and Godot 4 outputs differ only where the dialects differ", "[godot]") {
     // Godot 3: hint_color on vec4 (read back as .rgb), SCREEN_TEXTURE instead of a hinted sampler,
     // and the version in the header. Everything else must be the same text.
-    for (const Preset& p : test::shipped_library().presets()) {
+    for (const Preset& p : test::shipped_library().presets())
+      for (size_t pass = 0; pass < p.passes.size(); ++pass) {
         for (const char* role : {"shader", "screenShader"}) {
-            INFO(p.name << " " << role);
-            auto g4 = lines_of(file(emit(p.name, TargetId::Godot4), role).data);
-            auto g3 = lines_of(file(emit(p.name, TargetId::Godot3), role).data);
+            INFO(p.name << " pass " << p.passes[pass].alias << " " << role);
+            auto g4 = lines_of(file(emit(p.name, TargetId::Godot4, pass), role).data);
+            auto g3 = lines_of(file(emit(p.name, TargetId::Godot3, pass), role).data);
+            // Godot 3's colours are vec4 hint_color uniforms, read back as .rgb.
+            std::vector<std::string> colours;
+            static const std::regex colour_uniform(R"(uniform vec4 (\w+) : hint_color)");
+            for (const std::string& line : g3) {
+                std::smatch m;
+                if (std::regex_search(line, m, colour_uniform)) colours.push_back(m[1]);
+            }
             std::vector<std::string> normalised;
             for (std::string line : g3) {
                 line = std::regex_replace(line, std::regex(R"(uniform vec4 (\w+) : hint_color = vec4\(([^,]+), ([^,]+), ([^,]+), 1\.0\);)"),
                                           "uniform vec3 $1 : source_color = vec3($2, $3, $4);");
-                line = std::regex_replace(line, std::regex(R"(\bbezelColor\.rgb\b)"), "bezelColor");
+                for (const std::string& c : colours) line = std::regex_replace(line, std::regex("\\b" + c + "\\.rgb\\b"), c);
                 line = std::regex_replace(line, std::regex(R"(\bSCREEN_TEXTURE\b)"), "screen_texture");
                 line = std::regex_replace(line, std::regex("// Godot 3 canvas_item"), "// Godot 4 canvas_item");
+                // Godot 3 sets a texture's filter and repeat on the texture, Godot 4 in the uniform's hints.
+                line = std::regex_replace(line, std::regex(R"( \(set its filter and repeat flags on the texture\)$)"), "");
                 normalised.push_back(line);
             }
             // Godot 4 declares the screen texture; Godot 3 has it built in.
             g4.erase(std::remove_if(g4.begin(), g4.end(), [](const std::string& l) { return l.find("hint_screen_texture") != std::string::npos; }),
                      g4.end());
+            for (std::string& line : g4)
+                line = std::regex_replace(line, std::regex(R"(^(uniform sampler2D \w+) : filter_\w+, repeat_\w+;$)"), "$1;");
             CHECK(normalised == g4);
         }
     }

@@ -339,7 +339,7 @@ TEST_CASE("writers refuse bad images and paths without leaving files", "[image][
 // ---- generated test inputs --------------------------------------------------------------------
 
 TEST_CASE("every test input has its size, is opaque, finite and deterministic", "[image][inputs]") {
-    REQUIRE(test_input_names().size() == 9);
+    REQUIRE(test_input_names().size() == 10);
     for (const std::string& name : test_input_names()) {
         INFO(name);
         CHECK_FALSE(test_input_doc(name).empty());

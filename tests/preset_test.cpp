@@ -28,9 +28,10 @@ TEST_CASE("every shipped preset resolves and names its source document", "[prese
     const TemplateLibrary& lib = test::shipped_library();
     std::vector<std::string> names;
     for (const auto& p : lib.presets()) names.push_back(p.name);
-    CHECK(names == std::vector<std::string>{"arcade", "atari-crt", "classic", "crt-aperture-grille",
-                                            "crt-pulse", "crt-shadow-mask", "heavy", "passthrough",
-                                            "quiet-frame", "subtle", "webgpu-post"});
+    CHECK(names == std::vector<std::string>{"arcade", "atari-128", "atari-16", "atari-256", "atari-64", "atari-chain",
+                                            "atari-crt", "atari-ntsc", "classic", "crt-aperture-grille", "crt-pulse",
+                                            "crt-shadow-mask", "heavy", "passthrough", "quiet-frame", "subtle", "super-win",
+                                            "webgpu-post"});
     const Preset* pulse = lib.find_preset("crt-pulse");
     REQUIRE(pulse->find_stage("glow"));
     CHECK(number(*pulse, "glow", "pulseIntensity") == 0.03);

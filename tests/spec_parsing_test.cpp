@@ -180,9 +180,11 @@ TEST_CASE("the shipped templates load and every stage has docs and forms", "[spe
     const TemplateLibrary& lib = test::shipped_library();
     std::vector<std::string> names;
     for (const auto& s : lib.stages()) names.push_back(s.name);
-    // The CRT-effect document's pass order, with the WebGPU pass's aberration -> tone-map -> scanlines.
-    CHECK(names == std::vector<std::string>{"curvature", "aberration", "bloom", "tonemap", "scanlines",
-                                            "mask", "glow", "vignette"});
+    // The CRT-effect document's pass order, with the WebGPU pass's aberration -> tone-map -> scanlines,
+    // Super Win the Game's NES-space stages before them and its screen, bloom and palette stages between.
+    CHECK(names == std::vector<std::string>{"color_grade", "trails", "ringing", "ntsc_mask", "curvature", "crt_screen",
+                                            "aberration", "bloom", "tonemap", "scanlines", "texel_mask", "mask", "glow",
+                                            "vignette", "poisson_blur", "bloom_add", "palette"});
     for (const auto& s : lib.stages()) {
         CHECK_FALSE(s.doc.empty());
         CHECK_FALSE(s.forms.empty());

@@ -47,8 +47,11 @@ TEST_CASE("the shipped goldens are current: the reference renders them bit for b
     const auto plan = test::golden_plan_or_fail(lib, golden_dir());
     REQUIRE(manifest.value().size() == plan.size());
     for (size_t i = 0; i < plan.size(); ++i) CHECK(manifest.value()[i].id == plan[i].id);
-    // Re-rendering every golden takes a while on 2 cores; a spread sample covers each preset.
-    for (size_t i = 0; i < plan.size(); i += 3) {
+    // Re-rendering every golden takes a while on 2 cores; a spread sample of the stored ones covers
+    // each preset (the ones rendered at validation check their hash there).
+    size_t checked = 0;
+    for (size_t i = 0; i < plan.size(); ++i) {
+        if (!manifest.value()[i].stored || checked++ % 3 != 0) continue;
         INFO(plan[i].id << " is stale: run 'crtforge golden update'");
         auto stored = read_image(golden_dir() + "/" + plan[i].file());
         REQUIRE(stored.ok());

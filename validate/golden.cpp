@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "crtforge/cache.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -35,7 +37,7 @@ Tolerance default_tolerance() {
 }  // namespace
 
 GoldenEntry make_golden_entry(const std::string& preset, const std::string& input, int w, int h, int input_width,
-                              int input_height, int frame) {
+                              int input_height, int frame, std::optional<DisplayFit> fit) {
     GoldenEntry e;
     e.preset = preset;
     e.input = input;
@@ -43,34 +45,92 @@ GoldenEntry make_golden_entry(const std::string& preset, const std::string& inpu
     e.height = h;
     e.input_width = input_width;
     e.input_height = input_height;
+    e.fit = fit;
     e.frame = frame;
-    e.id = fmt::format("{}.{}.{}x{}.f{}", preset, input, w, h, frame);
+    e.id = fmt::format("{}.{}.{}x{}{}.f{}", preset, input, w, h, fit ? std::string(".") + display_fit_name(*fit) : "", frame);
     e.tolerance = default_tolerance();
     return e;
 }
 
-Result<Image> golden_input(const GoldenEntry& entry) {
-    return make_test_input(entry.input, entry.input_width, entry.input_height);
+std::string GoldenEntry::sequence() const {
+    return fmt::format("{}.{}.{}x{}.{}x{}.{}", preset, input, width, height, input_width, input_height,
+                       fit ? display_fit_name(*fit) : "preset");
+}
+
+std::vector<std::vector<const GoldenEntry*>> golden_sequences(const std::vector<const GoldenEntry*>& entries) {
+    std::vector<std::vector<const GoldenEntry*>> out;
+    std::map<std::string, size_t> index;
+    for (const GoldenEntry* e : entries) {
+        auto [it, fresh] = index.emplace(e->sequence(), out.size());
+        if (fresh) out.emplace_back();
+        out[it->second].push_back(e);
+    }
+    return out;
+}
+
+Result<Image> golden_input(const GoldenEntry& entry, int frame) {
+    return make_test_input(entry.input, entry.input_width, entry.input_height, frame);
+}
+
+Result<std::vector<Image>> render_golden_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence) {
+    if (sequence.empty()) return std::vector<Image>{};
+    const GoldenEntry& first = *sequence.front();
+    const Preset* preset = library.find_preset(first.preset);
+    if (!preset) return make_error("golden '" + first.id + "' names unknown preset '" + first.preset + "'");
+    ReferenceSceneJob job;
+    job.library = &library;
+    job.preset = preset;
+    job.source = [&first](int frame) { return golden_input(first, frame); };
+    job.width = first.width;
+    job.height = first.height;
+    job.fit = first.fit;
+    for (const GoldenEntry* e : sequence) job.frames.push_back(e->frame);
+    auto images = render_reference_scene(job);
+    if (!images.ok()) return images;
+    for (Image& image : images.value())
+        for (float& v : image.rgba) v = std::clamp(v, 0.0f, 1.0f);
+    return images;
+}
+
+std::string golden_hash(const Image& image) {
+    std::string bytes;
+    bytes.reserve(image.rgba.size() * 2);
+    for (float v : image.rgba) {
+        const auto code = static_cast<uint16_t>(std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * 65535.0));
+        bytes += static_cast<char>(code & 0xffu);
+        bytes += static_cast<char>(code >> 8);
+    }
+    return Cache::key({"golden-16bit", std::to_string(image.width), std::to_string(image.height), bytes});
+}
+
+namespace {
+
+// What a 16-bit PNG keeps of an image.
+void quantise_16bit(Image& image) {
+    for (float& v : image.rgba) v = static_cast<float>(std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * 65535.0) / 65535.0);
+}
+
+}  // namespace
+
+Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir) {
+    if (entry.stored) return read_image(dir + "/" + entry.file());
+    // An entry that a filtered update never rendered has nothing to check the reference against.
+    if (entry.hash.empty())
+        return make_error("golden " + entry.id + " has never been rendered (no hash): run 'crtforge golden update'", dir + "/manifest.json");
+    auto image = render_golden_reference(library, entry);
+    if (!image.ok()) return image;
+    quantise_16bit(image.value());
+    if (golden_hash(image.value()) != entry.hash)
+        return make_error("golden " + entry.id + " is rendered, not stored, and the reference no longer renders it as it did "
+                          "at 'crtforge golden update': review the change and run it",
+                          dir + "/manifest.json");
+    return image;
 }
 
 Result<Image> render_golden_reference(const TemplateLibrary& library, const GoldenEntry& entry) {
-    const Preset* preset = library.find_preset(entry.preset);
-    if (!preset) return make_error("golden '" + entry.id + "' names unknown preset '" + entry.preset + "'");
-    auto variant = make_variant(library, *preset, {});
-    if (!variant.ok()) return variant.error();
-    auto input = golden_input(entry);
-    if (!input.ok()) return input.error();
-    ReferenceJob job;
-    job.variant = &variant.value();
-    job.input = std::move(input.value());
-    job.filter = preset->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
-    job.width = entry.width;
-    job.height = entry.height;
-    job.time = FrameInfo::time_of_frame(entry.frame);
-    auto image = render_reference(job);
-    if (!image.ok()) return image;
-    for (float& v : image.value().rgba) v = std::clamp(v, 0.0f, 1.0f);
-    return image;
+    auto images = render_golden_references(library, {&entry});
+    if (!images.ok()) return images.error();
+    return std::move(images.value().front());
 }
 
 Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
@@ -82,8 +142,17 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
     std::vector<GoldenEntry> out;
     try {
         for (const auto& g : j["goldens"]) {
+            std::optional<DisplayFit> fit;
+            if (g.contains("fit")) {
+                const std::string name = g.at("fit");
+                for (DisplayFit f : {DisplayFit::Stretch, DisplayFit::Aspect, DisplayFit::Integer})
+                    if (name == display_fit_name(f)) fit = f;
+                if (!fit) return make_error("golden fit '" + name + "' is not stretch, aspect or integer", path);
+            }
             GoldenEntry e = make_golden_entry(g.at("preset"), g.at("input"), g.at("width"), g.at("height"),
-                                              g.at("inputWidth"), g.at("inputHeight"), g.at("frame"));
+                                              g.at("inputWidth"), g.at("inputHeight"), g.at("frame"), fit);
+            e.stored = g.value("stored", true);
+            e.hash = g.value("hash", "");
             const auto& t = g.at("tolerance");
             e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"), t.at("why")};
             if (g.at("id") != e.id) return make_error("golden id '" + g.at("id").get<std::string>() + "' does not match its fields", path);
@@ -100,27 +169,40 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
     if (!planned.ok()) return planned.error();
     const auto& plan = planned.value();
     // Render everything first: a failure must not leave a half-updated golden set.
+    std::vector<const GoldenEntry*> chosen;
+    for (const GoldenEntry& e : plan)
+        if (filter.empty() || e.id.find(filter) != std::string::npos) chosen.push_back(&e);
     std::vector<std::pair<const GoldenEntry*, Image>> images;
-    for (const GoldenEntry& e : plan) {
-        if (!filter.empty() && e.id.find(filter) == std::string::npos) continue;
-        auto image = render_golden_reference(library, e);
-        if (!image.ok()) return image.error();
-        images.emplace_back(&e, std::move(image.value()));
+    for (const auto& sequence : golden_sequences(chosen)) {
+        auto rendered = render_golden_references(library, sequence);
+        if (!rendered.ok()) return rendered.error();
+        for (size_t i = 0; i < sequence.size(); ++i) images.emplace_back(sequence[i], std::move(rendered.value()[i]));
     }
-    for (const auto& [entry, image] : images)
+    // The hashes of the entries not re-rendered stay as the old manifest has them.
+    std::map<std::string, std::string> hashes;
+    if (auto old = load_golden_manifest(dir); old.ok())
+        for (const GoldenEntry& e : old.value()) hashes[e.id] = e.hash;
+    for (auto& [entry, image] : images) {
+        quantise_16bit(image);
+        hashes[entry->id] = golden_hash(image);
+        if (!entry->stored) continue;
         if (auto s = write_png(dir + "/" + entry->file(), image, 16); !s.ok()) return s.error();
+    }
     json manifest;
     manifest["note"] = "Reference images from the CPU double-precision renderer (runtime/reference). "
                        "Regenerate only with: crtforge golden update";
     manifest["goldens"] = json::array();
     for (const GoldenEntry& e : plan) {
-        manifest["goldens"].push_back(json{
-            {"id", e.id}, {"file", e.file()}, {"preset", e.preset}, {"input", e.input},
-            {"width", e.width}, {"height", e.height}, {"inputWidth", e.input_width}, {"inputHeight", e.input_height},
-            {"frame", e.frame},
-            {"tolerance", {{"maxRmse", e.tolerance.max_rmse}, {"outlierThreshold", e.tolerance.outlier_threshold},
-                           {"maxOutlierFraction", e.tolerance.max_outlier_fraction}, {"minSsim", e.tolerance.min_ssim},
-                           {"why", e.tolerance.why}}}});
+        json entry{{"id", e.id}, {"file", e.file()}, {"preset", e.preset}, {"input", e.input},
+                   {"width", e.width}, {"height", e.height}, {"inputWidth", e.input_width}, {"inputHeight", e.input_height}};
+        if (e.fit) entry["fit"] = display_fit_name(*e.fit);
+        entry["frame"] = e.frame;
+        if (!e.stored) entry["stored"] = false;
+        if (!hashes[e.id].empty()) entry["hash"] = hashes[e.id];
+        entry["tolerance"] = {{"maxRmse", e.tolerance.max_rmse}, {"outlierThreshold", e.tolerance.outlier_threshold},
+                              {"maxOutlierFraction", e.tolerance.max_outlier_fraction}, {"minSsim", e.tolerance.min_ssim},
+                              {"why", e.tolerance.why}};
+        manifest["goldens"].push_back(std::move(entry));
     }
     if (auto s = write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n"); !s.ok()) return s.error();
     return GoldenUpdate{images.size(), plan.size()};

@@ -20,11 +20,14 @@ struct PlanRule {
     std::vector<std::string> presets;
     bool requires_time = false;
     std::vector<std::string> inputs;
-    int width = 0, height = 0, frame = 0;
+    int width = 0, height = 0;
+    std::vector<int> frames{0};
+    std::optional<DisplayFit> fit;
+    bool store = true;
+    std::optional<std::pair<int, int>> input_size;
 };
 
 struct Plan {
-    std::map<std::string, std::pair<int, int>> input_sizes;
     std::vector<PlanRule> rules;
 };
 
@@ -67,17 +70,7 @@ public:
         }
         Plan plan;
         for (const auto& [key, node] : root)
-            if (key != "input_size" && key != "golden") return error(&node, std::string(key.str()), "unknown key");
-        if (const toml::node* sizes = root.get("input_size")) {
-            if (!sizes->is_table()) return error(sizes, "input_size", "must be a table of input = [width, height]");
-            for (const auto& [name, node] : *sizes->as_table()) {
-                const std::string field = "input_size." + std::string(name.str());
-                if (make_test_input(std::string(name.str()), 1, 1).ok() == false) return error(&node, field, "is not a generated input");
-                auto s = size(&node, field);
-                if (!s.ok()) return s.error();
-                plan.input_sizes[std::string(name.str())] = s.value();
-            }
-        }
+            if (key != "golden") return error(&node, std::string(key.str()), "unknown key");
         const toml::node* rules = root.get("golden");
         const toml::array* array = rules ? rules->as_array() : nullptr;
         if (!array || !array->is_array_of_tables()) return error(rules ? rules : &root, "golden", "must be [[golden]] tables");
@@ -85,7 +78,8 @@ public:
             const toml::table& t = *node.as_table();
             PlanRule rule;
             for (const auto& [key, value] : t) {
-                static const char* known[] = {"why", "presets", "requires", "inputs", "size", "frame"};
+                static const char* known[] = {"why", "presets", "requires", "inputs", "size", "input_size", "frame", "frames", "fit",
+                                              "store"};
                 if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
                     return error(&value, "golden." + std::string(key.str()), "unknown key");
             }
@@ -112,10 +106,41 @@ public:
             auto s = size(t.get("size") ? t.get("size") : &node, "golden.size");
             if (!s.ok()) return s.error();
             std::tie(rule.width, rule.height) = s.value();
+            if (const toml::node* in = t.get("input_size")) {
+                auto is = size(in, "golden.input_size");
+                if (!is.ok()) return is.error();
+                rule.input_size = is.value();
+            }
+            auto frame_number = [&](const toml::node& f) -> Result<int> {
+                if (!f.is_integer() || *f.value<int64_t>() < 0 || *f.value<int64_t>() > 1000000)
+                    return error(&f, "golden.frame", "must be a frame number 0..1000000");
+                return static_cast<int>(*f.value<int64_t>());
+            };
+            if (t.get("frame") && t.get("frames")) return error(t.get("frames"), "golden.frames", "give frame or frames, not both");
             if (const toml::node* f = t.get("frame")) {
-                if (!f->is_integer() || *f->value<int64_t>() < 0 || *f->value<int64_t>() > 1000000)
-                    return error(f, "golden.frame", "must be a frame number 0..1000000");
-                rule.frame = static_cast<int>(*f->value<int64_t>());
+                auto n = frame_number(*f);
+                if (!n.ok()) return n.error();
+                rule.frames = {n.value()};
+            }
+            if (const toml::node* f = t.get("frames")) {
+                const toml::array* a = f->as_array();
+                if (!a || a->empty()) return error(f, "golden.frames", "must be a non-empty list of frame numbers");
+                rule.frames.clear();
+                for (const toml::node& item : *a) {
+                    auto n = frame_number(item);
+                    if (!n.ok()) return n.error();
+                    rule.frames.push_back(n.value());
+                }
+            }
+            if (const toml::node* st = t.get("store")) {
+                if (!st->is_boolean()) return error(st, "golden.store", "must be true or false");
+                rule.store = *st->value<bool>();
+            }
+            if (const toml::node* f = t.get("fit")) {
+                const std::string name = f->value<std::string>().value_or("");
+                for (DisplayFit fit : {DisplayFit::Stretch, DisplayFit::Aspect, DisplayFit::Integer})
+                    if (name == display_fit_name(fit)) rule.fit = fit;
+                if (!rule.fit) return error(f, "golden.fit", "must be \"stretch\", \"aspect\" or \"integer\"");
             }
             plan.rules.push_back(std::move(rule));
         }
@@ -148,9 +173,13 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
             const bool named = std::find(rule.presets.begin(), rule.presets.end(), p.name) != rule.presets.end();
             if (!(rule.all_presets || named) || (rule.requires_time && !time)) continue;
             for (const std::string& input : rule.inputs) {
-                auto native = plan.value().input_sizes.find(input);
-                const auto [iw, ih] = native != plan.value().input_sizes.end() ? native->second : std::make_pair(rule.width, rule.height);
-                out.push_back(make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, rule.frame));
+                auto [iw, ih] = rule.input_size.value_or(std::make_pair(rule.width, rule.height));
+                // A scene that states its source size is fed pictures of that size.
+                if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
+                for (int frame : rule.frames) {
+                    out.push_back(make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit));
+                    out.back().stored = rule.store;
+                }
             }
         }
     }

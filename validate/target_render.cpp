@@ -41,6 +41,12 @@ Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
     return consumer.value()->render(r, *engines_);
 }
 
+Result<std::vector<Image>> TargetRenderer::render_scene(const SceneRenderRequest& r) {
+    auto consumer = consumer_of(r.target);
+    if (!consumer.ok()) return consumer.error();
+    return consumer.value()->render_scene(r, *engines_);
+}
+
 Status TargetRenderer::compile(TargetId target, const OutputFile& file) {
     if (!file.is_shader()) return Ok{};
     auto consumer = consumer_of(target);

@@ -8,7 +8,9 @@
 #include <deque>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "crtforge/exporter.hpp"
@@ -37,18 +39,23 @@ Result<Shard> Shard::parse(const std::string& text) {
 
 namespace {
 
-// Loaded once per run and shared read-only by every target's job: the golden and its input.
+// Loaded once per run (with the preset's work) and shared read-only by every target's job: the
+// golden — read, or rendered by the reference when not stored — and its input.
 struct GoldenData {
+    explicit GoldenData(const GoldenEntry* e) : entry(e) {}
     const GoldenEntry* entry;
-    Result<Image> golden = make_error("not loaded");
-    Result<Image> input = make_error("not loaded");
+    Result<Image> golden{make_error("not loaded")};
+    Result<Image> input{make_error("not loaded")};  // the input at the entry's frame, for the report
 };
 
 // Compiled once per preset (on whichever worker needs it first) and shared by its targets' jobs.
 struct PresetWork {
     const Preset* preset = nullptr;
+    std::vector<GoldenData*> goldens;
     std::once_flag once;
-    Result<CompiledVariant> compiled = make_error("not compiled");
+    Result<std::vector<CompiledVariant>> compiled = make_error("not compiled");
+    std::map<std::string, Image> file_luts;
+    std::optional<Diagnostic> lut_error;
 };
 
 struct Job {
@@ -56,6 +63,15 @@ struct Job {
     TargetId target;
     std::vector<const GoldenData*> goldens;
 };
+
+// The compile checks of a preset on a target: one per shader role of every pass.
+std::vector<std::string> compile_checks(const Preset& preset, TargetId target) {
+    std::vector<std::string> checks;
+    for (const Pass& pass : preset.passes)
+        for (const std::string& role : target_info(target).shader_roles)
+            checks.push_back("compile:" + (preset.single_pass() ? role : pass.alias + "." + role));
+    return checks;
+}
 
 // Pictures for the HTML report: the input and golden once per golden, each target's render, and
 // a heat-map wherever a comparison failed.
@@ -86,55 +102,90 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     const Preset* preset = job.work->preset;
     const std::string target = target_info(job.target).name;
     auto fail_all = [&](const std::string& message) {
-        for (const std::string& role : target_info(job.target).shader_roles)
-            results.push_back({preset->name, target, "compile:" + role, false, message, {}, {}});
+        for (const std::string& check : compile_checks(*preset, job.target))
+            results.push_back({preset->name, target, check, false, message, {}, {}});
         for (const GoldenData* g : job.goldens)
             results.push_back({preset->name, target, "render:" + g->entry->id, false, message, {}, g->entry->id});
         return results;
     };
-    std::call_once(job.work->once, [&] { job.work->compiled = compile_variant(library, *preset, {}, cache); });
+    std::call_once(job.work->once, [&] {
+        for (GoldenData* d : job.work->goldens) {
+            d->golden = load_golden_image(library, *d->entry, request.golden_dir);
+            d->input = golden_input(*d->entry, d->entry->frame);
+        }
+        job.work->compiled = compile_scene(library, *preset, {}, cache);
+        for (const LutSpec& lut : preset->luts) {
+            if (!lut.generator.empty()) continue;
+            auto image = read_image(lut_file_path(lut));
+            if (!image.ok()) job.work->lut_error = image.error();
+            else job.work->file_luts[lut.name] = std::move(image.value());
+        }
+    });
     const auto& compiled = job.work->compiled;
     if (!compiled.ok()) return fail_all(compiled.error().str());
-    auto out = emit_target(compiled.value(), job.target, cache);
-    if (!out.ok()) return fail_all(out.error().str());
-
-    bool compiles = true;
-    for (const OutputFile& f : out.value().files) {
-        if (!f.is_shader()) continue;
-        CheckResult r{preset->name, target, "compile:" + f.manifest_role(), false, {}, {}, {}};
-        auto consumed = renderer.compile(job.target, f);
-        r.passed = consumed.ok();
-        if (!consumed.ok()) r.message = consumed.error().str();
-        compiles = compiles && r.passed;
-        results.push_back(std::move(r));
+    if (job.work->lut_error) return fail_all(job.work->lut_error->str());
+    std::vector<TargetOutput> outputs;
+    for (const CompiledVariant& pass : compiled.value()) {
+        auto out = emit_target(pass, job.target, cache);
+        if (!out.ok()) return fail_all(out.error().str());
+        outputs.push_back(std::move(out.value()));
     }
 
-    for (const GoldenData* data : job.goldens) {
-        const GoldenEntry* g = data->entry;
-        CheckResult r{preset->name, target, "render:" + g->id, false, {}, {}, g->id};
-        const auto& golden = data->golden;
-        const auto& input = data->input;
-        if (!golden.ok()) {
-            r.message = golden.error().str() + " (run 'crtforge golden update')";
-        } else if (!input.ok()) {
-            r.message = input.error().str();
-        } else if (!compiles) {
-            r.message = "not rendered: the consumer rejected the shader";
-        } else {
-            TargetRenderRequest rr;
-            rr.compiled = &compiled.value();
-            rr.target = job.target;
-            rr.output = &out.value();
-            rr.input = input.value();
-            rr.filter = preset->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
-            rr.width = g->width;
-            rr.height = g->height;
-            rr.time = FrameInfo::time_of_frame(g->frame);
-            auto image = renderer.render(rr);
-            if (!image.ok()) {
-                r.message = image.error().str();
+    bool compiles = true;
+    for (size_t i = 0; i < outputs.size(); ++i)
+        for (const OutputFile& f : outputs[i].files) {
+            if (!f.is_shader()) continue;
+            const std::string role = f.manifest_role();
+            CheckResult r{preset->name, target,
+                          "compile:" + (preset->single_pass() ? role : preset->passes[i].alias + "." + role), false, {}, {}, {}};
+            auto consumed = renderer.compile(job.target, f);
+            r.passed = consumed.ok();
+            if (!consumed.ok()) r.message = consumed.error().str();
+            compiles = compiles && r.passed;
+            results.push_back(std::move(r));
+        }
+
+    // Each sequence (a preset on one input, display and fit) renders once for all its frames.
+    std::vector<const GoldenEntry*> entries;
+    std::map<const GoldenEntry*, const GoldenData*> data_of;
+    for (const GoldenData* d : job.goldens) {
+        entries.push_back(d->entry);
+        data_of[d->entry] = d;
+    }
+    std::map<const GoldenEntry*, CheckResult> checks;
+    for (const auto& sequence : golden_sequences(entries)) {
+        const GoldenEntry& first = *sequence.front();
+        std::optional<std::string> failure;
+        if (!compiles) failure = "not rendered: the consumer rejected the shader";
+        std::vector<Image> images;
+        if (!failure) {
+            SceneRenderRequest sr;
+            sr.preset = preset;
+            sr.passes = &compiled.value();
+            sr.target = job.target;
+            sr.outputs = &outputs;
+            sr.source = [&first](int frame) { return golden_input(first, frame); };
+            sr.width = first.width;
+            sr.height = first.height;
+            sr.fit = first.fit;
+            for (const GoldenEntry* e : sequence) sr.frames.push_back(e->frame);
+            sr.file_luts = job.work->file_luts;
+            auto rendered = renderer.render_scene(sr);
+            if (!rendered.ok()) failure = rendered.error().str();
+            else images = std::move(rendered.value());
+        }
+        for (size_t i = 0; i < sequence.size(); ++i) {
+            const GoldenEntry* g = sequence[i];
+            const GoldenData* data = data_of.at(g);
+            CheckResult r{preset->name, target, "render:" + g->id, false, {}, {}, g->id};
+            if (!data->golden.ok()) {
+                r.message = data->golden.error().str() + " (run 'crtforge golden update')";
+            } else if (!data->input.ok()) {
+                r.message = data->input.error().str();
+            } else if (failure) {
+                r.message = *failure;
             } else {
-                auto verdict = judge(image.value(), golden.value(), g->tolerance);
+                auto verdict = judge(images[i], data->golden.value(), g->tolerance);
                 if (!verdict.ok()) {
                     r.message = verdict.error().str();
                 } else {
@@ -142,8 +193,8 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                     r.message = verdict.value().reason;
                     r.verdict = verdict.value();
                     if (!request.report_dir.empty()) {
-                        auto written = write_pictures(request.report_dir, *g, target, image.value(), golden.value(),
-                                                      input.value(), verdict.value());
+                        auto written = write_pictures(request.report_dir, *g, target, images[i], data->golden.value(),
+                                                      data->input.value(), verdict.value());
                         if (!written.ok()) {
                             r.passed = false;
                             r.message = written.error().str();
@@ -151,9 +202,10 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                     }
                 }
             }
+            checks.emplace(g, std::move(r));
         }
-        results.push_back(std::move(r));
     }
+    for (const GoldenData* d : job.goldens) results.push_back(std::move(checks.at(d->entry)));
     return results;
 }
 
@@ -200,13 +252,12 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
                 work->preset = &p;
                 for (const GoldenEntry& g : report.goldens) {
                     if (g.preset != p.name) continue;
-                    GoldenData& d = golden_data.emplace_back(GoldenData{&g});
-                    d.golden = read_image(request.golden_dir + "/" + g.file());
-                    d.input = golden_input(g);
+                    GoldenData& d = golden_data.emplace_back(&g);
+                    work->goldens.push_back(&d);
                     goldens.push_back(&d);
                 }
             }
-            total += target_info(t).shader_roles.size() + goldens.size();
+            total += compile_checks(p, t).size() + goldens.size();
             jobs.push_back(Job{work, t, goldens});
         }
     }

@@ -37,7 +37,7 @@ size_t screen_pass_index(const Preset& preset);
 
 // Every pass's output size for a source of `source` texels and a screen of `screen` pixels: a
 // factor of its main input's size (source), of the screen (viewport) or absolute; rounded to the
-// nearest pixel, at least 1.
+// nearest pixel, at least 1. The last pass draws the screen: its size is the screen's.
 std::vector<PixelSize> pass_sizes(const Preset& preset, PixelSize source, PixelSize screen);
 
 }  // namespace crtforge

@@ -15,10 +15,11 @@ namespace crtforge {
 
 // What the host knows about the frame: the sizes and the clock.
 struct FrameInfo {
-    int output_width = 0, output_height = 0;
-    int source_width = 0, source_height = 0;
-    double time = 0.0;  // seconds
-    static double time_of_frame(int frame) { return frame / 60.0; }  // a 60 Hz clock
+    int output_width = 0, output_height = 0;  // the pass's output (the screen's rectangle for the last pass)
+    int source_width = 0, source_height = 0;  // its main input
+    double time = 0.0;                        // seconds
+    long long frame_count = 0;                // already reduced by the pass's frame_count_mod
+    static double time_of_frame(int frame, double fps = 60.0) { return frame / fps; }
 };
 
 // What one block member holds: floats (float, vec2, vec3, vec4) or an int.

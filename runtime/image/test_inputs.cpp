@@ -436,10 +436,35 @@ Image checker(int w, int h) {
     return image;
 }
 
+// ---- moving_sprite ------------------------------------------------------------------------------
+
+// The pixel-art frame with a bright 16 x 16 sprite (in 256 x 224 units) crossing it left to right
+// at 3 units a frame, wrapping, 8 units below the middle: a scene in motion for feedback and
+// history (trails, persistence). Frame 0 has the sprite at the left edge.
+Image moving_sprite(int w, int h, int frame) {
+    Image image = pixel_art(w, h);
+    const double sx = w / 256.0, sy = h / 224.0;
+    const int unit_x = ((frame * 3) % (256 + 16)) - 16;  // enters from off-screen
+    const int unit_y = 112 + 8 - 8;
+    for (int y = 0; y < h; ++y) {
+        const double v = (y + 0.5) / sy - unit_y;
+        if (v < 0 || v >= 16) continue;
+        for (int x = 0; x < w; ++x) {
+            const double u = (x + 0.5) / sx - unit_x;
+            if (u < 0 || u >= 16) continue;
+            // A white body with an orange core: bright in every channel, and a colour a tint acts on.
+            const bool core = u >= 4 && u < 12 && v >= 4 && v < 12;
+            image.set_pixel(x, y, core ? std::array<float, 4>{1.0f, 0.55f, 0.1f, 1.0f} : std::array<float, 4>{1.0f, 1.0f, 1.0f, 1.0f});
+        }
+    }
+    return image;
+}
+
 struct Generator {
     std::string name;
     std::string doc;
     Image (*make)(int, int);
+    Image (*make_frame)(int, int, int) = nullptr;  // inputs that move: the picture at a frame
 };
 
 const std::vector<Generator>& generators() {
@@ -453,6 +478,8 @@ const std::vector<Generator>& generators() {
         {"plasma", "demoscene sine plasma at t = 1 through a cosine palette: smooth saturated gradients.", plasma},
         {"flat_grey", "uniform 0.5 grey: isolates the scanline and mask pattern for period measurements.", flat_grey},
         {"checker", "1-pixel black/white checkerboard, white at (0, 0): worst case for filtering.", checker},
+        {"moving_sprite", "the pixel-art frame with a 16x16 sprite crossing it at 3 units a frame: motion for feedback and history.",
+         nullptr, moving_sprite},
     };
     return list;
 }
@@ -474,7 +501,13 @@ std::string test_input_doc(const std::string& name) {
     return {};
 }
 
-Result<Image> make_test_input(const std::string& name, int width, int height) {
+bool test_input_moves(const std::string& name) {
+    for (const Generator& g : generators())
+        if (g.name == name) return g.make_frame != nullptr;
+    return false;
+}
+
+Result<Image> make_test_input(const std::string& name, int width, int height, int frame) {
     for (const Generator& g : generators()) {
         if (g.name != name) continue;
         if (width < 1 || height < 1 || width > kMaxImageDimension || height > kMaxImageDimension) {
@@ -482,7 +515,8 @@ Result<Image> make_test_input(const std::string& name, int width, int height) {
                                   " is out of range (each side 1.." + std::to_string(kMaxImageDimension) + ")",
                               {}, 0, "input");
         }
-        return g.make(width, height);
+        if (frame < 0) return make_error("frame " + std::to_string(frame) + " is negative", {}, 0, "frame");
+        return g.make_frame ? g.make_frame(width, height, frame) : g.make(width, height);
     }
     std::string known;
     for (const std::string& n : test_input_names()) known += (known.empty() ? "" : ", ") + n;

@@ -43,6 +43,9 @@ std::string GodotCompiler::builtin_expression(const std::string& member) const {
         }
         return "TIME";
     }
+    // Godot has no frame counter: a uniform the host advances every frame (the exported scene's
+    // script does).
+    if (member == "frameCount") return "frameCount";
     return member;
 }
 
@@ -173,6 +176,11 @@ void GodotCompiler::emit_header() {
         statement("// ", p->stage->name, ": ", p->spec->doc, p->spec->unit.empty() ? "" : " (" + p->spec->unit + ")");
         statement(uniform_declaration(*p));
     }
+    for (Builtin b : variant_.builtins)
+        if (b == Builtin::FrameCount) {
+            statement("// Frames since the first, set every frame by the host (crtforge_pipeline.gd does it).");
+            statement("uniform int frameCount = 0;");
+        }
     for (const std::string& texture : variant_.textures) {
         const PassInput* input = variant_.pass->find_input(texture);
         statement("// ", texture, ": ", input ? input->from.str() : std::string("set by the host"),

@@ -52,8 +52,12 @@ public:
     // Feeds one shader file (OutputFile::is_shader()) to the compiler its users run. A rejection is
     // ErrorKind::Validation; a missing tool (no driver, no Node.js) keeps its own kind.
     virtual Status compile(const OutputFile& file, ConsumerEngines& engines) const = 0;
-    // Renders the request's frame with the target's files, as a host of that language would.
+    // Renders one pass of one frame with the target's files, as a host of that language would.
     virtual Result<Image> render(const TargetRenderRequest& request, ConsumerEngines& engines) const = 0;
+    // Renders a scene's frames. By default validate's pipeline host (scene_runner.hpp) drives
+    // render() pass by pass; a consumer that runs whole scenes itself (Godot 3 and its exported
+    // scene) overrides it.
+    virtual Result<std::vector<Image>> render_scene(const SceneRenderRequest& request, ConsumerEngines& engines) const;
     // One line naming what really runs the shader, for reports.
     virtual std::string describe(ConsumerEngines& engines) const = 0;
 };
@@ -78,18 +82,32 @@ Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, con
 // The std140 bytes of the variant's uniform block for the request's frame (empty: no block).
 Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& request);
 
-// The fields the Vulkan, GL and Dawn jobs share, from the request.
+// The fields the Vulkan, GL and Dawn jobs share, from the request. `textures` are the engine's
+// texture inputs (see engine_textures()).
 template <typename Job>
-Job request_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms) {
+Job request_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms, std::vector<TextureInput> textures = {}) {
     Job job;
     job.input = r.input;
     job.filter = r.filter;
+    job.wrap = r.wrap;
+    job.textures = std::move(textures);
     job.width = r.width;
     job.height = r.height;
+    job.viewport = r.viewport;
+    job.clear_color = r.clear_color;
     job.format = r.format;
     job.uniform_data = std::move(uniforms);
     return job;
 }
+
+// The request's extra textures as engine inputs, each at the binding `binding_of(name)` gives
+// (and `sampler_binding_of` for WGSL's separate samplers); an error when a name has none.
+Result<std::vector<TextureInput>> engine_textures(
+    const TargetRenderRequest& r, const std::function<Result<uint32_t>(const std::string&)>& binding_of,
+    const std::function<Result<uint32_t>(const std::string&)>& sampler_binding_of = {});
+
+// The binding of a texture in the compiled SPIR-V (what the Vulkan, HLSL and WGSL outputs keep).
+Result<uint32_t> spirv_texture_binding(const TargetRenderRequest& r, const std::string& name);
 
 // Renders a job on this thread's Vulkan engine; a failed render is a validation failure.
 Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines);

@@ -4,6 +4,7 @@
 #include "crtforge/cache.hpp"
 #include "crtforge/uniforms.hpp"
 #include "validate/consumers/consumer.hpp"
+#include "validate/scene_runner.hpp"
 
 namespace crtforge {
 
@@ -61,8 +62,43 @@ Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, con
 }
 
 Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& r) {
-    FrameInfo frame{r.width, r.height, r.input.width, r.input.height, r.time};
+    // The pass works on the pixels it draws: the viewport's when it has one.
+    const int width = r.viewport.full() ? r.width : r.viewport.width, height = r.viewport.full() ? r.height : r.viewport.height;
+    FrameInfo frame{width, height, r.input.width, r.input.height, r.time, r.frame_count};
     return pack_uniforms(*r.compiled, frame, r.overrides);
+}
+
+Result<std::vector<TextureInput>> engine_textures(const TargetRenderRequest& r,
+                                                  const std::function<Result<uint32_t>(const std::string&)>& binding_of,
+                                                  const std::function<Result<uint32_t>(const std::string&)>& sampler_binding_of) {
+    std::vector<TextureInput> out;
+    for (const PassTexture& t : r.textures) {
+        TextureInput input;
+        input.name = t.name;
+        auto binding = binding_of(t.name);
+        if (!binding.ok()) return binding.error();
+        input.binding = binding.value();
+        if (sampler_binding_of) {
+            auto sampler = sampler_binding_of(t.name);
+            if (!sampler.ok()) return sampler.error();
+            input.sampler_binding = sampler.value();
+        }
+        input.image = t.image;
+        input.filter = t.filter;
+        input.wrap = t.wrap;
+        out.push_back(std::move(input));
+    }
+    return out;
+}
+
+Result<uint32_t> spirv_texture_binding(const TargetRenderRequest& r, const std::string& name) {
+    for (const ReflectedTexture& t : r.compiled->reflection.textures)
+        if (t.name == name) return t.binding;
+    return make_validation_error("the compiled pass declares no texture '" + name + "'");
+}
+
+Result<std::vector<Image>> Consumer::render_scene(const SceneRenderRequest& request, ConsumerEngines& engines) const {
+    return run_scene(request, [&](const TargetRenderRequest& pass) { return render(pass, engines); });
 }
 
 Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines) {

@@ -47,7 +47,10 @@ public:
         if (!uniforms.ok()) return uniforms.error();
         auto engine = engines.gl(es_);
         if (!engine.ok()) return engine.error();
-        auto job = request_job<GlRenderJob>(r, std::move(uniforms.value()));
+        // GL binds samplers by name; the binding numbers are unused.
+        auto textures = engine_textures(r, [](const std::string&) -> Result<uint32_t> { return 0u; });
+        if (!textures.ok()) return textures.error();
+        auto job = request_job<GlRenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
         job.vertex_source = vertex.value()->data;
         job.fragment_source = fragment.value()->data;
         return engine.value()->render(job);

@@ -19,6 +19,9 @@ public:
     }
 
     Result<Image> render(const TargetRenderRequest& r, ConsumerEngines&) const override {
+        if (!r.textures.empty() || !r.viewport.full() || r.format != OutputFormat::Rgba16Float)
+            return make_error("this Godot 3 pass reads extra textures, draws into a viewport or stores an 8-bit "
+                              "framebuffer: Godot 3 runs such scenes through the exported scene");
         auto shader = file_with_role(r, "shader");
         if (!shader.ok()) return shader.error();
         Godot3Job job;

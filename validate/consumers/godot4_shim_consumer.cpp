@@ -19,6 +19,7 @@ Result<std::vector<uint8_t>> pack_shim_uniforms(const Reflection& reflection, co
         if (m.name == "TEXTURE_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.input.width, 1.0f / r.input.height}};
         if (m.name == "SCREEN_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.width, 1.0f / r.height}};
         if (m.name == "TIME") return MemberData{std::vector<float>{static_cast<float>(r.time)}};
+        if (m.name == "frameCount") return MemberData{static_cast<int32_t>(r.frame_count & 0x7fffffff)};
         auto v = values.find(m.name);
         if (v == values.end())
             return make_validation_error("the Godot shader declares uniform '" + m.name + "' that the variant has no value for");
@@ -44,7 +45,14 @@ public:
         if (!module.ok()) return module.error();
         auto bytes = pack_shim_uniforms(module.value()->reflection, r);
         if (!bytes.ok()) return bytes.error();
-        auto job = request_job<RenderJob>(r, std::move(bytes.value()));
+        const std::vector<consumers::ShimTexture>& declared = shim.value().textures;
+        auto textures = engine_textures(r, [&](const std::string& name) -> Result<uint32_t> {
+            for (const auto& t : declared)
+                if (t.name == name) return t.binding;
+            return make_validation_error("the Godot shader declares no sampler '" + name + "'");
+        });
+        if (!textures.ok()) return textures.error();
+        auto job = request_job<RenderJob>(r, std::move(bytes.value()), std::move(textures.value()));
         job.vertex_spirv = r.compiled->vertex;
         job.fragment_spirv = module.value()->spirv;
         return render_on_vulkan(job, engines);

@@ -11,7 +11,7 @@ namespace crtforge::consumers {
 Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
     static const std::regex uniform_re(R"(^\s*uniform\s+(\w+)\s+(\w+)\s*(?::\s*([^=;]*))?\s*(?:=\s*([^;]*))?;\s*$)");
     ShimShader shim;
-    std::string body, sampler;
+    std::string body, sampler;  // sampler: Godot 4's screen texture (hint_screen_texture)
     bool saw_type = false, saw_fragment = false;
     std::istringstream lines(source);
     std::string line;
@@ -28,7 +28,8 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
         std::smatch m;
         if (std::regex_match(line, m, uniform_re)) {
             if (m[1] == "sampler2D") {
-                sampler = m[2];
+                if (m[3].str().find("hint_screen_texture") != std::string::npos) sampler = m[2];
+                else shim.textures.push_back({m[2], kTextureBinding + 1 + static_cast<uint32_t>(shim.textures.size())});
                 body += "// " + line + "\n";
                 continue;
             }
@@ -54,6 +55,8 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
     glsl += "layout(location = 0) out vec4 crtforge_shim_color;\n";
     glsl += "#define COLOR crtforge_shim_color\n";
     glsl += "layout(set = 0, binding = " + std::to_string(kTextureBinding) + ") uniform sampler2D " + texture + ";\n";
+    for (const auto& t : shim.textures)
+        glsl += "layout(set = 0, binding = " + std::to_string(t.binding) + ") uniform sampler2D " + t.name + ";\n";
     glsl += "layout(std140, set = 0, binding = " + std::to_string(kUniformBinding) + ") uniform GodotShim {\n";
     glsl += "    vec2 TEXTURE_PIXEL_SIZE;\n    vec2 SCREEN_PIXEL_SIZE;\n    float TIME;\n";
     for (const auto& u : shim.uniforms) glsl += "    " + u.type + " " + u.name + ";\n";

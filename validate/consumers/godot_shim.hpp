@@ -29,9 +29,15 @@ struct ShimUniform {
     std::string value;    // the declaration's default, as written (may be empty)
 };
 
+struct ShimTexture {
+    std::string name;      // a `uniform sampler2D` of the shader (other than a screen texture)
+    uint32_t binding = 0;  // its Vulkan binding in the shim: 2, 3, ... in declaration order
+};
+
 struct ShimShader {
     std::string glsl;                    // Vulkan GLSL 450 for glslang
     std::vector<ShimUniform> uniforms;   // non-sampler uniforms, in declaration order
+    std::vector<ShimTexture> textures;   // sampler uniforms other than the screen texture
     bool screen_mode = false;            // reads SCREEN_UV and the screen texture
 };
 

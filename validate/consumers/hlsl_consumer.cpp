@@ -27,7 +27,12 @@ public:
     Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
         auto uniforms = variant_uniforms(r);
         if (!uniforms.ok()) return uniforms.error();
-        auto job = request_job<RenderJob>(r, std::move(uniforms.value()));
+        // register(tN) of each texture is its SPIR-V binding (SPIRV-Cross keeps it, glslang maps it back).
+        auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
+        if (!textures.ok()) return textures.error();
+        auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
+        // Drawn upside down and flipped back below: the viewport goes where the flip brings it home.
+        if (!job.viewport.full()) job.viewport.y = job.height - job.viewport.y - job.viewport.height;
         for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
             auto file = file_with_role(r, stage == ShaderStage::Vertex ? "vertex" : "fragment");
             if (!file.ok()) return file.error();

@@ -22,7 +22,9 @@ public:
     Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
         auto uniforms = variant_uniforms(r);
         if (!uniforms.ok()) return uniforms.error();
-        auto job = request_job<RenderJob>(r, std::move(uniforms.value()));
+        auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
+        if (!textures.ok()) return textures.error();
+        auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
         job.vertex_spirv = r.compiled->vertex;
         job.fragment_spirv = r.compiled->fragment;
         return render_on_vulkan(job, engines);

@@ -1,28 +1,64 @@
 // The oracle for goldens: a CPU renderer in double precision that evaluates every stage from its
 // documented formula (not from the GLSL), with Vulkan's sampling rules (texel centres at +0.5,
-// clamp-to-edge, nearest or bilinear). It shares no code with the drivers under test.
+// clamp-to-edge / repeat / mirrored-repeat, nearest or bilinear), and runs a scene's passes the way
+// the scene model defines them. It shares no code with the drivers under test, nor with the
+// pipeline hosts in validate/.
 #pragma once
 
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "crtforge/runtime/image.hpp"
 #include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/template_library.hpp"
 #include "crtforge/variant.hpp"
 
 namespace crtforge {
 
-struct ReferenceJob {
-    const Variant* variant = nullptr;      // stages, forms and values
-    std::map<std::string, Value> overrides;  // param values replacing the variant's (e.g. uniforms)
-    Image input;
+struct ReferenceTexture {
+    Image image;
     SamplerFilter filter = SamplerFilter::Linear;
-    int width = 0, height = 0;
-    double time = 0.0;                     // seconds
+    WrapMode wrap = WrapMode::ClampToEdge;
 };
 
-// Renders the variant's math. A stage or form the reference has no model for is an error, never
-// a silently wrong image.
+// One pass.
+struct ReferenceJob {
+    const Variant* variant = nullptr;        // the pass: stages, forms and values
+    std::map<std::string, Value> overrides;  // param values replacing the variant's (e.g. uniforms)
+    Image input;                             // the pass's main input ("source")
+    SamplerFilter filter = SamplerFilter::Linear;
+    WrapMode wrap = WrapMode::ClampToEdge;
+    std::map<std::string, ReferenceTexture> textures;  // every other texture the pass reads, by name
+    int width = 0, height = 0;
+    double time = 0.0;                       // seconds
+    long long frame_count = 0;               // already reduced by the pass's frame_count_mod
+};
+
+// Renders one pass's math. A stage or form the reference has no model for is an error, never a
+// silently wrong image.
 Result<Image> render_reference(const ReferenceJob& job);
+
+// A scene over a sequence of frames: every pass in order each frame, each pass's output stored in
+// its format (8-bit, sRGB or half) before the next pass reads it, feedback from the previous
+// frame's outputs (black before the first), the original's history (black before it exists), the
+// LUTs, and the last pass drawn into the screen's rectangle of a width x height display over
+// opaque black.
+struct ReferenceSceneJob {
+    const TemplateLibrary* library = nullptr;
+    const Preset* preset = nullptr;
+    std::map<std::string, Value> overrides;               // param -> value, in every pass that reads it
+    std::function<Result<Image>(int frame)> source;       // the original at each frame
+    int width = 0, height = 0;                            // the display
+    std::optional<DisplayFit> fit;                        // default: the preset's
+    std::vector<int> frames;                              // the frames whose display image is returned
+    std::map<std::string, Image> file_luts;               // images of the preset's file LUTs, by name
+};
+
+// The display images of job.frames, in that order. Frames before the last kept one are rendered
+// too when the scene keeps state between frames (feedback, history); otherwise only the kept ones.
+Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job);
 
 }  // namespace crtforge

@@ -17,14 +17,18 @@ inline constexpr int kPixelArtWidth = 256;
 inline constexpr int kPixelArtHeight = 224;
 
 // All input names, in a fixed order: color_bars, zone_plate, grey_ramp, pixel_art, hdr, mandelbrot,
-// plasma, flat_grey, checker.
+// plasma, flat_grey, checker, moving_sprite.
 const std::vector<std::string>& test_input_names();
 
 // One line saying what the input is for; empty for an unknown name.
 std::string test_input_doc(const std::string& name);
 
-// Renders input `name` at width x height (each 1..kMaxImageDimension). Errors: unknown name (the message lists
-// the valid ones) or a size out of range.
-Result<Image> make_test_input(const std::string& name, int width, int height);
+// Renders input `name` at width x height (each 1..kMaxImageDimension), as it is at `frame` (only
+// moving inputs change with it). Errors: unknown name (the message lists the valid ones), a size
+// out of range, a negative frame.
+Result<Image> make_test_input(const std::string& name, int width, int height, int frame = 0);
+
+// True for inputs that change from frame to frame (moving_sprite).
+bool test_input_moves(const std::string& name);
 
 }  // namespace crtforge

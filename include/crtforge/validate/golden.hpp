@@ -3,6 +3,7 @@
 // test) and how a render is judged against one.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,19 +22,30 @@ struct Tolerance {
     std::string why;                   // the justification, kept in the manifest
 };
 
+// One reference frame: a preset's scene over a generated input, shown on a display of width x
+// height, at one frame of the sequence (time = frame / the scene's fps; a scene with feedback or
+// history runs every frame before it).
 struct GoldenEntry {
-    std::string id;        // "<preset>.<input>.<w>x<h>.f<frame>" — also the file stem
+    std::string id;        // "<preset>.<input>.<w>x<h>[.<fit>].f<frame>" — also the file stem
     std::string preset, input;
-    int width = 0, height = 0;
-    int input_width = 0, input_height = 0;
-    int frame = 0;         // time = frame / 60 s
+    int width = 0, height = 0;              // the display
+    int input_width = 0, input_height = 0;  // the input (the source)
+    std::optional<DisplayFit> fit;          // how the screen fits the display; default: the preset's
+    int frame = 0;
+    // Stored goldens are 16-bit PNG files in the golden directory. Large ones are not committed:
+    // `validate` renders them with the reference when it needs them and checks the result still
+    // hashes to `hash` (the 16-bit pixels of `golden update`), so a change of the oracle shows.
+    bool stored = true;
+    std::string hash;
     Tolerance tolerance;
     std::string file() const { return id + ".png"; }
+    // Entries of one sequence render together: same preset, input, sizes and fit.
+    std::string sequence() const;
 };
 
-// An entry with its id ("<preset>.<input>.<w>x<h>.f<frame>") and the default tolerance.
+// An entry with its id and the default tolerance.
 GoldenEntry make_golden_entry(const std::string& preset, const std::string& input, int width, int height,
-                              int input_width, int input_height, int frame);
+                              int input_width, int input_height, int frame, std::optional<DisplayFit> fit = {});
 
 // The goldens a golden directory plans: <dir>/plan.toml (see golden/plan.toml) expanded over the
 // library's presets, in preset order, then plan order. Errors name plan.toml's line and field.
@@ -50,11 +62,23 @@ struct GoldenUpdate {
 };
 Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter);
 
-// Renders one entry's reference image (CPU, double precision), clamped to 0..1 like a display.
+// The hash recorded for a golden image: of its pixels at 16 bits per channel, as the PNG stores them.
+std::string golden_hash(const Image& image);
+
+// An entry's golden image: read from the directory, or (not stored) rendered by the reference and
+// checked against the entry's hash. `rendered` is the reference image when the caller has it.
+Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir);
+
+// Renders one sequence's reference images (CPU, double precision), clamped to 0..1 like a display:
+// the entries must share GoldenEntry::sequence(); the images come in their order.
+Result<std::vector<Image>> render_golden_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence);
 Result<Image> render_golden_reference(const TemplateLibrary& library, const GoldenEntry& entry);
 
-// The generated input of an entry.
-Result<Image> golden_input(const GoldenEntry& entry);
+// The generated input of an entry at a frame of its sequence.
+Result<Image> golden_input(const GoldenEntry& entry, int frame);
+
+// Entries grouped by sequence, in first-appearance order.
+std::vector<std::vector<const GoldenEntry*>> golden_sequences(const std::vector<const GoldenEntry*>& entries);
 
 struct Verdict {
     bool passed = false;

@@ -5,7 +5,10 @@
 // Godot 3 under Xvfb; WGSL in Dawn (Chromium's WebGPU) on Mesa's GLES driver.
 #pragma once
 
+#include <array>
+#include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 
@@ -29,17 +32,48 @@ class DawnEngine;
 // started on first use. A failure to start is returned and retried on the next call.
 Result<DawnEngine*> shared_dawn_engine();
 
+// A texture a pass reads besides its main input, as the pass samples it.
+struct PassTexture {
+    std::string name;  // the sampler's name in the pass's shader
+    Image image;
+    SamplerFilter filter = SamplerFilter::Linear;
+    WrapMode wrap = WrapMode::ClampToEdge;
+};
+
+// One pass of one frame, through one target's consumer.
 struct TargetRenderRequest {
     const CompiledVariant* compiled = nullptr;
     TargetId target = TargetId::Spirv;
-    // The emitted files of that target; spirv renders the compiled modules and needs none.
+    // The emitted files of that pass; spirv renders the compiled modules and needs none.
     const TargetOutput* output = nullptr;
-    Image input;
+    Image input;  // the main input ("source")
     SamplerFilter filter = SamplerFilter::Linear;
-    int width = 0, height = 0;
+    WrapMode wrap = WrapMode::ClampToEdge;
+    std::vector<PassTexture> textures;  // the pass's other textures
+    int width = 0, height = 0;           // the target's size
+    Viewport viewport;                   // where the pass draws (default: the whole target)
+    std::array<float, 4> clear_color = {0, 0, 0, 0};
     double time = 0.0;
+    long long frame_count = 0;
     OutputFormat format = OutputFormat::Rgba16Float;  // float output: no 8-bit quantisation in comparisons
     std::map<std::string, Value> overrides;
+};
+
+// A scene over a sequence of frames through one target's consumer: every pass each frame, each
+// intermediate output stored in its pass's format, feedback and history kept between frames, the
+// last pass drawn into the screen's rectangle of the display over opaque black.
+struct SceneRenderRequest {
+    const Preset* preset = nullptr;
+    const std::vector<CompiledVariant>* passes = nullptr;  // compile_scene()
+    TargetId target = TargetId::Spirv;
+    const std::vector<TargetOutput>* outputs = nullptr;    // the target's files, per pass (spirv: may be null)
+    std::function<Result<Image>(int frame)> source;        // the original at each frame
+    int width = 0, height = 0;                             // the display
+    std::optional<DisplayFit> fit;                         // default: the preset's
+    std::vector<int> frames;                               // the frames whose display image is returned
+    OutputFormat format = OutputFormat::Rgba16Float;       // the display's
+    std::map<std::string, Value> overrides;
+    std::map<std::string, Image> file_luts;                // images of the preset's file LUTs, by name
 };
 
 class ConsumerEngines;
@@ -49,7 +83,10 @@ class TargetRenderer {
 public:
     explicit TargetRenderer(EngineOptions vulkan_options = {});
     ~TargetRenderer();
+    // One pass.
     Result<Image> render(const TargetRenderRequest& request);
+    // A scene: the display images of request.frames, in that order.
+    Result<std::vector<Image>> render_scene(const SceneRenderRequest& request);
     // consume_output() with this renderer's engines.
     Status compile(TargetId target, const OutputFile& file);
     // One line naming the consumer used for a target (for reports).

@@ -33,8 +33,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   c = _38.xyz * (p.a.x * 0.33333334);
   _97 = 0i;
   loop {
-    if (_97 < 3i) {
-    } else {
+    if (!(_97 < 3i)) {
       break;
     }
     continuing {

@@ -33,8 +33,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   _73 = _19;
   _72 = 0i;
   loop {
-    if (_72 < p.i.x) {
-    } else {
+    if (!(_72 < p.i.x)) {
       break;
     }
     continuing {

@@ -1,28 +1,15 @@
-// Stage formulas, transcribed from the source documents' mathematics (see the spec docs in
-// templates/stages/*.toml). Double precision throughout; literal constants are the documents'.
+// The single-pass CRT stages, transcribed from the source documents' mathematics (see the spec docs
+// in templates/stages/*.toml): curvature, aberration, bloom, tone-map, scanlines, mask, glow,
+// vignette. Double precision throughout; literal constants are the documents'.
 #include "reference/reference_stages.hpp"
 
 namespace crtforge::reference {
-
-double Params::num(const std::string& name) const {
-    const Value& v = values_.at(name);
-    if (auto d = std::get_if<double>(&v)) return *d;
-    return static_cast<double>(std::get<int64_t>(v));
-}
-bool Params::flag(const std::string& name) const { return std::get<bool>(values_.at(name)); }
-Vec3 Params::color(const std::string& name) const {
-    const Color& c = std::get<Color>(values_.at(name));
-    return {c[0], c[1], c[2]};
-}
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kArticlePi = 3.14159;  // the Atari and Quiet Frame articles' literal
 
-Vec3 one_hot(int channel) { return {channel == 0 ? 1.0 : 0.0, channel == 1 ? 1.0 : 0.0, channel == 2 ? 1.0 : 0.0}; }
-}  // namespace
-
-bool warp_curvature(const std::string& form, const Params& p, Vec2& uv) {
+bool warp_curvature(const std::string& form, const Params& p, const Fragment&, Vec2& uv) {
     const double k = p.num("curvature");
     if (form == "atari") {  // r measured on the -1..1 square
         Vec2 c = uv * 2.0 - Vec2{1, 1};
@@ -42,7 +29,8 @@ bool warp_curvature(const std::string& form, const Params& p, Vec2& uv) {
     return true;
 }
 
-bool shadow_cell_uv(const Params& p, const Fragment& f, Vec2& sample_uv) {
+bool shadow_cell_uv(const std::string& form, const Params& p, const Fragment& f, Vec2& sample_uv) {
+    if (form != "shadow") return form == "grille" || form == "atari_grille" || form == "slot";
     if (!p.flag("maskQuantize")) return true;
     const double size = p.num("maskSize");
     const Vec2 coord{sample_uv.x * f.output_size.x / size, sample_uv.y * f.output_size.y / size};
@@ -52,8 +40,8 @@ bool shadow_cell_uv(const Params& p, const Fragment& f, Vec2& sample_uv) {
     return true;
 }
 
-bool fetch_aberration(const std::string& form, const Params& p, const Sampler& tex, const Fragment& f,
-                      Vec2 sample_uv, Vec3& color) {
+bool fetch_aberration(const std::string& form, const Params& p, const Fragment& f, Vec2 sample_uv, Vec3& color) {
+    const Sampler& tex = *f.source;
     double offset = 0;
     if (form == "pixels") offset = p.num("aberration") / f.output_size.x;  // pixels -> uv
     else if (form == "uv") offset = p.num("rgbOffset");
@@ -63,16 +51,19 @@ bool fetch_aberration(const std::string& form, const Params& p, const Sampler& t
     return true;
 }
 
-void fetch_bloom(const Params& p, const Sampler& tex, Vec2 sample_uv, Vec3& color) {
+bool fetch_bloom(const std::string&, const Params& p, const Fragment& f, Vec2 sample_uv, Vec3& color) {
+    const Sampler& tex = *f.source;
     const double d = p.num("bloomOffset"), threshold = p.num("bloomThreshold"), strength = p.num("bloomStrength");
     const Vec3 right = tex.rgb(sample_uv + Vec2{d, 0}), below = tex.rgb(sample_uv + Vec2{0, d});
     color.r += std::max((right.r + below.r) * 0.5 - threshold, 0.0) * strength;
     color.g += std::max((right.g + below.g) * 0.5 - threshold, 0.0) * strength;
     color.b += std::max((right.b + below.b) * 0.5 - threshold, 0.0) * strength;
+    return true;
 }
 
-void tonemap_saturate(Vec3& c) {
+bool tonemap_saturate(const std::string&, const Params&, const Fragment&, Vec3& c) {
     c = {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
+    return true;
 }
 
 bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
@@ -134,8 +125,9 @@ bool apply_mask(const std::string& form, const Params& p, const Fragment& f, Vec
     return true;
 }
 
-void apply_glow(const Params& p, const Fragment& f, Vec3& color) {
+bool apply_glow(const std::string&, const Params& p, const Fragment& f, Vec3& color) {
     color = color * (1.0 + p.num("pulseIntensity") * std::cos(f.pixel.x / p.num("pulseWidth") + f.time * p.num("pulseSpeed")));
+    return true;
 }
 
 bool apply_vignette(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
@@ -157,8 +149,24 @@ bool apply_vignette(const std::string& form, const Params& p, const Fragment& f,
     return true;
 }
 
-void apply_bezel(const Params& p, const Fragment& f, Vec3& color) {
+bool apply_bezel(const std::string&, const Params& p, const Fragment& f, Vec3& color) {
     if (f.uv.x < 0.0 || f.uv.x > 1.0 || f.uv.y < 0.0 || f.uv.y > 1.0) color = p.color("bezelColor");
+    return true;
+}
+
+}  // namespace
+
+std::vector<StageModel> crt_stage_models() {
+    return {
+        {"curvature", warp_curvature, nullptr, nullptr, nullptr, apply_bezel},
+        {"aberration", nullptr, nullptr, fetch_aberration, nullptr, nullptr},
+        {"bloom", nullptr, nullptr, fetch_bloom, nullptr, nullptr},
+        {"tonemap", nullptr, nullptr, nullptr, tonemap_saturate, nullptr},
+        {"scanlines", nullptr, nullptr, nullptr, apply_scanlines, nullptr},
+        {"mask", nullptr, shadow_cell_uv, nullptr, apply_mask, nullptr},
+        {"glow", nullptr, nullptr, nullptr, apply_glow, nullptr},
+        {"vignette", nullptr, nullptr, nullptr, apply_vignette, nullptr},
+    };
 }
 
 }  // namespace crtforge::reference

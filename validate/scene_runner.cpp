@@ -1,0 +1,149 @@
+// The validation pipeline host (see scene_runner.hpp).
+#include "validate/scene_runner.hpp"
+
+#include <algorithm>
+#include <deque>
+
+#include "crtforge/luts.hpp"
+#include "crtforge/scene.hpp"
+
+namespace crtforge {
+
+namespace {
+
+OutputFormat output_format(PixelFormat f) {
+    switch (f) {
+        case PixelFormat::Rgba8: return OutputFormat::Rgba8Unorm;
+        case PixelFormat::Rgba8Srgb: return OutputFormat::Rgba8Srgb;
+        case PixelFormat::Rgba16F: return OutputFormat::Rgba16Float;
+    }
+    return OutputFormat::Rgba16Float;
+}
+
+SamplerFilter to_filter(Filter f) { return f == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear; }
+
+Result<WrapMode> to_wrap(Wrap w, const std::string& where) {
+    switch (w) {
+        case Wrap::ClampToEdge: return WrapMode::ClampToEdge;
+        case Wrap::Repeat: return WrapMode::Repeat;
+        case Wrap::MirroredRepeat: return WrapMode::MirroredRepeat;
+        case Wrap::ClampToBorder: break;
+    }
+    return make_error("clamp_to_border is not supported by crtforge's consumers (WebGPU and Godot lack it)", {}, 0, where);
+}
+
+}  // namespace
+
+Result<Image> scene_lut_image(const LutSpec& lut, const std::map<std::string, Image>& file_luts) {
+    if (lut.generator.empty()) {
+        auto file = file_luts.find(lut.name);
+        if (file == file_luts.end()) return make_error("no image for file LUT '" + lut.name + "'", lut.where.file, lut.where.line);
+        return file->second;
+    }
+    auto generated = generate_lut(lut.generator, lut.params);
+    if (!generated.ok()) return generated.error();
+    Image image = Image::make(generated.value().width, generated.value().height);
+    for (size_t i = 0; i < generated.value().rgba.size(); ++i) image.rgba[i] = static_cast<float>(generated.value().rgba[i] / 255.0);
+    return image;
+}
+
+Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRenderer& render_pass) {
+    if (!r.preset || !r.passes || r.passes->size() != r.preset->passes.size() || !r.source)
+        return make_error("scene render request without its preset, compiled passes or source");
+    if (r.outputs && r.outputs->size() != r.passes->size()) return make_error("scene render request: one output per pass expected");
+    const Preset& preset = *r.preset;
+    std::map<std::string, Image> luts;
+    for (const LutSpec& lut : preset.luts) {
+        auto image = scene_lut_image(lut, r.file_luts);
+        if (!image.ok()) return image.error();
+        luts[lut.name] = std::move(image.value());
+    }
+    const bool stateful = preset.has_feedback() || preset.history_depth() > 0;
+    std::vector<int> run = r.frames;
+    if (stateful) {
+        const int last = r.frames.empty() ? -1 : *std::max_element(r.frames.begin(), r.frames.end());
+        run.clear();
+        for (int f = 0; f <= last; ++f) run.push_back(f);
+    }
+
+    std::map<int, Image> kept;
+    std::vector<Image> previous(preset.passes.size());  // last frame's outputs; empty before the first
+    std::deque<Image> history;                          // earlier originals, newest first
+    for (int frame : run) {
+        auto original = r.source(frame);
+        if (!original.ok()) return original.error();
+        const PixelSize source{original.value().width, original.value().height};
+        const PixelRect screen = screen_rect(preset, {r.width, r.height}, source, r.fit);
+        const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
+        std::vector<Image> current(preset.passes.size());
+        auto index_of = [&](const std::string& alias) {
+            for (size_t i = 0; i < preset.passes.size(); ++i)
+                if (preset.passes[i].alias == alias) return i;
+            return preset.passes.size();
+        };
+        auto resolve = [&](const TextureSource& from) -> Image {
+            switch (from.kind) {
+                case TextureSource::Kind::Original:
+                    if (from.frames_back == 0) return original.value();
+                    if (static_cast<size_t>(from.frames_back) <= history.size()) return history[from.frames_back - 1];
+                    return Image::make(source.width, source.height);
+                case TextureSource::Kind::Pass: return current[index_of(from.name)];
+                case TextureSource::Kind::Feedback: {
+                    const size_t i = index_of(from.name);
+                    return previous[i].empty() ? Image::make(sizes[i].width, sizes[i].height) : previous[i];
+                }
+                case TextureSource::Kind::Lut: return luts.at(from.name);
+            }
+            return Image{};
+        };
+        for (size_t i = 0; i < preset.passes.size(); ++i) {
+            const Pass& pass = preset.passes[i];
+            const bool last = i + 1 == preset.passes.size();
+            TargetRenderRequest pr;
+            pr.compiled = &(*r.passes)[i];
+            pr.target = r.target;
+            pr.output = r.outputs ? &(*r.outputs)[i] : nullptr;
+            const PassInput& main = pass.inputs.front();
+            pr.input = resolve(main.from);
+            pr.filter = to_filter(main.filter);
+            auto wrap = to_wrap(main.wrap, "pass." + pass.alias + ".wrap");
+            if (!wrap.ok()) return wrap.error();
+            pr.wrap = wrap.value();
+            for (size_t k = 1; k < pass.inputs.size(); ++k) {
+                auto w = to_wrap(pass.inputs[k].wrap, "pass." + pass.alias + ".textures." + pass.inputs[k].binding);
+                if (!w.ok()) return w.error();
+                pr.textures.push_back({pass.inputs[k].binding, resolve(pass.inputs[k].from), to_filter(pass.inputs[k].filter), w.value()});
+            }
+            pr.time = frame / preset.scene.fps;
+            pr.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
+            pr.overrides = r.overrides;
+            if (last) {  // the display: the screen's rectangle over opaque black
+                pr.width = r.width;
+                pr.height = r.height;
+                if (screen.width != r.width || screen.height != r.height) {
+                    pr.viewport = {screen.x, screen.y, screen.width, screen.height};
+                    pr.clear_color = {0, 0, 0, 1};
+                }
+                pr.format = r.format;
+            } else {
+                pr.width = sizes[i].width;
+                pr.height = sizes[i].height;
+                pr.format = output_format(pass.format);
+            }
+            auto image = render_pass(pr);
+            if (!image.ok()) return image.error();
+            current[i] = std::move(image.value());
+        }
+        if (std::find(r.frames.begin(), r.frames.end(), frame) != r.frames.end()) kept[frame] = current.back();
+        if (stateful) {
+            previous = std::move(current);
+            history.push_front(original.value());
+            while (static_cast<int>(history.size()) > preset.history_depth()) history.pop_back();
+        }
+    }
+    std::vector<Image> out;
+    for (int f : r.frames) out.push_back(kept.at(f));
+    return out;
+}
+
+}  // namespace crtforge

@@ -1,0 +1,21 @@
+// The pipeline host validation runs a scene with: frame by frame, every pass through a target's
+// consumer (render_pass), with the inputs the scene model gives each pass. Written apart from the
+// reference renderer's own loop, so the two check each other; the Godot 3 consumer runs the
+// exported Godot scene instead, a third host.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "crtforge/validate/target_render.hpp"
+
+namespace crtforge {
+
+using PassRenderer = std::function<Result<Image>(const TargetRenderRequest& pass)>;
+
+Result<std::vector<Image>> run_scene(const SceneRenderRequest& request, const PassRenderer& render_pass);
+
+// A generated or file LUT's image (8-bit texels as floats).
+Result<Image> scene_lut_image(const LutSpec& lut, const std::map<std::string, Image>& file_luts);
+
+}  // namespace crtforge
