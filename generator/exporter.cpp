@@ -134,30 +134,6 @@ std::optional<TargetOutput> deserialize(std::string_view in) {
     return out;
 }
 
-// A preset's LUT files: generated ones as PNG, file ones copied as they are.
-Result<std::map<std::string, std::string>> export_luts(const Preset& preset) {
-    std::map<std::string, std::string> files;
-    for (const LutSpec& lut : preset.luts) {
-        if (!lut.generator.empty()) {
-            auto image = generate_lut(lut.generator, lut.params);
-            if (!image.ok()) {
-                Diagnostic d = image.error();
-                d.file = lut.where.file;
-                d.line = lut.where.line;
-                d.field = "lut." + lut.name;
-                return d;
-            }
-            files[lut_export_path(preset, lut)] = encode_png(image.value());
-            continue;
-        }
-        auto data = read_text_file(lut_file_path(lut));
-        if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
-                                          "lut." + lut.name + ".file");
-        files[lut_export_path(preset, lut)] = std::move(data.value());
-    }
-    return files;
-}
-
 // Everything besides the SPIR-V that a target may print: Godot files carry the preset's name, doc,
 // filter and every uniform's default, and two presets can share one SPIR-V module.
 std::string variant_fingerprint(const Variant& v) {
@@ -238,6 +214,49 @@ std::string lut_export_path(const Preset& preset, const LutSpec& lut) {
     return "luts/" + preset.name + "." + lut.name + ext;
 }
 
+Result<std::map<std::string, std::string>> lut_files(const Preset& preset) {
+    std::map<std::string, std::string> files;
+    for (const LutSpec& lut : preset.luts) {
+        if (!lut.generator.empty()) {
+            auto image = generate_lut(lut.generator, lut.params);
+            if (!image.ok()) {
+                Diagnostic d = image.error();
+                d.file = lut.where.file;
+                d.line = lut.where.line;
+                d.field = "lut." + lut.name;
+                return d;
+            }
+            files[lut.name] = encode_png(image.value());
+            continue;
+        }
+        auto data = read_text_file(lut_file_path(lut));
+        if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
+                                          "lut." + lut.name + ".file");
+        files[lut.name] = std::move(data.value());
+    }
+    return files;
+}
+
+Result<std::vector<OutputFile>> generate_target_scene(TargetId target, const Preset& preset,
+                                                      const std::vector<CompiledVariant>& passes,
+                                                      const std::vector<TargetOutput>& outputs,
+                                                      const std::map<std::string, std::string>& luts) {
+    const TargetInfo& info = target_info(target);
+    if (!info.generate_scene) return std::vector<OutputFile>{};
+    SceneTargetInput in;
+    in.preset = &preset;
+    for (const CompiledVariant& pass : passes) in.passes.push_back(&pass.variant);
+    for (const TargetOutput& out : outputs) in.outputs.push_back(&out);
+    in.lut_files = luts;
+    auto files = info.generate_scene(in);
+    if (!files.ok()) {
+        Diagnostic d = files.error();
+        d.message = std::string("target ") + info.name + " scene: " + d.message;
+        return d;
+    }
+    return files;
+}
+
 Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequest& request, const Cache& cache) {
     std::vector<const Preset*> presets;
     if (request.presets.empty()) {
@@ -280,13 +299,14 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
             po.error = compiled.error();
             return;
         }
-        auto luts = export_luts(*preset);
+        auto luts = lut_files(*preset);
         if (!luts.ok()) {
             po.error = luts.error();
             return;
         }
-        po.files = std::move(luts.value());
+        for (const LutSpec& lut : preset->luts) po.files[lut_export_path(*preset, lut)] = luts.value().at(lut.name);
         po.entry = detail::preset_manifest(*preset, compiled.value());
+        std::map<TargetId, std::vector<TargetOutput>> per_target;
         for (size_t pass = 0; pass < compiled.value().size(); ++pass) {
             const CompiledVariant& variant = compiled.value()[pass];
             json files = json::object();
@@ -307,8 +327,27 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
                     po.files[path] = f.data;
                 }
                 files[target_info(target).name] = detail::target_manifest(te);
+                per_target[target].push_back(std::move(out.value()));
             }
             po.entry["passes"][pass]["targets"] = std::move(files);
+        }
+        // Whole-scene files (Godot's .tscn), after every pass of every target.
+        for (TargetId target : targets) {
+            auto scene = generate_target_scene(target, *preset, compiled.value(), per_target[target], luts.value());
+            if (!scene.ok()) {
+                Diagnostic d = scene.error();
+                d.message = "preset " + preset->name + ", " + d.message;
+                po.error = d;
+                return;
+            }
+            if (scene.value().empty()) continue;
+            json roles = json::object();
+            for (const OutputFile& f : scene.value()) {
+                const std::string path = std::string(target_info(target).name) + "/" + f.path;
+                roles[f.manifest_role()] = path;
+                po.files[path] = f.data;
+            }
+            po.entry["scene"]["targets"][target_info(target).name] = std::move(roles);
         }
     };
     std::atomic<size_t> next{0};

@@ -7,6 +7,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +15,8 @@
 #include <sstream>
 #include <string>
 
+#include "crtforge/exporter.hpp"
+#include "crtforge/validate/golden.hpp"
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/validate/target_render.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -25,6 +28,9 @@ using namespace crtforge;
 namespace fs = std::filesystem;
 
 constexpr int kWidth = 160, kHeight = 120;
+// Scenes show the NES-sized moving sprite at twice its size: nearest samples never land on a texel
+// edge (where implementations may pick either texel).
+constexpr int kSceneWidth = 2 * kPixelArtWidth, kSceneHeight = 2 * kPixelArtHeight;
 constexpr double kTime = 0.5;
 constexpr double kTolerance = 0.004;  // the project's RMSE tolerance
 
@@ -41,12 +47,6 @@ std::string last_line(std::string text) {
     return nl == std::string::npos ? text : text.substr(nl + 1);
 }
 
-void write_raw(const std::string& path, const Image& image) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(image.rgba.data()), static_cast<std::streamsize>(image.rgba.size() * sizeof(float)));
-    REQUIRE(out.good());
-}
-
 Image read_raw(const std::string& path, int width, int height) {
     const std::string bytes = slurp(path);
     Image image = Image::make(width, height);
@@ -55,18 +55,24 @@ Image read_raw(const std::string& path, int width, int height) {
     return image;
 }
 
-// node examples/webgpu/check.mjs ...; fails the test with check.mjs's one-line error.
-void run_check(const test::TempDir& tmp, const std::string& export_dir, const std::string& preset, const Image& input,
-               const std::string& output) {
+// node examples/webgpu/check.mjs ...; fails the test with check.mjs's one-line error. Several
+// inputs are the original at each frame of `frames` (written one after the other).
+void run_check(const test::TempDir& tmp, const std::string& export_dir, const std::string& preset, const std::vector<Image>& inputs,
+               const std::string& output, const std::string& extra, int width = kWidth, int height = kHeight) {
     const std::string input_path = tmp / (preset + "-input.raw");
-    write_raw(input_path, input);
+    {
+        std::ofstream out(input_path, std::ios::binary | std::ios::trunc);
+        for (const Image& input : inputs)
+            out.write(reinterpret_cast<const char*>(input.rgba.data()), static_cast<std::streamsize>(input.rgba.size() * sizeof(float)));
+        REQUIRE(out.good());
+    }
+    const Image& input = inputs.front();
     const std::string log = tmp / (preset + "-check.log"), err = tmp / (preset + "-check.err");
     const std::string cmd = "node '" + std::string(CRTFORGE_SOURCE_DIR) + "/examples/webgpu/check.mjs'" +
                             " --export '" + export_dir + "' --preset '" + preset + "' --input '" + input_path + "'" +
                             " --input-width " + std::to_string(input.width) + " --input-height " + std::to_string(input.height) +
-                            " --width " + std::to_string(kWidth) + " --height " + std::to_string(kHeight) +
-                            " --time " + std::to_string(kTime) + " --output '" + output + "'" +
-                            " >'" + log + "' 2>'" + err + "' </dev/null";
+                            " --width " + std::to_string(width) + " --height " + std::to_string(height) + extra +
+                            " --output '" + output + "'" + " >'" + log + "' 2>'" + err + "' </dev/null";
     const int status = std::system(cmd.c_str());
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     INFO("check.mjs: " << last_line(slurp(err)));  // dawn.node's start-up noise comes first
@@ -112,7 +118,7 @@ TEST_CASE("The WebGPU example module renders exported presets like Vulkan", "[wg
     for (const std::string preset : {"quiet-frame", "classic", "crt-shadow-mask"}) {
         SECTION(preset) {
             const std::string output = tmp / (preset + "-webgpu.raw");
-            run_check(tmp, export_dir, preset, input.value(), output);
+            run_check(tmp, export_dir, preset, {input.value()}, output, " --time " + std::to_string(kTime));
             const Image webgpu = read_raw(output, kWidth, kHeight);
             const Image vulkan = vulkan_render(preset, input.value());
             auto metrics = compare_images(webgpu, vulkan);
@@ -121,6 +127,66 @@ TEST_CASE("The WebGPU example module renders exported presets like Vulkan", "[wg
             WARN(preset << ": RMSE " << m.rmse << ", max |diff| " << m.max_abs << " at (" << m.worst_x << ", "
                         << m.worst_y << "), PSNR " << m.psnr << " dB");
             CHECK(m.rmse <= kTolerance);
+        }
+    }
+}
+
+TEST_CASE("The WebGPU example runs whole scenes (passes, feedback, LUTs) like Vulkan", "[wgsl][example][scene]") {
+    const fs::path webgpu_package = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules/webgpu/package.json";
+    INFO("npm package 'webgpu' missing: run scripts/setup.sh");
+    REQUIRE(fs::exists(webgpu_package));
+
+    test::TempDir tmp;
+    const std::string export_dir = tmp / "export";
+    const std::vector<std::string> presets = {"super-win", "atari-chain", "atari-ntsc"};
+    std::string args;
+    for (const std::string& p : presets) args += " --preset " + p;
+    const auto exported = test::run_crtforge("export --target wgsl --out '" + export_dir + "'" + args);
+    INFO(exported.err);
+    REQUIRE(exported.exit_code == 0);
+
+    // A sprite crossing the NES-sized picture: super-win's trails read the previous frame.
+    const std::vector<int> frames = {0, 1, 2, 3, 4};
+    std::vector<Image> inputs;
+    for (int f : frames) {
+        auto input = make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, f);
+        REQUIRE(input.ok());
+        inputs.push_back(std::move(input.value()));
+    }
+    TargetRenderer renderer;
+    const Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
+    for (const std::string& name : presets) {
+        SECTION(name) {
+            const std::string prefix = tmp / (name + "-frame-");
+            run_check(tmp, export_dir, name, inputs, prefix, " --frames 0,1,2,3,4 --capture 1,4", kSceneWidth, kSceneHeight);
+            const Preset* preset = test::shipped_library().find_preset(name);
+            REQUIRE(preset != nullptr);
+            auto compiled = compile_scene(test::shipped_library(), *preset, {}, Cache());
+            REQUIRE(compiled.ok());
+            SceneRenderRequest r;
+            r.preset = preset;
+            r.passes = &compiled.value();
+            r.source = [&inputs](int frame) -> Result<Image> { return inputs.at(static_cast<size_t>(frame)); };
+            r.width = kSceneWidth;
+            r.height = kSceneHeight;
+            r.frames = {1, 4};
+            auto vulkan = renderer.render_scene(r);
+            INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
+            REQUIRE(vulkan.ok());
+            for (size_t i = 0; i < r.frames.size(); ++i) {
+                const Image webgpu = read_raw(prefix + std::to_string(r.frames[i]) + ".raw", kSceneWidth, kSceneHeight);
+                auto metrics = compare_images(webgpu, vulkan.value()[i]);
+                REQUIRE(metrics.ok());
+                const ImageMetrics& m = metrics.value();
+                WARN(name << " frame " << r.frames[i] << ": RMSE " << m.rmse << ", max |diff| " << m.max_abs << " at (" << m.worst_x
+                          << ", " << m.worst_y << ")");
+                Image golden = vulkan.value()[i];  // judged as a golden: what a display shows, 0..1
+                for (float& v : golden.rgba) v = std::clamp(v, 0.0f, 1.0f);
+                auto verdict = judge(webgpu, golden, tolerance);
+                REQUIRE(verdict.ok());
+                INFO(verdict.value().reason);
+                CHECK(verdict.value().passed);
+            }
         }
     }
 }

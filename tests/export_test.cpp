@@ -24,9 +24,10 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     CHECK(first.value().files == warm.value().files);
     CHECK(cache.hits() > 0);
     // Per pass: 6 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module;
-    // each preset's LUTs, one README per Godot addon, the manifest.
-    size_t expected = 2 + 1;
-    for (const Preset& p : lib.presets()) expected += p.passes.size() * (6 * 2 + 2 * 3 + 1) + p.luts.size();
+    // per preset: its LUTs, and per Godot target its scene and a copy of the LUTs; one README and
+    // one pipeline script per Godot addon, the manifest.
+    size_t expected = 2 + 2 + 1;
+    for (const Preset& p : lib.presets()) expected += p.passes.size() * (6 * 2 + 2 * 3 + 1) + p.luts.size() + 2 * (1 + p.luts.size());
     CHECK(first.value().files.size() == expected);
 }
 

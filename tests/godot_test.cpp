@@ -105,6 +105,9 @@ TEST_CASE("Godot 3 and Godot 4 outputs differ only where the dialects differ", "
                 line = std::regex_replace(line, std::regex("// Godot 3 canvas_item"), "// Godot 4 canvas_item");
                 // Godot 3 sets a texture's filter and repeat on the texture, Godot 4 in the uniform's hints.
                 line = std::regex_replace(line, std::regex(R"( \(set its filter and repeat flags on the texture\)$)"), "");
+                // Godot 3's for loops need an increment: a zero one where SPIR-V steps inside the body.
+                line = std::regex_replace(line, std::regex(R"(for \(int crtforge_loop\d+ = 0; ([^;]*); crtforge_loop\d+ \+= 0\))"), "for (; $1; )");
+                line = std::regex_replace(line, std::regex(R"(for \(((?:int|uint|float) (\w+) = [^;]*); ([^;]*); \2 \+= 0(?:\.0|u)?\))"), "for ($1; $3; )");
                 normalised.push_back(line);
             }
             // Godot 4 declares the screen texture; Godot 3 has it built in.

@@ -1,22 +1,29 @@
-// Renders one exported preset through crt-webgpu.mjs with Dawn (dawn.node from the npm package
-// `webgpu` in tools/wgsl-runner) and writes the pixels, so a test can compare them with another
-// renderer. Proves that the manifest alone is enough to drive the exported WGSL.
+// Renders one exported preset — any number of passes, over a sequence of frames — through
+// crt-webgpu.mjs's createCrtScene with Dawn (dawn.node from the npm package `webgpu` in
+// tools/wgsl-runner) and writes the pixels, so a test can compare them with another renderer.
+// Proves that the manifest (and the LUT files) alone are enough to drive the exported WGSL.
 //
 //   node examples/webgpu/check.mjs --export DIR --preset NAME \
 //        --input IN.raw --input-width W --input-height H \
-//        --width W --height H --output OUT.raw [--time SECONDS] [--set name=value ...]
+//        --width W --height H --output OUT [--frames 0,1,...] [--capture 1,9] [--time SECONDS]
+//        [--fit stretch|aspect|integer] [--set name=value ...]
 //
-// RAW = little-endian float32 RGBA, rows top first. The input is uploaded as rgba16float for
-// linear presets (rgba32float is not filterable on Dawn's GLES backend) and rgba32float for
-// nearest ones; the target is rgba16float. Exit 0 on success; otherwise one line on stderr and
-// exit 1 (bad arguments, unreadable files, no adapter, any Dawn validation/internal error).
+// RAW = little-endian float32 RGBA, rows top first. IN.raw holds one picture, or one per entry of
+// --frames (the original at each frame drawn, in order). --frames defaults to 0; --capture (the
+// frames written, default: the last drawn) writes OUT<frame>.raw each, or OUT itself when one
+// frame is drawn and --capture is not given. --time pins every frame's time (default frame / fps).
+// The input is uploaded as rgba16float when a pass filters the original linearly (rgba32float is
+// not filterable on Dawn's GLES backend) and rgba32float otherwise; the target is rgba16float.
+// Exit 0 on success; otherwise one line on stderr and exit 1 (bad arguments, unreadable files, no
+// adapter, any Dawn validation/internal error).
 //
 // dawn.node prints its own noise on stdout; nothing here relies on stdout.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { createCrtPass } from './crt-webgpu.mjs';
+import { inflateSync } from 'node:zlib';
+import { createCrtScene } from './crt-webgpu.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -26,14 +33,23 @@ function fail(message) {
   process.exit(1);
 }
 
+function frameList(flag, text) {
+  const frames = String(text).split(',').map(Number);
+  if (!frames.length || !frames.every((f) => Number.isInteger(f) && f >= 0)) fail(`${flag} must be comma-separated frame numbers, got '${text}'`);
+  return frames;
+}
+
 function parseArgs(argv) {
-  const args = { time: 0, set: [] };
+  const args = { time: undefined, set: [], frames: [0], capture: null, fit: undefined };
   const names = { '--export': 'export', '--preset': 'preset', '--input': 'input', '--input-width': 'inputWidth',
-    '--input-height': 'inputHeight', '--width': 'width', '--height': 'height', '--output': 'output', '--time': 'time' };
+    '--input-height': 'inputHeight', '--width': 'width', '--height': 'height', '--output': 'output', '--time': 'time',
+    '--fit': 'fit' };
   for (let i = 0; i < argv.length; i += 2) {
     const flag = argv[i], value = argv[i + 1];
     if (value === undefined) fail(`${flag} needs a value`);
     if (flag === '--set') args.set.push(value);
+    else if (flag === '--frames') args.frames = frameList(flag, value);
+    else if (flag === '--capture') args.capture = frameList(flag, value);
     else if (names[flag]) args[names[flag]] = value;
     else fail(`unknown argument '${flag}'`);
   }
@@ -44,9 +60,57 @@ function parseArgs(argv) {
     if (!Number.isInteger(n) || n < 1 || n > 16384) fail(`--${key} must be an integer 1..16384, got '${args[key]}'`);
     args[key] = n;
   }
-  args.time = Number(args.time);
-  if (!Number.isFinite(args.time)) fail('--time must be a number');
+  if (args.time !== undefined) {
+    args.time = Number(args.time);
+    if (!Number.isFinite(args.time)) fail('--time must be a number');
+  }
+  if (args.fit !== undefined && !['stretch', 'aspect', 'integer'].includes(args.fit)) fail(`--fit must be stretch, aspect or integer, got '${args.fit}'`);
+  for (const f of args.capture ?? []) if (!args.frames.includes(f)) fail(`--capture frame ${f} is not in --frames`);
   return args;
+}
+
+// The RGBA8 texels of a PNG (8-bit RGBA or RGB, not interlaced: what crtforge writes and most
+// LUT files are), with the filters of PNG's specification undone.
+function decodePng(bytes, name) {
+  const u8 = new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.length);
+  const be32 = (at) => ((u8[at] << 24) | (u8[at + 1] << 16) | (u8[at + 2] << 8) | u8[at + 3]) >>> 0;
+  if (be32(0) !== 0x89504e47) fail(`${name} is not a PNG file`);
+  let width = 0, height = 0, channels = 0;
+  const data = [];
+  for (let at = 8; at + 8 <= u8.length;) {
+    const length = be32(at), type = String.fromCharCode(...u8.subarray(at + 4, at + 8)), body = u8.subarray(at + 8, at + 8 + length);
+    if (type === 'IHDR') {
+      width = be32(at + 8);
+      height = be32(at + 12);
+      const depth = body[8], colour = body[9], interlace = body[12];
+      channels = colour === 6 ? 4 : colour === 2 ? 3 : 0;
+      if (depth !== 8 || !channels || interlace) fail(`${name}: only 8-bit RGB/RGBA non-interlaced PNGs are read here`);
+    } else if (type === 'IDAT') data.push(body);
+    else if (type === 'IEND') break;
+    at += 12 + length;
+  }
+  const raw = inflateSync(Buffer.concat(data.map((d) => Buffer.from(d))));
+  const stride = width * channels, out = new Uint8Array(width * height * 4);
+  let prior = new Uint8Array(stride);
+  for (let y = 0; y < height; ++y) {
+    const filter = raw[y * (stride + 1)], line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1)), row = new Uint8Array(stride);
+    for (let i = 0; i < stride; ++i) {
+      const a = i >= channels ? row[i - channels] : 0, b = prior[i], c = i >= channels ? prior[i - channels] : 0;
+      let p = 0;
+      if (filter === 1) p = a;
+      else if (filter === 2) p = b;
+      else if (filter === 3) p = (a + b) >> 1;
+      else if (filter === 4) {
+        const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
+        p = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+      }
+      row[i] = (line[i] + p) & 0xff;
+    }
+    for (let x = 0; x < width; ++x)
+      for (let k = 0; k < 4; ++k) out[(y * width + x) * 4 + k] = k < channels ? row[x * channels + k] : 255;
+    prior = row;
+  }
+  return { width, height, data: out };
 }
 
 // float32 -> IEEE half bits, round to nearest even (what a GPU upload of the same values would do).
@@ -80,8 +144,9 @@ function fromHalf(h) {
 
 const args = parseArgs(process.argv.slice(2));
 
-// ---- the export: manifest + WGSL ----
-let manifest, preset, wgsl;
+// ---- the export: manifest, each pass's WGSL, the LUTs ----
+let manifest, preset;
+const wgsl = {}, lutImages = {};
 try {
   manifest = JSON.parse(readFileSync(path.join(args.export, 'manifest.json'), 'utf8'));
 } catch (e) {
@@ -89,22 +154,33 @@ try {
 }
 preset = manifest.presets?.[args.preset];
 if (!preset) fail(`preset '${args.preset}' is not in the manifest (${Object.keys(manifest.presets ?? {}).join(', ')})`);
-if (preset.passes?.length !== 1) fail(`preset '${args.preset}' is a scene of ${preset.passes?.length} passes; this check runs single-pass presets`);
-preset = preset.passes[0];
-if (!preset.targets?.wgsl) fail(`preset '${args.preset}' has no wgsl target in the manifest (export with --target wgsl)`);
-try {
-  wgsl = readFileSync(path.join(args.export, preset.targets.wgsl.shader), 'utf8');
-} catch (e) {
-  fail(`cannot read the WGSL: ${e.message}`);
+for (const pass of preset.passes ?? []) {
+  if (!pass.targets?.wgsl) fail(`preset '${args.preset}' has no wgsl target in the manifest (export with --target wgsl)`);
+  try {
+    wgsl[pass.alias] = readFileSync(path.join(args.export, pass.targets.wgsl.shader), 'utf8');
+  } catch (e) {
+    fail(`cannot read the WGSL of pass ${pass.alias}: ${e.message}`);
+  }
+}
+for (const [name, lut] of Object.entries(preset.luts ?? {})) {
+  let bytes;
+  try {
+    bytes = readFileSync(path.join(args.export, lut.file));
+  } catch (e) {
+    fail(`cannot read LUT ${name}: ${e.message}`);
+  }
+  lutImages[name] = decodePng(bytes, lut.file);
 }
 
-// ---- the input image ----
-let pixels;
+// ---- the input pictures: one, or one per frame drawn ----
+let pictures = [];
 try {
   const bytes = readFileSync(args.input);
-  const expected = args.inputWidth * args.inputHeight * 16;
-  if (bytes.length !== expected) fail(`${args.input} holds ${bytes.length} bytes; ${args.inputWidth}x${args.inputHeight} RGBA float32 needs ${expected}`);
-  pixels = new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length));
+  const one = args.inputWidth * args.inputHeight * 16;
+  if (bytes.length !== one && bytes.length !== one * args.frames.length)
+    fail(`${args.input} holds ${bytes.length} bytes; ${args.inputWidth}x${args.inputHeight} RGBA float32 needs ${one} (or ${one * args.frames.length} for ${args.frames.length} frames)`);
+  const all = new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length));
+  for (let i = 0; i < bytes.length / one; ++i) pictures.push(all.subarray(i * one / 4, (i + 1) * one / 4));
 } catch (e) {
   fail(`cannot read the input: ${e.message}`);
 }
@@ -146,7 +222,10 @@ try {
   }
   const error = failure ?? scoped[0] ?? uncaptured[0];
   if (error) throw new Error(error);
-  writeFileSync(args.output, new Uint8Array(await readBack(result)));
+  for (const { frame, buffer } of result) {
+    const single = args.capture === null && args.frames.length === 1;
+    writeFileSync(single ? args.output : `${args.output}${frame}.raw`, new Uint8Array(buffer));
+  }
 } catch (e) {
   process.stderr.write(`check.mjs: ${args.preset}: ${String(e.message).replace(/\s*\n\s*/g, ' ').trim()}\n`);
   exitCode = 1;
@@ -155,40 +234,55 @@ device.destroy();
 process.exit(exitCode);  // dawn.node keeps the event loop alive on its own
 
 async function render() {
-  const linear = preset.textures?.[0]?.filter !== 'nearest';
+  const linear = preset.passes.some((p) => p.textures.some((t) => /^original(@\d+)?$/.test(t.from) && t.filter !== 'nearest'));
   const inputFormat = linear ? 'rgba16float' : 'rgba32float';
   const source = device.createTexture({
     size: [args.inputWidth, args.inputHeight], format: inputFormat,
     usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
   });
-  let data = pixels, bytesPerPixel = 16;
-  if (linear) {
-    const f32 = new Float32Array(1), u32 = new Uint32Array(f32.buffer);
-    data = Uint16Array.from(pixels, (x) => toHalf(f32, u32, x));
-    bytesPerPixel = 8;
+  const f32 = new Float32Array(1), u32 = new Uint32Array(f32.buffer);
+  const upload = (pixels) => {
+    const data = linear ? Uint16Array.from(pixels, (x) => toHalf(f32, u32, x)) : pixels;
+    device.queue.writeTexture({ texture: source }, data, { bytesPerRow: args.inputWidth * (linear ? 8 : 16) }, [args.inputWidth, args.inputHeight]);
+  };
+  const luts = {};
+  for (const [name, image] of Object.entries(lutImages)) {
+    luts[name] = device.createTexture({ size: [image.width, image.height], format: 'rgba8unorm', usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+    device.queue.writeTexture({ texture: luts[name] }, image.data, { bytesPerRow: image.width * 4 }, [image.width, image.height]);
   }
-  device.queue.writeTexture({ texture: source }, data, { bytesPerRow: args.inputWidth * bytesPerPixel }, [args.inputWidth, args.inputHeight]);
 
   const target = device.createTexture({
     size: [args.width, args.height], format: 'rgba16float',
     usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC,
   });
-  const crt = createCrtPass(device, { wgsl, preset, format: 'rgba16float' });
-  const compileError = (await crt.compilationInfo()).find((m) => m.type === 'error');
-  if (compileError) throw new Error(`WGSL ${compileError.lineNum}:${compileError.linePos}: ${compileError.message}`);
+  const crt = createCrtScene(device, { preset, wgsl, luts, format: 'rgba16float' });
+  for (const pass of crt.passes) {
+    const compileError = (await pass.compilationInfo()).find((m) => m.type === 'error');
+    if (compileError) throw new Error(`WGSL of pass ${pass.alias} ${compileError.lineNum}:${compileError.linePos}: ${compileError.message}`);
+  }
   for (const assignment of args.set) {
     const [name, text] = assignment.split('=');
     crt.setParam(name, text.includes(',') ? text.split(',').map(Number) : Number(text));
   }
 
+  const capture = args.capture ?? [args.frames[args.frames.length - 1]];
   const bytesPerRow = Math.ceil((args.width * 8) / 256) * 256;
-  const readback = device.createBuffer({ size: bytesPerRow * args.height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
-  const encoder = device.createCommandEncoder();
-  crt.encode(encoder, { source, target: target.createView(), width: args.width, height: args.height, time: args.time });
-  encoder.copyTextureToBuffer({ texture: target }, { buffer: readback, bytesPerRow, rowsPerImage: args.height }, [args.width, args.height]);
-  device.queue.submit([encoder.finish()]);
-  await device.queue.onSubmittedWorkDone();
-  return { readback, bytesPerRow };
+  const out = [];
+  for (let i = 0; i < args.frames.length; ++i) {
+    const frame = args.frames[i];
+    upload(pictures[Math.min(i, pictures.length - 1)]);
+    const encoder = device.createCommandEncoder();
+    crt.encode(encoder, { source, target: target.createView(), width: args.width, height: args.height, frame, time: args.time, fit: args.fit });
+    let readback = null;
+    if (capture.includes(frame)) {
+      readback = device.createBuffer({ size: bytesPerRow * args.height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+      encoder.copyTextureToBuffer({ texture: target }, { buffer: readback, bytesPerRow, rowsPerImage: args.height }, [args.width, args.height]);
+    }
+    device.queue.submit([encoder.finish()]);
+    await device.queue.onSubmittedWorkDone();
+    if (readback) out.push({ frame, buffer: await readBack({ readback, bytesPerRow }) });
+  }
+  return out;
 }
 
 async function readBack({ readback, bytesPerRow }) {

@@ -60,6 +60,16 @@ std::string export_path(const std::string& stem, TargetId target, const std::str
 // A file LUT's path: as written when absolute, else relative to the preset file's folder.
 std::string lut_file_path(const LutSpec& lut);
 
+// A preset's LUT files by LUT name: generated ones as PNG, file ones as they are.
+Result<std::map<std::string, std::string>> lut_files(const Preset& preset);
+
+// The target's whole-scene files for a preset (TargetInfo::generate_scene; none when it has no
+// scene generator), from every pass's variant and emitted files. Paths are under the target's folder.
+Result<std::vector<OutputFile>> generate_target_scene(TargetId target, const Preset& preset,
+                                                      const std::vector<CompiledVariant>& passes,
+                                                      const std::vector<TargetOutput>& outputs,
+                                                      const std::map<std::string, std::string>& luts);
+
 // Relative path of a preset's LUT file: "luts/<preset>.<lut>.png" (or the source file's extension).
 std::string lut_export_path(const Preset& preset, const LutSpec& lut);
 

@@ -2,6 +2,7 @@
 // compiled SPIR-V pair of a variant into the files an engine consumes.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,8 @@ enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60, Godot4
 
 struct TargetInput;
 struct TargetOutput;
+struct SceneTargetInput;
+struct OutputFile;
 
 // Everything crtforge knows about one target, in one record that the exporter, the cache, the CLI
 // and validation all read (no per-target switch anywhere else). Each targets/<lang>/ folder builds
@@ -34,6 +37,9 @@ struct TargetInfo {
     // Names the emitter and its options in cache keys: bump it when the output for the same SPIR-V
     // changes.
     const char* fingerprint;
+    // Files the target writes once per preset, beside each pass's files: a ready-made scene that
+    // runs the whole pipeline (Godot's .tscn). Null: the manifest alone wires the passes.
+    Result<std::vector<OutputFile>> (*generate_scene)(const SceneTargetInput& input) = nullptr;
 };
 
 const std::vector<TargetInfo>& all_targets();
@@ -76,6 +82,15 @@ struct TargetOutput {
     // Extra keys for this target's manifest entry, as a JSON object ("" = none): e.g. WGSL's
     // entry points, bind-group layout and uniform-buffer byte layout.
     std::string manifest_json;
+};
+
+// What a target's scene generator gets: the preset, and per pass its variant and this target's
+// files (as generate() made them, paths included), plus the LUT files the export writes.
+struct SceneTargetInput {
+    const Preset* preset = nullptr;
+    std::vector<const Variant*> passes;
+    std::vector<const TargetOutput*> outputs;
+    std::map<std::string, std::string> lut_files;  // LUT name -> file bytes (PNG)
 };
 
 // target_info(id).generate(input), with the target's name on any error.

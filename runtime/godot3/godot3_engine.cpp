@@ -361,50 +361,30 @@ Result<Image> read_output(const fs::path& path, int width, int height) {
     return image;
 }
 
-}  // namespace
-
-Result<Image> render_godot3(const Godot3Job& job) {
-    static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
-    if (auto s = check_job(job); !s.ok()) return s.error();
-    auto params = params_json(job.params);
-    if (!params.ok()) return params.error();
-
+// The part of a render every mode shares: a private runner project in `dir` (plus the job's own
+// files), an Xvfb, Godot run on it with `user_args`, and its output turned into diagnostics.
+Status run_runner(const fs::path& dir, const std::map<std::string, std::string>& project_files,
+                  const std::vector<std::string>& user_args, int timeout_seconds) {
     const std::string godot = find_on_path("godot3");
     const std::string xvfb = find_on_path("Xvfb");
     if (godot.empty() || xvfb.empty())
         return make_error(fmt::format("Godot 3 rendering needs {} ('{}' is not on PATH)", kPackages,
                                       godot.empty() ? "godot3" : "Xvfb"));
-
-    auto scratch = ScratchDir::create();
-    if (!scratch.ok()) return scratch.error();
-    const fs::path dir = scratch.value().path();
     const fs::path project = dir / "project";
-    if (auto s = copy_runner(data_path("tools/godot3-runner"), project); !s.ok()) return s.error();
-
-    std::vector<std::string> user_args = {
-        "--shader=" + (dir / "shader.gdshader").string(),
-        "--width=" + std::to_string(job.width),
-        "--height=" + std::to_string(job.height),
-        std::string("--filter=") + (job.filter == SamplerFilter::Linear ? "linear" : "nearest"),
-        "--params=" + (dir / "params.json").string(),
-        "--frames=" + std::to_string(job.frames),
-        "--output=" + (dir / "output.raw").string(),
-    };
-    if (auto s = write_text(dir / "shader.gdshader", job.shader_code); !s.ok()) return s.error();
-    if (auto s = write_text(dir / "params.json", params.value()); !s.ok()) return s.error();
-    if (!job.input.empty()) {
-        if (auto s = write_file(dir / "input.raw", job.input.rgba.data(), job.input.rgba.size() * sizeof(float)); !s.ok())
-            return s.error();
-        user_args.push_back("--input=" + (dir / "input.raw").string());
-        user_args.push_back("--input-width=" + std::to_string(job.input.width));
-        user_args.push_back("--input-height=" + std::to_string(job.input.height));
+    if (auto s = copy_runner(data_path("tools/godot3-runner"), project); !s.ok()) return s;
+    for (const auto& [path, data] : project_files) {
+        const fs::path target = project / path;
+        std::error_code ec;
+        fs::create_directories(target.parent_path(), ec);
+        if (ec) return make_error(fmt::format("cannot create '{}': {}", target.parent_path().string(), ec.message()));
+        if (auto s = write_text(target, data); !s.ok()) return s;
     }
 
     auto server = start_xvfb(xvfb, dir);
     if (!server.ok()) return server.error();
 
     Pipe output;
-    if (auto s = open_pipe(output); !s.ok()) return s.error();
+    if (auto s = open_pipe(output); !s.ok()) return s;
     SpawnSpec spec;
     spec.executable = godot;
     spec.args = {"--path", project.string(), "--video-driver", "GLES3", "--audio-driver", "Dummy", "--"};
@@ -419,13 +399,13 @@ Result<Image> render_godot3(const Godot3Job& job) {
     if (!pid.ok()) return pid.error();
     ChildGuard godot_process(pid.value(), SIGKILL);
 
-    const auto deadline = Clock::now() + std::chrono::seconds(job.timeout_seconds);
+    const auto deadline = Clock::now() + std::chrono::seconds(timeout_seconds);
     std::string log;
     bool finished = read_until_eof(output.read, deadline, log);
     std::optional<int> status = finished ? wait_until(pid.value(), deadline) : std::nullopt;
     if (!status) {
         godot_process.stop();
-        return make_validation_error(fmt::format("Godot 3 did not finish within {} s and was killed", job.timeout_seconds));
+        return make_validation_error(fmt::format("Godot 3 did not finish within {} s and was killed", timeout_seconds));
     }
     godot_process.reaped();
     server.value().process->stop();
@@ -444,7 +424,100 @@ Result<Image> render_godot3(const Godot3Job& job) {
         return make_validation_error(fmt::format("Godot 3 {} ({}){}", crashed ? "crashed" : "failed", how,
                                                  message.empty() ? std::string() : ": " + message));
     }
+    // A scene's script error does not stop Godot: any the log shows fails the render.
+    for (const std::string& line : lines)
+        if (trim(line).rfind("SCRIPT ERROR:", 0) == 0)
+            return make_validation_error("Godot 3: " + trim(line) + (message.empty() ? std::string() : " (" + message + ")"));
+    return Ok{};
+}
+
+std::string frame_list(const std::vector<int>& frames) {
+    std::string out;
+    for (int f : frames) out += (out.empty() ? "" : ",") + std::to_string(f);
+    return out;
+}
+
+}  // namespace
+
+Result<Image> render_godot3(const Godot3Job& job) {
+    static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
+    if (auto s = check_job(job); !s.ok()) return s.error();
+    auto params = params_json(job.params);
+    if (!params.ok()) return params.error();
+
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    const fs::path dir = scratch.value().path();
+    std::vector<std::string> user_args = {
+        "--shader=" + (dir / "shader.gdshader").string(),
+        "--width=" + std::to_string(job.width),
+        "--height=" + std::to_string(job.height),
+        std::string("--filter=") + (job.filter == SamplerFilter::Linear ? "linear" : "nearest"),
+        "--params=" + (dir / "params.json").string(),
+        "--frames=" + std::to_string(job.frames),
+        "--output=" + (dir / "output.raw").string(),
+    };
+    if (auto s = write_text(dir / "shader.gdshader", job.shader_code); !s.ok()) return s.error();
+    if (auto s = write_text(dir / "params.json", params.value()); !s.ok()) return s.error();
+    if (!job.input.empty()) {
+        if (auto s = write_file(dir / "input.raw", job.input.rgba.data(), job.input.rgba.size() * sizeof(float)); !s.ok())
+            return s.error();
+        user_args.push_back("--input=" + (dir / "input.raw").string());
+        user_args.push_back("--input-width=" + std::to_string(job.input.width));
+        user_args.push_back("--input-height=" + std::to_string(job.input.height));
+    }
+    if (auto s = run_runner(dir, {}, user_args, job.timeout_seconds); !s.ok()) return s.error();
     return read_output(dir / "output.raw", job.width, job.height);
+}
+
+Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
+    if (job.scene.rfind("res://", 0) != 0) return job_error("scene must be a res:// path", "scene");
+    if (job.width < 2 || job.height < 2 || job.width > kMaxExtent || job.height > kMaxExtent)
+        return job_error(fmt::format("the display must be 2..{} pixels on each side; got {}x{}", kMaxExtent, job.width, job.height), "width");
+    if (job.run.empty() || job.inputs.size() != job.run.size())
+        return job_error("one input picture per frame of run is needed", "inputs");
+    for (const Image& input : job.inputs)
+        if (input.empty() || input.width != job.inputs.front().width || input.height != job.inputs.front().height)
+            return job_error("the input pictures must all have one size", "inputs");
+    for (int f : job.capture)
+        if (std::find(job.run.begin(), job.run.end(), f) == job.run.end())
+            return job_error(fmt::format("captured frame {} is not run", f), "capture");
+    if (!(job.fps > 0)) return job_error("fps must be positive", "fps");
+    auto params = params_json(job.params);
+    if (!params.ok()) return params.error();
+
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    const fs::path dir = scratch.value().path();
+    {
+        std::ofstream inputs(dir / "inputs.raw", std::ios::binary);
+        for (const Image& input : job.inputs)
+            inputs.write(reinterpret_cast<const char*>(input.rgba.data()), static_cast<std::streamsize>(input.rgba.size() * sizeof(float)));
+        if (!inputs) return make_error("cannot write " + (dir / "inputs.raw").string());
+    }
+    if (auto s = write_text(dir / "params.json", params.value()); !s.ok()) return s.error();
+    std::vector<std::string> user_args = {
+        "--scene=" + job.scene,
+        "--width=" + std::to_string(job.width),
+        "--height=" + std::to_string(job.height),
+        "--inputs=" + (dir / "inputs.raw").string(),
+        "--input-width=" + std::to_string(job.inputs.front().width),
+        "--input-height=" + std::to_string(job.inputs.front().height),
+        "--run=" + frame_list(job.run),
+        "--capture=" + frame_list(job.capture),
+        fmt::format("--fps={}", job.fps),
+        "--params=" + (dir / "params.json").string(),
+        "--output=" + (dir / "frame-").string(),
+    };
+    if (!job.fit.empty()) user_args.push_back("--fit=" + job.fit);
+    if (auto s = run_runner(dir, job.project_files, user_args, job.timeout_seconds); !s.ok()) return s.error();
+    std::vector<Image> out;
+    for (int f : job.capture) {
+        auto image = read_output(dir / ("frame-" + std::to_string(f) + ".raw"), job.width, job.height);
+        if (!image.ok()) return image.error();
+        out.push_back(std::move(image.value()));
+    }
+    return out;
 }
 
 std::string godot3_version() {

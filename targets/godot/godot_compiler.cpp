@@ -141,6 +141,36 @@ std::string GodotCompiler::compile_godot() {
     }
     out.append(text, last, std::string::npos);
     if (out.find(kBlockMarker) != std::string::npos) throw spirv_cross::CompilerError("unresolved uniform block access");
+    return options_.godot_version >= 4 ? out : with_loop_increments(out);
+}
+
+std::string GodotCompiler::with_loop_increments(const std::string& text) {
+    // Godot 3's parser wants an expression after a for loop's second ';' ("Expected expression,
+    // found: QUESTION"), which SPIRV-Cross leaves out when the loop steps inside its body. An
+    // increment of zero changes nothing: `x += 0` on the loop's own variable, or on a variable
+    // declared for the purpose when the loop declares none.
+    static const std::regex loop(R"(for \(([^;]*); ([^;]*); \))");
+    static const std::regex declared(R"(^(int|uint|float) (\w+))");
+    std::string out;
+    size_t last = 0;
+    int spare = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), loop); it != std::sregex_iterator(); ++it) {
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        std::string init = (*it)[1].str(), step;
+        std::smatch var;
+        if (std::regex_search(init, var, declared)) {
+            step = var[2].str() + (var[1] == "float" ? " += 0.0" : var[1] == "uint" ? " += 0u" : " += 0");
+        } else if (init.empty()) {
+            const std::string name = "crtforge_loop" + std::to_string(spare++);
+            init = "int " + name + " = 0";
+            step = name + " += 0";
+        } else {
+            throw spirv_cross::CompilerError("a for loop with no increment and an initialiser Godot 3 cannot extend: " + init);
+        }
+        out += "for (" + init + "; " + (*it)[2].str() + "; " + step + ")";
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
     return out;
 }
 

@@ -30,6 +30,7 @@ private:
     void prepare();  // remaps resources onto Godot builtins
     std::string uniform_declaration(const VariantParam& p) const;
     std::string builtin_expression(const std::string& member) const;
+    static std::string with_loop_increments(const std::string& text);  // Godot 3's for-loop syntax
     const Variant& variant_;
     godot::Options options_;
     std::map<std::string, std::string> member_expressions_;  // block member -> Godot expression  // qualified: CompilerGLSL has its own nested Options

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "targets/godot/godot_compiler.hpp"
+#include "targets/godot/godot_scene.hpp"
 
 namespace crtforge::godot {
 
@@ -10,11 +11,8 @@ namespace {
 
 std::string literal(double v) { return fmt::format("{}", v); }
 
-const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
-
 // A ShaderMaterial resource with every runtime param at the preset's value.
 std::string material_resource(const Variant& variant, int version) {
-    const Preset& preset = *variant.preset;
     const std::string shader_path = "res://addons/crtforge/" + variant.file_stem() + shader_extension(version);
     std::string out;
     if (version >= 4) {
@@ -26,17 +24,7 @@ std::string material_resource(const Variant& variant, int version) {
         out += "[ext_resource path=\"" + shader_path + "\" type=\"Shader\" id=1]\n\n";
         out += "[resource]\nshader = ExtResource( 1 )\n";
     }
-    const char* key = version >= 4 ? "shader_parameter/" : "shader_param/";
-    for (const VariantParam* p : variant.uniforms()) {
-        std::string value;
-        if (auto d = std::get_if<double>(&p->value)) value = literal(*d);
-        else if (auto i = std::get_if<int64_t>(&p->value)) value = std::to_string(*i);
-        else if (auto c = std::get_if<Color>(&p->value))
-            value = version >= 4 ? fmt::format("Color({}, {}, {}, 1)", literal((*c)[0]), literal((*c)[1]), literal((*c)[2]))
-                                 : fmt::format("Color( {}, {}, {}, 1 )", literal((*c)[0]), literal((*c)[1]), literal((*c)[2]));
-        else continue;
-        out += key + p->spec->name + " = " + value + "\n";
-    }
+    for (const std::string& line : material_param_lines(variant, version)) out += line + "\n";
     return out;
 }
 
@@ -54,6 +42,24 @@ std::string readme(int version) {
 }
 
 }  // namespace
+
+std::vector<std::string> material_param_lines(const Variant& variant, int version) {
+    std::vector<std::string> lines;
+    const char* key = version >= 4 ? "shader_parameter/" : "shader_param/";
+    for (const VariantParam* p : variant.uniforms()) {
+        std::string value;
+        if (auto d = std::get_if<double>(&p->value)) value = literal(*d);
+        else if (auto i = std::get_if<int64_t>(&p->value)) value = std::to_string(*i);
+        else if (auto c = std::get_if<Color>(&p->value))
+            value = version >= 4 ? fmt::format("Color({}, {}, {}, 1)", literal((*c)[0]), literal((*c)[1]), literal((*c)[2]))
+                                 : fmt::format("Color( {}, {}, {}, 1 )", literal((*c)[0]), literal((*c)[1]), literal((*c)[2]));
+        else continue;
+        lines.push_back(key + p->spec->name + " = " + value);
+    }
+    return lines;
+}
+
+const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
 
 Result<std::string> generate_shader(const TargetInput& input, const Options& options) {
     try {
@@ -89,10 +95,10 @@ std::vector<TargetInfo> records() {
     return {
         {TargetId::Godot4, "godot4", "Godot 4 canvas_item .gdshader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot4-shim", [](const TargetInput& in) { return generate(in, 4); },
-         "godot4/spirv-cross-2021.01.15/v3"},
+         "godot4/spirv-cross-2021.01.15/v3", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
         {TargetId::Godot3, "godot3", "Godot 3 canvas_item .shader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot3", [](const TargetInput& in) { return generate(in, 3); },
-         "godot3/spirv-cross-2021.01.15/v3"},
+         "godot3/spirv-cross-2021.01.15/v4", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
     };
 }
 

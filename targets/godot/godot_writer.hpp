@@ -25,6 +25,13 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
 // files of addons/crtforge/ for one preset.
 Result<TargetOutput> generate(const TargetInput& input, int godot_version);
 
+// The `shader_param/<name> = <value>` lines (shader_parameter/ in Godot 4) that set every
+// runtime param of a ShaderMaterial to the preset's value.
+std::vector<std::string> material_param_lines(const Variant& variant, int godot_version);
+
+// ".gdshader" (Godot 4) or ".shader" (Godot 3).
+const char* shader_extension(int godot_version);
+
 // The godot4 and godot3 records (crtforge/targets.hpp).
 std::vector<TargetInfo> records();
 

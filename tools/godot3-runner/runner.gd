@@ -14,6 +14,14 @@
 #                        vec2 <- [x, y], vec4 <- [x, y, z, w]. A name the shader does not declare
 #                        is an error.
 #   --frames=N           frames rendered before the read-back (default 2)
+# Scene mode, instead of --shader: a crtforge scene exported into this project (res://addons/...):
+#   --scene=res://PATH.tscn   the scene; it fills the W x H viewport and `source` gets the inputs
+#   --inputs=PATH        raw float32 RGBA pictures, IW x IH each, one per frame of --run
+#   --run=0,1,2          the frames drawn, in order (the scene's `frame` is set to each)
+#   --capture=1,2        the frames whose picture is written, to <--output><frame>.raw
+#   --fps=60             the frame rate: a uniform crtforge_validation_time gets frame / fps
+#   --params=PATH        as above, set on every pass that declares the uniform
+#   --fit=aspect         overrides the scene's display fit (stretch, aspect, integer)
 # Output file: 24-byte header, then W*H*4 little-endian float32, RGBA, row 0 = TOP of the picture:
 #   "CRTG3PX1" | u32 width | u32 height | u32 Image.FORMAT_* the viewport gave | u32 0
 # Exit code 0 on success; on failure a one-line "crtforge-godot3-runner: ..." on stderr and a
@@ -216,6 +224,8 @@ func _run():
 	var opts = _parse_args()
 	if typeof(opts) == TYPE_STRING:
 		return _fail(2, opts)
+	if opts.has("scene"):
+		return yield(_run_scene(opts), "completed")
 	for key in opts.keys():
 		if not key in ["shader", "input", "width", "height", "input-width", "input-height", "filter", "params", "output", "frames"]:
 			return _fail(2, "unknown argument '--%s'" % key)
@@ -294,3 +304,131 @@ func _run():
 	if message != "":
 		return _fail(3, message)
 	return 0
+
+
+# ---- scene mode: a crtforge scene (<preset>.tscn) exported into this project ----------------
+
+func _int_list(text):
+	var out = []
+	for part in text.split(",", false):
+		if not part.is_valid_integer() or int(part) < 0:
+			return null
+		out.append(int(part))
+	return out
+
+
+# Every ShaderMaterial of the scene's passes, with the uniform types of its shader.
+func _scene_materials(scene):
+	var out = []
+	for p in scene.passes:
+		var material = scene.get_node(p["alias"] + "/Pass").material
+		out.append([material, _uniform_types(material.shader)])
+	return out
+
+
+func _run_scene(opts):
+	yield(get_tree(), "idle_frame")
+	for key in opts.keys():
+		if not key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "fps", "params", "output", "fit"]:
+			return _fail(2, "unknown argument '--%s'" % key)
+	for key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "output"]:
+		if not opts.has(key):
+			return _fail(2, "missing --%s" % key)
+	var w = _positive_int(opts, "width", true)
+	var h = _positive_int(opts, "height", true)
+	var iw = _positive_int(opts, "input-width", true)
+	var ih = _positive_int(opts, "input-height", true)
+	if w < 2 or h < 2 or iw < 0 or ih < 0:
+		return _fail(2, "--width and --height must be integers in 2..16384, --input-width and --input-height in 1..16384")
+	var run = _int_list(opts["run"])
+	var capture = _int_list(opts["capture"])
+	if run == null or run.empty() or capture == null:
+		return _fail(2, "--run and --capture must be comma-separated frame numbers")
+	var fps = float(opts.get("fps", "60"))
+	if fps <= 0:
+		return _fail(2, "--fps must be positive")
+
+	var packed = load(opts["scene"])
+	if packed == null or not packed is PackedScene:
+		return _fail(3, "cannot load the scene '%s'" % opts["scene"])
+	var scene = packed.instance()
+	if scene == null or scene.get("passes") == null:
+		return _fail(3, "the scene '%s' is not a crtforge scene" % opts["scene"])
+	var materials = []
+
+	# The frames' inputs: one float32 RGBA picture per entry of --run, in that order.
+	var f = File.new()
+	if f.open(opts["inputs"], File.READ) != OK:
+		return _fail(2, "cannot read inputs file '%s'" % opts["inputs"])
+	var picture_bytes = iw * ih * 16
+	if f.get_len() != picture_bytes * run.size():
+		f.close()
+		return _fail(2, "inputs file '%s' has %d bytes, %d pictures of %dx%d need %d" % [opts["inputs"], f.get_len(), run.size(), iw, ih, picture_bytes * run.size()])
+	var image = Image.new()
+	image.create_from_data(iw, ih, false, Image.FORMAT_RGBAF, f.get_buffer(picture_bytes))
+	var source = ImageTexture.new()
+	source.create_from_image(image, 0)
+
+	var viewport = $Viewport
+	$Viewport/Picture.visible = false
+	viewport.size = Vector2(w, h)
+	scene.playing = false
+	if opts.has("fit"):
+		if not opts["fit"] in ["stretch", "aspect", "integer"]:
+			return _fail(2, "--fit must be stretch, aspect or integer")
+		scene.fit = opts["fit"]
+	viewport.add_child(scene)
+	scene.rect_size = Vector2(w, h)
+	scene.source = source
+	materials = _scene_materials(scene)
+	if opts.has("params"):
+		for entry in materials:
+			var message = _apply_scene_params(entry[0], entry[1], opts["params"])
+			if message != "":
+				f.close()
+				return _fail(2, message)
+
+	for i in range(run.size()):
+		var frame = run[i]
+		if i > 0:
+			image.create_from_data(iw, ih, false, Image.FORMAT_RGBAF, f.get_buffer(picture_bytes))
+			source.set_data(image)
+		scene.frame = frame
+		# Godot's TIME is the wall clock: the engine pins it through this uniform instead.
+		for entry in materials:
+			if entry[1].has("crtforge_validation_time"):
+				entry[0].set_shader_param("crtforge_validation_time", frame / fps)
+		yield(VisualServer, "frame_post_draw")
+		if not frame in capture:
+			continue
+		var out = viewport.get_texture().get_data()
+		if out == null or out.is_empty() or out.get_width() != w or out.get_height() != h:
+			f.close()
+			return _fail(3, "the viewport gave no %dx%d picture at frame %d" % [w, h, frame])
+		var source_format = out.get_format()
+		out.flip_y()
+		out.convert(Image.FORMAT_RGBAF)
+		var message = _write_output("%s%d.raw" % [opts["output"], frame], out, source_format)
+		if message != "":
+			f.close()
+			return _fail(3, message)
+	f.close()
+	return 0
+
+
+# The params JSON set on one pass's material: only the uniforms that pass declares.
+func _apply_scene_params(material, types, path):
+	var text = _read_text(path)
+	if text == null:
+		return "cannot read params file '%s'" % path
+	var parsed = JSON.parse(text)
+	if parsed.error != OK or typeof(parsed.result) != TYPE_DICTIONARY:
+		return "params file '%s' is not a JSON object" % path
+	for name in parsed.result.keys():
+		if not types.has(name):
+			continue
+		var value = _convert_param(name, parsed.result[name], types[name])
+		if typeof(value) == TYPE_STRING and value.begins_with("!"):
+			return value.substr(1, value.length() - 1)
+		material.set_shader_param(name, value)
+	return ""

@@ -27,6 +27,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/runtime/image.hpp"
@@ -63,6 +64,27 @@ struct Godot3Job {
 //  - a param Godot cannot set (no such uniform, wrong type): ErrorKind::Input;
 //  - Godot crashes, times out or gives no pixels: ErrorKind::Validation.
 Result<Image> render_godot3(const Godot3Job& job);
+
+// A crtforge scene exported for Godot 3 (<preset>.tscn with crtforge_pipeline.gd), run as a game
+// runs it: the scene instanced in a W x H HDR viewport, its `source` an ImageTexture whose pixels
+// change every frame, its `frame` set to each frame of `run` in turn.
+struct Godot3SceneJob {
+    // Files added to the runner project, by path under it: the export's addons/crtforge/ files.
+    std::map<std::string, std::string> project_files;
+    std::string scene;              // "res://addons/crtforge/<preset>.tscn"
+    std::vector<Image> inputs;      // the original at each frame of `run`, all one size
+    std::vector<int> run;           // the frames drawn, in order
+    std::vector<int> capture;       // the frames whose display image comes back (each in `run`)
+    double fps = 60;                // a uniform crtforge_validation_time, where declared, gets frame / fps
+    std::string fit;                // "": the scene's own display fit; else stretch, aspect or integer
+    int width = 0, height = 0;      // the display, 2..kMaxImageDimension
+    std::map<std::string, Value> params;  // set on every pass that declares the uniform
+    int timeout_seconds = 120;
+};
+
+// The display images of job.capture, in that order (row 0 = top, linear floats, RGBA16F precision).
+// Errors as render_godot3's; a GDScript error in the scene's script fails the render too.
+Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job);
 
 // The version `godot3 --version` prints, e.g. "3.2.3.stable.custom_build" on Debian 12; "" when
 // godot3 is not installed. Runs godot3 once per process (the answer is cached).
