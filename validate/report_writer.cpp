@@ -98,7 +98,7 @@ std::string report_html(const ValidationReport& report) {
     h += "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>crtforge validate</title>\n<style>\n"
          "body{font:14px system-ui,sans-serif;background:#111;color:#ddd;margin:20px}"
          "h1,h2{font-weight:600}table{border-collapse:collapse}td,th{padding:4px 8px;border-bottom:1px solid #333;text-align:left}"
-         ".sheet{display:flex;flex-wrap:wrap;gap:8px;margin:6px 0 22px}"
+         ".sheet{display:flex;flex-wrap:wrap;gap:8px;margin:6px 0 22px}.strip{flex-wrap:nowrap;overflow-x:auto;margin:2px 0}"
          "figure{margin:0;padding:4px;background:#1c1c1c;border:2px solid #2a2a2a}figure.fail{border-color:#e33}"
          "figure img{display:block;width:240px;image-rendering:pixelated}figcaption{font-size:12px;max-width:240px}"
          ".bad{color:#f66}.ok{color:#7d7}\n</style></head><body>\n";
@@ -123,34 +123,66 @@ std::string report_html(const ValidationReport& report) {
                          escape(t), escape(consumer), pass, fail ? "bad" : "ok", fail, max_rmse, min_ssim);
     }
     h += "</table>\n";
-    std::string current_preset;
+    // One figure per (golden, row): the input, the golden, or a target's render with its verdict.
+    auto figure = [&](const GoldenEntry& g, const std::string& row, const std::string& label) {
+        if (row == "input" || row == "golden")
+            return fmt::format("<figure><img src=\"images/{}/{}.png\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n", escape(g.id), row,
+                               row, label);
+        auto it = render_checks.find({g.id, row});
+        if (it == render_checks.end()) return std::string();
+        const CheckResult& c = *it->second;
+        std::string caption = label;
+        if (c.verdict)
+            caption += fmt::format("<br>RMSE {:.5f} · SSIM {:.4f}<br>max {:.3f} · PSNR {:.1f} dB", c.verdict->metrics.rmse,
+                                   c.verdict->metrics.ssim, c.verdict->metrics.max_abs, c.verdict->metrics.psnr);
+        if (!c.passed) caption += "<br><span class=bad>" + escape(c.message) + "</span>";
+        std::string out = fmt::format("<figure class=\"{}\"><img src=\"images/{}/{}.png\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
+                                      c.passed ? "" : "fail", escape(g.id), escape(row), escape(row), caption);
+        if (!c.passed && c.verdict)
+            out += fmt::format("<figure class=fail><img src=\"images/{}/{}.diff.png\" alt=\"diff\"><figcaption>{} diff (red = tolerance)</figcaption></figure>\n",
+                               escape(g.id), escape(row), escape(row));
+        return out;
+    };
+    // Goldens of one sequence (the same scene at several frames) show as strips: a row per
+    // source of images, a column per frame.
+    std::vector<std::vector<const GoldenEntry*>> sequences;
+    std::map<std::string, size_t> sequence_index;
     for (const GoldenEntry& g : report.goldens) {
         bool any = false;
         for (const auto& t : targets) any = any || render_checks.count({g.id, t});
         if (!any) continue;
-        if (g.preset != current_preset) {
-            current_preset = g.preset;
-            h += "<h2>" + escape(g.preset) + "</h2>\n";
+        auto [it, fresh] = sequence_index.emplace(g.sequence(), sequences.size());
+        if (fresh) sequences.emplace_back();
+        sequences[it->second].push_back(&g);
+    }
+    std::string current_preset;
+    for (const auto& sequence : sequences) {
+        const GoldenEntry& first = *sequence.front();
+        if (first.preset != current_preset) {
+            current_preset = first.preset;
+            h += "<h2>" + escape(first.preset) + "</h2>\n";
         }
-        h += fmt::format("<div>{} — {}×{}, frame {}</div>\n<div class=sheet>\n", escape(g.input), g.width, g.height, g.frame);
-        h += "<figure><img src=\"images/" + escape(g.id) + "/input.png\" alt=\"input\"><figcaption>input</figcaption></figure>\n";
-        h += "<figure><img src=\"images/" + escape(g.id) + "/golden.png\" alt=\"golden\"><figcaption>golden (CPU fp64)</figcaption></figure>\n";
-        for (const auto& t : targets) {
-            auto it = render_checks.find({g.id, t});
-            if (it == render_checks.end()) continue;
-            const CheckResult& c = *it->second;
-            std::string caption = escape(t);
-            if (c.verdict)
-                caption += fmt::format("<br>RMSE {:.5f} · SSIM {:.4f}<br>max {:.3f} · PSNR {:.1f} dB", c.verdict->metrics.rmse,
-                                       c.verdict->metrics.ssim, c.verdict->metrics.max_abs, c.verdict->metrics.psnr);
-            if (!c.passed) caption += "<br><span class=bad>" + escape(c.message) + "</span>";
-            h += fmt::format("<figure class=\"{}\"><img src=\"images/{}/{}.png\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                             c.passed ? "" : "fail", escape(g.id), escape(t), escape(t), caption);
-            if (!c.passed && c.verdict)
-                h += fmt::format("<figure class=fail><img src=\"images/{}/{}.diff.png\" alt=\"diff\"><figcaption>{} diff (red = tolerance)</figcaption></figure>\n",
-                                 escape(g.id), escape(t), escape(t));
+        const std::string fit = first.fit ? std::string(", ") + display_fit_name(*first.fit) : std::string();
+        if (sequence.size() == 1) {
+            h += fmt::format("<div>{} — {}×{}{}, frame {}</div>\n<div class=sheet>\n", escape(first.input), first.width, first.height, fit,
+                             first.frame);
+            h += figure(first, "input", "input");
+            h += figure(first, "golden", "golden (CPU fp64)");
+            for (const auto& t : targets) h += figure(first, t, escape(t));
+            h += "</div>\n";
+            continue;
         }
-        h += "</div>\n";
+        std::string frames;
+        for (const GoldenEntry* g : sequence) frames += (frames.empty() ? "" : ", ") + std::to_string(g->frame);
+        h += fmt::format("<div>{} — {}×{}{}, frames {} (a sequence: each row left to right in time)</div>\n", escape(first.input),
+                         first.width, first.height, fit, frames);
+        std::vector<std::pair<std::string, std::string>> rows = {{"input", "input"}, {"golden", "golden (CPU fp64)"}};
+        for (const auto& t : targets) rows.emplace_back(t, escape(t));
+        for (const auto& [row, label] : rows) {
+            std::string strip;
+            for (const GoldenEntry* g : sequence) strip += figure(*g, row, label + fmt::format(" · frame {}", g->frame));
+            if (!strip.empty()) h += "<div class=\"sheet strip\">\n" + strip + "</div>\n";
+        }
     }
     std::string compile_failures;
     for (const auto& c : report.checks)

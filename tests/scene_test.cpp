@@ -1,0 +1,359 @@
+// Scenes: the pass graph's checks (cycles, unknown sources, unbound textures), the geometry every
+// host shares, and the two behaviours the documents' scenes rest on, measured on Vulkan and the
+// fp64 reference alike: feedback really reads the previous frame (Super Win the Game's trails
+// decay by trailBlend * trailTint per frame), and the Atari palette pass outputs palette colours
+// only, dithered by the article's 4x4 Bayer matrix.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <set>
+
+#include "crtforge/exporter.hpp"
+#include "crtforge/luts.hpp"
+#include "crtforge/preset.hpp"
+#include "crtforge/reference/reference_renderer.hpp"
+#include "crtforge/scene.hpp"
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/template_library.hpp"
+#include "crtforge/validate/target_render.hpp"
+#include "tests/test_support.hpp"
+
+namespace {
+
+using namespace crtforge;
+
+Result<Preset> resolve_texts(const std::vector<std::pair<std::string, std::string>>& files, const std::string& name) {
+    const TemplateLibrary& lib = test::shipped_library();
+    std::vector<PresetFile> parsed;
+    for (const auto& [path, text] : files) {
+        auto f = parse_preset_file(text, path, &lib);
+        if (!f.ok()) return f.error();
+        parsed.push_back(f.value());
+    }
+    return lib.resolve(parsed, name);
+}
+
+Preset resolve_or_fail(const std::string& text, const std::string& name) {
+    auto p = resolve_texts({{name + ".toml", text}}, name);
+    INFO((p.ok() ? std::string() : p.error().str()));
+    REQUIRE(p.ok());
+    return std::move(p).value();
+}
+
+// The display images of `frames` of a scene, from Vulkan (lavapipe) and from the fp64 reference.
+struct SceneRenders {
+    std::vector<Image> vulkan, reference;
+};
+
+SceneRenders render_both(const Preset& preset, const std::function<Result<Image>(int)>& source, int width, int height,
+                         const std::vector<int>& frames, const std::map<std::string, Value>& overrides = {}) {
+    const TemplateLibrary& lib = test::shipped_library();
+    auto compiled = compile_scene(lib, preset, {}, Cache());
+    INFO((compiled.ok() ? std::string() : compiled.error().str()));
+    REQUIRE(compiled.ok());
+    static TargetRenderer renderer;
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &compiled.value();
+    r.source = source;
+    r.width = width;
+    r.height = height;
+    r.frames = frames;
+    r.overrides = overrides;
+    auto vulkan = renderer.render_scene(r);
+    INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
+    REQUIRE(vulkan.ok());
+    ReferenceSceneJob job;
+    job.library = &lib;
+    job.preset = &preset;
+    job.source = source;
+    job.width = width;
+    job.height = height;
+    job.frames = frames;
+    job.overrides = overrides;
+    auto reference = render_reference_scene(job);
+    INFO((reference.ok() ? std::string() : reference.error().str()));
+    REQUIRE(reference.ok());
+    return {std::move(vulkan).value(), std::move(reference).value()};
+}
+
+}  // namespace
+
+TEST_CASE("the pass graph: cycles, unknown sources and unbound textures are file:line errors", "[scene][errors]") {
+    const std::string head = "name = \"p\"\ndoc = \"d\"\n";
+    SECTION("two passes reading each other this frame") {
+        auto p = resolve_texts({{"p.toml", head +
+                                               "[[pass]]\nalias = \"a\"\ninput = \"b\"\n[pass.stages.scanlines]\n"
+                                               "[[pass]]\nalias = \"b\"\ninput = \"a\"\n[pass.stages.vignette]\n"}},
+                               "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().file == "p.toml");
+        CHECK(p.error().line > 0);
+        CHECK_THAT(p.error().message, Catch::Contains("cycle"));
+    }
+    SECTION("the same through the previous frame is feedback, not a cycle") {
+        auto p = resolve_texts({{"p.toml", head +
+                                               "[[pass]]\nalias = \"a\"\nscale_type = \"source\"\n[pass.textures]\nfeedback = \"b@previous\"\n"
+                                               "[pass.stages.trails]\n"
+                                               "[[pass]]\nalias = \"b\"\n[pass.stages.vignette]\n"}},
+                               "p");
+        INFO((p.ok() ? std::string() : p.error().str()));
+        REQUIRE(p.ok());
+        CHECK(p.value().has_feedback());
+    }
+    SECTION("a pass that does not exist") {
+        auto p = resolve_texts({{"p.toml", head + "[[pass]]\nalias = \"a\"\ninput = \"nowhere\"\n[pass.stages.scanlines]\n"}}, "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().line == 3);
+        CHECK_THAT(p.error().message, Catch::Contains("no pass 'nowhere'"));
+    }
+    SECTION("a LUT that does not exist") {
+        auto p = resolve_texts({{"p.toml", head +
+                                               "[[pass]]\nalias = \"a\"\n[pass.textures]\npalette = \"lut:missing\"\n"
+                                               "[pass.stages.palette]\npaletteMode = \"nearest\"\n"}},
+                               "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK_THAT(p.error().message, Catch::Contains("[lut.missing]"));
+    }
+    SECTION("a texture a stage reads but the pass does not bind") {
+        auto p = resolve_texts({{"p.toml", head + "[[pass]]\nalias = \"a\"\n[pass.stages.trails]\n"}}, "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().file == "p.toml");
+        CHECK_THAT(p.error().message, Catch::Contains("reads texture 'feedback'"));
+    }
+    SECTION("a binding no stage reads") {
+        auto p = resolve_texts({{"p.toml", head + "[[pass]]\nalias = \"a\"\n[pass.textures]\nnosuch = \"a@previous\"\n[pass.stages.vignette]\n"}},
+                               "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().field == "pass.a.textures.nosuch");
+        CHECK(p.error().line == 6);
+    }
+}
+
+TEST_CASE("scene geometry: screen rectangles per fit and pass sizes per scale type", "[scene]") {
+    const Preset& win = *test::shipped_library().find_preset("super-win");
+    // 4:3 in 1920x1080: pillarboxed, 1440 wide, centred.
+    const PixelRect aspect = screen_rect(win, {1920, 1080}, {256, 224});
+    CHECK(aspect.x == 240);
+    CHECK(aspect.y == 0);
+    CHECK(aspect.width == 1440);
+    CHECK(aspect.height == 1080);
+    // Stretch fills the display; integer keeps whole multiples of the source's 224 rows.
+    const PixelRect stretch = screen_rect(win, {1920, 1080}, {256, 224}, DisplayFit::Stretch);
+    CHECK(stretch.width == 1920);
+    CHECK(stretch.height == 1080);
+    const PixelRect integer = screen_rect(win, {1920, 1080}, {256, 224}, DisplayFit::Integer);
+    CHECK(integer.height == 4 * 224);
+    CHECK(integer.width == 1195);  // 896 * 4 / 3, rounded
+    CHECK(integer.y == (1080 - 896) / 2);
+    // The NES passes at source size, the screen at the screen's, the bloom at a sixteenth.
+    const auto sizes = pass_sizes(win, {256, 224}, {1280, 960});
+    REQUIRE(sizes.size() == win.passes.size());
+    CHECK(sizes[0].width == 256);
+    CHECK(sizes[0].height == 224);
+    CHECK(sizes[2].width == 1280);
+    CHECK(sizes[3].width == 80);
+    CHECK(sizes[3].height == 60);
+    CHECK(sizes.back().width == 1280);
+    // 8:7 pixels fitted to the 4:3 screen's width: rows fall off the top and bottom.
+    const auto scale = source_uv_scale(win);
+    CHECK(scale[0] == 1.0);
+    CHECK(scale[1] == Approx((256.0 * 8 / (224.0 * 7)) / (4.0 / 3.0)));
+}
+
+TEST_CASE("feedback reads the previous frame: a moving bar's trail decays by trailBlend * trailTint per frame",
+          "[scene][feedback]") {
+    // One pass holding Super Win the Game's trails, its feedback its own previous output. The bar
+    // spans the width (so the trail's horizontal blur leaves it as it is) and moves down one bar
+    // height a frame over black: where it was k frames ago, a pixel holds (blend * tint)^k.
+    const double blend = 0.6;
+    const std::array<double, 3> tint = {1.0, 0.7, 0.45};
+    const Preset preset = resolve_or_fail("name = \"trail-probe\"\ndoc = \"d\"\n[[pass]]\nalias = \"nes\"\nscale_type = \"source\"\n"
+                                          "filter = \"nearest\"\n[pass.textures]\nfeedback = \"nes@previous\"\n"
+                                          "[pass.stages.trails]\ntrailBlend = 0.6\ntrailTint = [1.0, 0.7, 0.45]\n",
+                                          "trail-probe");
+    constexpr int kSize = 32, kBar = 4, kLast = 5;
+    auto source = [](int frame) -> Result<Image> {
+        Image image = Image::make(kSize, kSize, {0, 0, 0, 1});
+        for (int y = frame * kBar; y < (frame + 1) * kBar && y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) image.set_pixel(x, y, {1, 1, 1, 1});
+        return image;
+    };
+    SECTION("trails on") {
+        const SceneRenders r = render_both(preset, source, kSize, kSize, {kLast});
+        for (const Image* image : {&r.vulkan.front(), &r.reference.front()}) {
+            const bool vulkan = image == &r.vulkan.front();
+            INFO((vulkan ? "Vulkan" : "reference"));
+            const int mid = kSize / 2;
+            // The bar itself, this frame.
+            CHECK(image->at(mid, kLast * kBar + 1)[0] == Approx(1.0).margin(1e-3));
+            for (int k = 1; k <= kLast; ++k) {
+                const int row = (kLast - k) * kBar + 1;
+                for (int c = 0; c < 3; ++c) {
+                    INFO("k " << k << " channel " << c);
+                    CHECK(image->at(mid, row)[c] == Approx(std::pow(blend * tint[c], k)).epsilon(0.01).margin(2e-3));
+                }
+                // Decay per frame: the ratio between a band and the one a frame older.
+                if (k >= 2) {
+                    const double newer = image->at(mid, (kLast - k + 1) * kBar + 1)[0], older = image->at(mid, row)[0];
+                    CHECK(older / newer == Approx(blend * tint[0]).epsilon(0.01));
+                }
+            }
+            // Below the bar nothing has been yet.
+            CHECK(image->at(mid, kSize - 1)[0] == 0.0f);
+        }
+    }
+    SECTION("trails off (blend 0): no trail at all") {
+        const SceneRenders r = render_both(preset, source, kSize, kSize, {kLast}, {{"trailBlend", 0.0}});
+        for (const Image* image : {&r.vulkan.front(), &r.reference.front()})
+            for (int y = 0; y < kLast * kBar; ++y)
+                for (int c = 0; c < 3; ++c) CHECK(image->at(kSize / 2, y)[c] == 0.0f);
+    }
+    SECTION("a still picture after the first frame: frame 0 has no previous frame (black)") {
+        const SceneRenders r = render_both(preset, source, kSize, kSize, {0});
+        for (const Image* image : {&r.vulkan.front(), &r.reference.front()}) CHECK(image->at(kSize / 2, kSize - 1)[0] == 0.0f);
+    }
+}
+
+TEST_CASE("super-win's own trails: the moving sprite leaves a warm trail, and none with trails off", "[scene][feedback]") {
+    const Preset& win = *test::shipped_library().find_preset("super-win");
+    auto source = [](int frame) { return make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, frame); };
+    const SceneRenders on = render_both(win, source, 320, 240, {6});
+    const SceneRenders off = render_both(win, source, 320, 240, {6}, {{"trailBlend", 0.0}});
+    // Where the sprite was, the image with trails is brighter and warmer (red above blue).
+    double red_gain = 0, blue_gain = 0;
+    for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x) {
+            red_gain += on.vulkan[0].at(x, y)[0] - off.vulkan[0].at(x, y)[0];
+            blue_gain += on.vulkan[0].at(x, y)[2] - off.vulkan[0].at(x, y)[2];
+        }
+    CHECK(red_gain > 1.0);
+    CHECK(red_gain > blue_gain);
+    // And trails off is the same image however the sprite moved before: frame 6 alone.
+    auto moved = render_both(win, [&](int frame) { return source(6 + 0 * frame); }, 320, 240, {6}, {{"trailBlend", 0.0}});
+    auto metrics = compare_images(moved.vulkan[0], off.vulkan[0]);
+    REQUIRE(metrics.ok());
+    CHECK(metrics.value().max_abs < 0.01);
+}
+
+TEST_CASE("the palette pass outputs palette colours only", "[scene][palette]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    auto source = [](int) { return make_test_input("color_bars", 64, 48); };
+    SECTION("levels: every channel on the grid of paletteSize / 4 levels") {
+        for (const char* name : {"atari-16", "atari-64", "atari-128", "atari-256"}) {
+            INFO(name);
+            const Preset& p = *lib.find_preset(name);
+            const int size = static_cast<int>(std::get<int64_t>(p.find_stage("palette")->values.at("paletteSize")));
+            const double levels = size / 4.0;
+            const SceneRenders r = render_both(p, source, 64, 48, {0});
+            for (const Image* image : {&r.vulkan.front(), &r.reference.front()})
+                for (size_t i = 0; i < image->rgba.size(); ++i) {
+                    if (i % 4 == 3) continue;
+                    const double steps = image->rgba[i] * levels;
+                    CHECK(std::abs(steps - std::round(steps)) < 2e-3 * levels);
+                }
+        }
+    }
+    SECTION("nearest: every pixel one of the 128 colours of the Atari NTSC palette LUT") {
+        const Preset& p = *lib.find_preset("atari-ntsc");
+        auto lut = generate_lut("atari_ntsc", p.find_lut("ntsc")->params);
+        REQUIRE(lut.ok());
+        const SceneRenders r = render_both(p, source, 64, 48, {0});
+        for (const Image* image : {&r.vulkan.front(), &r.reference.front()}) {
+            size_t off_palette = 0;
+            std::set<int> used;
+            for (int y = 0; y < image->height; ++y)
+                for (int x = 0; x < image->width; ++x) {
+                    const float* px = image->at(x, y);
+                    int found = -1;
+                    for (int k = 0; k < 128 && found < 0; ++k) {
+                        bool same = true;
+                        for (int c = 0; c < 3; ++c) same = same && std::abs(px[c] - lut.value().rgba[k * 4 + c] / 255.0) < 1e-3;
+                        if (same) found = k;
+                    }
+                    if (found < 0) ++off_palette;
+                    else used.insert(found);
+                }
+            CHECK(off_palette == 0);
+            CHECK(used.size() > 8);  // colour bars reach many palette entries, not one fallback
+        }
+    }
+}
+
+TEST_CASE("the palette pass dithers with the article's 4x4 Bayer matrix", "[scene][palette]") {
+    // palette.frag's matrix (column-major mat4, indexed by gl_FragCoord: x, then rows counted from
+    // the bottom). For a flat input n + t levels above black, a pixel steps up to level n + 1 when
+    // bayer / 16 >= 1 - t: sweeping t through the sixteen thresholds reveals each pixel's entry.
+    const int bayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};  // [x][y from bottom]
+    const Preset& p = *test::shipped_library().find_preset("atari-16");
+    constexpr int kSize = 8;
+    const double levels = 4.0;
+    std::vector<std::array<std::array<int, kSize>, kSize>> first_up(2);  // per renderer: first k at which (x, y) is up
+    for (auto& grid : first_up)
+        for (auto& row : grid) row.fill(16);
+    for (int k = 0; k < 16; ++k) {
+        const double t = (k + 0.5) / 16.0, value = (1.0 + t) / levels;
+        auto source = [value](int) -> Result<Image> {
+            return Image::make(kSize, kSize, {static_cast<float>(value), static_cast<float>(value), static_cast<float>(value), 1.0f});
+        };
+        const SceneRenders r = render_both(p, source, kSize, kSize, {0});
+        for (int which = 0; which < 2; ++which) {
+            const Image& image = which == 0 ? r.vulkan.front() : r.reference.front();
+            for (int y = 0; y < kSize; ++y)
+                for (int x = 0; x < kSize; ++x) {
+                    const double level = image.at(x, y)[0] * levels;
+                    INFO("k " << k << " at " << x << "," << y << ": " << level);
+                    REQUIRE((std::abs(level - 1.0) < 1e-3 || std::abs(level - 2.0) < 1e-3));
+                    if (level > 1.5 && first_up[which][y][x] == 16) first_up[which][y][x] = k;
+                }
+        }
+    }
+    for (int which = 0; which < 2; ++which)
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                INFO((which == 0 ? "Vulkan" : "reference") << " at " << x << "," << y);
+                // Up from k on, where k + 0.5 >= 16 - bayer: k = 16 - bayer (never, for entry 0).
+                CHECK(first_up[which][y][x] == 16 - bayer[x % 4][(kSize - 1 - y) % 4]);
+            }
+}
+
+TEST_CASE("LUT generators: a neutral grade is the identity, the Atari palette's hue 0 is greys", "[scene][lut]") {
+    auto grade = generate_lut("yiq_grade", {{"hue", 0.0}, {"saturation", 1.0}, {"contrast", 1.0}, {"brightness", 0.0}, {"gamma", 1.0}});
+    REQUIRE(grade.ok());
+    CHECK(grade.value().width == 1024);
+    CHECK(grade.value().height == 32);
+    int worst = 0;
+    for (int g = 0; g < 32; ++g)
+        for (int b = 0; b < 32; ++b)
+            for (int r = 0; r < 32; ++r) {
+                const uint8_t* px = &grade.value().rgba[(static_cast<size_t>(g) * 1024 + static_cast<size_t>(b * 32 + r)) * 4];
+                const int want[3] = {static_cast<int>(std::lround(r * 255 / 31.0)), static_cast<int>(std::lround(g * 255 / 31.0)),
+                                     static_cast<int>(std::lround(b * 255 / 31.0))};
+                for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(px[c] - want[c]));
+            }
+    CHECK(worst <= 1);  // the FCC YIQ matrices are inverses to 3 decimals
+
+    const Preset& ntsc = *test::shipped_library().find_preset("atari-ntsc");
+    auto palette = generate_lut("atari_ntsc", ntsc.find_lut("ntsc")->params);
+    REQUIRE(palette.ok());
+    REQUIRE(palette.value().width == 128);
+    int previous = -1;
+    for (int lum = 0; lum < 8; ++lum) {
+        const uint8_t* px = &palette.value().rgba[static_cast<size_t>(lum) * 4];
+        CHECK(px[0] == px[1]);
+        CHECK(px[1] == px[2]);
+        CHECK(static_cast<int>(px[0]) > previous);
+        previous = px[0];
+    }
+    std::set<uint32_t> distinct;
+    for (int k = 0; k < 128; ++k) {
+        const uint8_t* px = &palette.value().rgba[static_cast<size_t>(k) * 4];
+        distinct.insert(static_cast<uint32_t>(px[0]) << 16 | static_cast<uint32_t>(px[1]) << 8 | px[2]);
+    }
+    CHECK(distinct.size() > 100);
+    // Unknown generators and params are errors that name them.
+    auto unknown = generate_lut("nope", {});
+    REQUIRE_FALSE(unknown.ok());
+    CHECK_THAT(unknown.error().message, Catch::Contains("nope"));
+}
