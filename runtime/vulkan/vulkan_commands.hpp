@@ -29,6 +29,10 @@ struct PassCommands {
 
 void record_pass(VkCommandBuffer commands, const PassCommands& pass);
 
+// The same, with `draws` more draws between two timestamps (query 0 and 1 of `queries`) after the
+// first: what time_draw() measures.
+void record_timed_pass(VkCommandBuffer commands, const PassCommands& pass, VkQueryPool queries, int draws);
+
 // Records with `record` into a fresh one-time command buffer, submits it to the context's queue
 // and blocks until the device has finished it.
 Status submit_and_wait(const VulkanContext& context, const std::function<void(VkCommandBuffer)>& record);

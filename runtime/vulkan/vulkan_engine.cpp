@@ -11,6 +11,7 @@
 #include "crtforge/runtime/render_engine.hpp"
 #include "runtime/vulkan/job_validation.hpp"
 #include "runtime/common/pixel_conversion.hpp"
+#include "runtime/vulkan/vulkan_check.hpp"
 #include "runtime/vulkan/vulkan_commands.hpp"
 #include "runtime/vulkan/vulkan_context.hpp"
 #include "runtime/vulkan/vulkan_pipeline.hpp"
@@ -87,8 +88,37 @@ public:
         }
     }
 
+    Result<double> time_draw(const RenderJob& job, int draws) override {
+        try {
+            if (draws < 1 || draws > 100000) return make_error(fmt::format("draws must be 1..100000; got {}", draws), {}, 0, "draws");
+            context_->take_validation_messages();
+            auto plan = check_job(*context_, job);
+            if (!plan) return plan.error();
+            uint32_t families = 0;
+            vkGetPhysicalDeviceQueueFamilyProperties(context_->physical_device(), &families, nullptr);
+            std::vector<VkQueueFamilyProperties> properties(families);
+            vkGetPhysicalDeviceQueueFamilyProperties(context_->physical_device(), &families, properties.data());
+            if (context_->queue_family() >= families || properties[context_->queue_family()].timestampValidBits == 0)
+                return make_error("the device's graphics queue has no timestamps: it cannot time draws");
+            auto ns = run(job, plan.value(), draws);
+            if (auto messages = context_->take_validation_messages(); !messages.empty())
+                return validation_failure("while timing", messages);
+            if (!ns) return ns.error();
+            return ns.value().second;
+        } catch (const std::exception& e) {
+            return make_error(fmt::format("timing failed: {}", e.what()));
+        }
+    }
+
 private:
     Result<Image> run(const RenderJob& job, const JobPlan& plan) {
+        auto out = run(job, plan, 0);
+        if (!out) return out.error();
+        return std::move(out.value().first);
+    }
+
+    // The render, and with `timed_draws` > 0 the device nanoseconds per timed draw.
+    Result<std::pair<Image, double>> run(const RenderJob& job, const JobPlan& plan, int timed_draws) {
         const VulkanContext& context = *context_;
         auto resources = create_job_resources(context, job, plan);
         if (!resources) return resources.error();
@@ -110,11 +140,36 @@ private:
                                     r.target,
                                     r.readback,
                                     job.clear_color};
-        if (auto s = submit_and_wait(context, [&](VkCommandBuffer cb) { record_pass(cb, commands); }); !s) {
-            return s.error();
+        VkQueryPool queries = VK_NULL_HANDLE;
+        if (timed_draws > 0) {
+            VkQueryPoolCreateInfo info{};
+            info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+            info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+            info.queryCount = 2;
+            if (VkResult res = vkCreateQueryPool(context.device(), &info, nullptr, &queries); res != VK_SUCCESS)
+                return vk_error("vkCreateQueryPool", res);
+        }
+        struct PoolGuard {
+            VkDevice device;
+            VkQueryPool pool;
+            ~PoolGuard() { if (pool != VK_NULL_HANDLE) vkDestroyQueryPool(device, pool, nullptr); }
+        } guard{context.device(), queries};
+        auto record = [&](VkCommandBuffer cb) {
+            if (timed_draws > 0) record_timed_pass(cb, commands, queries, timed_draws);
+            else record_pass(cb, commands);
+        };
+        if (auto s = submit_and_wait(context, record); !s) return s.error();
+        double ns = 0;
+        if (timed_draws > 0) {
+            uint64_t stamps[2] = {0, 0};
+            if (VkResult res = vkGetQueryPoolResults(context.device(), queries, 0, 2, sizeof stamps, stamps, sizeof(uint64_t),
+                                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+                res != VK_SUCCESS)
+                return vk_error("vkGetQueryPoolResults", res);
+            ns = static_cast<double>(stamps[1] - stamps[0]) * context.limits().timestampPeriod / timed_draws;
         }
         if (auto s = invalidate(context, r.readback); !s) return s.error();
-        return read_texels(r.readback.mapped, job.width, job.height, job.format);
+        return std::make_pair(read_texels(r.readback.mapped, job.width, job.height, job.format), ns);
     }
 
     std::unique_ptr<VulkanContext> context_;

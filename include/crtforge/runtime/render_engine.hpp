@@ -111,6 +111,11 @@ public:
     // malformed or oversized texture, a viewport outside the target, a non-finite clear colour)
     // returns an ErrorKind::Input error with field "job.<name>" before any GPU work.
     virtual Result<Image> render(const RenderJob& job) = 0;
+    // The device time of the job's draw (render pass with its clear, pipeline, descriptors, the
+    // full-screen triangle), in nanoseconds per draw: `draws` repetitions recorded back to back
+    // between two timestamp queries, after one untimed draw (uploads done, caches warm). An
+    // ErrorKind::Input error when the device's queue has no timestamps.
+    virtual Result<double> time_draw(const RenderJob& job, int draws) = 0;
 };
 
 struct EngineOptions {

@@ -1,0 +1,66 @@
+// crtforge bench [--preset NAME ...] [--size WxH] [--input NAME] [--frame N] [--draws N]
+//                [--repeats N] [--device NAME|INDEX]
+// Each pass of each preset's scene timed on Vulkan by GPU timestamps, as a ratio to a blit of the
+// same sizes measured in the same run (crtforge/validate/bench.hpp).
+#include <algorithm>
+
+#include <fmt/core.h>
+
+#include "cli/cli_common.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/validate/bench.hpp"
+
+namespace crtforge::cli {
+
+Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
+    auto* cmd = app.add_subcommand("bench", "Time every pass of presets on Vulkan (GPU timestamps) as ratios to a same-size blit");
+    struct Options {
+        std::vector<std::string> presets;
+        std::string size = "1280x960", input = "pixel_art", device;
+        int frame = 1, draws = 40, repeats = 5;
+    };
+    auto o = std::make_shared<Options>();
+    cmd->add_option("--preset", o->presets, "Presets to time (repeatable; default: all)");
+    cmd->add_option("--size", o->size, "Display size WIDTHxHEIGHT")->capture_default_str();
+    cmd->add_option("--input", o->input, "Generated test input, at the preset's source size")->capture_default_str();
+    cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
+    cmd->add_option("--draws", o->draws, "Draws per timing")->check(CLI::Range(1, 100000))->capture_default_str();
+    cmd->add_option("--repeats", o->repeats, "Timings per pass (the median is reported)")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
+    return [&g, o]() {
+        int code = kExitOk;
+        auto lib = load_library(g, code);
+        if (!lib) return code;
+        auto size = parse_size(o->size);
+        if (!size.ok()) return report(size.error());
+        if (o->frame < 0) return report(make_error("must be 0 or more", {}, 0, "--frame"));
+        const auto& inputs = test_input_names();
+        if (std::find(inputs.begin(), inputs.end(), o->input) == inputs.end())
+            return report(make_error("'" + o->input + "' is not a generated test input (" + join_list(inputs) + ")", {}, 0, "--input"));
+        std::vector<const Preset*> presets;
+        if (o->presets.empty())
+            for (const Preset& p : lib->presets()) presets.push_back(&p);
+        for (const std::string& name : o->presets) {
+            auto p = lookup_preset(*lib, name);
+            if (!p.ok()) return report(p.error());
+            presets.push_back(p.value());
+        }
+        BenchOptions options;
+        options.width = size.value().first;
+        options.height = size.value().second;
+        options.input = o->input;
+        options.frame = o->frame;
+        options.draws = o->draws;
+        options.repeats = o->repeats;
+        options.vulkan.device = o->device;
+        for (const Preset* preset : presets) {
+            auto timing = bench_scene(*lib, *preset, options);
+            if (!timing.ok()) return report(timing.error());
+            fmt::print("{}\n", format_scene_timing(timing.value()));
+            std::fflush(stdout);
+        }
+        return kExitOk;
+    };
+}
+
+}  // namespace crtforge::cli

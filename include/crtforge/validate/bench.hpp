@@ -1,0 +1,49 @@
+// Speed on a real device: each pass of a preset's scene timed on Vulkan (lavapipe by default) by
+// GPU timestamps, against a blit — one texture read, one write — of the same input and output
+// size and format, measured in the same run, so the ratios compare across machines. The jobs are
+// exactly what validation renders for that frame (the pass's inputs as the scene gives them).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "crtforge/preset.hpp"
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/template_library.hpp"
+
+namespace crtforge {
+
+struct BenchOptions {
+    int width = 1280, height = 960;  // the display
+    std::string input = "pixel_art";  // a generated test input (at the preset's source size, or 320x240)
+    int frame = 1;                    // the frame whose passes are timed (earlier ones run first)
+    int draws = 40;                   // draws per timing
+    int repeats = 5;                  // timings per job; the median is kept
+    EngineOptions vulkan;
+};
+
+struct PassTiming {
+    std::string alias;
+    int width = 0, height = 0;       // the pass's output
+    int input_width = 0, input_height = 0;
+    std::string format;              // the pass's framebuffer format
+    double ns = 0;                   // device nanoseconds per draw (median)
+    double blit_ns = 0;              // a blit of the same sizes and format
+    double spread = 0;               // (max - min) / median of the pass's timings
+    double ratio() const { return blit_ns > 0 ? ns / blit_ns : 0; }
+};
+
+struct SceneTiming {
+    std::string preset, device;
+    int width = 0, height = 0, frame = 0, draws = 0;
+    std::vector<PassTiming> passes;
+    double display_blit_ns = 0;      // a blit of the source onto the whole display
+    double total_ns() const;
+};
+
+Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& options);
+
+// A fixed-width table: one row per pass (size, format, ns per draw, blit, ratio), then the scene.
+std::string format_scene_timing(const SceneTiming& timing);
+
+}  // namespace crtforge

@@ -1,0 +1,157 @@
+// Per-pass GPU timing of a scene against a same-size blit (see crtforge/validate/bench.hpp).
+#include "crtforge/validate/bench.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "crtforge/exporter.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/spirv_compiler.hpp"
+#include "crtforge/validate/target_render.hpp"
+#include "validate/consumers/consumer.hpp"
+#include "validate/scene_runner.hpp"
+
+namespace crtforge {
+
+namespace {
+
+// The baseline: a copy of the source texture through the same full-screen triangle.
+constexpr const char* kBlitFragment = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+void main() { fragColor = texture(source, vTexCoord); }
+)";
+
+const char* format_name(OutputFormat f) {
+    switch (f) {
+        case OutputFormat::Rgba8Unorm: return "rgba8";
+        case OutputFormat::Rgba8Srgb: return "rgba8_srgb";
+        case OutputFormat::Rgba16Float: return "rgba16f";
+    }
+    return "other";
+}
+
+// Median of `repeats` timings, and their spread.
+Result<std::pair<double, double>> median_time(RenderEngine& engine, const RenderJob& job, const BenchOptions& o) {
+    std::vector<double> samples;
+    for (int i = 0; i < o.repeats; ++i) {
+        auto ns = engine.time_draw(job, o.draws);
+        if (!ns.ok()) return ns.error();
+        samples.push_back(ns.value());
+    }
+    std::sort(samples.begin(), samples.end());
+    const double median = samples[samples.size() / 2];
+    return std::make_pair(median, median > 0 ? (samples.back() - samples.front()) / median : 0.0);
+}
+
+}  // namespace
+
+double SceneTiming::total_ns() const {
+    double sum = 0;
+    for (const PassTiming& p : passes) sum += p.ns;
+    return sum;
+}
+
+Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& o) {
+    if (o.draws < 1 || o.repeats < 1) return make_error("draws and repeats must be at least 1", {}, 0, "--draws");
+    auto compiled = compile_scene(library, preset, {}, Cache());
+    if (!compiled.ok()) return compiled.error();
+    const int source_width = preset.scene.source_width ? preset.scene.source_width : 320;
+    const int source_height = preset.scene.source_height ? preset.scene.source_height : 240;
+    CompileOptions blit_options;
+    blit_options.stage = ShaderStage::Fragment;
+    blit_options.source_name = "<blit>";
+    auto blit_fragment = compile_to_spirv(kBlitFragment, blit_options);
+    if (!blit_fragment.ok()) return blit_fragment.error();
+
+    ConsumerEngines engines(o.vulkan);
+    auto engine = engines.vulkan();
+    if (!engine.ok()) return engine.error();
+
+    // The scene up to the frame, on Vulkan; the last frame's jobs are kept.
+    std::vector<RenderJob> jobs;
+    int current_frame = -1;
+    SceneRenderRequest scene;
+    scene.preset = &preset;
+    scene.passes = &compiled.value();
+    scene.target = TargetId::Spirv;
+    scene.source = [&](int frame) -> Result<Image> {
+        current_frame = frame;
+        return make_test_input(o.input, source_width, source_height, frame);
+    };
+    scene.width = o.width;
+    scene.height = o.height;
+    scene.frames = {o.frame};
+    auto rendered = run_scene(scene, [&](const TargetRenderRequest& r) -> Result<Image> {
+        auto uniforms = variant_uniforms(r);
+        if (!uniforms.ok()) return uniforms.error();
+        auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
+        if (!textures.ok()) return textures.error();
+        auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
+        job.vertex_spirv = r.compiled->vertex;
+        job.fragment_spirv = r.compiled->fragment;
+        if (current_frame == o.frame) jobs.push_back(job);
+        return render_on_vulkan(job, engines);
+    });
+    if (!rendered.ok()) return rendered.error();
+
+    SceneTiming out;
+    out.preset = preset.name;
+    out.device = engine.value()->device().name;
+    out.width = o.width;
+    out.height = o.height;
+    out.frame = o.frame;
+    out.draws = o.draws;
+    auto blit = [&](const Image& input, int width, int height, OutputFormat format) -> Result<std::pair<double, double>> {
+        RenderJob job;
+        job.vertex_spirv = compiled.value().front().vertex;
+        job.fragment_spirv = blit_fragment.value();
+        job.input = input;
+        job.width = width;
+        job.height = height;
+        job.format = format;
+        return median_time(*engine.value(), job, o);
+    };
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        const RenderJob& job = jobs[i];
+        PassTiming t;
+        t.alias = preset.passes[i].alias;
+        t.width = job.width;
+        t.height = job.height;
+        t.input_width = job.input.width;
+        t.input_height = job.input.height;
+        t.format = format_name(job.format);
+        auto time = median_time(*engine.value(), job, o);
+        if (!time.ok()) return time.error();
+        t.ns = time.value().first;
+        t.spread = time.value().second;
+        auto base = blit(job.input, job.width, job.height, job.format);
+        if (!base.ok()) return base.error();
+        t.blit_ns = base.value().first;
+        out.passes.push_back(std::move(t));
+    }
+    auto source = make_test_input(o.input, source_width, source_height, o.frame);
+    if (!source.ok()) return source.error();
+    auto display = blit(source.value(), o.width, o.height, OutputFormat::Rgba16Float);
+    if (!display.ok()) return display.error();
+    out.display_blit_ns = display.value().first;
+    return out;
+}
+
+std::string format_scene_timing(const SceneTiming& t) {
+    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, median of the timings)\n", t.preset, t.width,
+                                t.height, t.frame, t.device, t.draws);
+    s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12} {:>12} {:>8} {:>7}\n", "pass", "input", "output", "format", "us/draw",
+                     "blit us", "x blit", "spread");
+    for (const PassTiming& p : t.passes)
+        s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f} {:>6.0f}%\n", p.alias,
+                         fmt::format("{}x{}", p.input_width, p.input_height), fmt::format("{}x{}", p.width, p.height), p.format,
+                         p.ns / 1000, p.blit_ns / 1000, p.ratio(), 100 * p.spread);
+    s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f}\n", "scene", "", fmt::format("{}x{}", t.width, t.height),
+                     "", t.total_ns() / 1000, t.display_blit_ns / 1000, t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0);
+    return s;
+}
+
+}  // namespace crtforge
