@@ -72,9 +72,10 @@ TEST_CASE("every shipped preset passes on every target against every golden", "[
     auto report = run_validation(lib, request, Cache());
     REQUIRE(report.ok());
     const size_t goldens = test::golden_plan_or_fail(lib, golden_dir()).size();
-    // Per target: one compile check per shader file and preset, one render per golden.
-    size_t expected = 0;
-    for (const TargetInfo& t : all_targets()) expected += t.shader_roles.size() * lib.presets().size() + goldens;
+    // Per target: one compile check per shader file and pass, one render per golden.
+    size_t passes = 0, expected = 0;
+    for (const Preset& p : lib.presets()) passes += p.passes.size();
+    for (const TargetInfo& t : all_targets()) expected += t.shader_roles.size() * passes + goldens;
     CHECK(report.value().checks.size() == expected);
     for (const auto& c : report.value().checks) {
         INFO(c.preset << " " << c.target << " " << c.check << ": " << c.message);
