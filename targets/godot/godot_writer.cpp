@@ -32,12 +32,24 @@ std::string readme(int version) {
     const std::string ext = shader_extension(version);
     std::string out = fmt::format("# crtforge CRT shaders for Godot {}\n\n", version);
     out += "Copy `addons/crtforge/` into your project. Each preset comes as:\n\n";
-    out += "- `<preset>" + ext + "`: node mode. Assign it (or `<preset>.tres`, a ShaderMaterial with the\n"
-           "  preset's values) to the node that shows the picture: a TextureRect, a Sprite, or a node showing\n"
-           "  a SubViewport's texture. Set the node's texture filter as the shader's header says.\n";
-    out += "- `<preset>.screen" + ext + "`: screen mode. Put a ColorRect over the whole screen (anchors: full rect)\n"
-           "  and give it a ShaderMaterial with this shader; it post-processes everything drawn below it.\n\n";
+    out += "- `<preset>.tscn`: the whole preset, ready to run. Instance it, set its `source` to your picture\n"
+           "  (e.g. the ViewportTexture of the " + std::string(version >= 4 ? "SubViewport" : "Viewport") +
+           " your game draws into, placed before this scene in the tree)\n"
+           "  and size it like any Control (it fills its parent). It runs every pass in its own viewport,\n"
+           "  keeps the previous frames that feedback passes read, loads the LUTs from `luts/`, places the\n"
+           "  screen in the node per the preset's display fit (black around it) and advances `frame`\n"
+           "  (the shaders' frameCount). `crtforge_pipeline.gd` is the script that drives it.\n";
+    out += "- `<preset>" + ext + "` (`<preset>.<pass>" + ext + "` for each pass of a multi-pass preset): node mode.\n"
+           "  Assign it (or `<preset>.tres`, a ShaderMaterial with the preset's values) to the node that shows\n"
+           "  the picture: a TextureRect, a Sprite, or a node showing a viewport's texture. Set the node's\n"
+           "  texture filter as the shader's header says.\n";
+    out += "- `<preset>.screen" + ext + "`: screen mode, for single-pass presets. Put a ColorRect over the whole\n"
+           "  screen (anchors: full rect) and give it a ShaderMaterial with this shader; it post-processes\n"
+           "  everything drawn below it.\n\n";
     out += "Every runtime parameter shows in the inspector with its range; baked parameters are constants.\n";
+    if (version < 4)
+        out += "\nGodot 3 sets filtering per texture, not per read: where two passes read one texture with\n"
+               "different filters, the scene file's header says which one applies.\n";
     return out;
 }
 
@@ -95,10 +107,10 @@ std::vector<TargetInfo> records() {
     return {
         {TargetId::Godot4, "godot4", "Godot 4 canvas_item .gdshader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot4-shim", [](const TargetInput& in) { return generate(in, 4); },
-         "godot4/spirv-cross-2021.01.15/v3", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
+         "godot4/spirv-cross-2021.01.15/v4", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
         {TargetId::Godot3, "godot3", "Godot 3 canvas_item .shader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot3", [](const TargetInput& in) { return generate(in, 3); },
-         "godot3/spirv-cross-2021.01.15/v4", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
+         "godot3/spirv-cross-2021.01.15/v5", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
     };
 }
 
