@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "crtforge/validate/golden.hpp"
+#include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "tests/test_support.hpp"
 
@@ -194,4 +195,46 @@ TEST_CASE("validate exits 1 on a failing comparison and 2 on bad arguments", "[c
     CHECK(fs::exists(report / "images/webgpu-post.color_bars.320x240.f0/spirv.diff.png"));
     check_usage_error(test::run_crtforge("validate --shard 3/2"), "--shard");
     check_usage_error(test::run_crtforge("validate --input nothing --preset classic"), "--input");
+}
+
+TEST_CASE("render --frames writes one file per frame; an input sequence feeds them; bad patterns are errors",
+          "[cli][render][scene]") {
+    test::TempDir tmp;
+    const std::string out = tmp / "f_%02d.png";
+    auto r = test::run_crtforge("render --preset super-win --target spirv --input moving_sprite --size 320x240 --frames 2:4 --output '" +
+                                out + "'");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    for (int f : {2, 3, 4}) CHECK(fs::exists(tmp / ("f_0" + std::to_string(f) + ".png")));
+    CHECK_FALSE(fs::exists(tmp / "f_01.png"));
+    CHECK_FALSE(fs::exists(tmp / "f_05.png"));
+    // The frames differ: the sprite moves and leaves a trail.
+    auto a = read_image(tmp / "f_02.png"), b = read_image(tmp / "f_04.png");
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    auto metrics = compare_images(a.value(), b.value());
+    REQUIRE(metrics.ok());
+    CHECK(metrics.value().max_abs > 0.1);
+
+    // Those files as an input sequence (frame N reads f_0N.png) through a stateless preset.
+    const std::string again = tmp / "g_%d.png";
+    r = test::run_crtforge("render --preset passthrough --target spirv --input '" + out + "' --frames 2:4 --output '" + again + "'");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    auto copy = read_image(tmp / "g_4.png");
+    REQUIRE(copy.ok());
+    auto same = compare_images(copy.value(), b.value());
+    REQUIRE(same.ok());
+    CHECK(same.value().max_abs < 1.0 / 255 + 1e-6);
+
+    // A sequence that runs out, an output without %d, --frame with --frames: usage errors, no files.
+    check_usage_error(test::run_crtforge("render --preset passthrough --target spirv --input '" + out + "' --frames 2:5 --output '" +
+                                         (tmp / "h_%d.png") + "'"),
+                      "no frame 5");
+    CHECK_FALSE(fs::exists(tmp / "h_2.png"));
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --frames 0:2 --output '" + (tmp / "x.png") + "'"),
+                      "--output");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --frames 0:2 --frame 1 --output '" + out + "'"),
+                      "--frame");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --frames 3:1 --output '" + out + "'"), "--frames");
 }

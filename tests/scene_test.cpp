@@ -357,3 +357,47 @@ TEST_CASE("LUT generators: a neutral grade is the identity, the Atari palette's 
     REQUIRE_FALSE(unknown.ok());
     CHECK_THAT(unknown.error().message, Catch::Contains("nope"));
 }
+
+TEST_CASE("the exported Godot 3 scene keeps the previous frame: the trail decays there too", "[scene][feedback][godot3]") {
+    const Preset preset = resolve_or_fail("name = \"trail-probe\"\ndoc = \"d\"\n[[pass]]\nalias = \"nes\"\nscale_type = \"source\"\n"
+                                          "filter = \"nearest\"\n[pass.textures]\nfeedback = \"nes@previous\"\n"
+                                          "[pass.stages.trails]\ntrailBlend = 0.6\ntrailTint = [1.0, 0.7, 0.45]\n",
+                                          "trail-probe");
+    constexpr int kSize = 32, kBar = 4, kLast = 3;
+    auto source = [](int frame) -> Result<Image> {
+        Image image = Image::make(kSize, kSize, {0, 0, 0, 1});
+        for (int y = frame * kBar; y < (frame + 1) * kBar; ++y)
+            for (int x = 0; x < kSize; ++x) image.set_pixel(x, y, {1, 1, 1, 1});
+        return image;
+    };
+    auto compiled = compile_scene(test::shipped_library(), preset, {}, Cache());
+    REQUIRE(compiled.ok());
+    std::vector<TargetOutput> outputs;
+    for (const CompiledVariant& pass : compiled.value()) {
+        auto out = emit_target(pass, TargetId::Godot3, Cache());
+        REQUIRE(out.ok());
+        outputs.push_back(std::move(out.value()));
+    }
+    TargetRenderer renderer;
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &compiled.value();
+    r.target = TargetId::Godot3;
+    r.outputs = &outputs;
+    r.source = source;
+    r.width = kSize;
+    r.height = kSize;
+    r.frames = {kLast};
+    auto images = renderer.render_scene(r);
+    INFO((images.ok() ? std::string() : images.error().str()));
+    REQUIRE(images.ok());
+    const Image& image = images.value().front();
+    // Godot 3 keeps the 8-bit pass in an 8-bit viewport: values within 1/255 of (0.6 * tint)^k.
+    for (int k = 1; k <= kLast; ++k)
+        for (int c = 0; c < 3; ++c) {
+            INFO("k " << k << " channel " << c);
+            const double tint[3] = {1.0, 0.7, 0.45};
+            CHECK(image.at(kSize / 2, (kLast - k) * kBar + 1)[c] == Approx(std::pow(0.6 * tint[c], k)).margin(2.5 / 255));
+        }
+    CHECK(image.at(kSize / 2, kSize - 1)[0] == 0.0f);
+}
