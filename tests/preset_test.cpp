@@ -8,14 +8,7 @@ using namespace crtforge;
 namespace {
 
 Result<Preset> resolve_texts(const std::vector<std::pair<std::string, std::string>>& files, const std::string& name) {
-    const TemplateLibrary& lib = test::shipped_library();
-    std::vector<PresetFile> parsed;
-    for (const auto& [path, text] : files) {
-        auto f = parse_preset_file(text, path, &lib);
-        if (!f.ok()) return f.error();
-        parsed.push_back(f.value());
-    }
-    return lib.resolve(parsed, name);
+    return test::resolve_preset_texts(files, name);
 }
 
 double number(const Preset& p, const std::string& stage, const std::string& param) {

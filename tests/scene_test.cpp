@@ -24,14 +24,7 @@ namespace {
 using namespace crtforge;
 
 Result<Preset> resolve_texts(const std::vector<std::pair<std::string, std::string>>& files, const std::string& name) {
-    const TemplateLibrary& lib = test::shipped_library();
-    std::vector<PresetFile> parsed;
-    for (const auto& [path, text] : files) {
-        auto f = parse_preset_file(text, path, &lib);
-        if (!f.ok()) return f.error();
-        parsed.push_back(f.value());
-    }
-    return lib.resolve(parsed, name);
+    return test::resolve_preset_texts(files, name);
 }
 
 Preset resolve_or_fail(const std::string& text, const std::string& name) {
@@ -76,6 +69,25 @@ SceneRenders render_both(const Preset& preset, const std::function<Result<Image>
     INFO((reference.ok() ? std::string() : reference.error().str()));
     REQUIRE(reference.ok());
     return {std::move(vulkan).value(), std::move(reference).value()};
+}
+
+// One pass holding Super Win the Game's trails (blend 0.6, tint 1, 0.7, 0.45), its feedback its
+// own previous output.
+Preset trail_probe() {
+    return resolve_or_fail("name = \"trail-probe\"\ndoc = \"d\"\n[[pass]]\nalias = \"nes\"\nscale_type = \"source\"\n"
+                           "filter = \"nearest\"\n[pass.textures]\nfeedback = \"nes@previous\"\n"
+                           "[pass.stages.trails]\ntrailBlend = 0.6\ntrailTint = [1.0, 0.7, 0.45]\n",
+                           "trail-probe");
+}
+
+// A black square picture with a white bar `bar` rows high across it, `bar` rows lower each frame.
+std::function<Result<Image>(int)> falling_bar(int size, int bar) {
+    return [size, bar](int frame) -> Result<Image> {
+        Image image = Image::make(size, size, {0, 0, 0, 1});
+        for (int y = frame * bar; y < (frame + 1) * bar && y < size; ++y)
+            for (int x = 0; x < size; ++x) image.set_pixel(x, y, {1, 1, 1, 1});
+        return image;
+    };
 }
 
 }  // namespace
@@ -169,17 +181,9 @@ TEST_CASE("feedback reads the previous frame: a moving bar's trail decays by tra
     // height a frame over black: where it was k frames ago, a pixel holds (blend * tint)^k.
     const double blend = 0.6;
     const std::array<double, 3> tint = {1.0, 0.7, 0.45};
-    const Preset preset = resolve_or_fail("name = \"trail-probe\"\ndoc = \"d\"\n[[pass]]\nalias = \"nes\"\nscale_type = \"source\"\n"
-                                          "filter = \"nearest\"\n[pass.textures]\nfeedback = \"nes@previous\"\n"
-                                          "[pass.stages.trails]\ntrailBlend = 0.6\ntrailTint = [1.0, 0.7, 0.45]\n",
-                                          "trail-probe");
+    const Preset preset = trail_probe();
     constexpr int kSize = 32, kBar = 4, kLast = 5;
-    auto source = [](int frame) -> Result<Image> {
-        Image image = Image::make(kSize, kSize, {0, 0, 0, 1});
-        for (int y = frame * kBar; y < (frame + 1) * kBar && y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x) image.set_pixel(x, y, {1, 1, 1, 1});
-        return image;
-    };
+    const auto source = falling_bar(kSize, kBar);
     SECTION("trails on") {
         const SceneRenders r = render_both(preset, source, kSize, kSize, {kLast});
         for (const Image* image : {&r.vulkan.front(), &r.reference.front()}) {
@@ -359,17 +363,9 @@ TEST_CASE("LUT generators: a neutral grade is the identity, the Atari palette's 
 }
 
 TEST_CASE("the exported Godot 3 scene keeps the previous frame: the trail decays there too", "[scene][feedback][godot3]") {
-    const Preset preset = resolve_or_fail("name = \"trail-probe\"\ndoc = \"d\"\n[[pass]]\nalias = \"nes\"\nscale_type = \"source\"\n"
-                                          "filter = \"nearest\"\n[pass.textures]\nfeedback = \"nes@previous\"\n"
-                                          "[pass.stages.trails]\ntrailBlend = 0.6\ntrailTint = [1.0, 0.7, 0.45]\n",
-                                          "trail-probe");
+    const Preset preset = trail_probe();
     constexpr int kSize = 32, kBar = 4, kLast = 3;
-    auto source = [](int frame) -> Result<Image> {
-        Image image = Image::make(kSize, kSize, {0, 0, 0, 1});
-        for (int y = frame * kBar; y < (frame + 1) * kBar; ++y)
-            for (int x = 0; x < kSize; ++x) image.set_pixel(x, y, {1, 1, 1, 1});
-        return image;
-    };
+    const auto source = falling_bar(kSize, kBar);
     auto compiled = compile_scene(test::shipped_library(), preset, {}, Cache());
     REQUIRE(compiled.ok());
     std::vector<TargetOutput> outputs;

@@ -51,6 +51,17 @@ std::string ScratchTemplates::read(const std::string& rel) const {
     return ss.str();
 }
 
+Result<Preset> resolve_preset_texts(const std::vector<std::pair<std::string, std::string>>& files, const std::string& name) {
+    const TemplateLibrary& lib = shipped_library();
+    std::vector<PresetFile> parsed;
+    for (const auto& [path, text] : files) {
+        auto f = parse_preset_file(text, path, &lib);
+        if (!f.ok()) return f.error();
+        parsed.push_back(f.value());
+    }
+    return lib.resolve(parsed, name);
+}
+
 CommandResult run_command(const std::string& command) {
     TempDir tmp;
     const std::string out = tmp / "out.txt", err = tmp / "err.txt";

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "crtforge/crtforge.hpp"
 #include "crtforge/runtime/image.hpp"
@@ -45,6 +47,9 @@ private:
     TempDir tmp_;
     std::string dir_;
 };
+
+// Preset files (path, text) parsed and resolved against the shipped stages: the preset `name`.
+Result<Preset> resolve_preset_texts(const std::vector<std::pair<std::string, std::string>>& files, const std::string& name);
 
 struct CommandResult {
     int exit_code = -1;

@@ -85,15 +85,10 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
     scene.height = o.height;
     scene.frames = {o.frame};
     auto rendered = run_scene(scene, [&](const TargetRenderRequest& r) -> Result<Image> {
-        auto uniforms = variant_uniforms(r);
-        if (!uniforms.ok()) return uniforms.error();
-        auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
-        if (!textures.ok()) return textures.error();
-        auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
-        job.vertex_spirv = r.compiled->vertex;
-        job.fragment_spirv = r.compiled->fragment;
-        if (current_frame == o.frame) jobs.push_back(job);
-        return render_on_vulkan(job, engines);
+        auto job = vulkan_job(r);
+        if (!job.ok()) return job.error();
+        if (current_frame == o.frame) jobs.push_back(job.value());
+        return render_on_vulkan(job.value(), engines);
     });
     if (!rendered.ok()) return rendered.error();
 

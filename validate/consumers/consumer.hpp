@@ -112,6 +112,10 @@ Result<uint32_t> spirv_texture_binding(const TargetRenderRequest& r, const std::
 // Renders a job on this thread's Vulkan engine; a failed render is a validation failure.
 Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines);
 
+// The Vulkan job for a pass with the compiled SPIR-V as it is (the "vulkan" consumer's; the
+// benchmark times the same jobs).
+Result<RenderJob> vulkan_job(const TargetRenderRequest& request);
+
 // The same diagnostic as a validation failure: crtforge's output was rejected.
 Diagnostic as_validation(Diagnostic d);
 

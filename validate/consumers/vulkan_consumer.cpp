@@ -20,20 +20,26 @@ public:
     }
 
     Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
-        auto uniforms = variant_uniforms(r);
-        if (!uniforms.ok()) return uniforms.error();
-        auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
-        if (!textures.ok()) return textures.error();
-        auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
-        job.vertex_spirv = r.compiled->vertex;
-        job.fragment_spirv = r.compiled->fragment;
-        return render_on_vulkan(job, engines);
+        auto job = vulkan_job(r);
+        if (!job.ok()) return job.error();
+        return render_on_vulkan(job.value(), engines);
     }
 
     std::string describe(ConsumerEngines& engines) const override { return "Vulkan: " + engines.vulkan_device_name(); }
 };
 
 }  // namespace
+
+Result<RenderJob> vulkan_job(const TargetRenderRequest& r) {
+    auto uniforms = variant_uniforms(r);
+    if (!uniforms.ok()) return uniforms.error();
+    auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
+    if (!textures.ok()) return textures.error();
+    auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
+    job.vertex_spirv = r.compiled->vertex;
+    job.fragment_spirv = r.compiled->fragment;
+    return job;
+}
 
 const Consumer& vulkan_consumer() {
     static const VulkanConsumer consumer;
