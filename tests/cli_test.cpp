@@ -197,7 +197,7 @@ TEST_CASE("validate exits 1 on a failing comparison and 2 on bad arguments", "[c
     check_usage_error(test::run_crtforge("validate --input nothing --preset classic"), "--input");
 }
 
-TEST_CASE("render --frames writes one file per frame; an input sequence feeds them; bad patterns are errors",
+TEST_CASE("render --frames writes one file per frame, an input sequence feeds them, bad patterns are errors",
           "[cli][render][scene]") {
     test::TempDir tmp;
     const std::string out = tmp / "f_%02d.png";
