@@ -179,3 +179,44 @@ TEST_CASE("godot3: bad jobs are refused before Godot starts", "[godot3]") {
     error = render_error(job);
     CHECK(error.field == "job.shader_code");
 }
+
+TEST_CASE("godot3: one server renders many jobs, and a bad job or a hung one does not poison the next", "[godot3][server]") {
+    Godot3Server server;
+    Image input = Image::make(2, 2);
+    input.set_pixel(0, 0, {0.25f, 0.5f, 0.75f, 1.0f});
+    input.set_pixel(1, 1, {1.0f, 0.0f, 0.0f, 1.0f});
+    auto first = server.render(make_job(kPassthrough, input, 2, 2));
+    INFO((first.ok() ? std::string() : first.error().str()));
+    REQUIRE(first.ok());
+    CHECK(first.value().at(0, 0)[1] == Approx(0.5f).margin(1e-3));
+
+    // A rejected shader is that job's one-line error, not the end of the server.
+    auto rejected = server.render(make_job("shader_type canvas_item; void fragment() { COLOR = ; }\n", input, 2, 2));
+    REQUIRE_FALSE(rejected.ok());
+    CHECK_THAT(rejected.error().message, Contains("Godot 3 rejected the shader"));
+    CHECK(rejected.error().str().find('\n') == std::string::npos);
+
+    // A uniform per job: the same process, each job's own value.
+    for (float value : {0.2f, 0.6f}) {
+        Godot3Job job = make_job("shader_type canvas_item; uniform float v; void fragment() { COLOR = vec4(v, 0.0, 0.0, 1.0); }\n",
+                                 input, 3, 2);
+        job.params["v"] = static_cast<double>(value);
+        auto image = server.render(job);
+        INFO((image.ok() ? std::string() : image.error().str()));
+        REQUIRE(image.ok());
+        CHECK(image.value().at(2, 1)[0] == Approx(value).margin(1e-3));
+    }
+
+    // A job past its timeout kills the process; the next job starts a fresh one.
+    Godot3Job hang = make_job("shader_type canvas_item; void fragment() { float x = 0.0; for (int i = 0; i < 2000000000; i++) "
+                              "{ x += sin(float(i)); } COLOR = vec4(x); }\n",
+                              input, 64, 64);
+    hang.timeout_seconds = 3;
+    hang.frames = 30;
+    auto hung = server.render(hang);
+    REQUIRE_FALSE(hung.ok());
+    auto after = server.render(make_job(kPassthrough, input, 2, 2));
+    INFO((after.ok() ? std::string() : after.error().str()));
+    REQUIRE(after.ok());
+    CHECK(after.value().at(1, 1)[0] == Approx(1.0f).margin(1e-3));
+}

@@ -361,6 +361,49 @@ Result<Image> read_output(const fs::path& path, int width, int height) {
     return image;
 }
 
+// What Godot's output of one job says: a shader rejected, the runner's own refusal by its exit
+// code (2 = the job's params or files, 3 = the shader or the render, 4 = a runner script error),
+// a crash (`exit_code` -1, `how` describing the signal), or a script error in the scene.
+Status diagnose(const std::string& log, int exit_code, const std::string& how) {
+    const std::vector<std::string> lines = split_lines(log);
+    if (auto diagnostic = shader_diagnostic(lines)) return *diagnostic;
+    const std::string message = last_message(lines);
+    if (exit_code != 0) {
+        if (exit_code == 2 && !message.empty()) return make_error("Godot 3 runner: " + message);
+        if (exit_code == 3 && !message.empty()) return make_validation_error("Godot 3 runner: " + message);
+        bool crashed = exit_code < 0 || log.find("handle_crash") != std::string::npos;
+        if (exit_code == 4)  // the runner's own script failed: its SCRIPT ERROR line says where
+            for (const std::string& line : lines)
+                if (trim(line).rfind("SCRIPT ERROR:", 0) == 0) return make_validation_error("Godot 3 runner: " + trim(line));
+        return make_validation_error(fmt::format("Godot 3 {} ({}){}", crashed ? "crashed" : "failed",
+                                                 exit_code < 0 ? how : "exit code " + std::to_string(exit_code),
+                                                 message.empty() ? std::string() : ": " + message));
+    }
+    // A scene's script error does not stop Godot: any the log shows fails the render.
+    for (const std::string& line : lines)
+        if (trim(line).rfind("SCRIPT ERROR:", 0) == 0)
+            return make_validation_error("Godot 3: " + trim(line) + (message.empty() ? std::string() : " (" + message + ")"));
+    return Ok{};
+}
+
+// Writes each project file under `project`; false when one is already there with other content.
+Result<bool> add_project_files(const fs::path& project, const std::map<std::string, std::string>& files) {
+    for (const auto& [path, data] : files) {
+        const fs::path target = project / path;
+        std::error_code ec;
+        if (fs::exists(target, ec)) {
+            std::ifstream in(target, std::ios::binary);
+            std::string existing((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            if (existing != data) return false;
+            continue;
+        }
+        fs::create_directories(target.parent_path(), ec);
+        if (ec) return make_error(fmt::format("cannot create '{}': {}", target.parent_path().string(), ec.message()));
+        if (auto s = write_text(target, data); !s.ok()) return s.error();
+    }
+    return true;
+}
+
 // The part of a render every mode shares: a private runner project in `dir` (plus the job's own
 // files), an Xvfb, Godot run on it with `user_args`, and its output turned into diagnostics.
 Status run_runner(const fs::path& dir, const std::map<std::string, std::string>& project_files,
@@ -372,13 +415,7 @@ Status run_runner(const fs::path& dir, const std::map<std::string, std::string>&
                                       godot.empty() ? "godot3" : "Xvfb"));
     const fs::path project = dir / "project";
     if (auto s = copy_runner(data_path("tools/godot3-runner"), project); !s.ok()) return s;
-    for (const auto& [path, data] : project_files) {
-        const fs::path target = project / path;
-        std::error_code ec;
-        fs::create_directories(target.parent_path(), ec);
-        if (ec) return make_error(fmt::format("cannot create '{}': {}", target.parent_path().string(), ec.message()));
-        if (auto s = write_text(target, data); !s.ok()) return s;
-    }
+    if (auto added = add_project_files(project, project_files); !added.ok()) return added.error();
 
     auto server = start_xvfb(xvfb, dir);
     if (!server.ok()) return server.error();
@@ -410,25 +447,8 @@ Status run_runner(const fs::path& dir, const std::map<std::string, std::string>&
     godot_process.reaped();
     server.value().process->stop();
 
-    const std::vector<std::string> lines = split_lines(log);
-    if (auto diagnostic = shader_diagnostic(lines)) return *diagnostic;
-    const std::string message = last_message(lines);
-    if (!WIFEXITED(*status) || WEXITSTATUS(*status) != 0) {
-        const std::string how = describe_status(*status);
-        // The runner's own refusals: 2 = the job's params or files, 3 = the shader or the render.
-        if (WIFEXITED(*status) && WEXITSTATUS(*status) == 2 && !message.empty())
-            return make_error("Godot 3 runner: " + message);
-        if (WIFEXITED(*status) && WEXITSTATUS(*status) == 3 && !message.empty())
-            return make_validation_error("Godot 3 runner: " + message);
-        bool crashed = WIFSIGNALED(*status) || log.find("handle_crash") != std::string::npos;
-        return make_validation_error(fmt::format("Godot 3 {} ({}){}", crashed ? "crashed" : "failed", how,
-                                                 message.empty() ? std::string() : ": " + message));
-    }
-    // A scene's script error does not stop Godot: any the log shows fails the render.
-    for (const std::string& line : lines)
-        if (trim(line).rfind("SCRIPT ERROR:", 0) == 0)
-            return make_validation_error("Godot 3: " + trim(line) + (message.empty() ? std::string() : " (" + message + ")"));
-    return Ok{};
+    if (WIFEXITED(*status)) return diagnose(log, WEXITSTATUS(*status), "");
+    return diagnose(log, -1, describe_status(*status));
 }
 
 std::string frame_list(const std::vector<int>& frames) {
@@ -437,17 +457,12 @@ std::string frame_list(const std::vector<int>& frames) {
     return out;
 }
 
-}  // namespace
-
-Result<Image> render_godot3(const Godot3Job& job) {
+// The job's files in `dir` and the runner's arguments for it (output to dir/output.raw).
+Result<std::vector<std::string>> shader_job_args(const Godot3Job& job, const fs::path& dir) {
     static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
     if (auto s = check_job(job); !s.ok()) return s.error();
     auto params = params_json(job.params);
     if (!params.ok()) return params.error();
-
-    auto scratch = ScratchDir::create();
-    if (!scratch.ok()) return scratch.error();
-    const fs::path dir = scratch.value().path();
     std::vector<std::string> user_args = {
         "--shader=" + (dir / "shader.gdshader").string(),
         "--width=" + std::to_string(job.width),
@@ -466,11 +481,11 @@ Result<Image> render_godot3(const Godot3Job& job) {
         user_args.push_back("--input-width=" + std::to_string(job.input.width));
         user_args.push_back("--input-height=" + std::to_string(job.input.height));
     }
-    if (auto s = run_runner(dir, {}, user_args, job.timeout_seconds); !s.ok()) return s.error();
-    return read_output(dir / "output.raw", job.width, job.height);
+    return user_args;
 }
 
-Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
+// The same for a scene (outputs to dir/frame-<N>.raw).
+Result<std::vector<std::string>> scene_job_args(const Godot3SceneJob& job, const fs::path& dir) {
     if (job.scene.rfind("res://", 0) != 0) return job_error("scene must be a res:// path", "scene");
     if (job.width < 2 || job.height < 2 || job.width > kMaxExtent || job.height > kMaxExtent)
         return job_error(fmt::format("the display must be 2..{} pixels on each side; got {}x{}", kMaxExtent, job.width, job.height), "width");
@@ -483,12 +498,9 @@ Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
         if (std::find(job.run.begin(), job.run.end(), f) == job.run.end())
             return job_error(fmt::format("captured frame {} is not run", f), "capture");
     if (!(job.fps > 0)) return job_error("fps must be positive", "fps");
+    if (job.timeout_seconds < 1) return job_error("timeout_seconds must be at least 1", "timeout_seconds");
     auto params = params_json(job.params);
     if (!params.ok()) return params.error();
-
-    auto scratch = ScratchDir::create();
-    if (!scratch.ok()) return scratch.error();
-    const fs::path dir = scratch.value().path();
     {
         std::ofstream inputs(dir / "inputs.raw", std::ios::binary);
         for (const Image& input : job.inputs)
@@ -510,7 +522,10 @@ Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
         "--output=" + (dir / "frame-").string(),
     };
     if (!job.fit.empty()) user_args.push_back("--fit=" + job.fit);
-    if (auto s = run_runner(dir, job.project_files, user_args, job.timeout_seconds); !s.ok()) return s.error();
+    return user_args;
+}
+
+Result<std::vector<Image>> scene_outputs(const Godot3SceneJob& job, const fs::path& dir) {
     std::vector<Image> out;
     for (int f : job.capture) {
         auto image = read_output(dir / ("frame-" + std::to_string(f) + ".raw"), job.width, job.height);
@@ -518,6 +533,185 @@ Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
         out.push_back(std::move(image.value()));
     }
     return out;
+}
+
+}  // namespace
+
+Result<Image> render_godot3(const Godot3Job& job) {
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    const fs::path dir = scratch.value().path();
+    auto args = shader_job_args(job, dir);
+    if (!args.ok()) return args.error();
+    if (auto s = run_runner(dir, {}, args.value(), job.timeout_seconds); !s.ok()) return s.error();
+    return read_output(dir / "output.raw", job.width, job.height);
+}
+
+Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    const fs::path dir = scratch.value().path();
+    auto args = scene_job_args(job, dir);
+    if (!args.ok()) return args.error();
+    if (auto s = run_runner(dir, job.project_files, args.value(), job.timeout_seconds); !s.ok()) return s.error();
+    return scene_outputs(job, dir);
+}
+
+// ---- the server: one Xvfb and one Godot for many jobs -----------------------------------------
+
+struct Godot3Server::Process {
+    ScratchDir scratch;
+    XServer x;
+    std::unique_ptr<ChildGuard> godot;
+    Pipe output;
+    std::string pending;  // output read past the last job's end
+    int jobs = 0;
+};
+
+Godot3Server::Godot3Server() = default;
+Godot3Server::~Godot3Server() { stop(); }
+
+void Godot3Server::stop() {
+    if (!process_) return;
+    // The runner polls for this file between jobs and quits; a runner busy with a job is killed.
+    std::ofstream(process_->scratch.path() / "jobs" / "quit").put('\n');
+    if (process_->godot && wait_until(process_->godot->pid(), Clock::now() + std::chrono::milliseconds(500)))
+        process_->godot->reaped();
+    if (process_->godot) process_->godot->stop();
+    if (process_->x.process) process_->x.process->stop();
+    process_.reset();
+}
+
+Status Godot3Server::start() {
+    const std::string godot = find_on_path("godot3");
+    const std::string xvfb = find_on_path("Xvfb");
+    if (godot.empty() || xvfb.empty())
+        return make_error(fmt::format("Godot 3 rendering needs {} ('{}' is not on PATH)", kPackages,
+                                      godot.empty() ? "godot3" : "Xvfb"));
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    auto p = std::make_unique<Process>(Process{std::move(scratch.value()), {}, {}, {}, {}, 0});
+    const fs::path dir = p->scratch.path();
+    if (auto s = copy_runner(data_path("tools/godot3-runner"), dir / "project"); !s.ok()) return s;
+    auto x = start_xvfb(xvfb, dir);
+    if (!x.ok()) return x.error();
+    p->x = std::move(x.value());
+    // Jobs arrive as files in jobs/ (Godot 3.2 reads neither stdin nor a named pipe).
+    std::error_code ec;
+    fs::create_directories(dir / "jobs", ec);
+    if (ec) return make_error(fmt::format("cannot create '{}': {}", (dir / "jobs").string(), ec.message()));
+    if (auto s = open_pipe(p->output); !s.ok()) return s;
+    SpawnSpec spec;
+    spec.executable = godot;
+    spec.args = {"--path", (dir / "project").string(), "--video-driver", "GLES3", "--audio-driver", "Dummy", "--",
+                 "--serve=" + (dir / "jobs").string(), "--parent=" + std::to_string(::getpid())};
+    spec.env = child_environment({{"DISPLAY", p->x.display},
+                                  {"XDG_DATA_HOME", (dir / "data").string()},
+                                  {"XDG_CONFIG_HOME", (dir / "config").string()}});
+    spec.output_fd = p->output.write;
+    auto pid = spawn(spec);
+    p->output.close_write();
+    if (!pid.ok()) return pid.error();
+    p->godot = std::make_unique<ChildGuard>(pid.value(), SIGKILL);
+    process_ = std::move(p);
+    return Ok{};
+}
+
+Status Godot3Server::run(const std::function<Result<std::vector<std::string>>(const fs::path&)>& prepare,
+                         const std::map<std::string, std::string>& project_files, int timeout_seconds,
+                         const std::function<Status(const fs::path&)>& collect) {
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        if (!process_)
+            if (auto s = start(); !s.ok()) return s;
+        Process& p = *process_;
+        // A path keeps its content for the life of the process (Godot caches what it loaded):
+        // different content at a known path takes a fresh process.
+        auto added = add_project_files(p.scratch.path() / "project", project_files);
+        if (!added.ok()) return added.error();
+        if (!added.value()) {
+            stop();
+            continue;
+        }
+        const fs::path dir = p.scratch.path() / ("job-" + std::to_string(p.jobs++));
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec) return make_error(fmt::format("cannot create '{}': {}", dir.string(), ec.message()));
+        struct Cleanup {
+            fs::path dir;
+            ~Cleanup() { std::error_code e; fs::remove_all(dir, e); }
+        } cleanup{dir};
+        auto args = prepare(dir);
+        if (!args.ok()) return args.error();
+        nlohmann::json request = nlohmann::json::object();
+        for (const std::string& arg : args.value()) {
+            const size_t eq = arg.find('=');
+            request[arg.substr(2, eq - 2)] = eq == std::string::npos ? std::string() : arg.substr(eq + 1);
+        }
+        // Written beside, then renamed: the runner never reads half a job.
+        const fs::path job_file = p.scratch.path() / "jobs" / ("job-" + std::to_string(p.jobs - 1) + ".json");
+        if (auto w = write_text(fs::path(job_file.string() + ".tmp"), request.dump() + "\n"); !w.ok()) return w;
+        fs::rename(job_file.string() + ".tmp", job_file, ec);
+        if (ec) return make_error(fmt::format("cannot write '{}': {}", job_file.string(), ec.message()));
+        // Everything up to "crtforge-godot3-done: <code>" is this job's output.
+        constexpr const char* kDone = "crtforge-godot3-done: ";
+        const auto deadline = Clock::now() + std::chrono::seconds(timeout_seconds);
+        size_t done = std::string::npos;
+        while ((done = p.pending.find(kDone)) == std::string::npos || p.pending.find('\n', done) == std::string::npos) {
+            char buffer[8192];
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+            if (left <= 0) {
+                stop();
+                return make_validation_error(fmt::format("Godot 3 did not finish a job within {} s and was killed", timeout_seconds));
+            }
+            pollfd fd{p.output.read, POLLIN, 0};
+            const int r = ::poll(&fd, 1, static_cast<int>(std::min<long long>(left, 1000)));
+            if (r < 0 && errno != EINTR) break;
+            if (r <= 0) continue;
+            const ssize_t n = ::read(p.output.read, buffer, sizeof buffer);
+            if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+            if (n <= 0) {  // Godot ended mid-job: a crash
+                const std::string log = p.pending;
+                std::optional<int> status = p.godot ? wait_until(p.godot->pid(), Clock::now() + std::chrono::seconds(5)) : std::nullopt;
+                if (status && p.godot) p.godot->reaped();
+                stop();
+                return diagnose(log, -1, status ? describe_status(*status) : std::string("its output ended"));
+            }
+            if (p.pending.size() < kMaxLogBytes) p.pending.append(buffer, static_cast<size_t>(n));
+        }
+        const size_t end = p.pending.find('\n', done);
+        const std::string log = p.pending.substr(0, done);
+        const int code = std::atoi(p.pending.substr(done + std::strlen(kDone), end - done - std::strlen(kDone)).c_str());
+        p.pending.erase(0, end + 1);
+        if (auto s = diagnose(log, code, ""); !s.ok()) return s;
+        return collect(dir);
+    }
+    return make_error("Godot 3: the project files of two jobs disagree even in a fresh process");
+}
+
+Result<Image> Godot3Server::render(const Godot3Job& job) {
+    Image image;
+    auto s = run([&](const fs::path& dir) { return shader_job_args(job, dir); }, {}, job.timeout_seconds,
+                 [&](const fs::path& dir) -> Status {
+                     auto out = read_output(dir / "output.raw", job.width, job.height);
+                     if (!out.ok()) return out.error();
+                     image = std::move(out.value());
+                     return Ok{};
+                 });
+    if (!s.ok()) return s.error();
+    return image;
+}
+
+Result<std::vector<Image>> Godot3Server::render_scene(const Godot3SceneJob& job) {
+    std::vector<Image> images;
+    auto s = run([&](const fs::path& dir) { return scene_job_args(job, dir); }, job.project_files, job.timeout_seconds,
+                 [&](const fs::path& dir) -> Status {
+                     auto out = scene_outputs(job, dir);
+                     if (!out.ok()) return out.error();
+                     images = std::move(out.value());
+                     return Ok{};
+                 });
+    if (!s.ok()) return s.error();
+    return images;
 }
 
 std::string godot3_version() {

@@ -14,6 +14,7 @@
 #                        vec2 <- [x, y], vec4 <- [x, y, z, w]. A name the shader does not declare
 #                        is an error.
 #   --frames=N           frames rendered before the read-back (default 2)
+# Serve mode: --serve=DIR [--parent=PID]; then jobs as files in DIR (see _serve below).
 # Scene mode, instead of --shader: a crtforge scene exported into this project (res://addons/...):
 #   --scene=res://PATH.tscn   the scene; it fills the W x H viewport and `source` gets the inputs
 #   --inputs=PATH        raw float32 RGBA pictures, IW x IH each, one per frame of --run
@@ -224,8 +225,69 @@ func _run():
 	var opts = _parse_args()
 	if typeof(opts) == TYPE_STRING:
 		return _fail(2, opts)
+	if opts.has("serve"):
+		return yield(_serve(opts["serve"], int(opts.get("parent", "0"))), "completed")
+	return yield(_run_job(opts), "completed")
+
+
+# One job: a shader over a picture, or a crtforge scene.
+func _run_job(opts):
+	yield(get_tree(), "idle_frame")
 	if opts.has("scene"):
 		return yield(_run_scene(opts), "completed")
+	return yield(_run_shader(opts), "completed")
+
+
+# Serve mode (--serve=DIR [--parent=PID]): jobs arrive as files DIR/job-0.json, job-1.json, ...
+# (Godot 3.2 reads neither stdin nor a named pipe), each a JSON object of the same keys as the
+# command line (values as strings), written elsewhere and renamed in whole; after each,
+# "crtforge-godot3-done: <exit code>" on stderr. Ends when DIR/quit appears or process PID is gone.
+# While waiting the main loop is held in a sleep, so an idle runner draws nothing. Files a job names
+# are read when it runs; resources loaded by path (scenes, shaders of scenes) stay cached, so a
+# path must keep its content for the life of the process.
+func _serve(dir, parent):
+	yield(get_tree(), "idle_frame")
+	var files = File.new()
+	var folders = Directory.new()
+	var n = 0
+	while true:
+		var path = "%s/job-%d.json" % [dir, n]
+		while not files.file_exists(path):
+			if files.file_exists(dir + "/quit") or (parent > 0 and not folders.dir_exists("/proc/%d" % parent)):
+				return 0
+			OS.delay_msec(2)
+		n += 1
+		var line = _read_text(path)
+		folders.remove(path)
+		if line == null:
+			line = ""
+		var parsed = JSON.parse(line)
+		var status = 2
+		if parsed.error != OK or typeof(parsed.result) != TYPE_DICTIONARY:
+			_fail(2, "serve: a job must be one JSON object per line")
+		else:
+			status = yield(_run_job(parsed.result), "completed")
+			if typeof(status) != TYPE_INT:
+				status = _fail(4, "internal error in runner.gd (see the SCRIPT ERROR above)")
+		_reset()
+		printerr("crtforge-godot3-done: %d" % status)
+
+
+# Back to the state a fresh runner starts in: only the Picture in the viewport, with nothing on it.
+func _reset():
+	var viewport = $Viewport
+	var picture = $Viewport/Picture
+	for child in viewport.get_children():
+		if child != picture:
+			viewport.remove_child(child)
+			child.free()
+	picture.visible = true
+	picture.material = null
+	picture.texture = null
+
+
+func _run_shader(opts):
+	yield(get_tree(), "idle_frame")
 	for key in opts.keys():
 		if not key in ["shader", "input", "width", "height", "input-width", "input-height", "filter", "params", "output", "frames"]:
 			return _fail(2, "unknown argument '--%s'" % key)

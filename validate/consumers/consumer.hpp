@@ -12,6 +12,7 @@
 #include "crtforge/reflection.hpp"
 #include "crtforge/runtime/dawn_engine.hpp"
 #include "crtforge/runtime/gl_engine.hpp"
+#include "crtforge/runtime/godot3_engine.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/validate/target_render.hpp"
@@ -29,6 +30,8 @@ public:
     Result<RenderEngine*> vulkan();
     Result<GlEngine*> gl(bool es);
     Result<DawnEngine*> dawn() { return shared_dawn_engine(); }
+    // This thread's Godot 3, started on its first render and kept for the next ones.
+    Godot3Server& godot3();
     // "llvmpipe (LLVM 15.0.6, 256 bits)", or "unavailable".
     std::string vulkan_device_name();
 
@@ -43,6 +46,7 @@ private:
     EngineOptions vulkan_options_;
     std::unique_ptr<RenderEngine> vulkan_;
     std::unique_ptr<GlEngine> gl_core_, gl_es_;
+    std::unique_ptr<Godot3Server> godot3_;
     std::map<std::string, Module> modules_;
 };
 

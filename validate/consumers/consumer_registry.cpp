@@ -37,6 +37,11 @@ Result<GlEngine*> ConsumerEngines::gl(bool es) {
     return slot.get();
 }
 
+Godot3Server& ConsumerEngines::godot3() {
+    if (!godot3_) godot3_ = std::make_unique<Godot3Server>();
+    return *godot3_;
+}
+
 std::string ConsumerEngines::vulkan_device_name() {
     auto v = vulkan();
     return v.ok() ? v.value()->device().name : std::string("unavailable");

@@ -38,7 +38,7 @@ public:
         return consumers::compile_through_shim(f.data, 3, engines);
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines&) const override {
+    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
         if (!r.textures.empty() || !r.viewport.full() || r.format != OutputFormat::Rgba16Float)
             return make_error("this Godot 3 pass reads extra textures, draws into a viewport or stores an 8-bit "
                               "framebuffer: Godot 3 runs such passes in the exported scene (render the preset, not the pass)");
@@ -54,10 +54,10 @@ public:
         job.height = r.height;
         for (const VariantParam* p : r.compiled->variant.uniforms()) job.params[p->spec->name] = p->value;
         for (const auto& [name, value] : r.overrides) job.params[name] = value;
-        return render_godot3(job);
+        return engines.godot3().render(job);
     }
 
-    Result<std::vector<Image>> render_scene(const SceneRenderRequest& r, ConsumerEngines&) const override {
+    Result<std::vector<Image>> render_scene(const SceneRenderRequest& r, ConsumerEngines& engines) const override {
         if (!r.preset || !r.passes || !r.outputs || r.outputs->size() != r.passes->size() || !r.source)
             return make_error("a Godot 3 scene render needs the preset, its passes and their Godot 3 files");
         const Preset& preset = *r.preset;
@@ -100,7 +100,7 @@ public:
         job.width = r.width;
         job.height = r.height;
         job.params = r.overrides;
-        auto images = render_godot3_scene(job);
+        auto images = engines.godot3().render_scene(job);
         if (!images.ok()) return images.error();
         std::vector<Image> out;
         for (int f : r.frames) {

@@ -25,7 +25,10 @@
 // comes back as 0.2998).
 #pragma once
 
+#include <filesystem>
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -85,6 +88,32 @@ struct Godot3SceneJob {
 // The display images of job.capture, in that order (row 0 = top, linear floats, RGBA16F precision).
 // Errors as render_godot3's; a GDScript error in the scene's script fails the render too.
 Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job);
+
+// A Godot 3 that stays up between renders: one Xvfb and one godot3 process running the runner in
+// serve mode, fed one job per line (tools/godot3-runner/README.md). Each render gives what the
+// one-shot functions above give, without the ~1.7 s start of Xvfb and Godot; a crash or timeout
+// ends the process and the next render starts a fresh one. The project files of scene jobs stay in
+// the process's project (Godot caches what it loaded): a job bringing different content for a path
+// already there gets a fresh process. Not thread-safe: one per thread.
+class Godot3Server {
+public:
+    Godot3Server();
+    ~Godot3Server();
+    Godot3Server(const Godot3Server&) = delete;
+    Godot3Server& operator=(const Godot3Server&) = delete;
+
+    Result<Image> render(const Godot3Job& job);
+    Result<std::vector<Image>> render_scene(const Godot3SceneJob& job);
+
+private:
+    struct Process;
+    Status start();
+    void stop();
+    Status run(const std::function<Result<std::vector<std::string>>(const std::filesystem::path&)>& prepare,
+               const std::map<std::string, std::string>& project_files, int timeout_seconds,
+               const std::function<Status(const std::filesystem::path&)>& collect);
+    std::unique_ptr<Process> process_;
+};
 
 // The version `godot3 --version` prints, e.g. "3.2.3.stable.custom_build" on Debian 12; "" when
 // godot3 is not installed. Runs godot3 once per process (the answer is cached).
