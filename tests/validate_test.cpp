@@ -47,6 +47,13 @@ TEST_CASE("the shipped goldens are current: the reference renders them bit for b
     const auto plan = test::golden_plan_or_fail(lib, golden_dir());
     REQUIRE(manifest.value().size() == plan.size());
     for (size_t i = 0; i < plan.size(); ++i) CHECK(manifest.value()[i].id == plan[i].id);
+    // Every golden was made of today's presets, templates and oracle.
+    for (const GoldenEntry& e : manifest.value()) {
+        INFO(e.id << " is stale: run 'crtforge golden update'");
+        auto inputs = golden_inputs_hash(lib, e);
+        REQUIRE(inputs.ok());
+        CHECK(inputs.value() == e.inputs_hash);
+    }
     // Re-rendering every golden takes a while on 2 cores; a spread sample of the stored ones covers
     // each preset (the ones rendered at validation check their hash there).
     size_t checked = 0;
@@ -150,4 +157,36 @@ TEST_CASE("shard reports merge back into the unsharded report", "[validate]") {
     };
     CHECK(slurp(merged / "report.json") == slurp(whole / "report.json"));
     CHECK(slurp(merged / "junit.xml") == slurp(whole / "junit.xml"));
+}
+
+TEST_CASE("a golden whose inputs changed is stale: validate fails it and names the fix", "[validate][golden][stale]") {
+    test::ScratchTemplates t;
+    test::TempDir golden;
+    fs::copy_file(std::string(CRTFORGE_SOURCE_DIR) + "/golden/plan.toml", golden / "plan.toml");
+    const std::string templates = "--templates '" + t.dir() + "' ";
+    auto update = test::run_crtforge(templates + "golden update --dir '" + golden.path() + "' --filter classic.color_bars");
+    INFO(update.err);
+    REQUIRE(update.exit_code == 0);
+    const std::string validate = templates + "validate --golden-dir '" + golden.path() + "' --preset classic --input color_bars --target spirv";
+    auto fresh = test::run_crtforge(validate);
+    INFO(fresh.out << fresh.err);
+    CHECK(fresh.exit_code == 0);
+
+    SECTION("a preset value moved by a little") {
+        std::string preset = t.read("presets/classic.toml");
+        preset += "\n";  // the same text with one value nudged: 10% on a subtle param
+        const size_t at = preset.find("vignetteStrength");
+        REQUIRE(at != std::string::npos);
+        const size_t eq = preset.find('=', at), end = preset.find('\n', eq);
+        const double value = std::stod(preset.substr(eq + 1, end - eq - 1));
+        preset = preset.substr(0, eq + 1) + " " + std::to_string(value * 1.1) + preset.substr(end);
+        t.write("presets/classic.toml", preset);
+    }
+    SECTION("a stage's snippet edited") {
+        t.write("stages/vignette.glsl", t.read("stages/vignette.glsl") + "\n// an edit\n");
+    }
+    auto stale = test::run_crtforge(validate);
+    CHECK(stale.exit_code == 1);
+    CHECK_THAT(stale.out, Catch::Contains("classic.color_bars.320x240.f0 is stale"));
+    CHECK_THAT(stale.out, Catch::Contains("crtforge golden update"));
 }

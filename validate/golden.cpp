@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/cache.hpp"
+#include "crtforge/exporter.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -112,7 +113,65 @@ void quantise_16bit(Image& image) {
 
 }  // namespace
 
+Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const GoldenEntry& entry) {
+    const Preset* preset = library.find_preset(entry.preset);
+    if (!preset) return make_error("golden " + entry.id + " names preset '" + entry.preset + "', which the templates do not have");
+    // Everything the golden follows from, as text: the oracle's code, the input, the sizes, and the
+    // preset as resolved (scene, LUTs, passes, every stage's form and values), with the stage
+    // specs and snippets it uses and the shared prelude.
+    std::vector<std::string> parts = {"golden-inputs/1", reference_source_hash(), entry.input,
+                                      fmt::format("{}x{} {}x{} f{} {}", entry.width, entry.height, entry.input_width,
+                                                  entry.input_height, entry.frame, entry.fit ? display_fit_name(*entry.fit) : "-")};
+    const SceneSettings& sc = preset->scene;
+    parts.push_back(fmt::format("scene {}x{} {}:{} {} {} {}:{} {}", sc.source_width, sc.source_height, sc.pixel_aspect_x,
+                                sc.pixel_aspect_y, source_fit_name(sc.source_fit), display_fit_name(sc.fit), sc.screen_aspect_x,
+                                sc.screen_aspect_y, sc.fps));
+    for (const LutSpec& lut : preset->luts) {
+        std::string text = "lut " + lut.name + " " + lut.generator + " " + lut.file + " " + filter_name(lut.filter) + " " + wrap_name(lut.wrap);
+        for (const auto& [name, value] : lut.params) text += fmt::format(" {}={}", name, value);
+        if (!lut.generator.empty()) parts.push_back(text);
+        else if (auto data = read_text_file(lut_file_path(lut)); data.ok()) parts.push_back(text + "\n" + data.value());
+        else return data.error();
+    }
+    std::map<std::string, const StageSpec*> stages;
+    for (const Pass& pass : preset->passes) {
+        std::string text = fmt::format("pass {} {} {} {} {} {} {} mod {}", pass.alias, scale_type_name(pass.scale_x.type), pass.scale_x.factor,
+                                       scale_type_name(pass.scale_y.type), pass.scale_y.factor, pixel_format_name(pass.format),
+                                       preset->filter == Filter::Nearest ? "nearest" : "linear", pass.frame_count_mod);
+        for (const PassInput& in : pass.inputs)
+            text += fmt::format(" [{} {} {} {} {}]", in.binding, in.from.str(), filter_name(in.filter), wrap_name(in.wrap), in.mipmap);
+        for (const ResolvedStage& st : pass.stages) {
+            text += "\n  " + st.stage->name + "/" + st.form->name;
+            for (const auto& [name, value] : st.values) {
+                // Exact values: value_to_string rounds colours to 8 bits.
+                std::string v = value_to_string(value);
+                if (auto c = std::get_if<Color>(&value)) v = fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
+                else if (auto d = std::get_if<double>(&value)) v = fmt::format("{}", *d);
+                text += " " + name + "=" + v;
+            }
+            stages[st.stage->name] = st.stage;
+        }
+        parts.push_back(text);
+    }
+    for (const auto& [name, stage] : stages) {
+        auto spec = read_text_file(stage->where.file);
+        if (!spec.ok()) return spec.error();
+        parts.push_back(spec.value());
+        parts.push_back(stage->glsl_source);
+    }
+    parts.push_back(library.prelude_source());
+    std::string all;  // length-prefixed, so no two lists of parts join to the same text
+    for (const std::string& part : parts) all += std::to_string(part.size()) + ":" + part;
+    return Cache::key({all});
+}
+
 Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir) {
+    auto inputs = golden_inputs_hash(library, entry);
+    if (!inputs.ok()) return inputs.error();
+    if (inputs.value() != entry.inputs_hash)
+        return make_error("golden " + entry.id + " is stale (its preset, stage specs, templates, input or the reference changed "
+                          "since it was made): run crtforge golden update",
+                          dir + "/manifest.json");
     if (entry.stored) return read_image(dir + "/" + entry.file());
     // An entry that a filtered update never rendered has nothing to check the reference against.
     if (entry.hash.empty())
@@ -153,6 +212,7 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
                                               g.at("inputWidth"), g.at("inputHeight"), g.at("frame"), fit);
             e.stored = g.value("stored", true);
             e.hash = g.value("hash", "");
+            e.inputs_hash = g.value("inputsHash", "");
             const auto& t = g.at("tolerance");
             e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"), t.at("why")};
             if (g.at("id") != e.id) return make_error("golden id '" + g.at("id").get<std::string>() + "' does not match its fields", path);
@@ -179,10 +239,16 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
         for (size_t i = 0; i < sequence.size(); ++i) images.emplace_back(sequence[i], std::move(rendered.value()[i]));
     }
     // The hashes of the entries not re-rendered stay as the old manifest has them.
-    std::map<std::string, std::string> hashes;
+    std::map<std::string, std::string> hashes, inputs;
     if (auto old = load_golden_manifest(dir); old.ok())
-        for (const GoldenEntry& e : old.value()) hashes[e.id] = e.hash;
+        for (const GoldenEntry& e : old.value()) {
+            hashes[e.id] = e.hash;
+            inputs[e.id] = e.inputs_hash;
+        }
     for (auto& [entry, image] : images) {
+        auto made_of = golden_inputs_hash(library, *entry);
+        if (!made_of.ok()) return made_of.error();
+        inputs[entry->id] = made_of.value();
         quantise_16bit(image);
         hashes[entry->id] = golden_hash(image);
         if (!entry->stored) continue;
@@ -199,6 +265,7 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
         entry["frame"] = e.frame;
         if (!e.stored) entry["stored"] = false;
         if (!hashes[e.id].empty()) entry["hash"] = hashes[e.id];
+        if (!inputs[e.id].empty()) entry["inputsHash"] = inputs[e.id];
         entry["tolerance"] = {{"maxRmse", e.tolerance.max_rmse}, {"outlierThreshold", e.tolerance.outlier_threshold},
                               {"maxOutlierFraction", e.tolerance.max_outlier_fraction}, {"minSsim", e.tolerance.min_ssim},
                               {"why", e.tolerance.why}};

@@ -57,6 +57,10 @@ struct ReferenceSceneJob {
     std::map<std::string, Image> file_luts;               // images of the preset's file LUTs, by name
 };
 
+// The content hash of the code goldens come from (the reference renderer, the test inputs, the LUT
+// generators, the scene geometry), fixed at build time: part of every golden's inputs hash.
+const char* reference_source_hash();
+
 // The display images of job.frames, in that order. Frames before the last kept one are rendered
 // too when the scene keeps state between frames (feedback, history); otherwise only the kept ones.
 Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job);

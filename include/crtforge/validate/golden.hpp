@@ -37,6 +37,9 @@ struct GoldenEntry {
     // hashes to `hash` (the 16-bit pixels of `golden update`), so a change of the oracle shows.
     bool stored = true;
     std::string hash;
+    // What the golden was made of (golden_inputs_hash at `golden update`): a golden whose inputs
+    // changed since is stale, and validate fails it rather than trust it.
+    std::string inputs_hash;
     Tolerance tolerance;
     std::string file() const { return id + ".png"; }
     // Entries of one sequence render together: same preset, input, sizes and fit.
@@ -52,6 +55,11 @@ GoldenEntry make_golden_entry(const std::string& preset, const std::string& inpu
 Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, const std::string& golden_dir);
 
 Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir);
+
+// A hash of everything a golden follows from: the preset as resolved (scene, LUTs, passes, every
+// stage's form and values), the specs and snippets of its stages, the prelude, the input, sizes and
+// frame, and the oracle's own code (reference_source_hash).
+Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const GoldenEntry& entry);
 
 // Renders the plan's references on the CPU and writes <dir>/<id>.png (16-bit) + manifest.json.
 // Only entries whose id contains `filter` (empty = all) are re-rendered; the manifest always lists
