@@ -154,7 +154,12 @@ TEST_CASE("The WebGPU example runs whole scenes (passes, feedback, LUTs) like Vu
         inputs.push_back(std::move(input.value()));
     }
     TargetRenderer renderer;
-    const Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
+    // Two GPU renders each within a golden's tolerance of the reference are within twice it of
+    // each other.
+    Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
+    tolerance.max_rmse *= 2;
+    tolerance.max_tile_rmse *= 2;
+    tolerance.outlier_threshold *= 2;
     for (const std::string& name : presets) {
         SECTION(name) {
             const std::string prefix = tmp / (name + "-frame-");

@@ -8,6 +8,7 @@
 
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/runtime/image_io.hpp"
+#include "crtforge/validate/target_render.hpp"
 #include "crtforge/validate/validation.hpp"
 #include "tests/test_support.hpp"
 
@@ -24,13 +25,26 @@ std::string replace_once(std::string s, const std::string& from, const std::stri
     return s.replace(pos, from.size(), to);
 }
 
+// Validation of a (perturbed) template library against goldens made from it: the reference renders
+// the presets' math, not the templates' GLSL, so the goldens are the shipped ones, current for
+// this library (a template edit makes the shipped set stale).
 ValidationReport validate_with(const TemplateLibrary& lib, std::vector<std::string> presets, std::vector<TargetId> targets,
                                std::vector<std::string> inputs, const std::string& report_dir = {}) {
+    static int dirs = 0;
+    static test::TempDir root;
+    const std::string goldens = root / ("goldens-" + std::to_string(dirs++));
+    fs::create_directories(goldens);
+    fs::copy_file(golden_dir() + "/plan.toml", goldens + "/plan.toml");
+    for (const std::string& preset : presets)
+        for (const std::string& input : inputs) {
+            auto made = update_goldens(lib, goldens, preset + "." + input + ".");
+            if (!made.ok()) FAIL(made.error().str());
+        }
     ValidateRequest request;
     request.presets = std::move(presets);
     request.targets = std::move(targets);
     request.inputs = std::move(inputs);
-    request.golden_dir = golden_dir();
+    request.golden_dir = goldens;
     request.report_dir = report_dir;
     request.vulkan.validation = true;  // any Vulkan validation message fails the render
     auto report = run_validation(lib, request, Cache());
@@ -189,4 +203,65 @@ TEST_CASE("a golden whose inputs changed is stale: validate fails it and names t
     CHECK(stale.exit_code == 1);
     CHECK_THAT(stale.out, Catch::Contains("classic.color_bars.320x240.f0 is stale"));
     CHECK_THAT(stale.out, Catch::Contains("crtforge golden update"));
+}
+
+TEST_CASE("the judge catches errors confined to a row or a patch, small global gains and a channel swap", "[validate][judge]") {
+    // A real render that passes (Vulkan, classic over pixel art), then damaged the ways a wrong
+    // shader damages a frame: each must fail the shipped golden's tolerance.
+    const TemplateLibrary& lib = test::shipped_library();
+    auto manifest = load_golden_manifest(golden_dir());
+    REQUIRE(manifest.ok());
+    const GoldenEntry* entry = nullptr;
+    for (const GoldenEntry& e : manifest.value())
+        if (e.id == "classic.pixel_art.320x240.f0") entry = &e;
+    REQUIRE(entry != nullptr);
+    auto golden = load_golden_image(lib, *entry, golden_dir());
+    REQUIRE(golden.ok());
+    const Preset& preset = *lib.find_preset("classic");
+    auto compiled = compile_scene(lib, preset, {}, Cache());
+    REQUIRE(compiled.ok());
+    TargetRenderer renderer;
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &compiled.value();
+    r.source = [entry](int frame) { return golden_input(*entry, frame); };
+    r.width = entry->width;
+    r.height = entry->height;
+    r.frames = {0};
+    auto rendered = renderer.render_scene(r);
+    REQUIRE(rendered.ok());
+    const Image good = rendered.value().front();
+    auto baseline = judge(good, golden.value(), entry->tolerance);
+    REQUIRE(baseline.ok());
+    INFO(baseline.value().reason);
+    REQUIRE(baseline.value().passed);
+
+    auto fails = [&](const char* what, const std::function<void(Image&)>& damage) {
+        Image bad = good;
+        damage(bad);
+        auto verdict = judge(bad, golden.value(), entry->tolerance);
+        REQUIRE(verdict.ok());
+        INFO(what << ": RMSE " << verdict.value().metrics.rmse << ", tile " << verdict.value().max_tile_rmse << ", outliers "
+                  << verdict.value().outlier_fraction);
+        CHECK_FALSE(verdict.value().passed);
+    };
+    fails("a black row", [](Image& im) {
+        for (int x = 0; x < im.width; ++x) im.set_pixel(x, im.height / 2, {0, 0, 0, 1});
+    });
+    fails("a 16x16 patch 0.09 too bright", [](Image& im) {
+        for (int y = 100; y < 116; ++y)
+            for (int x = 100; x < 116; ++x)
+                for (int c = 0; c < 3; ++c) im.at(x, y)[c] += 0.09f;
+    });
+    fails("a global gain of 1%", [](Image& im) {
+        for (size_t i = 0; i < im.rgba.size(); ++i)
+            if (i % 4 != 3) im.rgba[i] *= 1.01f;
+    });
+    fails("one column off by 0.05", [](Image& im) {
+        for (int y = 0; y < im.height; ++y) im.at(7, y)[1] += 0.05f;
+    });
+    fails("red and blue swapped", [](Image& im) {
+        for (int y = 0; y < im.height; ++y)
+            for (int x = 0; x < im.width; ++x) std::swap(im.at(x, y)[0], im.at(x, y)[2]);
+    });
 }

@@ -30,9 +30,19 @@ namespace {
 // bounding the max error. A 5% scanline-period error or a swapped mask channel fails by far
 // (tests/validate_test.cpp).
 Tolerance default_tolerance() {
-    return {0.004, 0.05, 0.005, 0.99,
-            "fp32 GPU vs fp64 reference: RMSE <= 0.004 (lavapipe/Mesa measure <= 0.0003); discontinuities "
-            "(floor in masks, bezel edge, texel steps) may flip up to 0.5% of pixels by more than 0.05; luma SSIM >= 0.99"};
+    Tolerance t;
+    t.max_rmse = 0.0015;
+    t.outlier_threshold = 0.01;
+    t.max_outlier_fraction = 0.001;
+    t.min_ssim = 0.99;
+    t.max_tile_rmse = 0.03;
+    t.why = "fp32 GPU vs fp64 reference, measured over every golden on lavapipe, Mesa GL/GLES, Dawn and the Godot 4 shim: "
+            "RMSE <= 0.00038 (0.0011 where a palette's dither steps on 8-bit passes), so RMSE <= 0.0015; the largest error "
+            "where the golden is flat 0.004, so 0.01 per pixel plus the golden's own variation around the pixel (the most a "
+            "sub-pixel shift at a discontinuity can move it), with 0 pixels measured beyond it, so at most 0.1%; 16x16 "
+            "tiles RMSE <= 0.0114 (tiles across mask and bezel edges), so 0.03; luma SSIM >= 0.99. A consumer that "
+            "displays 8-bit values (Godot 3) adds its step (1/255) per pixel and its RMS (1/255/sqrt 3) to the RMSEs.";
+    return t;
 }
 
 }  // namespace
@@ -214,7 +224,8 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
             e.hash = g.value("hash", "");
             e.inputs_hash = g.value("inputsHash", "");
             const auto& t = g.at("tolerance");
-            e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"), t.at("why")};
+            e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"),
+                           t.value("maxTileRmse", 0.0), t.at("why")};
             if (g.at("id") != e.id) return make_error("golden id '" + g.at("id").get<std::string>() + "' does not match its fields", path);
             out.push_back(std::move(e));
         }
@@ -268,32 +279,74 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
         if (!inputs[e.id].empty()) entry["inputsHash"] = inputs[e.id];
         entry["tolerance"] = {{"maxRmse", e.tolerance.max_rmse}, {"outlierThreshold", e.tolerance.outlier_threshold},
                               {"maxOutlierFraction", e.tolerance.max_outlier_fraction}, {"minSsim", e.tolerance.min_ssim},
-                              {"why", e.tolerance.why}};
+                              {"maxTileRmse", e.tolerance.max_tile_rmse}, {"why", e.tolerance.why}};
         manifest["goldens"].push_back(std::move(entry));
     }
     if (auto s = write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n"); !s.ok()) return s.error();
     return GoldenUpdate{images.size(), plan.size()};
 }
 
-Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& t) {
+Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& t, double output_quantum) {
     Image clamped = render;
     for (float& v : clamped.rgba) v = std::clamp(v, 0.0f, 1.0f);
     auto metrics = compare_images(clamped, golden);
     if (!metrics.ok()) return metrics.error();
     Verdict v;
     v.metrics = metrics.value();
-    size_t outliers = 0;
-    for (size_t i = 0; i < golden.rgba.size(); i += 4) {
-        double worst = 0;
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, static_cast<double>(std::abs(clamped.rgba[i + c] - golden.rgba[i + c])));
-        if (worst > t.outlier_threshold) ++outliers;
+    const int w = golden.width, h = golden.height;
+    // Per pixel: the error d and the golden's own variation around it, the most a sub-pixel shift
+    // of the sampling (another driver's rounding at a discontinuity) can move the value.
+    std::vector<float> d(static_cast<size_t>(w) * h), edge(static_cast<size_t>(w) * h);
+    const float* r = clamped.rgba.data();
+    const float* g = golden.rgba.data();
+    const size_t stride = static_cast<size_t>(w) * 4;
+    for (int y = 0; y < h; ++y) {
+        const int y0 = std::max(0, y - 1), y1 = std::min(h - 1, y + 1);
+        for (int x = 0; x < w; ++x) {
+            const int x0 = std::max(0, x - 1), x1 = std::min(w - 1, x + 1);
+            const size_t at = static_cast<size_t>(y) * stride + static_cast<size_t>(x) * 4;
+            float worst = 0, around = 0;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(r[at + c] - g[at + c]));
+            for (int ny = y0; ny <= y1; ++ny) {
+                const float* row = g + static_cast<size_t>(ny) * stride;
+                for (int nx = x0; nx <= x1; ++nx)
+                    for (int c = 0; c < 3; ++c) around = std::max(around, std::abs(row[nx * 4 + c] - g[at + c]));
+            }
+            d[static_cast<size_t>(y) * w + x] = worst;
+            edge[static_cast<size_t>(y) * w + x] = around;
+        }
     }
-    v.outlier_fraction = golden.rgba.empty() ? 0.0 : static_cast<double>(outliers) / (golden.rgba.size() / 4);
+    size_t outliers = 0;
+    for (size_t i = 0; i < d.size(); ++i) {
+        if (d[i] > t.outlier_threshold + output_quantum + edge[i]) ++outliers;
+        if (edge[i] <= 0.01f) v.flat_max = std::max(v.flat_max, static_cast<double>(d[i]));
+    }
+    v.outlier_fraction = d.empty() ? 0.0 : static_cast<double>(outliers) / d.size();
+    constexpr int kTile = 16;
+    for (int ty = 0; ty < h; ty += kTile)
+        for (int tx = 0; tx < w; tx += kTile) {
+            double sum = 0;
+            int count = 0;
+            for (int y = ty; y < std::min(h, ty + kTile); ++y)
+                for (int x = tx; x < std::min(w, tx + kTile); ++x) {
+                    const size_t at = static_cast<size_t>(y) * stride + static_cast<size_t>(x) * 4;
+                    for (int c = 0; c < 3; ++c) {
+                        const double e = r[at + c] - g[at + c];
+                        sum += e * e;
+                    }
+                    count += 3;
+                }
+            v.max_tile_rmse = std::max(v.max_tile_rmse, std::sqrt(sum / count));
+        }
     std::vector<std::string> failures;
-    if (v.metrics.rmse > t.max_rmse) failures.push_back(fmt::format("RMSE {:.4f} > {}", v.metrics.rmse, t.max_rmse));
+    const double quantum_rms = output_quantum / std::sqrt(3.0);
+    const double max_rmse = t.max_rmse + quantum_rms, max_tile = t.max_tile_rmse + quantum_rms;
+    if (v.metrics.rmse > max_rmse) failures.push_back(fmt::format("RMSE {:.5f} > {:.5f}", v.metrics.rmse, max_rmse));
+    if (t.max_tile_rmse > 0 && v.max_tile_rmse > max_tile)
+        failures.push_back(fmt::format("a 16x16 tile has RMSE {:.4f} > {:.4f}", v.max_tile_rmse, max_tile));
     if (v.outlier_fraction > t.max_outlier_fraction)
-        failures.push_back(fmt::format("{:.2f}% of pixels off by > {} (allowed {:.2f}%)", 100 * v.outlier_fraction,
-                                       t.outlier_threshold, 100 * t.max_outlier_fraction));
+        failures.push_back(fmt::format("{:.3f}% of pixels off by more than {:.4f} plus their edge allowance (allowed {:.2f}%)",
+                                       100 * v.outlier_fraction, t.outlier_threshold + output_quantum, 100 * t.max_outlier_fraction));
     if (v.metrics.ssim < t.min_ssim) failures.push_back(fmt::format("SSIM {:.4f} < {}", v.metrics.ssim, t.min_ssim));
     v.passed = failures.empty();
     for (const auto& f : failures) v.reason += (v.reason.empty() ? "" : "; ") + f;

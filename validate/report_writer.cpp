@@ -31,7 +31,8 @@ std::string escape(const std::string& s) {
 
 json metrics_json(const Verdict& v) {
     return json{{"maxAbs", v.metrics.max_abs}, {"rmse", v.metrics.rmse}, {"psnr", v.metrics.psnr},
-                {"ssim", v.metrics.ssim}, {"outlierFraction", v.outlier_fraction},
+                {"ssim", v.metrics.ssim}, {"outlierFraction", v.outlier_fraction}, {"maxTileRmse", v.max_tile_rmse},
+                {"flatMax", v.flat_max},
                 {"worstPixel", json::array({v.metrics.worst_x, v.metrics.worst_y})}};
 }
 
@@ -40,7 +41,7 @@ json golden_json(const GoldenEntry& g) {
                 {"inputWidth", g.input_width}, {"inputHeight", g.input_height}, {"frame", g.frame},
                 {"tolerance", {{"maxRmse", g.tolerance.max_rmse}, {"outlierThreshold", g.tolerance.outlier_threshold},
                                {"maxOutlierFraction", g.tolerance.max_outlier_fraction}, {"minSsim", g.tolerance.min_ssim},
-                               {"why", g.tolerance.why}}}};
+                               {"maxTileRmse", g.tolerance.max_tile_rmse}, {"why", g.tolerance.why}}}};
 }
 
 std::string report_json(const ValidationReport& report) {
@@ -225,7 +226,8 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
                 e.input_height = g.at("inputHeight");
                 e.frame = g.at("frame");
                 const auto& t = g.at("tolerance");
-                e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"), t.at("why")};
+                e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"),
+                               t.value("maxTileRmse", 0.0), t.at("why")};
                 if (goldens.emplace(e.id, e).second) golden_order.push_back(e.id);
             }
             for (const auto& c : j.at("checks")) {
@@ -243,6 +245,8 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
                     v.metrics.worst_x = m.at("worstPixel")[0];
                     v.metrics.worst_y = m.at("worstPixel")[1];
                     v.outlier_fraction = m.at("outlierFraction");
+                    v.max_tile_rmse = m.value("maxTileRmse", 0.0);
+                    v.flat_max = m.value("flatMax", 0.0);
                     r.verdict = v;
                 }
                 merged.checks.push_back(std::move(r));

@@ -59,6 +59,11 @@ std::string TargetRenderer::consumer(TargetId target) {
     return consumer.ok() ? consumer.value()->describe(*engines_) : consumer.error().message;
 }
 
+double TargetRenderer::output_quantum(TargetId target) {
+    auto consumer = consumer_of(target);
+    return consumer.ok() ? consumer.value()->output_quantum() : 0.0;
+}
+
 Status consume_output(TargetId target, const OutputFile& file) {
     TargetRenderer renderer;
     return renderer.compile(target, file);

@@ -185,7 +185,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             } else if (failure) {
                 r.message = *failure;
             } else {
-                auto verdict = judge(images[i], data->golden.value(), g->tolerance);
+                auto verdict = judge(images[i], data->golden.value(), g->tolerance, renderer.output_quantum(job.target));
                 if (!verdict.ok()) {
                     r.message = verdict.error().str();
                 } else {

@@ -64,6 +64,9 @@ public:
     virtual Result<std::vector<Image>> render_scene(const SceneRenderRequest& request, ConsumerEngines& engines) const;
     // One line naming what really runs the shader, for reports.
     virtual std::string describe(ConsumerEngines& engines) const = 0;
+    // The step of the displayed values when the consumer's display is coarser than half floats
+    // (the judge allows for it); 0 for the float displays validation reads back.
+    virtual double output_quantum() const { return 0.0; }
 };
 
 // The consumer registered under `key`, or nullptr.

@@ -110,6 +110,9 @@ public:
         return out;
     }
 
+    // The exported scene's last pass is an 8-bit viewport (llvmpipe truncates to it).
+    double output_quantum() const override { return 1.0 / 255.0; }
+
     std::string describe(ConsumerEngines&) const override {
         const std::string version = godot3_version();
         return version.empty() ? std::string("Godot 3 unavailable") : "Godot " + version + " (GLES3 on Mesa, Xvfb; the exported scene)";

@@ -16,9 +16,13 @@ namespace crtforge {
 // Explicit per comparison. A render passes when all hold.
 struct Tolerance {
     double max_rmse = 0;               // over all RGB samples
-    double outlier_threshold = 0;      // a pixel is an outlier when its max channel diff exceeds this
+    // The per-pixel limit: a pixel is an outlier when its largest channel error exceeds this plus
+    // the golden's own variation around it (max |difference| to its 8 neighbours: what a
+    // sub-pixel shift of the sampling, another driver's rounding at a discontinuity, can move it).
+    double outlier_threshold = 0;
     double max_outlier_fraction = 0;   // ... and at most this fraction of pixels may be outliers
     double min_ssim = 0;               // luma SSIM
+    double max_tile_rmse = 0;          // RMSE of every 16x16 tile: one wrong row or patch cannot hide in a mean
     std::string why;                   // the justification, kept in the manifest
 };
 
@@ -91,11 +95,16 @@ std::vector<std::vector<const GoldenEntry*>> golden_sequences(const std::vector<
 struct Verdict {
     bool passed = false;
     ImageMetrics metrics;
-    double outlier_fraction = 0;
+    double outlier_fraction = 0;   // pixels over the per-pixel limit (plus their edge allowance)
+    double max_tile_rmse = 0;      // the worst 16x16 tile's RMSE
+    double flat_max = 0;           // the largest error where the golden is locally flat (no edge nearby)
     std::string reason;  // empty when passed; otherwise which bound failed, with numbers
 };
 
-// `render` is clamped to 0..1 first (the golden is what a display shows).
-Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& tolerance);
+// `render` is clamped to 0..1 first (the golden is what a display shows). `output_quantum` is the
+// step of the consumer's displayed values when it stores them coarser than half floats (Godot 3's
+// 8-bit display: 1/255, truncated): the per-pixel limit grows by one step and the RMSE and tile
+// limits by its RMS (step / sqrt(3) for truncation).
+Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& tolerance, double output_quantum = 0);
 
 }  // namespace crtforge

@@ -91,6 +91,8 @@ public:
     Status compile(TargetId target, const OutputFile& file);
     // One line naming the consumer used for a target (for reports).
     std::string consumer(TargetId target);
+    // The step of the target's displayed values where coarser than half floats (0 otherwise).
+    double output_quantum(TargetId target);
 
 private:
     std::unique_ptr<ConsumerEngines> engines_;
