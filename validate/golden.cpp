@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <map>
 
 #include <fmt/format.h>
@@ -21,14 +23,12 @@ using json = nlohmann::ordered_json;
 
 namespace {
 
-// fp32 on the GPU against fp64 on the CPU: on lavapipe and Mesa GL every render agrees to RMSE
-// <= 0.0003 and max |d| <= 0.0005 (the half-float output and 16-bit golden steps), so RMSE may be
-// at most 0.004 (about 1/255): ten times that floor, still small enough to catch a wrong constant
-// such as a luma weight. Where the math is discontinuous — floor() in masks and cell quantising,
-// the bezel edge, texel steps — another driver's rounding can put a sample on the other side of an
-// edge and flip a whole pixel, so up to 0.5% of pixels may differ by more than 0.05 rather than
-// bounding the max error. A 5% scanline-period error or a swapped mask channel fails by far
-// (tests/validate_test.cpp).
+// The default tolerance rests on what every consumer measures against the fp64 reference over
+// every shipped golden (its `why` gives the figures): each bound is a small multiple of that floor,
+// so a wrong constant, one wrong row or a small patch fails (tests/validate_test.cpp), while a
+// pixel may differ by its golden's local variation where the math is discontinuous — floor() in
+// masks and cell quantising, the bezel edge, texel steps — and another driver's rounding can put a
+// sample on the other side of the edge.
 Tolerance default_tolerance() {
     Tolerance t;
     t.max_rmse = 0.0015;
@@ -96,32 +96,45 @@ Result<std::vector<Image>> render_golden_references(const TemplateLibrary& libra
     job.height = first.height;
     job.fit = first.fit;
     for (const GoldenEntry* e : sequence) job.frames.push_back(e->frame);
-    auto images = render_reference_scene(job);
-    if (!images.ok()) return images;
-    for (Image& image : images.value())
-        for (float& v : image.rgba) v = std::clamp(v, 0.0f, 1.0f);
-    return images;
-}
-
-std::string golden_hash(const Image& image) {
-    std::string bytes;
-    bytes.reserve(image.rgba.size() * 2);
-    for (float v : image.rgba) {
-        const auto code = static_cast<uint16_t>(std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * 65535.0));
-        bytes += static_cast<char>(code & 0xffu);
-        bytes += static_cast<char>(code >> 8);
-    }
-    return Cache::key({"golden-16bit", std::to_string(image.width), std::to_string(image.height), bytes});
+    return render_reference_scene(job);
 }
 
 namespace {
 
-// What a 16-bit PNG keeps of an image.
-void quantise_16bit(Image& image) {
-    for (float& v : image.rgba) v = static_cast<float>(std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * 65535.0) / 65535.0);
+// What a half-float OpenEXR keeps of a value (write_exr clamps magnitudes to the largest half).
+float to_half(float v) { return static_cast<float>(static_cast<_Float16>(std::clamp(v, -65504.0f, 65504.0f))); }
+
+// What the golden's file keeps of an image: 16-bit codes of 0..1 (PNG) or half floats (EXR).
+void quantise_golden(Image& image, bool hdr) {
+    for (float& v : image.rgba)
+        v = hdr ? to_half(v) : static_cast<float>(std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * 65535.0) / 65535.0);
+}
+
+// Whether the reference leaves 0..1 anywhere in RGB.
+bool leaves_unit_range(const Image& image) {
+    for (size_t i = 0; i < image.rgba.size(); ++i)
+        if (i % 4 != 3 && (image.rgba[i] < 0.0f || image.rgba[i] > 1.0f)) return true;
+    return false;
 }
 
 }  // namespace
+
+std::string golden_hash(const Image& image, bool hdr) {
+    std::string bytes;
+    bytes.reserve(image.rgba.size() * 2);
+    for (float v : image.rgba) {
+        uint16_t code = 0;
+        if (hdr) {
+            const _Float16 h = static_cast<_Float16>(std::clamp(v, -65504.0f, 65504.0f));
+            std::memcpy(&code, &h, sizeof code);
+        } else {
+            code = static_cast<uint16_t>(std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * 65535.0));
+        }
+        bytes += static_cast<char>(code & 0xffu);
+        bytes += static_cast<char>(code >> 8);
+    }
+    return Cache::key({hdr ? "golden-half" : "golden-16bit", std::to_string(image.width), std::to_string(image.height), bytes});
+}
 
 Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const GoldenEntry& entry) {
     const Preset* preset = library.find_preset(entry.preset);
@@ -188,8 +201,8 @@ Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntr
         return make_error("golden " + entry.id + " has never been rendered (no hash): run 'crtforge golden update'", dir + "/manifest.json");
     auto image = render_golden_reference(library, entry);
     if (!image.ok()) return image;
-    quantise_16bit(image.value());
-    if (golden_hash(image.value()) != entry.hash)
+    quantise_golden(image.value(), entry.hdr);
+    if (golden_hash(image.value(), entry.hdr) != entry.hash)
         return make_error("golden " + entry.id + " is rendered, not stored, and the reference no longer renders it as it did "
                           "at 'crtforge golden update': review the change and run it",
                           dir + "/manifest.json");
@@ -223,6 +236,7 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
             e.stored = g.value("stored", true);
             e.hash = g.value("hash", "");
             e.inputs_hash = g.value("inputsHash", "");
+            e.hdr = g.value("format", "png") == "exr";
             const auto& t = g.at("tolerance");
             e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"),
                            t.value("maxTileRmse", 0.0), t.at("why")};
@@ -251,26 +265,37 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
     }
     // The hashes of the entries not re-rendered stay as the old manifest has them.
     std::map<std::string, std::string> hashes, inputs;
+    std::map<std::string, bool> hdr;
     if (auto old = load_golden_manifest(dir); old.ok())
         for (const GoldenEntry& e : old.value()) {
             hashes[e.id] = e.hash;
             inputs[e.id] = e.inputs_hash;
+            hdr[e.id] = e.hdr;
         }
     for (auto& [entry, image] : images) {
         auto made_of = golden_inputs_hash(library, *entry);
         if (!made_of.ok()) return made_of.error();
         inputs[entry->id] = made_of.value();
-        quantise_16bit(image);
-        hashes[entry->id] = golden_hash(image);
+        GoldenEntry stored = *entry;
+        stored.hdr = hdr[entry->id] = leaves_unit_range(image);
+        quantise_golden(image, stored.hdr);
+        hashes[entry->id] = golden_hash(image, stored.hdr);
         if (!entry->stored) continue;
-        if (auto s = write_png(dir + "/" + entry->file(), image, 16); !s.ok()) return s.error();
+        // The other format's file of an earlier update goes: a golden has one file.
+        GoldenEntry other = stored;
+        other.hdr = !stored.hdr;
+        std::error_code ec;
+        std::filesystem::remove(dir + "/" + other.file(), ec);
+        auto written = stored.hdr ? write_exr(dir + "/" + stored.file(), image) : write_png(dir + "/" + stored.file(), image, 16);
+        if (!written.ok()) return written.error();
     }
     json manifest;
     manifest["note"] = "Reference images from the CPU double-precision renderer (runtime/reference). "
                        "Regenerate only with: crtforge golden update";
     manifest["goldens"] = json::array();
-    for (const GoldenEntry& e : plan) {
-        json entry{{"id", e.id}, {"file", e.file()}, {"preset", e.preset}, {"input", e.input},
+    for (GoldenEntry e : plan) {
+        e.hdr = hdr[e.id];
+        json entry{{"id", e.id}, {"file", e.file()}, {"format", e.hdr ? "exr" : "png"}, {"preset", e.preset}, {"input", e.input},
                    {"width", e.width}, {"height", e.height}, {"inputWidth", e.input_width}, {"inputHeight", e.input_height}};
         if (e.fit) entry["fit"] = display_fit_name(*e.fit);
         entry["frame"] = e.frame;
@@ -286,9 +311,18 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
     return GoldenUpdate{images.size(), plan.size()};
 }
 
-Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& t, double output_quantum) {
+Result<Verdict> judge(const Image& render, const Image& reference, const Tolerance& t, double output_quantum) {
+    // Values are compared as they are, HDR included; a consumer whose display is 8-bit cannot show
+    // what leaves 0..1, so there both sides are clamped.
     Image clamped = render;
-    for (float& v : clamped.rgba) v = std::clamp(v, 0.0f, 1.0f);
+    Image clamped_golden;
+    const bool clamp = output_quantum > 0;
+    if (clamp) {
+        clamped_golden = reference;
+        for (float& v : clamped.rgba) v = std::clamp(v, 0.0f, 1.0f);
+        for (float& v : clamped_golden.rgba) v = std::clamp(v, 0.0f, 1.0f);
+    }
+    const Image& golden = clamp ? clamped_golden : reference;
     auto metrics = compare_images(clamped, golden);
     if (!metrics.ok()) return metrics.error();
     Verdict v;

@@ -36,16 +36,20 @@ struct GoldenEntry {
     int input_width = 0, input_height = 0;  // the input (the source)
     std::optional<DisplayFit> fit;          // how the screen fits the display; default: the preset's
     int frame = 0;
-    // Stored goldens are 16-bit PNG files in the golden directory. Large ones are not committed:
+    // Stored goldens are files in the golden directory (see `hdr`). Large ones are not committed:
     // `validate` renders them with the reference when it needs them and checks the result still
-    // hashes to `hash` (the 16-bit pixels of `golden update`), so a change of the oracle shows.
+    // hashes to `hash` (the pixels of `golden update` as the file would keep them), so a change of
+    // the oracle shows.
     bool stored = true;
     std::string hash;
     // What the golden was made of (golden_inputs_hash at `golden update`): a golden whose inputs
     // changed since is stale, and validate fails it rather than trust it.
     std::string inputs_hash;
     Tolerance tolerance;
-    std::string file() const { return id + ".png"; }
+    // A golden whose reference leaves 0..1 (HDR inputs, bloom) is stored as half-float OpenEXR and
+    // compared unclamped; the others as 16-bit PNG.
+    bool hdr = false;
+    std::string file() const { return id + (hdr ? ".exr" : ".png"); }
     // Entries of one sequence render together: same preset, input, sizes and fit.
     std::string sequence() const;
 };
@@ -65,7 +69,8 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir);
 // frame, and the oracle's own code (reference_source_hash).
 Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const GoldenEntry& entry);
 
-// Renders the plan's references on the CPU and writes <dir>/<id>.png (16-bit) + manifest.json.
+// Renders the plan's references on the CPU and writes <dir>/<id>.png (16-bit) or .exr (half, where
+// the reference leaves 0..1) + manifest.json.
 // Only entries whose id contains `filter` (empty = all) are re-rendered; the manifest always lists
 // the whole plan. Returns the number of images written.
 struct GoldenUpdate {
@@ -74,8 +79,9 @@ struct GoldenUpdate {
 };
 Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter);
 
-// The hash recorded for a golden image: of its pixels at 16 bits per channel, as the PNG stores them.
-std::string golden_hash(const Image& image);
+// The hash recorded for a golden image: of its pixels as its file stores them (16-bit codes of
+// 0..1 for PNG, half floats for EXR).
+std::string golden_hash(const Image& image, bool hdr = false);
 
 // An entry's golden image: read from the directory, or (not stored) rendered by the reference and
 // checked against the entry's hash. `rendered` is the reference image when the caller has it.
@@ -101,7 +107,8 @@ struct Verdict {
     std::string reason;  // empty when passed; otherwise which bound failed, with numbers
 };
 
-// `render` is clamped to 0..1 first (the golden is what a display shows). `output_quantum` is the
+// Compared unclamped (HDR goldens are floats); with an `output_quantum` (a display that clamps)
+// both are clamped to 0..1 first. `output_quantum` is the
 // step of the consumer's displayed values when it stores them coarser than half floats (Godot 3's
 // 8-bit display: 1/255, truncated): the per-pixel limit grows by one step and the RMSE and tile
 // limits by its RMS (step / sqrt(3) for truncation).
