@@ -1,7 +1,11 @@
 // crtforge validate [--report DIR] [--preset P...] [--target T...] [--input I...] [--shard i/n] [-j N]
+//                  [--device D] [--second-device auto|none|D]
 // crtforge report merge --out DIR SHARD_DIR...
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -13,11 +17,38 @@ namespace crtforge::cli {
 
 namespace {
 struct ValidateArgs {
-    std::string report, shard = "1/1", golden, device;
+    std::string report, shard = "1/1", golden, device, second_device = "auto";
     std::vector<std::string> presets, targets, inputs;
     unsigned jobs = 1;
     bool compile_only = false;
 };
+
+struct SecondDriver {
+    std::string name, label;
+};
+
+// The second Vulkan driver: `choice` "none", "auto" (a SwiftShader device, when the loader lists
+// one and it is not the first driver) or a device name; its label is the name's first word, lower case.
+Result<std::optional<SecondDriver>> second_driver(const std::string& choice, const std::string& first) {
+    if (choice == "none") return std::optional<SecondDriver>{};
+    auto devices = list_vulkan_devices();
+    if (!devices.ok()) return choice == "auto" ? Result<std::optional<SecondDriver>>(std::optional<SecondDriver>{}) : devices.error();
+    auto lower = [](std::string t) {
+        for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return t;
+    };
+    const std::string wanted = lower(choice == "auto" ? "SwiftShader" : choice);
+    for (const DeviceInfo& d : devices.value()) {
+        if (lower(d.name).find(wanted) == std::string::npos) continue;
+        if (!first.empty() && lower(d.name).find(lower(first)) != std::string::npos) continue;  // that is the first driver
+        std::string label = lower(d.name.substr(0, d.name.find(' ')));
+        label.erase(std::remove_if(label.begin(), label.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }),
+                    label.end());
+        return std::optional<SecondDriver>{SecondDriver{d.name, label}};
+    }
+    if (choice == "auto") return std::optional<SecondDriver>{};
+    return make_error("no Vulkan device matches '" + choice + "' (see 'crtforge devices')", {}, 0, "--second-device");
+}
 
 // Plain lines when piped (CI logs), an in-place progress bar on a terminal.
 ProgressFn make_progress() {
@@ -36,12 +67,19 @@ ProgressFn make_progress() {
 
 // The one-screen summary: per target, checks passed/failed and the worst render metrics.
 void print_summary(const ValidationReport& r) {
-    fmt::print("{:<10} {:>7} {:>7} {:>10} {:>9} {:>9}  {}\n", "target", "passed", "failed", "max RMSE", "min SSIM", "max |d|", "consumer");
-    for (const TargetInfo& t : all_targets()) {
+    // Targets in report order: each target, then the Vulkan-rendered ones on the second driver.
+    std::vector<std::string> names;
+    for (const auto& c : r.checks)
+        if (std::find(names.begin(), names.end(), c.target) == names.end()) names.push_back(c.target);
+    size_t width = 10;
+    for (const std::string& n : names) width = std::max(width, n.size());
+    fmt::print("{:<{}} {:>7} {:>7} {:>10} {:>9} {:>9}  {}\n", "target", width, "passed", "failed", "max RMSE", "min SSIM", "max |d|",
+               "consumer");
+    for (const std::string& name : names) {
         size_t pass = 0, fail = 0;
         double rmse = 0, ssim = 1, maxabs = 0;
         for (const auto& c : r.checks) {
-            if (c.target != t.name) continue;
+            if (c.target != name) continue;
             (c.passed ? pass : fail)++;
             if (c.verdict) {
                 rmse = std::max(rmse, c.verdict->metrics.rmse);
@@ -49,11 +87,10 @@ void print_summary(const ValidationReport& r) {
                 maxabs = std::max(maxabs, c.verdict->metrics.max_abs);
             }
         }
-        if (pass + fail == 0) continue;
         std::string consumer;
-        for (const auto& [name, desc] : r.consumers)
-            if (name == t.name) consumer = desc;
-        fmt::print("{:<10} {:>7} {:>7} {:>10.5f} {:>9.4f} {:>9.4f}  {}\n", t.name, pass, fail, rmse, ssim, maxabs, consumer);
+        for (const auto& [n, desc] : r.consumers)
+            if (n == name) consumer = desc;
+        fmt::print("{:<{}} {:>7} {:>7} {:>10.5f} {:>9.4f} {:>9.4f}  {}\n", name, width, pass, fail, rmse, ssim, maxabs, consumer);
     }
 }
 }  // namespace
@@ -70,6 +107,10 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("-j,--jobs", a->jobs, "Worker threads")->check(CLI::Range(1u, 64u))->capture_default_str();
     cmd->add_option("--golden-dir", a->golden, "Golden directory (default: the source tree's golden/)");
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe; see 'crtforge devices')");
+    cmd->add_option("--second-device", a->second_device,
+                    "A second Vulkan driver for the Vulkan-rendered targets (spirv, hlsl*, godot4): auto (SwiftShader when "
+                    "installed), none, or a device name")
+        ->capture_default_str();
     cmd->add_flag("--compile-only", a->compile_only, "Only the compile checks, no renders");
     return [&g, a]() {
         const auto start = std::chrono::steady_clock::now();
@@ -89,6 +130,12 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         request.golden_dir = a->golden.empty() ? default_golden_dir() : a->golden;
         request.report_dir = a->report;
         request.vulkan.device = a->device;
+        auto second = second_driver(a->second_device, a->device);
+        if (!second.ok()) return report(second.error());
+        if (second.value()) {
+            request.second_vulkan = EngineOptions{second.value()->name, request.vulkan.validation};
+            request.second_label = second.value()->label;
+        }
         request.jobs = a->jobs;
         auto lib = load_library(g, code);
         if (!lib) return code;

@@ -8,6 +8,7 @@ APT_PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libegl-dev libgles-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   godot3 xvfb
+  chromium-common  # SwiftShader's Vulkan driver: validate's second, independent Vulkan driver
   libopenimageio-dev libfmt-dev catch2
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev
 )

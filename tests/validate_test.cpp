@@ -92,11 +92,22 @@ TEST_CASE("every shipped preset passes on every target against every golden", "[
     request.golden_dir = golden_dir();
     request.vulkan.validation = true;  // any Vulkan validation message fails the render
     request.jobs = 2;
+    // The Vulkan-rendered targets also on SwiftShader (installed by scripts/setup.sh).
+    auto devices = list_vulkan_devices();
+    REQUIRE(devices.ok());
+    for (const DeviceInfo& d : devices.value())
+        if (d.name.find("SwiftShader") != std::string::npos) {
+            request.second_vulkan = EngineOptions{d.name, true};
+            request.second_label = "swiftshader";
+        }
+    INFO("SwiftShader's Vulkan driver is missing: run scripts/setup.sh (Debian package chromium-common)");
+    REQUIRE(request.second_vulkan);
     auto report = run_validation(lib, request, Cache());
     REQUIRE(report.ok());
     const size_t goldens = test::golden_plan_or_fail(lib, golden_dir()).size();
-    // Per target: one compile check per shader file and pass, one render per golden.
-    size_t passes = 0, expected = 0;
+    // Per target: one compile check per shader file and pass, one render per golden; the
+    // Vulkan-rendered targets (spirv, hlsl50, hlsl60, godot4) render every golden again on SwiftShader.
+    size_t passes = 0, expected = 4 * goldens;
     for (const Preset& p : lib.presets()) passes += p.passes.size();
     for (const TargetInfo& t : all_targets()) expected += t.shader_roles.size() * passes + goldens;
     CHECK(report.value().checks.size() == expected);

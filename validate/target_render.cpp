@@ -64,6 +64,11 @@ double TargetRenderer::output_quantum(TargetId target) {
     return consumer.ok() ? consumer.value()->output_quantum() : 0.0;
 }
 
+bool TargetRenderer::renders_on_vulkan(TargetId target) {
+    auto consumer = consumer_of(target);
+    return consumer.ok() && consumer.value()->renders_on_vulkan();
+}
+
 Status consume_output(TargetId target, const OutputFile& file) {
     TargetRenderer renderer;
     return renderer.compile(target, file);

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -62,6 +63,7 @@ struct Job {
     PresetWork* work;
     TargetId target;
     std::vector<const GoldenData*> goldens;
+    bool second = false;  // renders on the second Vulkan driver: render checks only
 };
 
 // The compile checks of a preset on a target: one per shader role of every pass.
@@ -73,8 +75,24 @@ std::vector<std::string> compile_checks(const Preset& preset, TargetId target) {
     return checks;
 }
 
+// What the report shows of a picture: at most 640 pixels wide (the page shows 240), averaged over
+// whole blocks of pixels, so a report of 1080p goldens does not spend minutes encoding PNGs.
+Image report_picture(const Image& image) {
+    const int k = (image.width + 639) / 640;
+    if (k <= 1) return image;
+    Image out = Image::make(image.width / k, image.height / k);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            float* px = out.at(x, y);
+            for (int dy = 0; dy < k; ++dy)
+                for (int dx = 0; dx < k; ++dx)
+                    for (int c = 0; c < 4; ++c) px[c] += image.at(x * k + dx, y * k + dy)[c] / static_cast<float>(k * k);
+        }
+    return out;
+}
+
 // Pictures for the HTML report: the input and golden once per golden, each target's render, and
-// a heat-map wherever a comparison failed.
+// a heat-map wherever a comparison failed (a failing render and its heat-map at full size).
 Status write_pictures(const std::string& dir, const GoldenEntry& g, const std::string& target, const Image& render,
                       const Image& golden, const Image& input, const Verdict& verdict) {
     const std::string base = dir + "/images/" + g.id;
@@ -86,11 +104,11 @@ Status write_pictures(const std::string& dir, const GoldenEntry& g, const std::s
     {
         std::lock_guard<std::mutex> lock(shared_files);
         if (!std::filesystem::exists(base + "/golden.png")) {
-            if (auto s = write_png(base + "/golden.png", golden, 8); !s.ok()) return s;
-            if (auto s = write_png(base + "/input.png", input, 8); !s.ok()) return s;
+            if (auto s = write_png(base + "/golden.png", report_picture(golden), 8); !s.ok()) return s;
+            if (auto s = write_png(base + "/input.png", report_picture(input), 8); !s.ok()) return s;
         }
     }
-    if (auto s = write_png(base + "/" + target + ".png", render, 8); !s.ok()) return s;
+    if (auto s = write_png(base + "/" + target + ".png", verdict.passed ? report_picture(render) : render, 8); !s.ok()) return s;
     if (!verdict.passed)
         return write_png(base + "/" + target + ".diff.png", diff_heatmap(render, golden, g.tolerance.outlier_threshold), 8);
     return Ok{};
@@ -100,10 +118,11 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                                  const Cache& cache, TargetRenderer& renderer) {
     std::vector<CheckResult> results;
     const Preset* preset = job.work->preset;
-    const std::string target = target_info(job.target).name;
+    const std::string target = std::string(target_info(job.target).name) + (job.second ? "@" + request.second_label : "");
     auto fail_all = [&](const std::string& message) {
-        for (const std::string& check : compile_checks(*preset, job.target))
-            results.push_back({preset->name, target, check, false, message, {}, {}});
+        if (!job.second)
+            for (const std::string& check : compile_checks(*preset, job.target))
+                results.push_back({preset->name, target, check, false, message, {}, {}});
         for (const GoldenData* g : job.goldens)
             results.push_back({preset->name, target, "render:" + g->entry->id, false, message, {}, g->entry->id});
         return results;
@@ -132,7 +151,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
     }
 
     bool compiles = true;
-    for (size_t i = 0; i < outputs.size(); ++i)
+    for (size_t i = 0; i < outputs.size() && !job.second; ++i)  // the first driver's job compiles
         for (const OutputFile& f : outputs[i].files) {
             if (!f.is_shader()) continue;
             const std::string role = f.manifest_role();
@@ -179,7 +198,8 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             const GoldenData* data = data_of.at(g);
             CheckResult r{preset->name, target, "render:" + g->id, false, {}, {}, g->id};
             if (!data->golden.ok()) {
-                r.message = data->golden.error().str() + " (run 'crtforge golden update')";
+                r.message = data->golden.error().str();
+                if (r.message.find("golden update") == std::string::npos) r.message += " (run 'crtforge golden update')";
             } else if (!data->input.ok()) {
                 r.message = data->input.error().str();
             } else if (failure) {
@@ -235,6 +255,12 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
 
     // A shard takes every count-th (preset, target) pair, so work spreads evenly and the shards'
     // reports concatenate back into the full, ordered report.
+    std::set<TargetId> vulkan_rendered;
+    {
+        TargetRenderer probe(request.vulkan);
+        for (TargetId t : targets)
+            if (probe.renders_on_vulkan(t)) vulkan_rendered.insert(t);
+    }
     std::vector<Job> jobs;
     std::deque<PresetWork> presets;  // stable addresses for the jobs' pointers
     std::deque<GoldenData> golden_data;
@@ -260,6 +286,23 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
             total += compile_checks(p, t).size() + goldens.size();
             jobs.push_back(Job{work, t, goldens});
         }
+        // The Vulkan-rendered targets again on the second driver.
+        if (request.second_vulkan && request.render)
+            for (TargetId t : targets) {
+                if (!vulkan_rendered.count(t) || index++ % request.shard.count != request.shard.index - 1) continue;
+                if (!work) {
+                    work = &presets.emplace_back();
+                    work->preset = &p;
+                    for (const GoldenEntry& g : report.goldens) {
+                        if (g.preset != p.name) continue;
+                        GoldenData& d = golden_data.emplace_back(&g);
+                        work->goldens.push_back(&d);
+                        goldens.push_back(&d);
+                    }
+                }
+                total += goldens.size();
+                jobs.push_back(Job{work, t, goldens, true});
+            }
     }
 
     std::vector<std::vector<CheckResult>> results(jobs.size());
@@ -267,8 +310,10 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
     std::mutex progress_mutex;
     auto worker = [&] {
         TargetRenderer renderer(request.vulkan);  // engines are per thread
+        std::unique_ptr<TargetRenderer> second;
         for (size_t i = next++; i < jobs.size(); i = next++) {
-            results[i] = run_job(library, jobs[i], request, cache, renderer);
+            if (jobs[i].second && !second) second = std::make_unique<TargetRenderer>(*request.second_vulkan);
+            results[i] = run_job(library, jobs[i], request, cache, jobs[i].second ? *second : renderer);
             std::lock_guard<std::mutex> lock(progress_mutex);
             for (const auto& r : results[i]) {
                 ++done;
@@ -286,6 +331,12 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
     if (request.render) {
         TargetRenderer describe(request.vulkan);
         for (TargetId t : targets) report.consumers.emplace_back(target_info(t).name, describe.consumer(t));
+        if (request.second_vulkan) {
+            TargetRenderer other(*request.second_vulkan);
+            for (TargetId t : targets)
+                if (vulkan_rendered.count(t))
+                    report.consumers.emplace_back(std::string(target_info(t).name) + "@" + request.second_label, other.consumer(t));
+        }
     }
     return report;
 }

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
+#include <unistd.h>
+#include <mutex>
 #include <iostream>
 
 #include <fmt/core.h>
@@ -188,7 +191,28 @@ Diagnostic validation_failure(std::string_view when, const std::vector<std::stri
 
 // ---- VulkanInstance --------------------------------------------------------------------------
 
+namespace {
+
+// SwiftShader's Vulkan driver (Debian's chromium-common) keeps its ICD file beside Chromium,
+// where the loader does not look. When it is installed and the user has not chosen the drivers
+// (VK_ICD_FILENAMES / VK_DRIVER_FILES), it is added to the loader's list, so `--device
+// SwiftShader` and validate's second driver find it. Done once, before the first instance.
+void add_known_drivers() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        constexpr const char* kSwiftShader = "/usr/lib/chromium/vk_swiftshader_icd.json";
+        if (std::getenv("VK_ICD_FILENAMES") || std::getenv("VK_DRIVER_FILES")) return;
+        if (::access(kSwiftShader, R_OK) != 0) return;
+        std::string add = kSwiftShader;
+        if (const char* more = std::getenv("VK_ADD_DRIVER_FILES"); more && *more) add = std::string(more) + ":" + add;
+        ::setenv("VK_ADD_DRIVER_FILES", add.c_str(), 1);
+    });
+}
+
+}  // namespace
+
 Result<std::unique_ptr<VulkanInstance>> VulkanInstance::create(bool validation) {
+    add_known_drivers();
     std::unique_ptr<VulkanInstance> self(new VulkanInstance);  // destructor cleans up partial state
 
     std::vector<const char*> layers, extensions;

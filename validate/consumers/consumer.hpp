@@ -67,6 +67,8 @@ public:
     // The step of the displayed values when the consumer's display is coarser than half floats
     // (the judge allows for it); 0 for the float displays validation reads back.
     virtual double output_quantum() const { return 0.0; }
+    // Whether its renders run on the Vulkan engine (so a second Vulkan driver can run them too).
+    virtual bool renders_on_vulkan() const { return false; }
 };
 
 // The consumer registered under `key`, or nullptr.

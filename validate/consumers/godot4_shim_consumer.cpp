@@ -58,6 +58,8 @@ public:
         return render_on_vulkan(job, engines);
     }
 
+    bool renders_on_vulkan() const override { return true; }
+
     std::string describe(ConsumerEngines& engines) const override {
         return "Godot 4 shim (Godot builtins as Vulkan resources) -> glslang -> Vulkan: " + engines.vulkan_device_name();
     }

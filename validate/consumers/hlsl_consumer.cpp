@@ -53,6 +53,8 @@ public:
         return image;
     }
 
+    bool renders_on_vulkan() const override { return true; }
+
     std::string describe(ConsumerEngines& engines) const override {
         return "glslang HLSL -> SPIR-V -> Vulkan: " + engines.vulkan_device_name();
     }

@@ -25,6 +25,8 @@ public:
         return render_on_vulkan(job.value(), engines);
     }
 
+    bool renders_on_vulkan() const override { return true; }
+
     std::string describe(ConsumerEngines& engines) const override { return "Vulkan: " + engines.vulkan_device_name(); }
 };
 

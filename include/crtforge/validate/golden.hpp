@@ -22,7 +22,9 @@ struct Tolerance {
     double outlier_threshold = 0;
     double max_outlier_fraction = 0;   // ... and at most this fraction of pixels may be outliers
     double min_ssim = 0;               // luma SSIM
-    double max_tile_rmse = 0;          // RMSE of every 16x16 tile: one wrong row or patch cannot hide in a mean
+    // RMS over every 16x16 tile of the per-pixel error beyond its edge allowance: one wrong row or
+    // patch cannot hide in a mean.
+    double max_tile_rmse = 0;
     std::string why;                   // the justification, kept in the manifest
 };
 
@@ -102,7 +104,7 @@ struct Verdict {
     bool passed = false;
     ImageMetrics metrics;
     double outlier_fraction = 0;   // pixels over the per-pixel limit (plus their edge allowance)
-    double max_tile_rmse = 0;      // the worst 16x16 tile's RMSE
+    double max_tile_rmse = 0;      // the worst 16x16 tile's RMS error beyond the edge allowance
     double flat_max = 0;           // the largest error where the golden is locally flat (no edge nearby)
     std::string reason;  // empty when passed; otherwise which bound failed, with numbers
 };

@@ -93,6 +93,8 @@ public:
     std::string consumer(TargetId target);
     // The step of the target's displayed values where coarser than half floats (0 otherwise).
     double output_quantum(TargetId target);
+    // Whether the target's consumer renders on the Vulkan engine.
+    bool renders_on_vulkan(TargetId target);
 
 private:
     std::unique_ptr<ConsumerEngines> engines_;
