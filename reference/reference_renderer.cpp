@@ -14,15 +14,27 @@ namespace crtforge {
 
 namespace reference {
 
+namespace {
+ReferenceFault& fault_slot() {
+    static ReferenceFault fault;
+    return fault;
+}
+}  // namespace
+
+const ReferenceFault& reference_fault() { return fault_slot(); }
+void install_reference_fault(const ReferenceFault& fault) { fault_slot() = fault; }
+
 double Params::num(const std::string& name) const {
     const Value& v = values_.at(name);
-    if (auto d = std::get_if<double>(&v)) return *d;
-    return static_cast<double>(std::get<int64_t>(v));
+    const double factor = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
+    if (auto d = std::get_if<double>(&v)) return *d * factor;
+    return static_cast<double>(std::get<int64_t>(v)) * factor;
 }
 bool Params::flag(const std::string& name) const { return std::get<bool>(values_.at(name)); }
 Vec3 Params::color(const std::string& name) const {
     const Color& c = std::get<Color>(values_.at(name));
-    return {c[0], c[1], c[2]};
+    const double f = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
+    return {c[0] * f, c[1] * f, c[2] * f};
 }
 
 const StageModel* find_stage_model(const std::string& stage) {
@@ -109,6 +121,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
     const Variant& variant = *job.variant;
     std::vector<PlannedStage> plan;
     for (const ResolvedStage& rs : variant.pass->stages) {
+        if (rs.stage->name == reference_fault().skip_stage) continue;
         const StageModel* model = find_stage_model(rs.stage->name);
         if (!model) return unmodelled(rs, "no model of the stage");
         PlannedStage s{&rs, model};
@@ -294,6 +307,29 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
     std::vector<Image> out;
     for (int f : job.frames) out.push_back(kept.at(f));
     return out;
+}
+
+Status set_reference_fault(const std::string& text) {
+    reference::ReferenceFault fault;
+    const size_t colon = text.find(':');
+    const std::string kind = text.substr(0, colon), rest = colon == std::string::npos ? "" : text.substr(colon + 1);
+    try {
+        if (text.empty()) {
+        } else if (kind == "scale" && rest.find(':') != std::string::npos) {
+            fault.scale_param = rest.substr(0, rest.find(':'));
+            fault.factor = std::stod(rest.substr(rest.find(':') + 1));
+        } else if (kind == "skip" && !rest.empty()) {
+            fault.skip_stage = rest;
+        } else if (kind == "sampler-shift" && !rest.empty()) {
+            fault.sampler_shift = std::stod(rest);
+        } else {
+            return make_error("unknown reference fault '" + text + "' (scale:<param>:<factor>, skip:<stage>, sampler-shift:<texels>)");
+        }
+    } catch (const std::exception&) {
+        return make_error("reference fault '" + text + "' has no number where one belongs");
+    }
+    reference::install_reference_fault(fault);
+    return Ok{};
 }
 
 }  // namespace crtforge

@@ -15,6 +15,17 @@
 
 namespace crtforge::reference {
 
+// A fault injected into the oracle by tests (set_reference_fault): proof that validate notices a
+// wrong reference, not only a wrong shader. Empty: none.
+struct ReferenceFault {
+    std::string scale_param;   // this param reads as its value times `factor`
+    double factor = 1.0;
+    std::string skip_stage;    // this stage is left out of every pass
+    double sampler_shift = 0;  // every texture read moves right by this many texels
+};
+const ReferenceFault& reference_fault();
+void install_reference_fault(const ReferenceFault& fault);
+
 class Params {
 public:
     explicit Params(const std::map<std::string, Value>& values) : values_(values) {}

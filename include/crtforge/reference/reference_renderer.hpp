@@ -57,6 +57,12 @@ struct ReferenceSceneJob {
     std::map<std::string, Image> file_luts;               // images of the preset's file LUTs, by name
 };
 
+// Test-only: injects a fault into the oracle, to prove that validate notices a wrong reference
+// (tests/mutations.toml): "scale:<param>:<factor>" (the param reads scaled), "skip:<stage>" (the
+// stage is left out), "sampler-shift:<texels>" (every texture read moves right); "" removes it.
+// Process-wide; set it only while nothing renders.
+Status set_reference_fault(const std::string& fault);
+
 // The content hash of the code goldens come from (the reference renderer, the test inputs, the LUT
 // generators, the scene geometry), fixed at build time: part of every golden's inputs hash.
 const char* reference_source_hash();
