@@ -39,7 +39,8 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
             return report(make_error("'" + o->input + "' is not a generated test input (" + join_list(inputs) + ")", {}, 0, "--input"));
         std::vector<const Preset*> presets;
         if (o->presets.empty())
-            for (const Preset& p : lib->presets()) presets.push_back(&p);
+            for (const Preset& p : lib->presets())
+                if (!p.test_only) presets.push_back(&p);
         for (const std::string& name : o->presets) {
             auto p = lookup_preset(*lib, name);
             if (!p.ok()) return report(p.error());

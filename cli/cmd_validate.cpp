@@ -1,5 +1,5 @@
 // crtforge validate [--report DIR] [--preset P...] [--target T...] [--input I...] [--shard i/n] [-j N]
-//                  [--device D] [--second-device auto|none|D]
+//                  [--device D] [--second-device auto|none|D] [--matrix main|full]
 // crtforge report merge --out DIR SHARD_DIR...
 #include <algorithm>
 #include <cctype>
@@ -17,7 +17,7 @@ namespace crtforge::cli {
 
 namespace {
 struct ValidateArgs {
-    std::string report, shard = "1/1", golden, device, second_device = "auto";
+    std::string report, shard = "1/1", golden, device, second_device = "auto", matrix = "main";
     std::vector<std::string> presets, targets, inputs;
     unsigned jobs = 1;
     bool compile_only = false;
@@ -111,6 +111,11 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
                     "A second Vulkan driver for the Vulkan-rendered targets (spirv, hlsl*, godot4): auto (SwiftShader when "
                     "installed), none, or a device name")
         ->capture_default_str();
+    cmd->add_option("--matrix", a->matrix,
+                    "Which goldens: main (the main job's) or full (also golden/plan.toml's matrix = \"full\" entries: odd, tiny "
+                    "and 4K sizes, parameter draws, other variants, long times)")
+        ->check(CLI::IsMember({"main", "full"}))
+        ->capture_default_str();
     cmd->add_flag("--compile-only", a->compile_only, "Only the compile checks, no renders");
     return [&g, a]() {
         const auto start = std::chrono::steady_clock::now();
@@ -127,6 +132,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         request.presets = a->presets;
         request.inputs = a->inputs;
         request.render = !a->compile_only;
+        request.full_matrix = a->matrix == "full";
         request.golden_dir = a->golden.empty() ? default_golden_dir() : a->golden;
         request.report_dir = a->report;
         request.vulkan.device = a->device;
@@ -139,6 +145,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         request.jobs = a->jobs;
         auto lib = load_library(g, code);
         if (!lib) return code;
+        if (auto s = add_golden_presets(*lib, request.golden_dir); !s.ok()) return report(s.error());
         Cache cache = make_cache(g);
         auto result = run_validation(*lib, request, cache, make_progress());
         if (!result.ok()) return report(result.error());
@@ -147,8 +154,8 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
             if (auto s = write_report(r, a->report); !s.ok()) return report(s.error());
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         print_summary(r);
-        fmt::print("validate: {} passed, {} failed ({} checks, shard {}/{}, {:.1f} s){}\n", r.passed(), r.failed(),
-                   r.checks.size(), request.shard.index, request.shard.count, secs,
+        fmt::print("validate: {} passed, {} failed ({} checks over {} goldens of the {} matrix, shard {}/{}, {:.1f} s){}\n",
+                   r.passed(), r.failed(), r.checks.size(), r.goldens.size(), a->matrix, request.shard.index, request.shard.count, secs,
                    a->report.empty() ? "" : ", report: " + a->report + "/report.html");
         return r.failed() ? kExitValidation : kExitOk;
     };

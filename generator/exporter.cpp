@@ -260,7 +260,8 @@ Result<std::vector<OutputFile>> generate_target_scene(TargetId target, const Pre
 Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequest& request, const Cache& cache) {
     std::vector<const Preset*> presets;
     if (request.presets.empty()) {
-        for (const auto& p : library.presets()) presets.push_back(&p);
+        for (const auto& p : library.presets())
+            if (!p.test_only) presets.push_back(&p);
     } else {
         for (const auto& name : request.presets) {
             auto p = library.lookup_preset(name);

@@ -129,27 +129,42 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
     std::sort(lib->stages_.begin(), lib->stages_.end(),
               [](const StageSpec& a, const StageSpec& b) { return a.order < b.order; });
 
-    auto preset_files = list_files(dir + "/presets", ".toml");
+    if (auto s = lib->add_presets(dir + "/presets", false); !s.ok()) return s.error();
+    return lib;
+}
+
+Status TemplateLibrary::add_presets(const std::string& dir, bool test_only) {
+    auto preset_files = list_files(dir, ".toml");
     if (!preset_files.ok()) return preset_files.error();
     std::vector<PresetFile> files;
     for (const auto& path : preset_files.value()) {
         auto text = read_text_file(path);
         if (!text.ok()) return text.error();
-        auto file = parse_preset_file(text.value(), path, lib.get());
+        auto file = parse_preset_file(text.value(), path, this);
         if (!file.ok()) return file.error();
         if (file.value().name != file_stem(path))
             return make_error("preset name '" + file.value().name + "' must match the file name '" + file_stem(path) + "'",
                               path, 1, "name");
+        if (find_preset(file.value().name))
+            return make_error("preset '" + file.value().name + "' already exists in the library", path, 1, "name");
         files.push_back(std::move(file.value()));
     }
+    std::vector<Preset> added;
     for (const auto& f : files) {
-        auto preset = lib->resolve(files, f.name);
+        auto preset = resolve(files, f.name);
         if (!preset.ok()) return preset.error();
-        lib->presets_.push_back(std::move(preset.value()));
+        preset.value().test_only = test_only;
+        added.push_back(std::move(preset.value()));
     }
-    std::sort(lib->presets_.begin(), lib->presets_.end(),
-              [](const Preset& a, const Preset& b) { return a.name < b.name; });
-    return lib;
+    for (Preset& p : added) presets_.push_back(std::move(p));
+    std::sort(presets_.begin(), presets_.end(), [](const Preset& a, const Preset& b) { return a.name < b.name; });
+    return Ok{};
+}
+
+Status TemplateLibrary::add_test_presets(const std::string& dir) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) return Ok{};
+    return add_presets(dir, true);
 }
 
 }  // namespace crtforge

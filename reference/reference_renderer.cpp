@@ -67,6 +67,24 @@ struct PlannedStage {
     bool has(Hook hook) const { return !resolved->form->functions[static_cast<int>(hook)].empty(); }
 };
 
+// The stages of a pass with their models; an error names the first stage or hook without one.
+Result<std::vector<PlannedStage>> plan_stages(const Pass& pass) {
+    std::vector<PlannedStage> plan;
+    for (const ResolvedStage& rs : pass.stages) {
+        if (rs.stage->name == reference_fault().skip_stage) continue;
+        const StageModel* model = find_stage_model(rs.stage->name);
+        if (!model) return unmodelled(rs, "no model of the stage");
+        PlannedStage s{&rs, model};
+        const std::pair<Hook, bool> hooks[] = {{Hook::Warp, model->warp != nullptr},  {Hook::SampleUv, model->sample_uv != nullptr},
+                                               {Hook::Fetch, model->fetch != nullptr}, {Hook::Color, model->color != nullptr},
+                                               {Hook::Finish, model->finish != nullptr}};
+        for (const auto& [hook, modelled] : hooks)
+            if (s.has(hook) && !modelled) return unmodelled(rs, hook_name(hook));
+        plan.push_back(s);
+    }
+    return plan;
+}
+
 // The value an 8-bit UNORM, sRGB or half-float framebuffer stores for `v` (read back as linear).
 double stored(double v, PixelFormat format) {
     switch (format) {
@@ -119,19 +137,9 @@ Result<Image> render_reference(const ReferenceJob& job) {
         return make_error("reference job has an empty or inconsistent input image");
 
     const Variant& variant = *job.variant;
-    std::vector<PlannedStage> plan;
-    for (const ResolvedStage& rs : variant.pass->stages) {
-        if (rs.stage->name == reference_fault().skip_stage) continue;
-        const StageModel* model = find_stage_model(rs.stage->name);
-        if (!model) return unmodelled(rs, "no model of the stage");
-        PlannedStage s{&rs, model};
-        const std::pair<Hook, bool> hooks[] = {{Hook::Warp, model->warp != nullptr},  {Hook::SampleUv, model->sample_uv != nullptr},
-                                               {Hook::Fetch, model->fetch != nullptr}, {Hook::Color, model->color != nullptr},
-                                               {Hook::Finish, model->finish != nullptr}};
-        for (const auto& [hook, modelled] : hooks)
-            if (s.has(hook) && !modelled) return unmodelled(rs, hook_name(hook));
-        plan.push_back(s);
-    }
+    auto planned = plan_stages(*variant.pass);
+    if (!planned.ok()) return planned.error();
+    const std::vector<PlannedStage>& plan = planned.value();
 
     const auto values = effective_values(variant, job.overrides);
     const Params params(values);
@@ -162,8 +170,9 @@ Result<Image> render_reference(const ReferenceJob& job) {
 
     for (int y = 0; y < job.height; ++y) {
         for (int x = 0; x < job.width; ++x) {
-            f.screen_uv = {(x + 0.5) / job.width, (y + 0.5) / job.height};
-            f.pixel = {x + 0.5, y + 0.5};
+            const double px = x + 0.5 + job.jitter[0], py = y + 0.5 + job.jitter[1];
+            f.screen_uv = {px / job.width, py / job.height};
+            f.pixel = {px, py};
             float* dst = out.at(x, y);
             if (plan.empty()) {  // no stage: a passthrough blit, alpha included
                 const Rgba c = source.sample(f.screen_uv);
@@ -194,6 +203,12 @@ Result<Image> render_reference(const ReferenceJob& job) {
         }
     }
     return out;
+}
+
+Status reference_models(const Preset& preset) {
+    for (const Pass& pass : preset.passes)
+        if (auto planned = plan_stages(pass); !planned.ok()) return planned.error();
+    return Ok{};
 }
 
 Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) {
@@ -242,6 +257,9 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
     for (int frame : run) {
         auto original = job.source(frame);
         if (!original.ok()) return original.error();
+        if (job.input_gain != 1.0)
+            for (size_t c = 0; c < original.value().rgba.size(); ++c)
+                if (c % 4 != 3) original.value().rgba[c] = static_cast<float>(original.value().rgba[c] * job.input_gain);
         const PixelSize source{original.value().width, original.value().height};
         const PixelRect screen = screen_rect(preset, {job.width, job.height}, source, job.fit);
         const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
@@ -278,7 +296,8 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
                                                        wrap_mode(pass.inputs[k].wrap)};
             rj.width = sizes[i].width;
             rj.height = sizes[i].height;
-            rj.time = frame / preset.scene.fps;
+            rj.time = job.start_time + frame / preset.scene.fps;
+            rj.jitter = job.jitter;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();

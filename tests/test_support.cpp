@@ -23,6 +23,17 @@ const TemplateLibrary& shipped_library() {
     return *lib;
 }
 
+const TemplateLibrary& validation_library() {
+    static std::shared_ptr<TemplateLibrary> lib = [] {
+        auto loaded = TemplateLibrary::load(shipped_template_dir());
+        if (!loaded.ok()) FAIL("shipped templates do not load: " << loaded.error().str());
+        if (auto s = add_golden_presets(*loaded.value(), std::string(CRTFORGE_SOURCE_DIR) + "/golden"); !s.ok())
+            FAIL("golden/stages does not load: " << s.error().str());
+        return loaded.value();
+    }();
+    return *lib;
+}
+
 TempDir::TempDir() {
     std::random_device rd;
     path_ = (fs::temp_directory_path() / ("crtforge-test-" + std::to_string(rd()) + std::to_string(rd()))).string();

@@ -17,6 +17,9 @@ namespace crtforge::test {
 
 // The shipped templates, loaded once per test binary.
 const TemplateLibrary& shipped_library();
+// The shipped templates plus golden/stages/ (the stage-isolation presets), as `crtforge golden`
+// and `crtforge validate` load them: what golden/plan.toml plans over.
+const TemplateLibrary& validation_library();
 std::string shipped_template_dir();
 
 // A fresh, empty directory removed at scope exit.

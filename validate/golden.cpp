@@ -1,6 +1,7 @@
 #include "crtforge/validate/golden.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/uniforms.hpp"
 #include "crtforge/files.hpp"
+#include "crtforge/validate/target_render.hpp"
 
 namespace crtforge {
 
@@ -59,15 +61,57 @@ GoldenEntry make_golden_entry(const std::string& preset, const std::string& inpu
     e.input_height = input_height;
     e.fit = fit;
     e.frame = frame;
-    e.id = fmt::format("{}.{}.{}x{}{}.f{}", preset, input, w, h, fit ? std::string(".") + display_fit_name(*fit) : "", frame);
+    e.id = golden_id(e);
     e.tolerance = default_tolerance();
     return e;
 }
 
-std::string GoldenEntry::sequence() const {
-    return fmt::format("{}.{}.{}x{}.{}x{}.{}", preset, input, width, height, input_width, input_height,
-                       fit ? display_fit_name(*fit) : "preset");
+std::string golden_id(const GoldenEntry& e) {
+    return fmt::format("{}.{}.{}x{}{}{}.f{}", e.preset, e.input, e.width, e.height, e.fit ? std::string(".") + display_fit_name(*e.fit) : "",
+                       e.config.empty() ? "" : "." + e.config, e.frame);
 }
+
+std::string GoldenEntry::sequence() const {
+    return fmt::format("{}.{}.{}x{}.{}x{}.{}.{}", preset, input, width, height, input_width, input_height,
+                       fit ? display_fit_name(*fit) : "preset", config);
+}
+
+bool GoldenEntry::expected_to_fail(const std::string& target) const {
+    return std::find(expect_fail_targets.begin(), expect_fail_targets.end(), target) != expect_fail_targets.end();
+}
+
+bool GoldenEntry::judged_by(const std::string& target) const {
+    return targets.empty() || std::find(targets.begin(), targets.end(), target) != targets.end();
+}
+
+namespace {
+
+// Param values in the manifest: numbers (floats keep a decimal point, ints do not), booleans,
+// enum names, colours as [r, g, b].
+json value_json(const Value& value) {
+    if (auto d = std::get_if<double>(&value)) return *d;
+    if (auto i = std::get_if<int64_t>(&value)) return *i;
+    if (auto b = std::get_if<bool>(&value)) return *b;
+    if (auto c = std::get_if<Color>(&value)) return json::array({(*c)[0], (*c)[1], (*c)[2]});
+    return std::get<std::string>(value);
+}
+
+Value json_value(const json& j) {
+    if (j.is_boolean()) return j.get<bool>();
+    if (j.is_number_integer()) return j.get<int64_t>();
+    if (j.is_number()) return j.get<double>();
+    if (j.is_array()) return Color{j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+    return j.get<std::string>();
+}
+
+// Exact text of a value for hashes (value_to_string rounds colours to 8 bits).
+std::string exact_value_text(const Value& value) {
+    if (auto c = std::get_if<Color>(&value)) return fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
+    if (auto d = std::get_if<double>(&value)) return fmt::format("{}", *d);
+    return value_to_string(value);
+}
+
+}  // namespace
 
 std::vector<std::vector<const GoldenEntry*>> golden_sequences(const std::vector<const GoldenEntry*>& entries) {
     std::vector<std::vector<const GoldenEntry*>> out;
@@ -84,7 +128,10 @@ Result<Image> golden_input(const GoldenEntry& entry, int frame) {
     return make_test_input(entry.input, entry.input_width, entry.input_height, frame);
 }
 
-Result<std::vector<Image>> render_golden_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence) {
+namespace {
+
+Result<std::vector<Image>> render_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence,
+                                             std::array<double, 2> jitter, double input_gain) {
     if (sequence.empty()) return std::vector<Image>{};
     const GoldenEntry& first = *sequence.front();
     const Preset* preset = library.find_preset(first.preset);
@@ -96,8 +143,63 @@ Result<std::vector<Image>> render_golden_references(const TemplateLibrary& libra
     job.width = first.width;
     job.height = first.height;
     job.fit = first.fit;
+    job.overrides = first.overrides;
+    job.start_time = first.start_time;
+    job.jitter = jitter;
+    job.input_gain = input_gain;
     for (const GoldenEntry* e : sequence) job.frames.push_back(e->frame);
     return render_reference_scene(job);
+}
+
+// The jitter: of the order of fp32's rounding of a pixel position near 1000 (ulp 6e-5) and, for
+// values, a few times fp32's relative step, so only discontinuities within a driver's rounding of
+// the sample are found (a larger jitter would also flag a palette quantiser's near-ties, which
+// every driver rounds alike).
+constexpr double kJitterPixels = 1.0 / 16384.0;
+constexpr double kJitterGain = 1.0 / 1048576.0;
+// A change under jitter below the per-pixel limit needs no allowance: the limit covers it.
+constexpr double kFlip = 0.01;
+
+}  // namespace
+
+Result<std::vector<Image>> render_golden_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence) {
+    return render_references(library, sequence, {0.0, 0.0}, 1.0);
+}
+
+Result<std::vector<Image>> render_golden_unstable(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence,
+                                                  const std::vector<Image>& references) {
+    std::vector<Image> out;
+    for (const Image& r : references) out.push_back(Image::make(r.width, r.height, {0, 0, 0, 1}));
+    for (const double sign : {1.0, -1.0}) {
+        auto moved = render_references(library, sequence, {sign * kJitterPixels, sign * kJitterPixels}, 1.0 + sign * kJitterGain);
+        if (!moved.ok()) return moved.error();
+        for (size_t f = 0; f < references.size(); ++f) {
+            const Image& a = references[f];
+            const Image& b = moved.value()[f];
+            for (int y = 0; y < a.height; ++y)
+                for (int x = 0; x < a.width; ++x) {
+                    float change = 0;
+                    for (int c = 0; c < 3; ++c) change = std::max(change, std::abs(a.at(x, y)[c] - b.at(x, y)[c]));
+                    if (change < kFlip) continue;
+                    float* o = out[f].at(x, y);
+                    // Stored as 8 bits, rounded up, at most 1.
+                    const float v = static_cast<float>(std::ceil(std::min(1.0f, std::max(o[0], change)) * 255.0f) / 255.0);
+                    o[0] = o[1] = o[2] = v;
+                }
+        }
+    }
+    return out;
+}
+
+Result<Image> load_golden_unstable(const GoldenEntry& entry, const std::string& dir) {
+    if (entry.unstable == 0) return Image{};
+    auto image = read_image(dir + "/" + entry.unstable_file());
+    if (!image.ok()) return image.error();
+    if (image.value().width != entry.width || image.value().height != entry.height)
+        return make_error("the unstable-pixel map of golden " + entry.id + " is not " + std::to_string(entry.width) + "x" +
+                              std::to_string(entry.height) + ": run crtforge golden update",
+                          dir + "/" + entry.unstable_file());
+    return image;
 }
 
 namespace {
@@ -146,6 +248,11 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
     std::vector<std::string> parts = {"golden-inputs/1", reference_source_hash(), entry.input,
                                       fmt::format("{}x{} {}x{} f{} {}", entry.width, entry.height, entry.input_width,
                                                   entry.input_height, entry.frame, entry.fit ? display_fit_name(*entry.fit) : "-")};
+    // The configuration: what the host sets and the variant the targets compile.
+    std::string config = fmt::format("config {} start {} uniforms {} precision {} host {}", entry.config, entry.start_time,
+                                     entry.uniforms.str(), precision_name(entry.precision), entry.host);
+    for (const auto& [name, value] : entry.overrides) config += " " + name + "=" + exact_value_text(value);
+    parts.push_back(config);
     const SceneSettings& sc = preset->scene;
     parts.push_back(fmt::format("scene {}x{} {}:{} {} {} {}:{} {}", sc.source_width, sc.source_height, sc.pixel_aspect_x,
                                 sc.pixel_aspect_y, source_fit_name(sc.source_fit), display_fit_name(sc.fit), sc.screen_aspect_x,
@@ -166,13 +273,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
             text += fmt::format(" [{} {} {} {} {}]", in.binding, in.from.str(), filter_name(in.filter), wrap_name(in.wrap), in.mipmap);
         for (const ResolvedStage& st : pass.stages) {
             text += "\n  " + st.stage->name + "/" + st.form->name;
-            for (const auto& [name, value] : st.values) {
-                // Exact values: value_to_string rounds colours to 8 bits.
-                std::string v = value_to_string(value);
-                if (auto c = std::get_if<Color>(&value)) v = fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
-                else if (auto d = std::get_if<double>(&value)) v = fmt::format("{}", *d);
-                text += " " + name + "=" + v;
-            }
+            for (const auto& [name, value] : st.values) text += " " + name + "=" + exact_value_text(value);
             stages[st.stage->name] = st.stage;
         }
         parts.push_back(text);
@@ -194,7 +295,8 @@ Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntr
     if (!inputs.ok()) return inputs.error();
     if (inputs.value() != entry.inputs_hash)
         return make_error("golden " + entry.id + " is stale (its preset, stage specs, templates, input or the reference changed "
-                          "since it was made): run crtforge golden update",
+                          "since it was made): run crtforge golden " +
+                              (entry.approved ? "approve --filter " + entry.id + " after reviewing a render" : "update"),
                           dir + "/manifest.json");
     if (entry.stored) return read_image(dir + "/" + entry.file());
     // An entry that a filtered update never rendered has nothing to check the reference against.
@@ -234,10 +336,29 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
             }
             GoldenEntry e = make_golden_entry(g.at("preset"), g.at("input"), g.at("width"), g.at("height"),
                                               g.at("inputWidth"), g.at("inputHeight"), g.at("frame"), fit);
+            e.config = g.value("config", "");
+            if (g.contains("overrides"))
+                for (const auto& [name, value] : g.at("overrides").items()) e.overrides[name] = json_value(value);
+            auto uniforms = UniformSelection::parse(g.value("uniforms", "default"));
+            if (!uniforms.ok()) return make_error("golden " + e.config + ": " + uniforms.error().message, path);
+            e.uniforms = uniforms.value();
+            e.precision = g.value("precision", "high") == "medium" ? Precision::Medium : Precision::High;
+            e.start_time = g.value("startTime", 0.0);
+            e.full_matrix = g.value("matrix", "main") == "full";
+            e.targets = g.value("targets", std::vector<std::string>{});
+            e.host = g.value("host", "");
+            e.shares = g.value("shares", "");
+            if (g.contains("expectFail")) {
+                e.expect_fail_targets = g.at("expectFail").at("targets").get<std::vector<std::string>>();
+                e.expect_fail_why = g.at("expectFail").at("why");
+            }
+            e.id = golden_id(e);
             e.stored = g.value("stored", true);
             e.hash = g.value("hash", "");
             e.inputs_hash = g.value("inputsHash", "");
             e.hdr = g.value("format", "png") == "exr";
+            e.approved = g.value("origin", "reference") == "approved";
+            e.unstable = g.value("unstable", 0);
             const auto& t = g.at("tolerance");
             e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"),
                            t.value("maxTileRmse", 0.0), t.at("why")};
@@ -250,69 +371,201 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
     return out;
 }
 
-Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter) {
+Result<std::vector<GoldenEntry>> golden_plan_with_state(const TemplateLibrary& library, const std::string& dir) {
     auto planned = golden_plan(library, dir);
     if (!planned.ok()) return planned.error();
-    const auto& plan = planned.value();
+    std::vector<GoldenEntry> plan = std::move(planned.value());
+    std::map<std::string, const GoldenEntry*> old;
+    auto manifest = load_golden_manifest(dir);
+    if (manifest.ok())
+        for (const GoldenEntry& e : manifest.value()) old[e.id] = &e;
+    for (GoldenEntry& e : plan)
+        if (auto it = old.find(e.id); it != old.end()) {
+            e.hash = it->second->hash;
+            e.inputs_hash = it->second->inputs_hash;
+            e.hdr = it->second->hdr;
+            e.approved = it->second->approved;
+            e.unstable = it->second->unstable;
+        }
+    return plan;
+}
+
+void store_golden_pixels(GoldenEntry& entry, Image& image) {
+    entry.hdr = leaves_unit_range(image);
+    quantise_golden(image, entry.hdr);
+    entry.hash = golden_hash(image, entry.hdr);
+}
+
+namespace {
+
+// Writes an entry's image file (PNG or EXR as entry.hdr says), removing the other format's file.
+Status write_golden_file(const std::string& dir, const GoldenEntry& entry, const Image& image) {
+    GoldenEntry other = entry;
+    other.hdr = !entry.hdr;
+    std::error_code ec;
+    std::filesystem::remove(dir + "/" + other.file(), ec);
+    return entry.hdr ? write_exr(dir + "/" + entry.file(), image) : write_png(dir + "/" + entry.file(), image, 16);
+}
+
+}  // namespace
+
+Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter) {
+    auto planned = golden_plan_with_state(library, dir);
+    if (!planned.ok()) return planned.error();
+    std::vector<GoldenEntry>& plan = planned.value();
+    GoldenUpdate result;
+    result.planned = plan.size();
     // Render everything first: a failure must not leave a half-updated golden set.
     std::vector<const GoldenEntry*> chosen;
-    for (const GoldenEntry& e : plan)
-        if (filter.empty() || e.id.find(filter) != std::string::npos) chosen.push_back(&e);
-    std::vector<std::pair<const GoldenEntry*, Image>> images;
+    for (const GoldenEntry& e : plan) {
+        if (!filter.empty() && e.id.find(filter) == std::string::npos) continue;
+        const Preset* preset = library.find_preset(e.preset);
+        if (auto models = preset ? reference_models(*preset) : Status(Ok{}); !models.ok()) {
+            // A user's own stage: only an approved golden can stand for it.
+            if (!e.approved) {
+                result.unmodelled.push_back(e.id);
+                if (result.unmodelled_reason.empty()) result.unmodelled_reason = models.error().message;
+            }
+            continue;
+        }
+        chosen.push_back(&e);
+    }
+    std::vector<std::pair<const GoldenEntry*, Image>> images, unstable;
     for (const auto& sequence : golden_sequences(chosen)) {
         auto rendered = render_golden_references(library, sequence);
         if (!rendered.ok()) return rendered.error();
+        auto flips = render_golden_unstable(library, sequence, rendered.value());
+        if (!flips.ok()) return flips.error();
+        for (size_t i = 0; i < sequence.size(); ++i) {
+            images.emplace_back(sequence[i], std::move(rendered.value()[i]));
+            unstable.emplace_back(sequence[i], std::move(flips.value()[i]));
+        }
+    }
+    for (size_t i = 0; i < images.size(); ++i) {
+        auto& [entry_ptr, image] = images[i];
+        GoldenEntry& entry = const_cast<GoldenEntry&>(*entry_ptr);  // an element of `plan`
+        auto made_of = golden_inputs_hash(library, entry);
+        if (!made_of.ok()) return made_of.error();
+        entry.inputs_hash = made_of.value();
+        entry.approved = false;
+        store_golden_pixels(entry, image);
+        // The unstable-pixel map is kept for every golden (small: mostly black), stored or not.
+        const Image& flips = unstable[i].second;
+        entry.unstable = 0;
+        for (int y = 0; y < flips.height; ++y)
+            for (int x = 0; x < flips.width; ++x) entry.unstable += flips.at(x, y)[0] > 0;
+        if (!entry.shares.empty()) continue;  // its owner writes the files
+        std::error_code ec;
+        std::filesystem::remove(dir + "/" + entry.unstable_file(), ec);
+        if (entry.unstable)
+            if (auto written = write_png(dir + "/" + entry.unstable_file(), flips, 8); !written.ok()) return written.error();
+        if (!entry.stored) continue;
+        if (auto written = write_golden_file(dir, entry, image); !written.ok()) return written.error();
+    }
+    if (auto s = write_golden_manifest(dir, plan); !s.ok()) return s.error();
+    result.written = images.size();
+    return result;
+}
+
+Result<GoldenUpdate> approve_goldens(const TemplateLibrary& library, const std::string& dir, const std::string& filter,
+                                     const EngineOptions& vulkan) {
+    auto planned = golden_plan_with_state(library, dir);
+    if (!planned.ok()) return planned.error();
+    std::vector<GoldenEntry>& plan = planned.value();
+    std::vector<const GoldenEntry*> chosen;
+    for (const GoldenEntry& e : plan)
+        if (e.id.find(filter) != std::string::npos) chosen.push_back(&e);
+    if (chosen.empty()) return make_error("no planned golden's id contains '" + filter + "'", dir + "/plan.toml", 0, "--filter");
+    TargetRenderer renderer(vulkan);
+    Cache cache;
+    std::vector<std::pair<const GoldenEntry*, Image>> images;
+    for (const auto& sequence : golden_sequences(chosen)) {
+        const GoldenEntry& first = *sequence.front();
+        const Preset* preset = library.find_preset(first.preset);
+        if (!preset) return make_error("golden '" + first.id + "' names unknown preset '" + first.preset + "'");
+        auto passes = compile_scene(library, *preset, first.variant_options(), cache);
+        if (!passes.ok()) return passes.error();
+        SceneRenderRequest request;
+        request.preset = preset;
+        request.passes = &passes.value();
+        request.target = TargetId::Spirv;
+        request.source = [&first](int frame) { return golden_input(first, frame); };
+        request.width = first.width;
+        request.height = first.height;
+        request.fit = first.fit;
+        request.overrides = first.overrides;
+        request.start_time = first.start_time;
+        for (const GoldenEntry* e : sequence) request.frames.push_back(e->frame);
+        for (const LutSpec& lut : preset->luts) {
+            if (!lut.generator.empty()) continue;
+            auto image = read_image(lut_file_path(lut));
+            if (!image.ok()) return image.error();
+            request.file_luts[lut.name] = std::move(image.value());
+        }
+        auto rendered = renderer.render_scene(request);
+        if (!rendered.ok()) return rendered.error();
         for (size_t i = 0; i < sequence.size(); ++i) images.emplace_back(sequence[i], std::move(rendered.value()[i]));
     }
-    // The hashes of the entries not re-rendered stay as the old manifest has them.
-    std::map<std::string, std::string> hashes, inputs;
-    std::map<std::string, bool> hdr;
-    if (auto old = load_golden_manifest(dir); old.ok())
-        for (const GoldenEntry& e : old.value()) {
-            hashes[e.id] = e.hash;
-            inputs[e.id] = e.inputs_hash;
-            hdr[e.id] = e.hdr;
-        }
-    for (auto& [entry, image] : images) {
-        auto made_of = golden_inputs_hash(library, *entry);
+    for (auto& [entry_ptr, image] : images) {
+        GoldenEntry& entry = const_cast<GoldenEntry&>(*entry_ptr);  // an element of `plan`
+        auto made_of = golden_inputs_hash(library, entry);
         if (!made_of.ok()) return made_of.error();
-        inputs[entry->id] = made_of.value();
-        GoldenEntry stored = *entry;
-        stored.hdr = hdr[entry->id] = leaves_unit_range(image);
-        quantise_golden(image, stored.hdr);
-        hashes[entry->id] = golden_hash(image, stored.hdr);
-        if (!entry->stored) continue;
-        // The other format's file of an earlier update goes: a golden has one file.
-        GoldenEntry other = stored;
-        other.hdr = !stored.hdr;
+        entry.inputs_hash = made_of.value();
+        entry.approved = true;
+        entry.stored = true;  // nothing else can render it again
+        entry.unstable = 0;
         std::error_code ec;
-        std::filesystem::remove(dir + "/" + other.file(), ec);
-        auto written = stored.hdr ? write_exr(dir + "/" + stored.file(), image) : write_png(dir + "/" + stored.file(), image, 16);
-        if (!written.ok()) return written.error();
+        std::filesystem::remove(dir + "/" + entry.unstable_file(), ec);
+        store_golden_pixels(entry, image);
+        if (auto written = write_golden_file(dir, entry, image); !written.ok()) return written.error();
     }
+    if (auto s = write_golden_manifest(dir, plan); !s.ok()) return s.error();
+    GoldenUpdate result;
+    result.written = images.size();
+    result.planned = plan.size();
+    return result;
+}
+
+Status write_golden_manifest(const std::string& dir, const std::vector<GoldenEntry>& entries) {
     json manifest;
-    manifest["note"] = "Reference images from the CPU double-precision renderer (runtime/reference). "
-                       "Regenerate only with: crtforge golden update";
+    manifest["note"] = "Reference images from the CPU double-precision renderer (reference/), or approved by a user where "
+                       "marked (origin: approved). Regenerate only with: crtforge golden update / crtforge golden approve";
     manifest["goldens"] = json::array();
-    for (GoldenEntry e : plan) {
-        e.hdr = hdr[e.id];
+    for (const GoldenEntry& e : entries) {
         json entry{{"id", e.id}, {"file", e.file()}, {"format", e.hdr ? "exr" : "png"}, {"preset", e.preset}, {"input", e.input},
                    {"width", e.width}, {"height", e.height}, {"inputWidth", e.input_width}, {"inputHeight", e.input_height}};
         if (e.fit) entry["fit"] = display_fit_name(*e.fit);
         entry["frame"] = e.frame;
+        if (!e.config.empty()) entry["config"] = e.config;
+        if (!e.overrides.empty()) {
+            json o = json::object();
+            for (const auto& [name, value] : e.overrides) o[name] = value_json(value);
+            entry["overrides"] = o;
+        }
+        if (e.uniforms.mode != UniformSelection::Mode::Default) entry["uniforms"] = e.uniforms.str();
+        if (e.precision != Precision::High) entry["precision"] = precision_name(e.precision);
+        if (e.start_time != 0) entry["startTime"] = e.start_time;
+        if (e.full_matrix) entry["matrix"] = "full";
+        if (!e.targets.empty()) entry["targets"] = e.targets;
+        if (!e.host.empty()) entry["host"] = e.host;
+        if (!e.shares.empty()) entry["shares"] = e.shares;
+        if (!e.expect_fail_targets.empty()) entry["expectFail"] = {{"targets", e.expect_fail_targets}, {"why", e.expect_fail_why}};
         if (!e.stored) entry["stored"] = false;
-        if (!hashes[e.id].empty()) entry["hash"] = hashes[e.id];
-        if (!inputs[e.id].empty()) entry["inputsHash"] = inputs[e.id];
+        if (e.approved) entry["origin"] = "approved";
+        if (e.unstable) entry["unstable"] = e.unstable;
+        if (!e.hash.empty()) entry["hash"] = e.hash;
+        if (!e.inputs_hash.empty()) entry["inputsHash"] = e.inputs_hash;
         entry["tolerance"] = {{"maxRmse", e.tolerance.max_rmse}, {"outlierThreshold", e.tolerance.outlier_threshold},
                               {"maxOutlierFraction", e.tolerance.max_outlier_fraction}, {"minSsim", e.tolerance.min_ssim},
                               {"maxTileRmse", e.tolerance.max_tile_rmse}, {"why", e.tolerance.why}};
         manifest["goldens"].push_back(std::move(entry));
     }
-    if (auto s = write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n"); !s.ok()) return s.error();
-    return GoldenUpdate{images.size(), plan.size()};
+    return write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n");
 }
 
-Result<Verdict> judge(const Image& render, const Image& reference, const Tolerance& t, double output_quantum) {
+Result<Verdict> judge(const Image& render, const Image& reference, const Tolerance& t, double output_quantum, const Image* unstable) {
+    if (unstable && !unstable->empty() && (unstable->width != reference.width || unstable->height != reference.height))
+        return make_error("the unstable-pixel map does not have the golden's size");
     // Values are compared as they are, HDR included; a consumer whose display is 8-bit cannot show
     // what leaves 0..1, so there both sides are clamped.
     Image clamped = render;
@@ -332,6 +585,7 @@ Result<Verdict> judge(const Image& render, const Image& reference, const Toleran
     // Per pixel: the error d and the golden's own variation around it, the most a sub-pixel shift
     // of the sampling (another driver's rounding at a discontinuity) can move the value.
     std::vector<float> d(static_cast<size_t>(w) * h), edge(static_cast<size_t>(w) * h);
+    double squares = 0;
     const float* r = clamped.rgba.data();
     const float* g = golden.rgba.data();
     const size_t stride = static_cast<size_t>(w) * 4;
@@ -341,16 +595,31 @@ Result<Verdict> judge(const Image& render, const Image& reference, const Toleran
             const int x0 = std::max(0, x - 1), x1 = std::min(w - 1, x + 1);
             const size_t at = static_cast<size_t>(y) * stride + static_cast<size_t>(x) * 4;
             float worst = 0, around = 0;
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(r[at + c] - g[at + c]));
+            const float flip = unstable && !unstable->empty() ? unstable->at(x, y)[0] : 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                // Above 1 (HDR) errors are relative: half floats, every consumer's output, keep a
+                // relative step.
+                const float scale = std::max(1.0f, std::abs(g[at + c]));
+                const float e = std::abs(r[at + c] - g[at + c]) / scale;
+                worst = std::max(worst, e);
+                // The RMSE counts what a flip of the reference under jitter does not explain.
+                const double beyond = std::max(0.0f, e - flip);
+                squares += beyond * beyond;
+            }
             for (int ny = y0; ny <= y1; ++ny) {
                 const float* row = g + static_cast<size_t>(ny) * stride;
                 for (int nx = x0; nx <= x1; ++nx)
-                    for (int c = 0; c < 3; ++c) around = std::max(around, std::abs(row[nx * 4 + c] - g[at + c]));
+                    for (int c = 0; c < 3; ++c)
+                        around = std::max(around, std::abs(row[nx * 4 + c] - g[at + c]) / std::max(1.0f, std::abs(g[at + c])));
             }
+            around = std::max(around, flip);
             d[static_cast<size_t>(y) * w + x] = worst;
             edge[static_cast<size_t>(y) * w + x] = around;
         }
     }
+    // The judged RMSE: relative above 1, beyond the reference's own flips (compare_images's plain
+    // RMSE stays in the metrics' max and SSIM).
+    v.metrics.rmse = std::sqrt(squares / std::max<size_t>(1, d.size() * 3));
     size_t outliers = 0;
     for (size_t i = 0; i < d.size(); ++i) {
         if (d[i] > t.outlier_threshold + output_quantum + edge[i]) ++outliers;

@@ -1,10 +1,14 @@
 // golden/plan.toml -> the list of goldens: which presets, inputs, sizes and frames have a reference.
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "crtforge/files.hpp"
+#include "crtforge/targets.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/validate/golden.hpp"
@@ -16,7 +20,9 @@ namespace {
 
 // One [[golden]] rule of the plan.
 struct PlanRule {
-    bool all_presets = false;
+    bool all_presets = false;   // every shipped preset
+    bool stage_presets = false; // every stage-isolation preset (golden/stages/)
+    std::vector<std::string> except;  // presets left out of "all" / "stages"
     std::vector<std::string> presets;
     bool requires_time = false;
     std::vector<std::string> inputs;
@@ -25,6 +31,21 @@ struct PlanRule {
     std::optional<DisplayFit> fit;
     bool store = true;
     std::optional<std::pair<int, int>> input_size;
+    // The configuration (see golden/plan.toml): the tag names it in the ids.
+    std::string tag;
+    std::vector<std::pair<std::string, Value>> params;  // set where the preset has them as uniforms
+    int draws = 0;                                      // random draws of every uniform param
+    uint64_t seed = 0;
+    UniformSelection uniforms;
+    Precision precision = Precision::High;
+    double start_time = 0.0;
+    bool full_matrix = false;
+    std::vector<std::string> targets;
+    std::optional<Tolerance> tolerance;
+    std::vector<std::string> expect_fail_targets;
+    std::string expect_fail_why;
+    std::string host;  // godot = "defaults" | "material" | "screen"
+    int line = 0;
 };
 
 struct Plan {
@@ -79,20 +100,33 @@ public:
             PlanRule rule;
             for (const auto& [key, value] : t) {
                 static const char* known[] = {"why", "presets", "requires", "inputs", "size", "input_size", "frame", "frames", "fit",
-                                              "store"};
+                                              "store", "tag", "params", "draws", "seed", "uniforms", "precision", "time",
+                                              "matrix", "targets", "tolerance", "expect_fail", "except", "godot"};
                 if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
                     return error(&value, "golden." + std::string(key.str()), "unknown key");
             }
             if (!t.get("why") || !t.get("why")->is_string()) return error(&node, "golden.why", "must say what the entry tests");
             if (const toml::node* p = t.get("presets"); p && p->is_string()) {
-                if (*p->value<std::string>() != "all") return error(p, "golden.presets", "must be \"all\" or a list of presets");
-                rule.all_presets = true;
+                const std::string which = *p->value<std::string>();
+                if (which != "all" && which != "stages")
+                    return error(p, "golden.presets", "must be \"all\", \"stages\" or a list of presets");
+                rule.all_presets = which == "all";
+                rule.stage_presets = which == "stages";
             } else {
                 auto list = names(t, "presets", "golden.presets");
                 if (!list.ok()) return list.error();
                 for (const auto& name : list.value())
                     if (!library.find_preset(name)) return error(t.get("presets"), "golden.presets", "unknown preset '" + name + "'");
                 rule.presets = list.value();
+            }
+            if (t.get("except")) {
+                if (!rule.all_presets && !rule.stage_presets)
+                    return error(t.get("except"), "golden.except", "only with presets = \"all\" or \"stages\"");
+                auto list = names(t, "except", "golden.except");
+                if (!list.ok()) return list.error();
+                for (const auto& name : list.value())
+                    if (!library.find_preset(name)) return error(t.get("except"), "golden.except", "unknown preset '" + name + "'");
+                rule.except = list.value();
             }
             if (const toml::node* r = t.get("requires")) {
                 if (!r->is_string() || *r->value<std::string>() != "time") return error(r, "golden.requires", "must be \"time\"");
@@ -142,9 +176,160 @@ public:
                     if (name == display_fit_name(fit)) rule.fit = fit;
                 if (!rule.fit) return error(f, "golden.fit", "must be \"stretch\", \"aspect\" or \"integer\"");
             }
+            rule.line = static_cast<int>(node.source().begin.line);
+            if (auto s = read_configuration(t, library, rule); !s.ok()) return s.error();
             plan.rules.push_back(std::move(rule));
         }
         return plan;
+    }
+
+    // The configuration keys of a rule: tag, params, draws, seed, uniforms, precision, time,
+    // matrix, targets, tolerance.
+    Status read_configuration(const toml::table& t, const TemplateLibrary& library, PlanRule& rule) const {
+        static const char* config_keys[] = {"params", "draws", "uniforms", "precision", "time", "godot"};
+        const toml::node* tag = t.get("tag");
+        if (tag) {
+            const std::string text = tag->value<std::string>().value_or("");
+            const bool word = !text.empty() && text.size() <= 32 &&
+                              std::all_of(text.begin(), text.end(), [](char c) { return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '-'; });
+            if (!word) return error(tag, "golden.tag", "must be 1..32 characters of a-z, 0-9 and '-' (it becomes part of file names)");
+            rule.tag = text;
+        }
+        for (const char* key : config_keys)
+            if (t.get(key) && rule.tag.empty()) return error(t.get(key), std::string("golden.") + key, "a configuration needs a tag (golden.tag) to name its goldens");
+        if (const toml::node* p = t.get("params")) {
+            const toml::table* table = p->as_table();
+            if (!table || table->empty()) return error(p, "golden.params", "must be a table of param = value");
+            for (const auto& [key, value] : *table) {
+                const std::string name(key.str());
+                const std::string field = "golden.params." + name;
+                const ParamSpec* spec = library.find_param(name);
+                if (!spec) return error(&value, field, "no stage has a param '" + name + "'");
+                auto v = plan_value(value, *spec, field);
+                if (!v.ok()) return v.error();
+                rule.params.emplace_back(name, v.value());
+            }
+        }
+        if (const toml::node* d = t.get("draws")) {
+            if (!d->is_integer() || *d->value<int64_t>() < 1 || *d->value<int64_t>() > 64)
+                return error(d, "golden.draws", "must be a number of draws 1..64");
+            rule.draws = static_cast<int>(*d->value<int64_t>());
+            const toml::node* seed = t.get("seed");
+            if (!seed || !seed->is_integer() || *seed->value<int64_t>() < 0)
+                return error(seed ? seed : d, "golden.seed", "draws need a fixed seed: a non-negative integer");
+            rule.seed = static_cast<uint64_t>(*seed->value<int64_t>());
+        } else if (t.get("seed")) {
+            return error(t.get("seed"), "golden.seed", "a seed without draws");
+        }
+        if (rule.draws && !rule.params.empty()) return error(t.get("params"), "golden.params", "give params or draws, not both");
+        if (const toml::node* u = t.get("uniforms")) {
+            auto parsed = UniformSelection::parse(u->value<std::string>().value_or("?"));
+            if (!parsed.ok() || parsed.value().mode == UniformSelection::Mode::Names)
+                return error(u, "golden.uniforms", "must be \"default\", \"all\" or \"none\"");
+            rule.uniforms = parsed.value();
+        }
+        if (const toml::node* pr = t.get("precision")) {
+            const std::string name = pr->value<std::string>().value_or("");
+            if (name != "high" && name != "medium") return error(pr, "golden.precision", "must be \"high\" or \"medium\"");
+            rule.precision = name == "medium" ? Precision::Medium : Precision::High;
+        }
+        if (const toml::node* tm = t.get("time")) {
+            const std::optional<double> v = tm->value<double>();
+            if (!v || !(*v >= 0) || *v > 1e7) return error(tm, "golden.time", "must be seconds at frame 0, 0..1e7");
+            rule.start_time = *v;
+        }
+        if (const toml::node* m = t.get("matrix")) {
+            const std::string name = m->value<std::string>().value_or("");
+            if (name != "main" && name != "full") return error(m, "golden.matrix", "must be \"main\" or \"full\"");
+            rule.full_matrix = name == "full";
+        }
+        if (t.get("targets")) {
+            auto list = names(t, "targets", "golden.targets");
+            if (!list.ok()) return list.error();
+            for (const auto& name : list.value())
+                if (!find_target(name)) return error(t.get("targets"), "golden.targets", "unknown target '" + name + "'");
+            rule.targets = list.value();
+        }
+        if (const toml::node* gd = t.get("godot")) {
+            const std::string mode = gd->value<std::string>().value_or("");
+            if (mode != "defaults" && mode != "material" && mode != "screen")
+                return error(gd, "golden.godot", "must be \"defaults\", \"material\" or \"screen\"");
+            for (const std::string& target : rule.targets)
+                if (target != "godot3") return error(gd, "golden.godot", "a Godot host mode needs targets = [\"godot3\"]");
+            if (rule.targets.empty()) return error(gd, "golden.godot", "a Godot host mode needs targets = [\"godot3\"]");
+            rule.host = mode;
+        }
+        if (const toml::node* x = t.get("expect_fail")) {
+            const toml::table* table = x->as_table();
+            if (!table || !table->get("targets") || !table->get("why") || !table->get("why")->is_string() || table->size() != 2)
+                return error(x, "golden.expect_fail", "must be { targets = [names], why = \"the tracked defect\" }");
+            auto list = names(*table, "targets", "golden.expect_fail.targets");
+            if (!list.ok()) return list.error();
+            for (const auto& name : list.value()) {
+                const std::string base = name.substr(0, name.find('@'));  // "spirv@swiftshader": a second driver's
+                if (!find_target(base)) return error(table->get("targets"), "golden.expect_fail.targets", "unknown target '" + name + "'");
+            }
+            rule.expect_fail_targets = list.value();
+            rule.expect_fail_why = *table->get("why")->value<std::string>();
+        }
+        if (const toml::node* tol = t.get("tolerance")) {
+            auto read = tolerance(*tol);
+            if (!read.ok()) return read.error();
+            rule.tolerance = read.value();
+        }
+        return Ok{};
+    }
+
+    // A runtime param's value: a number in its range, or a colour "#rrggbb" / [r, g, b].
+    Result<Value> plan_value(const toml::node& node, const ParamSpec& spec, const std::string& field) const {
+        if (spec.type == ParamType::Color) {
+            if (const auto* text = node.as_string()) {
+                const std::string& s = text->get();
+                Color c{};
+                bool ok = s.size() == 7 && s[0] == '#';
+                for (int i = 0; ok && i < 3; ++i) {
+                    const std::string hex = s.substr(1 + 2 * i, 2);
+                    ok = std::all_of(hex.begin(), hex.end(), [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)); });
+                    if (ok) c[i] = std::stoi(hex, nullptr, 16) / 255.0;
+                }
+                if (ok) return Value{c};
+            }
+            return error(&node, field, "must be a colour \"#rrggbb\"");
+        }
+        if (spec.type != ParamType::Float && spec.type != ParamType::Int)
+            return error(&node, field, "only float, int and colour params can be set (they are the runtime ones)");
+        const std::optional<double> v = node.value<double>();
+        if (!v || (spec.type == ParamType::Int && !node.is_integer())) return error(&node, field, std::string("must be a ") + param_type_name(spec.type));
+        if ((spec.min && *v < *spec.min) || (spec.max && *v > *spec.max))
+            return error(&node, field, fmt::format("{} is outside the param's range {}..{}", *v, spec.min.value_or(*v), spec.max.value_or(*v)));
+        if (spec.type == ParamType::Int) return Value{static_cast<int64_t>(*v)};
+        return Value{*v};
+    }
+
+    // tolerance = { rmse, pixel, outliers, ssim, tile, why }: unset bounds keep the default's.
+    Result<Tolerance> tolerance(const toml::node& node) const {
+        const toml::table* t = node.as_table();
+        if (!t) return error(&node, "golden.tolerance", "must be a table { rmse, pixel, outliers, ssim, tile, why }");
+        Tolerance out = make_golden_entry("p", "i", 1, 1, 1, 1, 0).tolerance;
+        const std::pair<const char*, double*> bounds[] = {{"rmse", &out.max_rmse}, {"pixel", &out.outlier_threshold},
+                                                          {"outliers", &out.max_outlier_fraction}, {"ssim", &out.min_ssim},
+                                                          {"tile", &out.max_tile_rmse}};
+        for (const auto& [key, value] : *t) {
+            const std::string field = "golden.tolerance." + std::string(key.str());
+            if (key == "why") {
+                if (!value.is_string() || value.value<std::string>()->size() < 20)
+                    return error(&value, field, "must say, specifically, why this golden needs its own tolerance");
+                out.why = *value.value<std::string>();
+                continue;
+            }
+            auto b = std::find_if(std::begin(bounds), std::end(bounds), [&](const auto& kv) { return key == kv.first; });
+            if (b == std::end(bounds)) return error(&value, field, "unknown key (rmse, pixel, outliers, ssim, tile, why)");
+            const std::optional<double> v = value.value<double>();
+            if (!v || !(*v >= 0) || *v > 1) return error(&value, field, "must be a number 0..1");
+            *b->second = *v;
+        }
+        if (!t->get("why")) return error(&node, "golden.tolerance.why", "must say, specifically, why this golden needs its own tolerance");
+        return out;
     }
 
 private:
@@ -158,7 +343,126 @@ bool reads_time(const TemplateLibrary& library, const Preset& preset) {
     return std::find(b.begin(), b.end(), Builtin::Time) != b.end();
 }
 
+// splitmix64: a fixed, portable sequence (std's distributions differ between libraries).
+struct DrawSource {
+    uint64_t state;
+    uint64_t next() {
+        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    double unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+};
+
+uint64_t name_hash(const std::string& text) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ull;
+    return h;
+}
+
+// A value across the param's range, on its step grid where it has one.
+Value draw_value(const ParamSpec& spec, DrawSource& source) {
+    if (spec.type == ParamType::Color) {
+        Color c{};
+        for (double& v : c) v = std::floor(source.unit() * 256.0) / 255.0;
+        return c;
+    }
+    const double lo = spec.min.value_or(0.0), hi = spec.max.value_or(1.0);
+    double v = lo + source.unit() * (hi - lo);
+    if (spec.step && *spec.step > 0) v = std::min(hi, lo + std::round((v - lo) / *spec.step) * *spec.step);
+    if (spec.type == ParamType::Int) return static_cast<int64_t>(std::llround(v));
+    return v;
+}
+
+// The params that are uniforms of the preset's variant under `options`, in every pass that reads them.
+Result<std::set<std::string>> uniform_params(const TemplateLibrary& library, const Preset& preset, const VariantOptions& options) {
+    std::set<std::string> out;
+    for (size_t pass = 0; pass < preset.passes.size(); ++pass) {
+        auto variant = make_variant(library, preset, options, pass);
+        if (!variant.ok()) return variant.error();
+        for (const VariantParam* p : variant.value().uniforms()) out.insert(p->spec->name);
+    }
+    return out;
+}
+
+// The configurations a rule asks of one preset: none when the preset lacks what it sets.
+Result<std::vector<GoldenEntry>> configurations(const TemplateLibrary& library, const Preset& preset, const PlanRule& rule,
+                                                const std::string& plan_path) {
+    GoldenEntry base;
+    base.config = rule.tag;
+    base.uniforms = rule.uniforms;
+    base.precision = rule.precision;
+    base.start_time = rule.start_time;
+    base.full_matrix = rule.full_matrix;
+    base.targets = rule.targets;
+    base.host = rule.host;
+    if (!rule.host.empty()) {
+        // The shaders used alone: only a single pass that reads nothing but its picture has them.
+        auto variant = make_variant(library, preset, base.variant_options());
+        if (!preset.single_pass() || !variant.ok() || !variant.value().textures.empty()) return std::vector<GoldenEntry>{};
+    }
+    if (rule.params.empty() && !rule.draws) return std::vector<GoldenEntry>{base};
+    auto uniforms = uniform_params(library, preset, base.variant_options());
+    if (!uniforms.ok()) {
+        Diagnostic d = uniforms.error();
+        return make_error(preset.name + ": " + d.message, plan_path, rule.line, "golden.uniforms");
+    }
+    std::vector<GoldenEntry> out;
+    if (!rule.params.empty()) {
+        for (const auto& [name, value] : rule.params)
+            if (uniforms.value().count(name)) base.overrides[name] = value;
+        if (!base.overrides.empty()) out.push_back(base);
+        return out;
+    }
+    if (uniforms.value().empty()) return out;
+    for (int k = 0; k < rule.draws; ++k) {
+        DrawSource source{rule.seed ^ name_hash(preset.name) ^ (0x632be59bd9b4e019ull * static_cast<uint64_t>(k + 1))};
+        GoldenEntry e = base;
+        e.config = rule.tag + std::to_string(k + 1);
+        for (const std::string& name : uniforms.value()) e.overrides[name] = draw_value(*library.find_param(name), source);
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
 }  // namespace
+
+namespace {
+
+// Entries with the same reference image share one set of files (GoldenEntry::shares): the first
+// stored one of each group owns them (or the first, when none is stored).
+void share_reference_images(std::vector<GoldenEntry>& entries) {
+    std::map<std::string, std::vector<GoldenEntry*>> groups;
+    std::vector<std::string> order;
+    for (GoldenEntry& e : entries) {
+        std::string key = fmt::format("{}|{}|{}x{}|{}x{}|{}|{}|{}", e.preset, e.input, e.width, e.height, e.input_width, e.input_height,
+                                      e.fit ? display_fit_name(*e.fit) : "-", e.frame, e.start_time);
+        for (const auto& [name, value] : e.overrides) key += "|" + name + "=" + value_to_string(value);
+        if (!groups.count(key)) order.push_back(key);
+        groups[key].push_back(&e);
+    }
+    for (const std::string& key : order) {
+        auto& group = groups[key];
+        GoldenEntry* owner = group.front();
+        for (GoldenEntry* e : group)
+            if (e->stored) {
+                owner = e;
+                break;
+            }
+        for (GoldenEntry* e : group)
+            if (e != owner) {
+                e->shares = owner->id;
+                e->stored = owner->stored;
+            }
+    }
+}
+
+}  // namespace
+
+Status add_golden_presets(TemplateLibrary& library, const std::string& golden_dir) {
+    return library.add_test_presets(golden_dir + "/stages");
+}
 
 Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, const std::string& golden_dir) {
     const std::string path = golden_dir + "/plan.toml";
@@ -167,22 +471,44 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
     auto plan = PlanReader(path).read(text.value(), library);
     if (!plan.ok()) return plan.error();
     std::vector<GoldenEntry> out;
+    std::set<std::string> ids;
     for (const Preset& p : library.presets()) {
         const bool time = reads_time(library, p);
         for (const PlanRule& rule : plan.value().rules) {
             const bool named = std::find(rule.presets.begin(), rule.presets.end(), p.name) != rule.presets.end();
-            if (!(rule.all_presets || named) || (rule.requires_time && !time)) continue;
-            for (const std::string& input : rule.inputs) {
-                auto [iw, ih] = rule.input_size.value_or(std::make_pair(rule.width, rule.height));
-                // A scene that states its source size is fed pictures of that size.
-                if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
-                for (int frame : rule.frames) {
-                    out.push_back(make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit));
-                    out.back().stored = rule.store;
+            const bool excepted = std::find(rule.except.begin(), rule.except.end(), p.name) != rule.except.end();
+            const bool chosen = named || (!excepted && (p.test_only ? rule.stage_presets : rule.all_presets));
+            if (!chosen || (rule.requires_time && !time)) continue;
+            auto configs = configurations(library, p, rule, path);
+            if (!configs.ok()) return configs.error();
+            for (const GoldenEntry& config : configs.value())
+                for (const std::string& input : rule.inputs) {
+                    auto [iw, ih] = rule.input_size.value_or(std::make_pair(rule.width, rule.height));
+                    // A scene that states its source size is fed pictures of that size.
+                    if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
+                    for (int frame : rule.frames) {
+                        GoldenEntry e = make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit);
+                        e.config = config.config;
+                        e.overrides = config.overrides;
+                        e.uniforms = config.uniforms;
+                        e.precision = config.precision;
+                        e.start_time = config.start_time;
+                        e.full_matrix = config.full_matrix;
+                        e.targets = config.targets;
+                        e.host = config.host;
+                        if (rule.tolerance) e.tolerance = *rule.tolerance;
+                        e.expect_fail_targets = rule.expect_fail_targets;
+                        e.expect_fail_why = rule.expect_fail_why;
+                        e.stored = rule.store;
+                        e.id = golden_id(e);
+                        if (!ids.insert(e.id).second)
+                            return make_error("two rules make golden " + e.id + ": give one of them a tag", path, rule.line, "golden.tag");
+                        out.push_back(std::move(e));
+                    }
                 }
-            }
         }
     }
+    share_reference_images(out);
     return out;
 }
 

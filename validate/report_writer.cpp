@@ -233,6 +233,7 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
             for (const auto& c : j.at("checks")) {
                 CheckResult r{c.at("preset"), c.at("target"), c.at("check"), c.at("passed"), c.value("message", ""), {}, {}};
                 if (r.check.rfind("render:", 0) == 0) r.golden_id = r.check.substr(7);
+                if (r.check.rfind("agree:", 0) == 0) r.golden_id = r.check.substr(6);
                 if (c.contains("metrics")) {
                     const auto& m = c.at("metrics");
                     Verdict v;

@@ -114,7 +114,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
                 if (!w.ok()) return w.error();
                 pr.textures.push_back({pass.inputs[k].binding, resolve(pass.inputs[k].from), to_filter(pass.inputs[k].filter), w.value()});
             }
-            pr.time = frame / preset.scene.fps;
+            pr.time = r.start_time + frame / preset.scene.fps;
             pr.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
             pr.overrides = r.overrides;
             if (last) {  // the display: the screen's rectangle over opaque black

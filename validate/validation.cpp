@@ -47,14 +47,20 @@ struct GoldenData {
     const GoldenEntry* entry;
     Result<Image> golden{make_error("not loaded")};
     Result<Image> input{make_error("not loaded")};  // the input at the entry's frame, for the report
+    Result<Image> unstable{make_error("not loaded")};  // where the reference flips under jitter (may be empty)
 };
 
-// Compiled once per preset (on whichever worker needs it first) and shared by its targets' jobs.
+// The key of a variant's build options: goldens of the matrix compile other variants than the
+// one that ships ("--uniforms all", "--precision medium").
+std::string options_key(const VariantOptions& o) { return o.uniforms.str() + "/" + precision_name(o.precision); }
+
+// Compiled once per preset (on whichever worker needs it first) and shared by its targets' jobs:
+// the variant that ships, and every other one its goldens ask for.
 struct PresetWork {
     const Preset* preset = nullptr;
     std::vector<GoldenData*> goldens;
     std::once_flag once;
-    Result<std::vector<CompiledVariant>> compiled = make_error("not compiled");
+    std::map<std::string, Result<std::vector<CompiledVariant>>> compiled;  // by options_key
     std::map<std::string, Image> file_luts;
     std::optional<Diagnostic> lut_error;
 };
@@ -123,16 +129,23 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         if (!job.second)
             for (const std::string& check : compile_checks(*preset, job.target))
                 results.push_back({preset->name, target, check, false, message, {}, {}});
-        for (const GoldenData* g : job.goldens)
+        for (const GoldenData* g : job.goldens) {
             results.push_back({preset->name, target, "render:" + g->entry->id, false, message, {}, g->entry->id});
+            if (g->entry->approved && job.target != TargetId::Spirv)
+                results.push_back({preset->name, target, "agree:" + g->entry->id, false, message, {}, g->entry->id});
+        }
         return results;
     };
     std::call_once(job.work->once, [&] {
         for (GoldenData* d : job.work->goldens) {
             d->golden = load_golden_image(library, *d->entry, request.golden_dir);
             d->input = golden_input(*d->entry, d->entry->frame);
+            d->unstable = load_golden_unstable(*d->entry, request.golden_dir);
         }
-        job.work->compiled = compile_scene(library, *preset, {}, cache);
+        std::vector<VariantOptions> options{VariantOptions{}};
+        for (const GoldenData* d : job.work->goldens) options.push_back(d->entry->variant_options());
+        for (const VariantOptions& o : options)
+            if (!job.work->compiled.count(options_key(o))) job.work->compiled.emplace(options_key(o), compile_scene(library, *preset, o, cache));
         for (const LutSpec& lut : preset->luts) {
             if (!lut.generator.empty()) continue;
             auto image = read_image(lut_file_path(lut));
@@ -140,15 +153,26 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             else job.work->file_luts[lut.name] = std::move(image.value());
         }
     });
-    const auto& compiled = job.work->compiled;
+    const auto& compiled = job.work->compiled.at(options_key({}));
     if (!compiled.ok()) return fail_all(compiled.error().str());
     if (job.work->lut_error) return fail_all(job.work->lut_error->str());
-    std::vector<TargetOutput> outputs;
-    for (const CompiledVariant& pass : compiled.value()) {
-        auto out = emit_target(pass, job.target, cache);
-        if (!out.ok()) return fail_all(out.error().str());
-        outputs.push_back(std::move(out.value()));
-    }
+    // The target's files of every variant the job renders, by options_key.
+    std::map<std::string, Result<std::vector<TargetOutput>>> emitted;
+    auto outputs_for = [&](const VariantOptions& o) -> const Result<std::vector<TargetOutput>>& {
+        const std::string key = options_key(o);
+        if (auto it = emitted.find(key); it != emitted.end()) return it->second;
+        const auto& passes = job.work->compiled.at(key);
+        Result<std::vector<TargetOutput>> out = std::vector<TargetOutput>{};
+        if (!passes.ok()) out = passes.error();
+        for (size_t i = 0; out.ok() && i < passes.value().size(); ++i) {
+            auto files = emit_target(passes.value()[i], job.target, cache);
+            if (!files.ok()) out = files.error();
+            else out.value().push_back(std::move(files.value()));
+        }
+        return emitted.emplace(key, std::move(out)).first->second;
+    };
+    if (!outputs_for({}).ok()) return fail_all(outputs_for({}).error().str());
+    const std::vector<TargetOutput>& outputs = outputs_for({}).value();
 
     bool compiles = true;
     for (size_t i = 0; i < outputs.size() && !job.second; ++i)  // the first driver's job compiles
@@ -171,18 +195,23 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         entries.push_back(d->entry);
         data_of[d->entry] = d;
     }
-    std::map<const GoldenEntry*, CheckResult> checks;
+    std::map<const GoldenEntry*, CheckResult> checks, agreements;
     for (const auto& sequence : golden_sequences(entries)) {
         const GoldenEntry& first = *sequence.front();
         std::optional<std::string> failure;
         if (!compiles) failure = "not rendered: the consumer rejected the shader";
         std::vector<Image> images;
+        const auto& variant_outputs = outputs_for(first.variant_options());
+        if (!failure && !variant_outputs.ok()) failure = variant_outputs.error().str();
         if (!failure) {
             SceneRenderRequest sr;
             sr.preset = preset;
-            sr.passes = &compiled.value();
+            sr.passes = &job.work->compiled.at(options_key(first.variant_options())).value();
             sr.target = job.target;
-            sr.outputs = &outputs;
+            sr.outputs = &variant_outputs.value();
+            sr.overrides = first.overrides;
+            sr.start_time = first.start_time;
+            sr.host = first.host;
             sr.source = [&first](int frame) { return golden_input(first, frame); };
             sr.width = first.width;
             sr.height = first.height;
@@ -202,10 +231,13 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                 if (r.message.find("golden update") == std::string::npos) r.message += " (run 'crtforge golden update')";
             } else if (!data->input.ok()) {
                 r.message = data->input.error().str();
+            } else if (!data->unstable.ok()) {
+                r.message = data->unstable.error().str();
             } else if (failure) {
                 r.message = *failure;
             } else {
-                auto verdict = judge(images[i], data->golden.value(), g->tolerance, renderer.output_quantum(job.target));
+                auto verdict = judge(images[i], data->golden.value(), g->tolerance, renderer.output_quantum(job.target),
+                                     &data->unstable.value());
                 if (!verdict.ok()) {
                     r.message = verdict.error().str();
                 } else {
@@ -222,10 +254,61 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                     }
                 }
             }
+            if (g->expected_to_fail(target) && r.verdict) {  // a render that failed to run is no expected failure
+                // A tracked defect: its failure is expected, a pass means the entry must be updated.
+                r.message = r.passed ? "passed, but golden/plan.toml expects it to fail (" + g->expect_fail_why +
+                                           "): remove the target from expect_fail"
+                                     : "expected failure (" + g->expect_fail_why + "): " + r.message;
+                r.passed = !r.passed;
+            }
             checks.emplace(g, std::move(r));
         }
+        // An approved golden (a user's stage the reference has no model of) is only as good as the
+        // render that was approved, so every target must also agree with this run's Vulkan render of
+        // the same SPIR-V, judged alike.
+        if (first.approved && job.target != TargetId::Spirv) {
+            std::vector<Image> vulkan_images;
+            std::optional<std::string> vulkan_failure = failure;
+            if (!vulkan_failure) {
+                SceneRenderRequest sr;
+                sr.preset = preset;
+                sr.passes = &job.work->compiled.at(options_key(first.variant_options())).value();
+                sr.target = TargetId::Spirv;
+                sr.source = [&first](int frame) { return golden_input(first, frame); };
+                sr.width = first.width;
+                sr.height = first.height;
+                sr.fit = first.fit;
+                sr.overrides = first.overrides;
+                sr.start_time = first.start_time;
+                for (const GoldenEntry* e : sequence) sr.frames.push_back(e->frame);
+                sr.file_luts = job.work->file_luts;
+                auto rendered = renderer.render_scene(sr);
+                if (!rendered.ok()) vulkan_failure = "the Vulkan render to agree with failed: " + rendered.error().str();
+                else vulkan_images = std::move(rendered.value());
+            }
+            for (size_t i = 0; i < sequence.size(); ++i) {
+                const GoldenEntry* g = sequence[i];
+                CheckResult r{preset->name, target, "agree:" + g->id, false, {}, {}, g->id};
+                if (vulkan_failure) {
+                    r.message = *vulkan_failure;
+                } else {
+                    auto verdict = judge(images[i], vulkan_images[i], g->tolerance, renderer.output_quantum(job.target));
+                    if (!verdict.ok()) {
+                        r.message = verdict.error().str();
+                    } else {
+                        r.passed = verdict.value().passed;
+                        r.message = r.passed ? "" : "disagrees with Vulkan: " + verdict.value().reason;
+                        r.verdict = verdict.value();
+                    }
+                }
+                agreements.emplace(g, std::move(r));
+            }
+        }
     }
-    for (const GoldenData* d : job.goldens) results.push_back(std::move(checks.at(d->entry)));
+    for (const GoldenData* d : job.goldens) {
+        results.push_back(std::move(checks.at(d->entry)));
+        if (auto a = agreements.find(d->entry); a != agreements.end()) results.push_back(std::move(a->second));
+    }
     return results;
 }
 
@@ -249,7 +332,8 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
             if (!known) return make_error("no golden uses input '" + in + "'", {}, 0, "--input");
         }
         for (const auto& g : goldens.value())
-            if (request.inputs.empty() || std::find(request.inputs.begin(), request.inputs.end(), g.input) != request.inputs.end())
+            if ((request.inputs.empty() || std::find(request.inputs.begin(), request.inputs.end(), g.input) != request.inputs.end()) &&
+                (request.full_matrix || !g.full_matrix))
                 report.goldens.push_back(g);
     }
 
@@ -261,6 +345,19 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
         for (TargetId t : targets)
             if (probe.renders_on_vulkan(t)) vulkan_rendered.insert(t);
     }
+    // The goldens a target judges (a matrix entry may name its targets).
+    auto judged_by = [](const std::vector<const GoldenData*>& goldens, TargetId t) {
+        std::vector<const GoldenData*> out;
+        for (const GoldenData* d : goldens)
+            if (d->entry->judged_by(target_info(t).name)) out.push_back(d);
+        return out;
+    };
+    // One render check per golden, and an agreement check per approved golden off SPIR-V.
+    auto render_checks = [](const std::vector<const GoldenData*>& goldens, TargetId t) {
+        size_t n = goldens.size();
+        for (const GoldenData* d : goldens) n += d->entry->approved && t != TargetId::Spirv;
+        return n;
+    };
     std::vector<Job> jobs;
     std::deque<PresetWork> presets;  // stable addresses for the jobs' pointers
     std::deque<GoldenData> golden_data;
@@ -283,8 +380,9 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
                     goldens.push_back(&d);
                 }
             }
-            total += compile_checks(p, t).size() + goldens.size();
-            jobs.push_back(Job{work, t, goldens});
+            auto mine = judged_by(goldens, t);
+            total += compile_checks(p, t).size() + render_checks(mine, t);
+            jobs.push_back(Job{work, t, std::move(mine)});
         }
         // The Vulkan-rendered targets again on the second driver.
         if (request.second_vulkan && request.render)
@@ -300,8 +398,9 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
                         goldens.push_back(&d);
                     }
                 }
-                total += goldens.size();
-                jobs.push_back(Job{work, t, goldens, true});
+                auto mine = judged_by(goldens, t);
+                total += render_checks(mine, t);
+                jobs.push_back(Job{work, t, std::move(mine), true});
             }
     }
 

@@ -174,6 +174,7 @@ struct Preset {
     std::vector<LutSpec> luts;
     std::vector<std::string> lineage;      // this preset, then its bases
     SourceLocation where;
+    bool test_only = false;                // a validation configuration (add_test_presets), not shipped
 
     bool single_pass() const { return passes.size() == 1; }
     // The first enabled stage of that name in any pass.

@@ -42,7 +42,14 @@ public:
     // tools and tests can resolve presets that are not in the library's presets/ folder.
     Result<Preset> resolve(const std::vector<PresetFile>& files, const std::string& name) const;
 
+    // Adds the presets of <dir>/*.toml (if the folder exists) as test presets (Preset::test_only):
+    // configurations only validation renders, such as the stage-isolation presets of
+    // golden/stages/. `export`, `list` and `bench` of "all presets" leave them out. Call it before
+    // the library is used: it re-sorts presets(), so earlier Preset pointers dangle.
+    Status add_test_presets(const std::string& dir);
+
 private:
+    Status add_presets(const std::string& dir, bool test_only);
     // resolve(), tracking the presets being resolved (`preset = "..."` references nest).
     Result<Preset> resolve_preset(const std::vector<PresetFile>& files, const std::string& name,
                                   std::set<std::string>& visiting) const;

@@ -498,6 +498,7 @@ Result<std::vector<std::string>> scene_job_args(const Godot3SceneJob& job, const
         if (std::find(job.run.begin(), job.run.end(), f) == job.run.end())
             return job_error(fmt::format("captured frame {} is not run", f), "capture");
     if (!(job.fps > 0)) return job_error("fps must be positive", "fps");
+    if (!(job.start_time >= 0)) return job_error("start_time must not be negative", "start_time");
     if (job.timeout_seconds < 1) return job_error("timeout_seconds must be at least 1", "timeout_seconds");
     auto params = params_json(job.params);
     if (!params.ok()) return params.error();
@@ -518,6 +519,7 @@ Result<std::vector<std::string>> scene_job_args(const Godot3SceneJob& job, const
         "--run=" + frame_list(job.run),
         "--capture=" + frame_list(job.capture),
         fmt::format("--fps={}", job.fps),
+        fmt::format("--start-time={}", job.start_time),
         "--params=" + (dir / "params.json").string(),
         "--output=" + (dir / "frame-").string(),
     };

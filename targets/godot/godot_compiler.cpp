@@ -87,7 +87,9 @@ void GodotCompiler::prepare() {
     // Declared by Godot itself (or by emit_header): hide them and use Godot's names.
     for (const auto& in : resources.stage_inputs) {
         set_remapped_variable_state(in.id, true);
-        set_name(in.id, screen ? "SCREEN_UV" : "UV");
+        // Godot 3's SCREEN_UV (and SCREEN_TEXTURE) count rows from the bottom; the effects count
+        // them from the top, as UV and Godot 4's SCREEN_UV do (crt_flip_y below).
+        set_name(in.id, !screen ? "UV" : options_.godot_version >= 4 ? "SCREEN_UV" : "crt_flip_y(SCREEN_UV)");
     }
     for (const auto& out : resources.stage_outputs) {
         set_remapped_variable_state(out.id, true);
@@ -141,7 +143,43 @@ std::string GodotCompiler::compile_godot() {
     }
     out.append(text, last, std::string::npos);
     if (out.find(kBlockMarker) != std::string::npos) throw spirv_cross::CompilerError("unresolved uniform block access");
-    return options_.godot_version >= 4 ? out : with_loop_increments(out);
+    if (options_.godot_version >= 4) return out;
+    if (screen_mode()) out = with_screen_reads_flipped(out);
+    return with_loop_increments(out);
+}
+
+std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
+    // texture(SCREEN_TEXTURE, p) -> textureLod(SCREEN_TEXTURE, crt_flip_y(p), 0.0) and
+    // textureLod(SCREEN_TEXTURE, p, lod) -> textureLod(SCREEN_TEXTURE, crt_flip_y(p), lod): the
+    // effects' top-down coordinates back to the bottom-up ones Godot 3's screen texture is read
+    // with, and its full-resolution level: SCREEN_TEXTURE has mipmaps, and a coordinate quantised
+    // per mask cell (or bent by the barrel) would otherwise pick a blurred level where its
+    // derivatives jump. Any other read of the screen is refused.
+    static const std::regex read(R"(\b(\w+)\(SCREEN_TEXTURE, )");
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), read); it != std::sregex_iterator(); ++it) {
+        const size_t at = static_cast<size_t>(it->position());
+        if (at < last) continue;  // inside a coordinate already rewritten
+        const std::string function = (*it)[1].str();
+        if (function != "texture" && function != "textureLod")
+            throw spirv_cross::CompilerError("Godot 3's screen mode cannot flip a " + function + " of SCREEN_TEXTURE");
+        const size_t arg = at + static_cast<size_t>(it->length());
+        int depth = 0;
+        size_t end = arg;  // the end of the coordinate: the ',' or ')' that closes it
+        for (; end < text.size(); ++end) {
+            if (text[end] == '(') ++depth;
+            if ((text[end] == ')' || text[end] == ',') && depth == 0) break;
+            if (text[end] == ')') --depth;
+        }
+        if (end >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
+        if (function == "texture" && text[end] != ')') throw spirv_cross::CompilerError("a biased screen texture read");
+        out.append(text, last, at - last);
+        out += "textureLod(SCREEN_TEXTURE, crt_flip_y(" + text.substr(arg, end - arg) + ")" + (function == "texture" ? ", 0.0" : "");
+        last = end;
+    }
+    out.append(text, last, std::string::npos);
+    return out;
 }
 
 std::string GodotCompiler::with_loop_increments(const std::string& text) {
@@ -200,6 +238,11 @@ void GodotCompiler::emit_header() {
     }
     statement("shader_type canvas_item;");
     statement("");
+    if (screen && options_.godot_version < 4) {
+        statement("// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.");
+        statement("vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }");
+        statement("");
+    }
     if (screen && options_.godot_version >= 4)
         statement("uniform sampler2D screen_texture : hint_screen_texture, filter_", filter_name(variant_.texture_filter("source")), ", repeat_disable;");
     for (const VariantParam* p : variant_.uniforms()) {

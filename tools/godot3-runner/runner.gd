@@ -20,7 +20,8 @@
 #   --inputs=PATH        raw float32 RGBA pictures, IW x IH each, one per frame of --run
 #   --run=0,1,2          the frames drawn, in order (the scene's `frame` is set to each)
 #   --capture=1,2        the frames whose picture is written, to <--output><frame>.raw
-#   --fps=60             the frame rate: a uniform crtforge_validation_time gets frame / fps
+#   --fps=60             the frame rate: a uniform crtforge_validation_time gets (start + frame / fps) mod 3600
+#   --start-time=0       seconds at frame 0
 #   --params=PATH        as above, set on every pass that declares the uniform
 #   --fit=aspect         overrides the scene's display fit (stretch, aspect, integer)
 # Output file: 24-byte header, then W*H*4 little-endian float32, RGBA, row 0 = TOP of the picture:
@@ -391,7 +392,7 @@ func _scene_materials(scene):
 func _run_scene(opts):
 	yield(get_tree(), "idle_frame")
 	for key in opts.keys():
-		if not key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "fps", "params", "output", "fit"]:
+		if not key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "fps", "start-time", "params", "output", "fit"]:
 			return _fail(2, "unknown argument '--%s'" % key)
 	for key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "output"]:
 		if not opts.has(key):
@@ -409,6 +410,9 @@ func _run_scene(opts):
 	var fps = float(opts.get("fps", "60"))
 	if fps <= 0:
 		return _fail(2, "--fps must be positive")
+	var start_time = float(opts.get("start-time", "0"))
+	if start_time < 0:
+		return _fail(2, "--start-time must not be negative")
 
 	var packed = load(opts["scene"])
 	if packed == null or not packed is PackedScene:
@@ -456,10 +460,11 @@ func _run_scene(opts):
 			image.create_from_data(iw, ih, false, Image.FORMAT_RGBAF, f.get_buffer(picture_bytes))
 			source.set_data(image)
 		scene.frame = frame
-		# Godot's TIME is the wall clock: the engine pins it through this uniform instead.
+		# Godot's TIME is the wall clock: the engine pins it through this uniform instead, wrapped
+		# as Godot wraps TIME (rendering/limits/time/time_rollover_secs, 3600 s by default).
 		for entry in materials:
 			if entry[1].has("crtforge_validation_time"):
-				entry[0].set_shader_param("crtforge_validation_time", frame / fps)
+				entry[0].set_shader_param("crtforge_validation_time", fmod(start_time + frame / fps, 3600.0))
 		yield(VisualServer, "frame_post_draw")
 		if not frame in capture:
 			continue

@@ -103,6 +103,8 @@ Result<uint32_t> spirv_texture_binding(const TargetRenderRequest& r, const std::
 }
 
 Result<std::vector<Image>> Consumer::render_scene(const SceneRenderRequest& request, ConsumerEngines& engines) const {
+    if (!request.host.empty())
+        return make_error("host mode '" + request.host + "' is Godot's: target " + target_info(request.target).name + " has none");
     return run_scene(request, [&](const TargetRenderRequest& pass) { return render(pass, engines); });
 }
 

@@ -5,6 +5,7 @@
 // pipeline hosts in validate/.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <optional>
@@ -35,6 +36,9 @@ struct ReferenceJob {
     int width = 0, height = 0;
     double time = 0.0;                       // seconds
     long long frame_count = 0;               // already reduced by the pass's frame_count_mod
+    // Moves every pixel's sample point by this many pixels: a discontinuity that falls exactly on
+    // a pixel centre shows as a change (golden update's jittered renders).
+    std::array<double, 2> jitter{0.0, 0.0};
 };
 
 // Renders one pass's math. A stage or form the reference has no model for is an error, never a
@@ -55,6 +59,12 @@ struct ReferenceSceneJob {
     std::optional<DisplayFit> fit;                        // default: the preset's
     std::vector<int> frames;                              // the frames whose display image is returned
     std::map<std::string, Image> file_luts;               // images of the preset's file LUTs, by name
+    double start_time = 0.0;                              // seconds at frame 0 (frame n: + n / fps)
+    // Perturbations that find the pixels where the math is discontinuous exactly at the sample
+    // (a mask cell edge on a pixel centre, a quantiser threshold on an input value): every pass's
+    // sample points move by `jitter` pixels and the original's RGB is scaled by `input_gain`.
+    std::array<double, 2> jitter{0.0, 0.0};
+    double input_gain = 1.0;
 };
 
 // Test-only: injects a fault into the oracle, to prove that validate notices a wrong reference
@@ -66,6 +76,10 @@ Status set_reference_fault(const std::string& fault);
 // The content hash of the code goldens come from (the reference renderer, the test inputs, the LUT
 // generators, the scene geometry), fixed at build time: part of every golden's inputs hash.
 const char* reference_source_hash();
+
+// Whether the oracle has a model of every stage form the preset uses; the error names the first
+// it lacks (a user's own stage: validate it against goldens approved with `crtforge golden approve`).
+Status reference_models(const Preset& preset);
 
 // The display images of job.frames, in that order. Frames before the last kept one are rendered
 // too when the scene keeps state between frames (feedback, history); otherwise only the kept ones.

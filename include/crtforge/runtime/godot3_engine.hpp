@@ -78,7 +78,8 @@ struct Godot3SceneJob {
     std::vector<Image> inputs;      // the original at each frame of `run`, all one size
     std::vector<int> run;           // the frames drawn, in order
     std::vector<int> capture;       // the frames whose display image comes back (each in `run`)
-    double fps = 60;                // a uniform crtforge_validation_time, where declared, gets frame / fps
+    double fps = 60;                // a uniform crtforge_validation_time, where declared, gets
+    double start_time = 0;          // (start_time + frame / fps) mod 3600, as Godot wraps TIME
     std::string fit;                // "": the scene's own display fit; else stretch, aspect or integer
     int width = 0, height = 0;      // the display, 2..kMaxImageDimension
     std::map<std::string, Value> params;  // set on every pass that declares the uniform

@@ -1,6 +1,7 @@
 // Generated test inputs: the pictures the CRT shaders are rendered over. Each is a pure function of
 // (name, width, height) — no randomness, no files — so goldens made from them are reproducible.
-// Every input is opaque (alpha 1) and, except "hdr", within 0..1.
+// Every input is opaque (alpha 1) and, except "hdr", within 0..1; every value is exactly a half float,
+// so a consumer that uploads rgba16float sees the same picture as one that uploads rgba32float.
 #pragma once
 
 #include <string>

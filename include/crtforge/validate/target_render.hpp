@@ -74,6 +74,12 @@ struct SceneRenderRequest {
     OutputFormat format = OutputFormat::Rgba16Float;       // the display's
     std::map<std::string, Value> overrides;
     std::map<std::string, Image> file_luts;                // images of the preset's file LUTs, by name
+    double start_time = 0.0;                               // seconds at frame 0 (frame n: + n / fps)
+    // How the host uses the target's files, where a target ships more than one way (Godot): empty
+    // for its ready scene; "defaults" (the node-mode shader with no param set), "material" (the
+    // exported .tres) or "screen" (the screen-mode shader over the drawn picture). A consumer that
+    // has no such mode refuses the request.
+    std::string host;
 };
 
 class ConsumerEngines;

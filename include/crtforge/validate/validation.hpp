@@ -54,6 +54,9 @@ struct ValidateRequest {
     // independent implementations, so undefined behaviour one computes sensibly can show).
     std::optional<EngineOptions> second_vulkan;
     std::string second_label;          // e.g. "swiftshader"
+    // The full scene matrix (golden/plan.toml entries with matrix = "full": large, odd and tiny
+    // sizes, parameter draws, other variants, long times); the main job runs the rest.
+    bool full_matrix = false;
     Shard shard;
     unsigned jobs = 1;                 // worker threads, each with its own engines
 };

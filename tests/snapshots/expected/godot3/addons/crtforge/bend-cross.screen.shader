@@ -3,6 +3,9 @@
 // Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.
 shader_type canvas_item;
 
+// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
+vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }
+
 // bend: How strongly the coordinate is scaled by its squared radius
 uniform float bendAmount : hint_range(0.0, 0.5, 0.01) = 0.12;
 // bend: Colour shown where the warp left the screen
@@ -14,7 +17,7 @@ vec4 _363;
 
 void fragment()
 {
-    vec4 _234 = (vec4(SCREEN_UV.xyyx) * 2.0) - vec4(1.0);
+    vec4 _234 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
     vec2 _238 = _234.xy;
     vec2 _246 = _234.zw * (bendAmount * dot(_238, _238) + 1.0);
     vec4 _346;
@@ -22,11 +25,11 @@ void fragment()
     _346.w = _246.y;
     vec2 _253 = _346.wz * 0.5;
     vec2 _255 = _253 + vec2(0.5);
-    vec4 _193 = texture(SCREEN_TEXTURE, _255);
-    vec4 _262 = texture(SCREEN_TEXTURE, _253 + vec2(0.502499997615814208984375, 0.5));
-    vec4 _267 = texture(SCREEN_TEXTURE, _253 + vec2(0.497500002384185791015625, 0.5));
-    vec4 _274 = texture(SCREEN_TEXTURE, _253 + vec2(0.5, 0.502499997615814208984375));
-    vec4 _281 = texture(SCREEN_TEXTURE, _253 + vec2(0.5, 0.497500002384185791015625));
+    vec4 _193 = textureLod(SCREEN_TEXTURE, crt_flip_y(_255), 0.0);
+    vec4 _262 = textureLod(SCREEN_TEXTURE, crt_flip_y(_253 + vec2(0.502499997615814208984375, 0.5)), 0.0);
+    vec4 _267 = textureLod(SCREEN_TEXTURE, crt_flip_y(_253 + vec2(0.497500002384185791015625, 0.5)), 0.0);
+    vec4 _274 = textureLod(SCREEN_TEXTURE, crt_flip_y(_253 + vec2(0.5, 0.502499997615814208984375)), 0.0);
+    vec4 _281 = textureLod(SCREEN_TEXTURE, crt_flip_y(_253 + vec2(0.5, 0.497500002384185791015625)), 0.0);
     vec3 _353;
     do
     {

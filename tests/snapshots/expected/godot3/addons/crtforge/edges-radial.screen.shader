@@ -5,6 +5,9 @@
 // rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.
 shader_type canvas_item;
 
+// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
+vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }
+
 // shape: Multiplier on the distance from the centre
 uniform float shapeScale : hint_range(0.0, 2.0, 0.01) = 1.1;
 // pulse: Amplitude of the wave
@@ -14,6 +17,6 @@ uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 5.0;
 
 void fragment()
 {
-    COLOR = vec4((texture(SCREEN_TEXTURE, SCREEN_UV).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((SCREEN_UV * 2.0) - vec2(1.0)) * shapeScale)) * (pulseDepth * sin((SCREEN_UV * (1.0 / SCREEN_PIXEL_SIZE)).y * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0), 1.0);
+    COLOR = vec4((textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((crt_flip_y(SCREEN_UV) * 2.0) - vec2(1.0)) * shapeScale)) * (pulseDepth * sin((crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE)).y * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0), 1.0);
 }
 

@@ -5,6 +5,9 @@
 // rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.
 shader_type canvas_item;
 
+// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
+vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }
+
 // bend: How strongly the coordinate is scaled by its squared radius
 uniform float bendAmount : hint_range(0.0, 0.5, 0.01) = 0.1;
 // bend: Colour shown where the warp left the screen
@@ -28,8 +31,8 @@ vec4 _812;
 
 void fragment()
 {
-    vec2 _385 = SCREEN_UV * (1.0 / SCREEN_PIXEL_SIZE);
-    vec4 _471 = (vec4(SCREEN_UV.xyyx) * 2.0) - vec4(1.0);
+    vec2 _385 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
+    vec4 _471 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
     vec2 _475 = _471.xy;
     vec2 _483 = _471.zw * (bendAmount * dot(_475, _475) + 1.0);
     vec4 _776;
@@ -38,7 +41,7 @@ void fragment()
     vec2 _492 = (_776.wz * 0.5) + vec2(0.5);
     float _498 = _492.x;
     float _501 = _492.y;
-    vec3 _522 = mix(texture(SCREEN_TEXTURE, _492).xyz, texture(SCREEN_TEXTURE, _492 + (vec2(dFdx(_498), dFdy(_501)) * 4.0)).xyz, vec3(tapMix * clamp(length(fwidth(_492)) * 100.0, 0.0, 1.0)));
+    vec3 _522 = mix(textureLod(SCREEN_TEXTURE, crt_flip_y(_492), 0.0).xyz, textureLod(SCREEN_TEXTURE, crt_flip_y(_492 + (vec2(dFdx(_498), dFdy(_501)) * 4.0)), 0.0).xyz, vec3(tapMix * clamp(length(fwidth(_492)) * 100.0, 0.0, 1.0)));
     float _529 = _522.y;
     vec4 _801;
     _801 = vec4(_522.x, _529, _522.z, 1.0);
@@ -125,7 +128,7 @@ void fragment()
             _805 = edgeColor.rgb.zyx;
             break;
         }
-        _805 = ((_599 * _804 + vec3(((SCREEN_UV.y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _802)) * clamp(1.5 - max(_664.x, _664.y), 0.800000011920928955078125, 0.20000000298023223876953125)) * (pulseDepth * sin(_580 * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0);
+        _805 = ((_599 * _804 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _802)) * clamp(1.5 - max(_664.x, _664.y), 0.800000011920928955078125, 0.20000000298023223876953125)) * (pulseDepth * sin(_580 * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0);
         break;
     } while(false);
     COLOR = vec4(_805, 1.0);

@@ -3,6 +3,9 @@
 // Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.
 shader_type canvas_item;
 
+// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
+vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }
+
 // taps: How much of the extra taps replaces the centre sample
 uniform float tapMix : hint_range(0.0, 1.0, 0.01) = 0.3;
 // loops: Number of iterations
@@ -10,11 +13,11 @@ uniform int loopCount : hint_range(0, 16, 1) = 5;
 
 void fragment()
 {
-    vec4 _144 = texture(SCREEN_TEXTURE, SCREEN_UV);
-    float _170 = dFdx(SCREEN_UV.x);
-    float _173 = dFdy(SCREEN_UV.y);
-    vec2 _177 = fwidth(SCREEN_UV);
-    vec4 _186 = texture(SCREEN_TEXTURE, SCREEN_UV + (vec2(_170, _173) * 4.0));
+    vec4 _144 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
+    float _170 = dFdx(crt_flip_y(SCREEN_UV).x);
+    float _173 = dFdy(crt_flip_y(SCREEN_UV).y);
+    vec2 _177 = fwidth(crt_flip_y(SCREEN_UV));
+    vec4 _186 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV) + (vec2(_170, _173) * 4.0)), 0.0);
     vec3 _193 = mix(_144.xyz, _186.xyz, vec3(tapMix * clamp(length(_177) * 100.0, 0.0, 1.0)));
     float _239;
     float _241;

@@ -3,12 +3,15 @@
 // Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.
 shader_type canvas_item;
 
+// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
+vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }
+
 // loops: Number of iterations
 uniform int loopCount : hint_range(0, 16, 1) = 3;
 
 void fragment()
 {
-    vec4 _105 = texture(SCREEN_TEXTURE, SCREEN_UV);
+    vec4 _105 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
     float _126 = _105.y;
     vec4 _164;
     _164 = vec4(_105.x, _126, _105.z, 1.0);

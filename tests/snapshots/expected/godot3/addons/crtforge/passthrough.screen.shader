@@ -3,9 +3,12 @@
 // Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.
 shader_type canvas_item;
 
+// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
+vec2 crt_flip_y(vec2 p) { return vec2(p.x, 1.0 - p.y); }
+
 
 void fragment()
 {
-    COLOR = texture(SCREEN_TEXTURE, SCREEN_UV);
+    COLOR = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
 }
 

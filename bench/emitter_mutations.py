@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Emitter-level mutation testing: how many wrong emitters does `crtforge validate` catch?
+
+Each mutation below edits one line of an emitter (targets/), the kind of slip a change to the WGSL
+printer, the Godot compiler or a writer's options could make. The script clones the repository's
+committed state into a scratch folder, builds it once, then for each mutation: applies it, rebuilds
+(incremental), runs `crtforge validate` on the mutated target for a few presets, and reverts it.
+A mutation is killed when validate fails (a compile or render check); it survives when every
+check passes. Prints one line per mutation and the kill rate. Not run in CI (it rebuilds the
+product once per mutation: about a minute each on 2 cores after a first full build).
+
+usage: bench/emitter_mutations.py [--keep DIR] [--only SUBSTRING]
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+# (file, find, replace, target, presets, what it breaks). `find` must occur exactly once.
+MUTATIONS = [
+    ("targets/wgsl/wgsl_printer.cpp", 'case spv::OpFSub: case spv::OpISub: binary("-")',
+     'case spv::OpFSub: case spv::OpISub: binary("+")', "wgsl", "classic,crt-shadow-mask", "subtraction printed as addition"),
+    ("targets/wgsl/wgsl_printer.cpp", '{GLSLstd450Floor, "floor"}', '{GLSLstd450Floor, "ceil"}',
+     "wgsl", "crt-shadow-mask,atari-16", "floor printed as ceil"),
+    ("targets/wgsl/wgsl_printer.cpp", '{GLSLstd450Fract, "fract"}', '{GLSLstd450Fract, "trunc"}',
+     "wgsl", "crt-aperture-grille,webgpu-post,quiet-frame", "fract printed as trunc"),
+    ("targets/wgsl/wgsl_printer.cpp", 'case spv::OpFOrdLessThan: compare("<")', 'case spv::OpFOrdLessThan: compare("<=")',
+     "wgsl", "crt-shadow-mask,atari-crt,super-win", "a < comparison printed as <= (differs only at equality)"),
+    ("targets/wgsl/wgsl_printer.cpp", 'case spv::OpSelect: call("select", {2, 1, 0})',
+     'case spv::OpSelect: call("select", {1, 2, 0})', "wgsl", "crt-shadow-mask,classic,super-win", "select arms swapped"),
+    ("targets/wgsl/wgsl_printer.cpp", '" * (3.0 - 2.0 * "', '" * (3.0 - 2.05 * "',
+     "wgsl", "crt-shadow-mask,crt-aperture-grille,quiet-frame", "smoothstep's polynomial constant off by 2.5%"),
+    ("targets/wgsl/wgsl_printer.cpp", '{GLSLstd450FMin, "min"}', '{GLSLstd450FMin, "max"}',
+     "wgsl", "classic,heavy,webgpu-post", "min printed as max"),
+    ("targets/godot/godot_compiler.cpp", 'constexpr const char* kTau = "6.28318530717959";',
+     'constexpr const char* kTau = "6.2832";', "godot3", "crt-pulse", "the TIME-wrap rounding uses a short 2*pi"),
+    ("targets/godot/godot_compiler.cpp", 'return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(', 'return screen ? "(0.5 / SCREEN_PIXEL_SIZE)" : "round(',
+     "godot3", "classic,crt-shadow-mask,webgpu-post", "screen mode's output size halved"),
+    ("targets/godot/godot_compiler.cpp", '"round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))"',
+     '"floor(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))"', "godot4", "classic,crt-shadow-mask,webgpu-post",
+     "node mode's output size floored instead of rounded"),
+    ("targets/hlsl/hlsl_writer.cpp", "common.vertex.flip_vert_y = options.flip_vertex_y && stage == ShaderStage::Vertex;",
+     "common.vertex.flip_vert_y = !options.flip_vertex_y && stage == ShaderStage::Vertex;", "hlsl50",
+     "classic,webgpu-post", "HLSL's clip-space y flip inverted"),
+    ("targets/glsl/glsl_writer.cpp", "o.vertex.flip_vert_y = options.flip_vertex_y && stage == ShaderStage::Vertex;",
+     "o.vertex.flip_vert_y = !options.flip_vertex_y && stage == ShaderStage::Vertex;", "glsl330",
+     "classic,webgpu-post", "GLSL's clip-space y flip inverted"),
+]
+
+
+def run(cmd, cwd, quiet=True):
+    return subprocess.run(cmd, cwd=cwd, shell=True, text=True,
+                          stdout=subprocess.PIPE if quiet else None, stderr=subprocess.STDOUT if quiet else None)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--keep", help="build in this folder and keep it (reused by a later run)")
+    parser.add_argument("--only", default="", help="only mutations whose description contains this")
+    args = parser.parse_args()
+    repo = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+    work = args.keep or tempfile.mkdtemp(prefix="crtforge-mutations-")
+    src = os.path.join(work, "src")
+    if not os.path.isdir(src):
+        if run(f"git clone -q {repo} {src}", cwd=work).returncode != 0:
+            sys.exit("bench: cannot clone the repository")
+    # The product's own build (the clone shares nothing with the working tree's build/).
+    build = os.path.join(src, "build")
+    print("bench: building the unmutated product once (several minutes on 2 cores)...", flush=True)
+    if run("cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null && cmake --build build -j2 --target crtforge",
+           cwd=src).returncode != 0:
+        sys.exit("bench: the unmutated product does not build")
+    killed = 0
+    chosen = [m for m in MUTATIONS if args.only in m[5]]
+    for path, find, replace, target, presets, what in chosen:
+        file = os.path.join(src, path)
+        original = open(file).read()
+        if original.count(find) != 1:
+            print(f"  ERROR    {what}: '{find}' is not exactly once in {path}")
+            continue
+        open(file, "w").write(original.replace(find, replace))
+        try:
+            built = run("cmake --build build -j2 --target crtforge", cwd=src)
+            if built.returncode != 0:
+                verdict, detail = "killed", "the product no longer builds"
+            else:
+                result = run(f"./build/crtforge validate --target {target} --preset {presets} --second-device none -j2", cwd=src)
+                failed = [l for l in result.stdout.splitlines() if l.startswith("FAIL")]
+                verdict = "killed" if result.returncode != 0 else "SURVIVED"
+                detail = failed[0][:110] if failed else result.stdout.strip().splitlines()[-1][:110]
+        finally:
+            open(file, "w").write(original)
+        killed += verdict == "killed"
+        print(f"  {verdict:8} {target:8} {what}: {detail}", flush=True)
+    run("cmake --build build -j2 --target crtforge", cwd=src)
+    if not args.keep:
+        shutil.rmtree(work, ignore_errors=True)
+    print(f"emitter mutations: {killed} of {len(chosen)} killed ({100.0 * killed / max(1, len(chosen)):.0f}%)")
+    return 0 if killed == len(chosen) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
