@@ -66,6 +66,11 @@ def main():
     if not os.path.isdir(src):
         if run(f"git clone -q {repo} {src}", cwd=work).returncode != 0:
             sys.exit("bench: cannot clone the repository")
+    # Dawn's npm packages are not in git: the clone uses the working tree's (scripts/setup.sh).
+    modules = os.path.join(repo, "tools/wgsl-runner/node_modules")
+    link = os.path.join(src, "tools/wgsl-runner/node_modules")
+    if os.path.isdir(modules) and not os.path.exists(link):
+        os.symlink(modules, link)
     # The product's own build (the clone shares nothing with the working tree's build/).
     build = os.path.join(src, "build")
     print("bench: building the unmutated product once (several minutes on 2 cores)...", flush=True)
