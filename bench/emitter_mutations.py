@@ -61,7 +61,8 @@ def main():
     parser.add_argument("--only", default="", help="only mutations whose description contains this")
     args = parser.parse_args()
     repo = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
-    work = args.keep or tempfile.mkdtemp(prefix="crtforge-mutations-")
+    work = os.path.abspath(args.keep) if args.keep else tempfile.mkdtemp(prefix="crtforge-mutations-")
+    os.makedirs(work, exist_ok=True)
     src = os.path.join(work, "src")
     if not os.path.isdir(src):
         if run(f"git clone -q {repo} {src}", cwd=work).returncode != 0:
