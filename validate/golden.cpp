@@ -113,6 +113,27 @@ std::string exact_value_text(const Value& value) {
 
 }  // namespace
 
+SceneRenderRequest golden_scene_request(const std::vector<const GoldenEntry*>& sequence, const Preset& preset,
+                                        const std::vector<CompiledVariant>& passes, TargetId target,
+                                        const std::vector<TargetOutput>* outputs) {
+    const GoldenEntry& first = *sequence.front();
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &passes;
+    r.target = target;
+    r.outputs = outputs;
+    // The entry outlives the request: validate and approve keep their plans for the whole run.
+    r.source = [entry = &first](int frame) { return golden_input(*entry, frame); };
+    r.width = first.width;
+    r.height = first.height;
+    r.fit = first.fit;
+    r.overrides = first.overrides;
+    r.start_time = first.start_time;
+    r.host = first.host;
+    for (const GoldenEntry* e : sequence) r.frames.push_back(e->frame);
+    return r;
+}
+
 std::vector<std::vector<const GoldenEntry*>> golden_sequences(const std::vector<const GoldenEntry*>& entries) {
     std::vector<std::vector<const GoldenEntry*>> out;
     std::map<std::string, size_t> index;
@@ -485,17 +506,7 @@ Result<GoldenUpdate> approve_goldens(const TemplateLibrary& library, const std::
         if (!preset) return make_error("golden '" + first.id + "' names unknown preset '" + first.preset + "'");
         auto passes = compile_scene(library, *preset, first.variant_options(), cache);
         if (!passes.ok()) return passes.error();
-        SceneRenderRequest request;
-        request.preset = preset;
-        request.passes = &passes.value();
-        request.target = TargetId::Spirv;
-        request.source = [&first](int frame) { return golden_input(first, frame); };
-        request.width = first.width;
-        request.height = first.height;
-        request.fit = first.fit;
-        request.overrides = first.overrides;
-        request.start_time = first.start_time;
-        for (const GoldenEntry* e : sequence) request.frames.push_back(e->frame);
+        SceneRenderRequest request = golden_scene_request(sequence, *preset, passes.value(), TargetId::Spirv);
         for (const LutSpec& lut : preset->luts) {
             if (!lut.generator.empty()) continue;
             auto image = read_image(lut_file_path(lut));

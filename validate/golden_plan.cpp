@@ -397,6 +397,8 @@ Result<std::vector<GoldenEntry>> configurations(const TemplateLibrary& library, 
     base.full_matrix = rule.full_matrix;
     base.targets = rule.targets;
     base.host = rule.host;
+    base.expect_fail_targets = rule.expect_fail_targets;
+    base.expect_fail_why = rule.expect_fail_why;
     if (!rule.host.empty()) {
         // The shaders used alone: only a single pass that reads nothing but its picture has them.
         auto variant = make_variant(library, preset, base.variant_options());
@@ -487,18 +489,18 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
                     // A scene that states its source size is fed pictures of that size.
                     if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
                     for (int frame : rule.frames) {
-                        GoldenEntry e = make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit);
-                        e.config = config.config;
-                        e.overrides = config.overrides;
-                        e.uniforms = config.uniforms;
-                        e.precision = config.precision;
-                        e.start_time = config.start_time;
-                        e.full_matrix = config.full_matrix;
-                        e.targets = config.targets;
-                        e.host = config.host;
-                        if (rule.tolerance) e.tolerance = *rule.tolerance;
-                        e.expect_fail_targets = rule.expect_fail_targets;
-                        e.expect_fail_why = rule.expect_fail_why;
+                        // The configuration's entry, placed: make_golden_entry gives the rest.
+                        const GoldenEntry placed = make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit);
+                        GoldenEntry e = config;
+                        e.preset = placed.preset;
+                        e.input = placed.input;
+                        e.width = placed.width;
+                        e.height = placed.height;
+                        e.input_width = placed.input_width;
+                        e.input_height = placed.input_height;
+                        e.fit = placed.fit;
+                        e.frame = placed.frame;
+                        e.tolerance = rule.tolerance.value_or(placed.tolerance);
                         e.stored = rule.store;
                         e.id = golden_id(e);
                         if (!ids.insert(e.id).second)

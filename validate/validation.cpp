@@ -204,19 +204,8 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         const auto& variant_outputs = outputs_for(first.variant_options());
         if (!failure && !variant_outputs.ok()) failure = variant_outputs.error().str();
         if (!failure) {
-            SceneRenderRequest sr;
-            sr.preset = preset;
-            sr.passes = &job.work->compiled.at(options_key(first.variant_options())).value();
-            sr.target = job.target;
-            sr.outputs = &variant_outputs.value();
-            sr.overrides = first.overrides;
-            sr.start_time = first.start_time;
-            sr.host = first.host;
-            sr.source = [&first](int frame) { return golden_input(first, frame); };
-            sr.width = first.width;
-            sr.height = first.height;
-            sr.fit = first.fit;
-            for (const GoldenEntry* e : sequence) sr.frames.push_back(e->frame);
+            SceneRenderRequest sr = golden_scene_request(sequence, *preset, job.work->compiled.at(options_key(first.variant_options())).value(),
+                                                         job.target, &variant_outputs.value());
             sr.file_luts = job.work->file_luts;
             auto rendered = renderer.render_scene(sr);
             if (!rendered.ok()) failure = rendered.error().str();
@@ -270,17 +259,8 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             std::vector<Image> vulkan_images;
             std::optional<std::string> vulkan_failure = failure;
             if (!vulkan_failure) {
-                SceneRenderRequest sr;
-                sr.preset = preset;
-                sr.passes = &job.work->compiled.at(options_key(first.variant_options())).value();
-                sr.target = TargetId::Spirv;
-                sr.source = [&first](int frame) { return golden_input(first, frame); };
-                sr.width = first.width;
-                sr.height = first.height;
-                sr.fit = first.fit;
-                sr.overrides = first.overrides;
-                sr.start_time = first.start_time;
-                for (const GoldenEntry* e : sequence) sr.frames.push_back(e->frame);
+                SceneRenderRequest sr =
+                    golden_scene_request(sequence, *preset, job.work->compiled.at(options_key(first.variant_options())).value(), TargetId::Spirv);
                 sr.file_luts = job.work->file_luts;
                 auto rendered = renderer.render_scene(sr);
                 if (!rendered.ok()) vulkan_failure = "the Vulkan render to agree with failed: " + rendered.error().str();

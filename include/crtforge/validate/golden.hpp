@@ -12,6 +12,7 @@
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/template_library.hpp"
+#include "crtforge/validate/target_render.hpp"
 #include "crtforge/variant.hpp"
 
 namespace crtforge {
@@ -166,6 +167,13 @@ Result<Image> render_golden_reference(const TemplateLibrary& library, const Gold
 
 // The generated input of an entry at a frame of its sequence.
 Result<Image> golden_input(const GoldenEntry& entry, int frame);
+
+// The request that renders one sequence (entries sharing GoldenEntry::sequence()) on a target:
+// its display, fit, frames, param values, start time and host mode; `passes` compiled with the
+// entries' variant options, `outputs` the target's files of them (null for spirv).
+SceneRenderRequest golden_scene_request(const std::vector<const GoldenEntry*>& sequence, const Preset& preset,
+                                        const std::vector<CompiledVariant>& passes, TargetId target,
+                                        const std::vector<TargetOutput>* outputs = nullptr);
 
 // Entries grouped by sequence, in first-appearance order.
 std::vector<std::vector<const GoldenEntry*>> golden_sequences(const std::vector<const GoldenEntry*>& entries);
