@@ -126,7 +126,8 @@ TEST_CASE("a bad plan names its line and field", "[golden][matrix]") {
         {"tag = \"g\"\ngodot = \"screen\"\n", "golden.godot", "godot3"},
         {"matrix = \"huge\"\n", "golden.matrix", "full"},
         {"tolerance = { rmse = 0.1 }\n", "golden.tolerance.why", "why"},
-        {"expect_fail = { targets = [\"nope\"], why = \"x\" }\n", "golden.expect_fail.targets", "nope"},
+        {"expect_fail = { targets = [\"nope\"], why = \"x\", bound = { rmse = 0.01 } }\n", "golden.expect_fail.targets", "nope"},
+        {"expect_fail = { targets = [\"spirv\"], why = \"x\" }\n", "golden.expect_fail", "bound"},
         {"except = [\"nope\"]\n", "golden.except", "nope"},
     };
     for (const Case& c : cases) {
@@ -199,7 +200,7 @@ size = [64, 48]
     CHECK(allowed.value().passed);
 }
 
-TEST_CASE("expect_fail: a tracked defect's failure is expected, and its pass is a failure", "[golden][matrix]") {
+TEST_CASE("expect_fail: a tracked defect fails as expected within its bound, and worse or a pass fails", "[golden][matrix]") {
     // A golden whose judge must fail (its tolerance is impossible) and one that passes, each
     // expected to fail on spirv.
     test::TempDir goldens;
@@ -210,7 +211,16 @@ presets = ["classic"]
 inputs = ["pixel_art"]
 size = [32, 24]
 tolerance = { rmse = 0.0, pixel = 0.0, tile = 0.0, ssim = 1.0, outliers = 0.0, why = "impossible bounds, for the test" }
-expect_fail = { targets = ["spirv"], why = "issue 0: a test" }
+expect_fail = { targets = ["spirv"], why = "issue 0: a test", bound = { rmse = 0.01 } }
+
+[[golden]]
+why = "fails, and by more than its defect's bound"
+tag = "worse"
+presets = ["classic"]
+inputs = ["pixel_art"]
+size = [32, 24]
+tolerance = { rmse = 0.0, pixel = 0.0, tile = 0.0, ssim = 1.0, outliers = 0.0, why = "impossible bounds, for the test" }
+expect_fail = { targets = ["spirv"], why = "issue 0: a test", bound = { rmse = 0.0, pixel = 0.0, outliers = 0.0 } }
 
 [[golden]]
 why = "passes"
@@ -218,7 +228,7 @@ tag = "fine"
 presets = ["classic"]
 inputs = ["pixel_art"]
 size = [32, 24]
-expect_fail = { targets = ["spirv"], why = "issue 0: a test" }
+expect_fail = { targets = ["spirv"], why = "issue 0: a test", bound = { rmse = 0.01 } }
 )")
                 .ok());
     REQUIRE(update_goldens(test::validation_library(), goldens.path(), "").ok());
@@ -232,6 +242,10 @@ expect_fail = { targets = ["spirv"], why = "issue 0: a test" }
         if (c.check.find("impossible") != std::string::npos) {
             CHECK(c.passed);
             CHECK_THAT(c.message, Catch::StartsWith("expected failure (issue 0: a test)"));
+        }
+        if (c.check.find("worse") != std::string::npos) {
+            CHECK_FALSE(c.passed);
+            CHECK_THAT(c.message, Catch::StartsWith("worse than the tracked defect (issue 0: a test) allows"));
         }
         if (c.check.find("fine") != std::string::npos) {
             CHECK_FALSE(c.passed);

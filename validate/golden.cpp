@@ -370,8 +370,15 @@ Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
             e.host = g.value("host", "");
             e.shares = g.value("shares", "");
             if (g.contains("expectFail")) {
-                e.expect_fail_targets = g.at("expectFail").at("targets").get<std::vector<std::string>>();
-                e.expect_fail_why = g.at("expectFail").at("why");
+                const auto& x = g.at("expectFail");
+                e.expect_fail_targets = x.at("targets").get<std::vector<std::string>>();
+                e.expect_fail_why = x.at("why");
+                e.expect_fail_bound = e.tolerance;  // a manifest from before bounds: the strict tolerance
+                if (x.contains("bound")) {
+                    const auto& b = x.at("bound");
+                    e.expect_fail_bound = {b.at("maxRmse"), b.at("outlierThreshold"), b.at("maxOutlierFraction"), b.at("minSsim"),
+                                           b.at("maxTileRmse"), e.expect_fail_why};
+                }
             }
             e.id = golden_id(e);
             e.stored = g.value("stored", true);
@@ -398,6 +405,9 @@ Result<std::vector<GoldenEntry>> golden_plan_with_state(const TemplateLibrary& l
     std::vector<GoldenEntry> plan = std::move(planned.value());
     std::map<std::string, const GoldenEntry*> old;
     auto manifest = load_golden_manifest(dir);
+    // No manifest yet is a fresh start; one that does not load must not silently lose every
+    // golden's recorded state.
+    if (!manifest.ok() && std::filesystem::exists(dir + "/manifest.json")) return manifest.error();
     if (manifest.ok())
         for (const GoldenEntry& e : manifest.value()) old[e.id] = &e;
     for (GoldenEntry& e : plan)
@@ -560,7 +570,13 @@ Status write_golden_manifest(const std::string& dir, const std::vector<GoldenEnt
         if (!e.targets.empty()) entry["targets"] = e.targets;
         if (!e.host.empty()) entry["host"] = e.host;
         if (!e.shares.empty()) entry["shares"] = e.shares;
-        if (!e.expect_fail_targets.empty()) entry["expectFail"] = {{"targets", e.expect_fail_targets}, {"why", e.expect_fail_why}};
+        if (!e.expect_fail_targets.empty()) {
+            const Tolerance& b = e.expect_fail_bound;
+            entry["expectFail"] = {{"targets", e.expect_fail_targets}, {"why", e.expect_fail_why},
+                                   {"bound", {{"maxRmse", b.max_rmse}, {"outlierThreshold", b.outlier_threshold},
+                                              {"maxOutlierFraction", b.max_outlier_fraction}, {"minSsim", b.min_ssim},
+                                              {"maxTileRmse", b.max_tile_rmse}}}};
+        }
         if (!e.stored) entry["stored"] = false;
         if (e.approved) entry["origin"] = "approved";
         if (e.unstable) entry["unstable"] = e.unstable;

@@ -44,6 +44,7 @@ struct PlanRule {
     std::optional<Tolerance> tolerance;
     std::vector<std::string> expect_fail_targets;
     std::string expect_fail_why;
+    Tolerance expect_fail_bound;
     std::string host;  // godot = "defaults" | "material" | "screen"
     int line = 0;
 };
@@ -261,8 +262,13 @@ public:
         }
         if (const toml::node* x = t.get("expect_fail")) {
             const toml::table* table = x->as_table();
-            if (!table || !table->get("targets") || !table->get("why") || !table->get("why")->is_string() || table->size() != 2)
-                return error(x, "golden.expect_fail", "must be { targets = [names], why = \"the tracked defect\" }");
+            if (!table || !table->get("targets") || !table->get("why") || !table->get("why")->is_string() || !table->get("bound") ||
+                table->size() != 3)
+                return error(x, "golden.expect_fail",
+                             "must be { targets = [names], why = \"the tracked defect\", bound = { rmse, pixel, outliers, ssim, tile } }");
+            auto bound = tolerance(*table->get("bound"), "golden.expect_fail.bound", false);
+            if (!bound.ok()) return bound.error();
+            rule.expect_fail_bound = bound.value();
             auto list = names(*table, "targets", "golden.expect_fail.targets");
             if (!list.ok()) return list.error();
             for (const auto& name : list.value()) {
@@ -273,7 +279,7 @@ public:
             rule.expect_fail_why = *table->get("why")->value<std::string>();
         }
         if (const toml::node* tol = t.get("tolerance")) {
-            auto read = tolerance(*tol);
+            auto read = tolerance(*tol, "golden.tolerance", true);
             if (!read.ok()) return read.error();
             rule.tolerance = read.value();
         }
@@ -307,16 +313,16 @@ public:
     }
 
     // tolerance = { rmse, pixel, outliers, ssim, tile, why }: unset bounds keep the default's.
-    Result<Tolerance> tolerance(const toml::node& node) const {
+    Result<Tolerance> tolerance(const toml::node& node, const std::string& prefix, bool needs_why) const {
         const toml::table* t = node.as_table();
-        if (!t) return error(&node, "golden.tolerance", "must be a table { rmse, pixel, outliers, ssim, tile, why }");
+        if (!t) return error(&node, prefix, "must be a table { rmse, pixel, outliers, ssim, tile" + std::string(needs_why ? ", why }" : " }"));
         Tolerance out = make_golden_entry("p", "i", 1, 1, 1, 1, 0).tolerance;
         const std::pair<const char*, double*> bounds[] = {{"rmse", &out.max_rmse}, {"pixel", &out.outlier_threshold},
                                                           {"outliers", &out.max_outlier_fraction}, {"ssim", &out.min_ssim},
                                                           {"tile", &out.max_tile_rmse}};
         for (const auto& [key, value] : *t) {
-            const std::string field = "golden.tolerance." + std::string(key.str());
-            if (key == "why") {
+            const std::string field = prefix + "." + std::string(key.str());
+            if (key == "why" && needs_why) {
                 if (!value.is_string() || value.value<std::string>()->size() < 20)
                     return error(&value, field, "must say, specifically, why this golden needs its own tolerance");
                 out.why = *value.value<std::string>();
@@ -328,7 +334,7 @@ public:
             if (!v || !(*v >= 0) || *v > 1) return error(&value, field, "must be a number 0..1");
             *b->second = *v;
         }
-        if (!t->get("why")) return error(&node, "golden.tolerance.why", "must say, specifically, why this golden needs its own tolerance");
+        if (needs_why && !t->get("why")) return error(&node, prefix + ".why", "must say, specifically, why this golden needs its own tolerance");
         return out;
     }
 
@@ -399,6 +405,8 @@ Result<std::vector<GoldenEntry>> configurations(const TemplateLibrary& library, 
     base.host = rule.host;
     base.expect_fail_targets = rule.expect_fail_targets;
     base.expect_fail_why = rule.expect_fail_why;
+    base.expect_fail_bound = rule.expect_fail_bound;
+    base.expect_fail_bound.why = rule.expect_fail_why;
     if (!rule.host.empty()) {
         // The shaders used alone: only a single pass that reads nothing but its picture has them.
         auto variant = make_variant(library, preset, base.variant_options());

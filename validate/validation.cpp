@@ -244,11 +244,20 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                 }
             }
             if (g->expected_to_fail(target) && r.verdict) {  // a render that failed to run is no expected failure
-                // A tracked defect: its failure is expected, a pass means the entry must be updated.
-                r.message = r.passed ? "passed, but golden/plan.toml expects it to fail (" + g->expect_fail_why +
-                                           "): remove the target from expect_fail"
-                                     : "expected failure (" + g->expect_fail_why + "): " + r.message;
-                r.passed = !r.passed;
+                // A tracked defect: its failure is expected, within the defect's own measured bound
+                // (so a regression on top of it still fails); a pass means the entry must be updated.
+                if (r.passed) {
+                    r.passed = false;
+                    r.message = "passed, but golden/plan.toml expects it to fail (" + g->expect_fail_why +
+                                "): remove the target from expect_fail";
+                } else {
+                    auto bounded = judge(images[i], data->golden.value(), g->expect_fail_bound, renderer.output_quantum(job.target),
+                                         &data->unstable.value());
+                    r.passed = bounded.ok() && bounded.value().passed;
+                    r.message = r.passed ? "expected failure (" + g->expect_fail_why + "): " + r.message
+                                         : "worse than the tracked defect (" + g->expect_fail_why + ") allows: " +
+                                               (bounded.ok() ? bounded.value().reason : bounded.error().str());
+                }
             }
             checks.emplace(g, std::move(r));
         }

@@ -86,6 +86,7 @@ struct GoldenEntry {
     std::string host;
     std::vector<std::string> expect_fail_targets;
     std::string expect_fail_why;
+    Tolerance expect_fail_bound;  // the defect's own measured size: worse than this still fails
     bool expected_to_fail(const std::string& target) const;
     std::string file() const { return (shares.empty() ? id : shares) + (hdr ? ".exr" : ".png"); }
     // Entries of one sequence render together: same preset, input, sizes, fit and configuration.
