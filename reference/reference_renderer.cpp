@@ -2,7 +2,10 @@
 // each stage's model in the variant's stage order; and a scene evaluated frame by frame.
 #include "crtforge/reference/reference_renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+#include <thread>
 #include <deque>
 
 #include "crtforge/luts.hpp"
@@ -158,50 +161,65 @@ Result<Image> render_reference(const ReferenceJob& job) {
     const bool maps_source = scale != std::array<double, 2>{1.0, 1.0};
 
     Image out = Image::make(job.width, job.height);
-    Fragment f;
-    f.output_size = {static_cast<double>(job.width), static_cast<double>(job.height)};
-    f.source_size = {static_cast<double>(job.input.width), static_cast<double>(job.input.height)};
-    f.source_scale = {scale[0], scale[1]};
-    f.time = job.time;
-    f.frame_count = job.frame_count;
-    f.source = &source;
-    for (const auto& [name, sampler] : samplers) f.textures[name] = &sampler;
+    Fragment base;
+    base.output_size = {static_cast<double>(job.width), static_cast<double>(job.height)};
+    base.source_size = {static_cast<double>(job.input.width), static_cast<double>(job.input.height)};
+    base.source_scale = {scale[0], scale[1]};
+    base.time = job.time;
+    base.frame_count = job.frame_count;
+    base.source = &source;
+    for (const auto& [name, sampler] : samplers) base.textures[name] = &sampler;
     auto failed = [&](const PlannedStage& s, Hook hook) { return unmodelled(*s.resolved, hook_name(hook)); };
 
-    for (int y = 0; y < job.height; ++y) {
-        for (int x = 0; x < job.width; ++x) {
-            const double px = x + 0.5 + job.jitter[0], py = y + 0.5 + job.jitter[1];
-            f.screen_uv = {px / job.width, py / job.height};
-            f.pixel = {px, py};
-            float* dst = out.at(x, y);
-            if (plan.empty()) {  // no stage: a passthrough blit, alpha included
-                const Rgba c = source.sample(f.screen_uv);
-                for (int i = 0; i < 4; ++i) dst[i] = static_cast<float>(c[i]);
-                continue;
+    // Rows in parallel: every pixel is independent, so the image is the same for any split.
+    auto render_rows = [&](int y0, int y1) -> std::optional<Diagnostic> {
+        Fragment f = base;  // each thread its own
+        auto fail = [&](const PlannedStage& s, Hook hook) -> std::optional<Diagnostic> { return failed(s, hook); };
+        for (int y = y0; y < y1; ++y) {
+            for (int x = 0; x < job.width; ++x) {
+                const double px = x + 0.5 + job.jitter[0], py = y + 0.5 + job.jitter[1];
+                f.screen_uv = {px / job.width, py / job.height};
+                f.pixel = {px, py};
+                float* dst = out.at(x, y);
+                if (plan.empty()) {  // no stage: a passthrough blit, alpha included
+                    const Rgba c = source.sample(f.screen_uv);
+                    for (int i = 0; i < 4; ++i) dst[i] = static_cast<float>(c[i]);
+                    continue;
+                }
+                f.uv = f.screen_uv;
+                for (const PlannedStage& s : plan)
+                    if (s.has(Hook::Warp) && !s.model->warp(s.resolved->form->name, params, f, f.uv)) return fail(s, Hook::Warp);
+                f.centered = f.uv * 2.0 - Vec2{1, 1};
+                Vec2 sample_uv = f.uv;
+                for (const PlannedStage& s : plan)
+                    if (s.has(Hook::SampleUv) && !s.model->sample_uv(s.resolved->form->name, params, f, sample_uv))
+                        return fail(s, Hook::SampleUv);
+                if (maps_source) sample_uv = f.source_uv(sample_uv);
+                Vec3 color = source.rgb(sample_uv);
+                for (const PlannedStage& s : plan)
+                    if (s.has(Hook::Fetch) && !s.model->fetch(s.resolved->form->name, params, f, sample_uv, color))
+                        return fail(s, Hook::Fetch);
+                for (const PlannedStage& s : plan)
+                    if (s.has(Hook::Color) && !s.model->color(s.resolved->form->name, params, f, color)) return fail(s, Hook::Color);
+                for (const PlannedStage& s : plan)
+                    if (s.has(Hook::Finish) && !s.model->finish(s.resolved->form->name, params, f, color)) return fail(s, Hook::Finish);
+                dst[0] = static_cast<float>(color.r);
+                dst[1] = static_cast<float>(color.g);
+                dst[2] = static_cast<float>(color.b);
+                dst[3] = 1.0f;
             }
-            f.uv = f.screen_uv;
-            for (const PlannedStage& s : plan)
-                if (s.has(Hook::Warp) && !s.model->warp(s.resolved->form->name, params, f, f.uv)) return failed(s, Hook::Warp);
-            f.centered = f.uv * 2.0 - Vec2{1, 1};
-            Vec2 sample_uv = f.uv;
-            for (const PlannedStage& s : plan)
-                if (s.has(Hook::SampleUv) && !s.model->sample_uv(s.resolved->form->name, params, f, sample_uv))
-                    return failed(s, Hook::SampleUv);
-            if (maps_source) sample_uv = f.source_uv(sample_uv);
-            Vec3 color = source.rgb(sample_uv);
-            for (const PlannedStage& s : plan)
-                if (s.has(Hook::Fetch) && !s.model->fetch(s.resolved->form->name, params, f, sample_uv, color))
-                    return failed(s, Hook::Fetch);
-            for (const PlannedStage& s : plan)
-                if (s.has(Hook::Color) && !s.model->color(s.resolved->form->name, params, f, color)) return failed(s, Hook::Color);
-            for (const PlannedStage& s : plan)
-                if (s.has(Hook::Finish) && !s.model->finish(s.resolved->form->name, params, f, color)) return failed(s, Hook::Finish);
-            dst[0] = static_cast<float>(color.r);
-            dst[1] = static_cast<float>(color.g);
-            dst[2] = static_cast<float>(color.b);
-            dst[3] = 1.0f;
         }
-    }
+        return std::nullopt;
+    };
+    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::max(1, job.height / 32));
+    std::vector<std::optional<Diagnostic>> errors(static_cast<size_t>(threads));
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t)
+        pool.emplace_back([&, t] { errors[t] = render_rows(job.height * t / threads, job.height * (t + 1) / threads); });
+    errors[0] = render_rows(0, job.height / threads);
+    for (auto& th : pool) th.join();
+    for (const auto& e : errors)
+        if (e) return *e;
     return out;
 }
 
