@@ -128,20 +128,7 @@ namespace {
 
 // "#rrggbb" or [r, g, b] with components in 0..1.
 bool read_color(const toml::node& node, Color& out) {
-    if (const auto* s = node.as_string()) {
-        const std::string& text = s->get();
-        if (text.size() != 7 || text[0] != '#') return false;
-        for (int i = 0; i < 3; ++i) {
-            unsigned v = 0;
-            for (int k = 0; k < 2; ++k) {
-                char c = static_cast<char>(std::tolower(static_cast<unsigned char>(text[1 + 2 * i + k])));
-                if (!std::isxdigit(static_cast<unsigned char>(c))) return false;
-                v = v * 16 + static_cast<unsigned>(std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : c - 'a' + 10);
-            }
-            out[i] = v / 255.0;
-        }
-        return true;
-    }
+    if (const auto* s = node.as_string()) return parse_hex_color(s->get(), out);
     if (const auto* a = node.as_array()) {
         if (a->size() != 3) return false;
         for (size_t i = 0; i < 3; ++i) {

@@ -1,6 +1,7 @@
 #include "crtforge/value.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -41,6 +42,28 @@ std::string shortest_float_literal(F v) {
 
 std::string float_literal(double v) { return shortest_float_literal(v); }
 std::string float_literal(float v) { return shortest_float_literal(v); }
+
+bool parse_hex_color(const std::string& text, Color& out) {
+    if (text.size() != 7 || text[0] != '#') return false;
+    Color c{};
+    for (int i = 0; i < 3; ++i) {
+        unsigned v = 0;
+        for (int k = 0; k < 2; ++k) {
+            const char ch = static_cast<char>(std::tolower(static_cast<unsigned char>(text[1 + 2 * i + k])));
+            if (!std::isxdigit(static_cast<unsigned char>(ch))) return false;
+            v = v * 16 + static_cast<unsigned>(std::isdigit(static_cast<unsigned char>(ch)) ? ch - '0' : ch - 'a' + 10);
+        }
+        c[i] = v / 255.0;
+    }
+    out = c;
+    return true;
+}
+
+std::string value_to_exact_string(const Value& value) {
+    if (auto c = std::get_if<Color>(&value)) return fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
+    if (auto d = std::get_if<double>(&value)) return fmt::format("{}", *d);
+    return value_to_string(value);
+}
 
 std::string value_to_string(const Value& value) {
     if (auto d = std::get_if<double>(&value)) return float_literal(*d);

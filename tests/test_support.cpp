@@ -14,22 +14,27 @@ namespace crtforge::test {
 
 std::string shipped_template_dir() { return std::string(CRTFORGE_SOURCE_DIR) + "/templates"; }
 
+namespace {
+
+std::shared_ptr<TemplateLibrary> load_shipped() {
+    auto loaded = TemplateLibrary::load(shipped_template_dir());
+    if (!loaded.ok()) FAIL("shipped templates do not load: " << loaded.error().str());
+    return loaded.value();
+}
+
+}  // namespace
+
 const TemplateLibrary& shipped_library() {
-    static std::shared_ptr<TemplateLibrary> lib = [] {
-        auto loaded = TemplateLibrary::load(shipped_template_dir());
-        if (!loaded.ok()) FAIL("shipped templates do not load: " << loaded.error().str());
-        return loaded.value();
-    }();
+    static std::shared_ptr<TemplateLibrary> lib = load_shipped();
     return *lib;
 }
 
 const TemplateLibrary& validation_library() {
     static std::shared_ptr<TemplateLibrary> lib = [] {
-        auto loaded = TemplateLibrary::load(shipped_template_dir());
-        if (!loaded.ok()) FAIL("shipped templates do not load: " << loaded.error().str());
-        if (auto s = add_golden_presets(*loaded.value(), std::string(CRTFORGE_SOURCE_DIR) + "/golden"); !s.ok())
+        auto loaded = load_shipped();
+        if (auto s = add_golden_presets(*loaded, std::string(CRTFORGE_SOURCE_DIR) + "/golden"); !s.ok())
             FAIL("golden/stages does not load: " << s.error().str());
-        return loaded.value();
+        return loaded;
     }();
     return *lib;
 }

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -102,13 +103,6 @@ Value json_value(const json& j) {
     if (j.is_number()) return j.get<double>();
     if (j.is_array()) return Color{j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
     return j.get<std::string>();
-}
-
-// Exact text of a value for hashes (value_to_string rounds colours to 8 bits).
-std::string exact_value_text(const Value& value) {
-    if (auto c = std::get_if<Color>(&value)) return fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
-    if (auto d = std::get_if<double>(&value)) return fmt::format("{}", *d);
-    return value_to_string(value);
 }
 
 }  // namespace
@@ -272,7 +266,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
     // The configuration: what the host sets and the variant the targets compile.
     std::string config = fmt::format("config {} start {} uniforms {} precision {} host {}", entry.config, entry.start_time,
                                      entry.uniforms.str(), precision_name(entry.precision), entry.host);
-    for (const auto& [name, value] : entry.overrides) config += " " + name + "=" + exact_value_text(value);
+    for (const auto& [name, value] : entry.overrides) config += " " + name + "=" + value_to_exact_string(value);
     parts.push_back(config);
     const SceneSettings& sc = preset->scene;
     parts.push_back(fmt::format("scene {}x{} {}:{} {} {} {}:{} {}", sc.source_width, sc.source_height, sc.pixel_aspect_x,
@@ -294,7 +288,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
             text += fmt::format(" [{} {} {} {} {}]", in.binding, in.from.str(), filter_name(in.filter), wrap_name(in.wrap), in.mipmap);
         for (const ResolvedStage& st : pass.stages) {
             text += "\n  " + st.stage->name + "/" + st.form->name;
-            for (const auto& [name, value] : st.values) text += " " + name + "=" + exact_value_text(value);
+            for (const auto& [name, value] : st.values) text += " " + name + "=" + value_to_exact_string(value);
             stages[st.stage->name] = st.stage;
         }
         parts.push_back(text);
@@ -311,7 +305,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
     return Cache::key({all});
 }
 
-Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir) {
+Status check_golden_current(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir) {
     auto inputs = golden_inputs_hash(library, entry);
     if (!inputs.ok()) return inputs.error();
     if (inputs.value() != entry.inputs_hash)
@@ -319,6 +313,11 @@ Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntr
                           "since it was made): run crtforge golden " +
                               (entry.approved ? "approve --filter " + entry.id + " after reviewing a render" : "update"),
                           dir + "/manifest.json");
+    return Ok{};
+}
+
+Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir) {
+    if (auto current = check_golden_current(library, entry, dir); !current.ok()) return current.error();
     if (entry.stored) return read_image(dir + "/" + entry.file());
     // An entry that a filtered update never rendered has nothing to check the reference against.
     if (entry.hash.empty())
@@ -446,9 +445,15 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
     std::vector<GoldenEntry>& plan = planned.value();
     GoldenUpdate result;
     result.planned = plan.size();
-    // Render everything first: a failure must not leave a half-updated golden set.
-    std::vector<const GoldenEntry*> chosen;
-    for (const GoldenEntry& e : plan) {
+    // Render everything first: a failure must not leave a half-updated golden set. An entry that
+    // shares its owner's reference (GoldenEntry::shares) takes the owner's pixels: each image is
+    // rendered once, its owner rendered too when only the sharer is chosen.
+    std::map<std::string, GoldenEntry*> by_id;
+    for (GoldenEntry& e : plan) by_id[e.id] = &e;
+    std::vector<GoldenEntry*> chosen;
+    std::vector<const GoldenEntry*> owners;
+    std::set<std::string> rendering;  // ids in `chosen`
+    for (GoldenEntry& e : plan) {
         if (!filter.empty() && e.id.find(filter) == std::string::npos) continue;
         const Preset* preset = library.find_preset(e.preset);
         if (auto models = preset ? reference_models(*preset) : Status(Ok{}); !models.ok()) {
@@ -459,42 +464,43 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
             }
             continue;
         }
-        chosen.push_back(&e);
+        // The owner writes the files its sharers read, so it is updated with them.
+        GoldenEntry* owner = e.shares.empty() ? &e : by_id.at(e.shares);
+        for (GoldenEntry* x : {owner, &e})
+            if (rendering.insert(x->id).second) chosen.push_back(x);
+        if (std::find(owners.begin(), owners.end(), owner) == owners.end()) owners.push_back(owner);
     }
-    std::vector<std::pair<const GoldenEntry*, Image>> images, unstable;
-    for (const auto& sequence : golden_sequences(chosen)) {
+    std::map<std::string, std::pair<Image, Image>> pictures;  // owner id -> (reference, unstable map)
+    for (const auto& sequence : golden_sequences(owners)) {
         auto rendered = render_golden_references(library, sequence);
         if (!rendered.ok()) return rendered.error();
         auto flips = render_golden_unstable(library, sequence, rendered.value());
         if (!flips.ok()) return flips.error();
-        for (size_t i = 0; i < sequence.size(); ++i) {
-            images.emplace_back(sequence[i], std::move(rendered.value()[i]));
-            unstable.emplace_back(sequence[i], std::move(flips.value()[i]));
-        }
+        for (size_t i = 0; i < sequence.size(); ++i)
+            pictures[sequence[i]->id] = {std::move(rendered.value()[i]), std::move(flips.value()[i])};
     }
-    for (size_t i = 0; i < images.size(); ++i) {
-        auto& [entry_ptr, image] = images[i];
-        GoldenEntry& entry = const_cast<GoldenEntry&>(*entry_ptr);  // an element of `plan`
-        auto made_of = golden_inputs_hash(library, entry);
+    for (GoldenEntry* entry : chosen) {
+        auto made_of = golden_inputs_hash(library, *entry);
         if (!made_of.ok()) return made_of.error();
-        entry.inputs_hash = made_of.value();
-        entry.approved = false;
-        store_golden_pixels(entry, image);
+        entry->inputs_hash = made_of.value();
+        entry->approved = false;
+        Image image = pictures.at(entry->shares.empty() ? entry->id : entry->shares).first;
+        const Image& flips = pictures.at(entry->shares.empty() ? entry->id : entry->shares).second;
+        store_golden_pixels(*entry, image);
         // The unstable-pixel map is kept for every golden (small: mostly black), stored or not.
-        const Image& flips = unstable[i].second;
-        entry.unstable = 0;
+        entry->unstable = 0;
         for (int y = 0; y < flips.height; ++y)
-            for (int x = 0; x < flips.width; ++x) entry.unstable += flips.at(x, y)[0] > 0;
-        if (!entry.shares.empty()) continue;  // its owner writes the files
+            for (int x = 0; x < flips.width; ++x) entry->unstable += flips.at(x, y)[0] > 0;
+        if (!entry->shares.empty()) continue;  // its owner writes the files
         std::error_code ec;
-        std::filesystem::remove(dir + "/" + entry.unstable_file(), ec);
-        if (entry.unstable)
-            if (auto written = write_png(dir + "/" + entry.unstable_file(), flips, 8); !written.ok()) return written.error();
-        if (!entry.stored) continue;
-        if (auto written = write_golden_file(dir, entry, image); !written.ok()) return written.error();
+        std::filesystem::remove(dir + "/" + entry->unstable_file(), ec);
+        if (entry->unstable)
+            if (auto written = write_png(dir + "/" + entry->unstable_file(), flips, 8); !written.ok()) return written.error();
+        if (!entry->stored) continue;
+        if (auto written = write_golden_file(dir, *entry, image); !written.ok()) return written.error();
     }
     if (auto s = write_golden_manifest(dir, plan); !s.ok()) return s.error();
-    result.written = images.size();
+    result.written = chosen.size();
     return result;
 }
 

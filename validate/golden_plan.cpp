@@ -289,17 +289,8 @@ public:
     // A runtime param's value: a number in its range, or a colour "#rrggbb" / [r, g, b].
     Result<Value> plan_value(const toml::node& node, const ParamSpec& spec, const std::string& field) const {
         if (spec.type == ParamType::Color) {
-            if (const auto* text = node.as_string()) {
-                const std::string& s = text->get();
-                Color c{};
-                bool ok = s.size() == 7 && s[0] == '#';
-                for (int i = 0; ok && i < 3; ++i) {
-                    const std::string hex = s.substr(1 + 2 * i, 2);
-                    ok = std::all_of(hex.begin(), hex.end(), [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)); });
-                    if (ok) c[i] = std::stoi(hex, nullptr, 16) / 255.0;
-                }
-                if (ok) return Value{c};
-            }
+            Color c{};
+            if (const auto* text = node.as_string(); text && parse_hex_color(text->get(), c)) return Value{c};
             return error(&node, field, "must be a colour \"#rrggbb\"");
         }
         if (spec.type != ParamType::Float && spec.type != ParamType::Int)
@@ -448,7 +439,7 @@ void share_reference_images(std::vector<GoldenEntry>& entries) {
     for (GoldenEntry& e : entries) {
         std::string key = fmt::format("{}|{}|{}x{}|{}x{}|{}|{}|{}", e.preset, e.input, e.width, e.height, e.input_width, e.input_height,
                                       e.fit ? display_fit_name(*e.fit) : "-", e.frame, e.start_time);
-        for (const auto& [name, value] : e.overrides) key += "|" + name + "=" + value_to_string(value);
+        for (const auto& [name, value] : e.overrides) key += "|" + name + "=" + value_to_exact_string(value);
         if (!groups.count(key)) order.push_back(key);
         groups[key].push_back(&e);
     }

@@ -137,10 +137,21 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         return results;
     };
     std::call_once(job.work->once, [&] {
+        // Goldens that share a reference (GoldenEntry::shares) are read or rendered once; each
+        // is still checked for staleness on its own.
+        std::map<std::string, const GoldenData*> loaded;  // by file
         for (GoldenData* d : job.work->goldens) {
-            d->golden = load_golden_image(library, *d->entry, request.golden_dir);
             d->input = golden_input(*d->entry, d->entry->frame);
+            auto same = loaded.find(d->entry->file());
+            if (same != loaded.end() && same->second->golden.ok()) {
+                auto current = check_golden_current(library, *d->entry, request.golden_dir);
+                d->golden = current.ok() ? same->second->golden : Result<Image>(current.error());
+                d->unstable = same->second->unstable;
+                continue;
+            }
+            d->golden = load_golden_image(library, *d->entry, request.golden_dir);
             d->unstable = load_golden_unstable(*d->entry, request.golden_dir);
+            loaded[d->entry->file()] = d;
         }
         std::vector<VariantOptions> options{VariantOptions{}};
         for (const GoldenData* d : job.work->goldens) options.push_back(d->entry->variant_options());
@@ -355,10 +366,10 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
     for (const Preset& p : library.presets()) {
         if (!request.presets.empty() && std::find(request.presets.begin(), request.presets.end(), p.name) == request.presets.end())
             continue;
-        PresetWork* work = nullptr;
+        PresetWork* work = nullptr;  // made when this shard takes the preset's first job
         std::vector<const GoldenData*> goldens;
-        for (TargetId t : targets) {
-            if (index++ % request.shard.count != request.shard.index - 1) continue;
+        auto add_job = [&](TargetId t, bool second) {
+            if (index++ % request.shard.count != request.shard.index - 1) return;
             if (!work) {
                 work = &presets.emplace_back();
                 work->preset = &p;
@@ -370,27 +381,15 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
                 }
             }
             auto mine = judged_by(goldens, t);
-            total += compile_checks(p, t).size() + render_checks(mine, t);
-            jobs.push_back(Job{work, t, std::move(mine)});
-        }
+            // The second driver's jobs render only: the first driver's compile checks stand for both.
+            total += (second ? 0 : compile_checks(p, t).size()) + render_checks(mine, t);
+            jobs.push_back(Job{work, t, std::move(mine), second});
+        };
+        for (TargetId t : targets) add_job(t, false);
         // The Vulkan-rendered targets again on the second driver.
         if (request.second_vulkan && request.render)
-            for (TargetId t : targets) {
-                if (!vulkan_rendered.count(t) || index++ % request.shard.count != request.shard.index - 1) continue;
-                if (!work) {
-                    work = &presets.emplace_back();
-                    work->preset = &p;
-                    for (const GoldenEntry& g : report.goldens) {
-                        if (g.preset != p.name) continue;
-                        GoldenData& d = golden_data.emplace_back(&g);
-                        work->goldens.push_back(&d);
-                        goldens.push_back(&d);
-                    }
-                }
-                auto mine = judged_by(goldens, t);
-                total += render_checks(mine, t);
-                jobs.push_back(Job{work, t, std::move(mine), true});
-            }
+            for (TargetId t : targets)
+                if (vulkan_rendered.count(t)) add_job(t, true);
     }
 
     std::vector<std::vector<CheckResult>> results(jobs.size());

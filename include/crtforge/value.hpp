@@ -18,6 +18,12 @@ using Color = std::array<double, 3>;  // linear RGB, each 0..1
 // One param value. Enum values are stored by name.
 using Value = std::variant<double, int64_t, bool, std::string, Color>;
 
+// Round-trip text for keys and hashes: doubles shortest-exact, colours as three such numbers.
+std::string value_to_exact_string(const Value& value);
+
+// "#rrggbb" -> each channel / 255; false (and `out` untouched) for anything else.
+bool parse_hex_color(const std::string& text, Color& out);
+
 // Text for humans and JSON-free contexts: 0.3, 4, true, "shadow", #ff8000.
 std::string value_to_string(const Value& value);
 

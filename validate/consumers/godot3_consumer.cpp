@@ -21,9 +21,8 @@ namespace {
 
 // Godot's TIME is the wall clock; to render a given frame, the one TIME token becomes a uniform
 // the host pins to the frame's time (the only change to the shipped text), wrapped as Godot wraps
-// TIME (rendering/limits/time/time_rollover_secs, 3600 s by default).
+// TIME (consumers::kGodotTimeRollover; the runner wraps a scene's frames alike).
 constexpr const char* kPinnedTime = "crtforge_validation_time";
-constexpr double kTimeRollover = 3600.0;
 
 Status pin_time(std::string& code) {
     static const std::regex time_token(R"(\bTIME\b)");
@@ -111,7 +110,7 @@ public:
         Godot3Job job;
         job.shader_code = shader.value()->data;
         if (auto s = pin_time(job.shader_code); !s.ok()) return s.error();
-        if (job.shader_code != shader.value()->data) job.params[kPinnedTime] = std::fmod(r.time, kTimeRollover);
+        if (job.shader_code != shader.value()->data) job.params[kPinnedTime] = std::fmod(r.time, consumers::kGodotTimeRollover);
         job.input = r.input;
         job.filter = r.filter;
         job.width = r.width;

@@ -20,8 +20,7 @@ Result<std::vector<uint8_t>> pack_shim_uniforms(const Reflection& reflection, co
     return pack_block(reflection.uniform_blocks.front(), [&](const ReflectedMember& m) -> Result<MemberData> {
         if (m.name == "TEXTURE_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.input.width, 1.0f / r.input.height}};
         if (m.name == "SCREEN_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.width, 1.0f / r.height}};
-        // Godot's TIME wraps (rendering/limits/time/time_rollover_secs, 3600 s by default).
-        if (m.name == "TIME") return MemberData{std::vector<float>{static_cast<float>(std::fmod(r.time, 3600.0))}};
+        if (m.name == "TIME") return MemberData{std::vector<float>{static_cast<float>(std::fmod(r.time, consumers::kGodotTimeRollover))}};
         if (m.name == "frameCount") return MemberData{static_cast<int32_t>(r.frame_count & 0x7fffffff)};
         auto v = values.find(m.name);
         if (v == values.end())

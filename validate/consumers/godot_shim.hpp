@@ -23,6 +23,10 @@ class ConsumerEngines;
 
 namespace crtforge::consumers {
 
+// Godot's TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): both Godot
+// consumers pin TIME to the frame's time modulo this, as the engine would show it.
+constexpr double kGodotTimeRollover = 3600.0;
+
 struct ShimUniform {
     std::string type;     // float, int, vec3, vec4, sampler2D
     std::string name;

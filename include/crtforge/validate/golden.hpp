@@ -157,7 +157,10 @@ void store_golden_pixels(GoldenEntry& entry, Image& image);
 // 0..1 for PNG, half floats for EXR).
 std::string golden_hash(const Image& image, bool hdr = false);
 
-// An entry's golden image: read from the directory, or (not stored) rendered by the reference and
+// Fails a golden whose inputs changed since it was made ("stale: run crtforge golden update").
+Status check_golden_current(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir);
+
+// An entry's golden image (after check_golden_current): read from the directory, or (not stored) rendered by the reference and
 // checked against the entry's hash. `rendered` is the reference image when the caller has it.
 Result<Image> load_golden_image(const TemplateLibrary& library, const GoldenEntry& entry, const std::string& dir);
 
