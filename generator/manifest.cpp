@@ -41,6 +41,13 @@ json uniform_block(const CompiledVariant& compiled) {
             member["doc"] = builtin == Builtin::OutputSize ? "output size in pixels (width, height)"
                           : builtin == Builtin::SourceSize ? "source texture size in texels (width, height)"
                                                            : "seconds since start; keep it continuous";
+            // How hosts reduce the seconds (shader_time()): fmod(seconds * |S|, 2 pi) / |S| in double
+            // precision, S the named uniform's value or the baked number.
+            if (const VariantParam* speed = compiled.variant.angular_speed(); builtin == Builtin::Time && speed) {
+                member["doc"] = "seconds since start, reduced by the host in double precision: fmod(seconds * |S|, 2*pi) / |S|, "
+                                "S = reduceBy (a uniform's name or a number)";
+                member["reduceBy"] = speed->uniform ? json(speed->spec->name) : value_to_json(speed->value);
+            }
         } else if (const VariantParam* p = find_param(compiled.variant, m.name)) {
             member["stage"] = p->stage->name;
             if (p->spec->min) member["range"] = json::array({*p->spec->min, *p->spec->max});

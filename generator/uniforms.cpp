@@ -1,5 +1,6 @@
 #include "crtforge/uniforms.hpp"
 
+#include <cmath>
 #include <cstring>
 
 namespace crtforge {
@@ -41,6 +42,21 @@ Result<std::vector<uint8_t>> pack_block(const ReflectedBlock& block,
     return bytes;
 }
 
+double shader_time(const Variant& variant, const std::map<std::string, Value>& values, double seconds) {
+    const VariantParam* param = variant.angular_speed();
+    if (!param) return seconds;
+    auto v = values.find(param->spec->name);
+    const double* s = v == values.end() ? nullptr : std::get_if<double>(&v->second);
+    if (!s || *s == 0.0 || !std::isfinite(*s)) return seconds;
+    // By |S|: the result is never negative (hosts such as the Godot shaders read a negative time as
+    // "not set"), and time * S still equals seconds * S modulo 2 pi.
+    constexpr double kTau = 6.283185307179586476925;
+    const double speed = std::fabs(*s);
+    double phase = std::fmod(seconds * speed, kTau);
+    if (phase < 0) phase += kTau;
+    return phase / speed;
+}
+
 Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, const FrameInfo& frame,
                                            const std::map<std::string, Value>& overrides) {
     if (compiled.reflection.uniform_blocks.empty()) return std::vector<uint8_t>{};
@@ -50,7 +66,7 @@ Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, cons
             return MemberData{std::vector<float>{static_cast<float>(frame.output_width), static_cast<float>(frame.output_height)}};
         if (m.name == "sourceSize")
             return MemberData{std::vector<float>{static_cast<float>(frame.source_width), static_cast<float>(frame.source_height)}};
-        if (m.name == "time") return MemberData{std::vector<float>{static_cast<float>(frame.time)}};
+        if (m.name == "time") return MemberData{std::vector<float>{static_cast<float>(shader_time(compiled.variant, values, frame.time))}};
         // An int: a 32-bit counter wraps after ~2.3 years of 60 Hz frames; hosts reduce it by the pass's modulo first.
         if (m.name == "frameCount") return MemberData{static_cast<int32_t>(frame.frame_count & 0x7fffffff)};
         auto v = values.find(m.name);

@@ -58,6 +58,12 @@ std::vector<const VariantParam*> Variant::uniforms() const {
     return out;
 }
 
+const VariantParam* Variant::angular_speed() const {
+    for (const VariantParam& p : params)
+        if (p.spec->role == ParamRole::AngularSpeed) return &p;
+    return nullptr;
+}
+
 std::vector<const VariantParam*> Variant::baked() const {
     std::vector<const VariantParam*> out;
     for (const auto& p : params)
@@ -122,6 +128,18 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
                 return make_error("'" + name + "' is not used by preset '" + preset.name +
                                   "' (its stage is off or its form does not read it)", {}, 0, "--uniforms");
         }
+    }
+
+    // Hosts hand the shader time reduced by one period of the speed it drives, exactly, so no phase
+    // depends on the size of raw time; two speeds have no common period to reduce by.
+    const VariantParam* speed = nullptr;
+    for (const VariantParam& p : variant.params) {
+        if (p.spec->role != ParamRole::AngularSpeed) continue;
+        if (speed)
+            return make_error("pass '" + variant.pass->alias + "' of preset '" + preset.name + "' reads two angular_speed params (" +
+                                  speed->spec->name + ", " + p.spec->name + "): hosts reduce time exactly by one speed's period",
+                              p.spec->where.file, p.spec->where.line, p.spec->name + ".role");
+        speed = &p;
     }
 
     // outputSize is always present when any stage runs: the pixel grid every stage works on.

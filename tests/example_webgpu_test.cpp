@@ -4,6 +4,7 @@
 // OpenGL ES backend on llvmpipe); the module fills the uniform buffer itself from the manifest's
 // byte layout and defaults, so a match proves the manifest is enough to drive the shader.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <sys/wait.h>
 
@@ -79,7 +80,7 @@ void run_check(const test::TempDir& tmp, const std::string& export_dir, const st
     REQUIRE(code == 0);
 }
 
-Image vulkan_render(const std::string& preset, const Image& input) {
+Image vulkan_render(const std::string& preset, const Image& input, double time = kTime) {
     static TargetRenderer renderer;
     const CompiledVariant compiled = test::compile_or_fail(test::shipped_library(), preset);
     const Preset* p = test::shipped_library().find_preset(preset);
@@ -91,7 +92,7 @@ Image vulkan_render(const std::string& preset, const Image& input) {
     r.filter = p->filter == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear;
     r.width = kWidth;
     r.height = kHeight;
-    r.time = kTime;
+    r.time = time;
     auto image = renderer.render(r);
     INFO((image.ok() ? std::string() : image.error().str()));
     REQUIRE(image.ok());
@@ -115,12 +116,14 @@ TEST_CASE("The WebGPU example module renders exported presets like Vulkan", "[wg
     auto input = make_test_input("pixel_art", kPixelArtWidth, kPixelArtHeight);
     REQUIRE(input.ok());
 
-    for (const std::string preset : {"quiet-frame", "classic", "crt-shadow-mask"}) {
+    // crt-pulse at 1e7 s (an f32 of which is 0.15 s off: 3 rad of phase): the module reduces time as the manifest says (reduceBy), like crtforge.
+    for (const auto& [preset, time] : std::vector<std::pair<std::string, double>>{
+             {"quiet-frame", kTime}, {"classic", kTime}, {"crt-shadow-mask", kTime}, {"crt-pulse", 1e7 + 0.15}}) {
         SECTION(preset) {
             const std::string output = tmp / (preset + "-webgpu.raw");
-            run_check(tmp, export_dir, preset, {input.value()}, output, " --time " + std::to_string(kTime));
+            run_check(tmp, export_dir, preset, {input.value()}, output, fmt::format(" --time {}", time));
             const Image webgpu = read_raw(output, kWidth, kHeight);
-            const Image vulkan = vulkan_render(preset, input.value());
+            const Image vulkan = vulkan_render(preset, input.value(), time);
             auto metrics = compare_images(webgpu, vulkan);
             REQUIRE(metrics.ok());
             const ImageMetrics& m = metrics.value();

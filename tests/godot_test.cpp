@@ -218,7 +218,8 @@ TEST_CASE("the TIME-wrap rule follows the spec's angular_speed role, not a param
     };
     const std::string renamed = emit_shader();
     CHECK_THAT(renamed, Catch::Contains("round(scrollRate * 3600.0 / 6.28318530717959)"));
-    CHECK_THAT(renamed, Catch::Contains("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): scrollRate is"));
+    CHECK_THAT(renamed, Catch::Contains("// seconds reduced modulo 2*pi/scrollRate in double precision."));
+    CHECK_THAT(renamed, Catch::Contains("uniform float hostTime = -1.0;"));
 
     // Without the role the speed is just a number: TIME goes in as it is.
     std::string spec = scratch.read("stages/glow.toml");
@@ -227,4 +228,5 @@ TEST_CASE("the TIME-wrap rule follows the spec's angular_speed role, not a param
     const std::string plain = emit_shader();
     CHECK_THAT(plain, !Catch::Contains("round(scrollRate"));
     CHECK_THAT(plain, Catch::Contains("TIME * scrollRate"));
+    CHECK_THAT(plain, !Catch::Contains("hostTime"));
 }

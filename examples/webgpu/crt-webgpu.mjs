@@ -125,6 +125,19 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
     return samplers.get(key);
   }
 
+  // What `time` the shader gets (the manifest's uniformBlock time member, reduceBy): the seconds
+  // reduced by one period of the pass's angular speed S, in double precision, so the shader's phase
+  // time * S is exact at any hour (an f32 of raw seconds loses it within a day).
+  const reduceBy = pass.uniformBlock?.members?.find((m) => m.name === 'time')?.reduceBy;
+  function shaderTime(seconds) {
+    const speed = Math.abs(typeof reduceBy === 'number' ? reduceBy : params.get(reduceBy)?.value);
+    if (!Number.isFinite(speed) || speed === 0) return seconds;
+    const TAU = 2 * Math.PI;
+    let phase = (seconds * speed) % TAU;
+    if (phase < 0) phase += TAU;
+    return phase / speed;
+  }
+
   // Serialises builtins and params into uniformBytes (little-endian f32 / i32 / u32).
   function fillUniforms(builtins) {
     const view = new DataView(uniformBytes);
@@ -198,7 +211,7 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
       const { pipeline, bindGroupLayout } = pipelineFor(unfilterable);
 
       if (layout) {
-        fillUniforms({ outputSize: [width, height], sourceSize: [source.width, source.height], time, frameCount });
+        fillUniforms({ outputSize: [width, height], sourceSize: [source.width, source.height], time: shaderTime(time), frameCount });
         device.queue.writeBuffer(uniformBuffer, 0, uniformBytes);
       }
 

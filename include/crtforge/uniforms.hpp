@@ -33,6 +33,13 @@ Result<MemberData> member_data(const Value& value, const std::string& member_typ
 Result<std::vector<uint8_t>> pack_block(const ReflectedBlock& block,
                                         const std::function<Result<MemberData>(const ReflectedMember&)>& resolve);
 
+// The seconds the shader's `time` gets: `seconds` reduced, in double precision, by one period of the
+// pass's angular speed S (Variant::angular_speed(), its value from `values`): fmod(seconds * |S|,
+// 2 pi) / |S|, in [0, 2 pi / |S|), so time * S is the exact phase modulo 2 pi at any hour. A float32 time would lose the phase
+// (a 20 rad/s wave is a radian off by 1e7 s in fp32, and mediump collapses by 1e4 s); with no speed,
+// or S = 0, `seconds` as it is.
+double shader_time(const Variant& variant, const std::map<std::string, Value>& values, double seconds);
+
 // The bytes of the uniform block (empty when the variant has none). Param values default to the
 // variant's; `overrides` replaces some (name -> value), e.g. to drive a modulation.
 Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, const FrameInfo& frame,

@@ -55,6 +55,9 @@ struct Variant {
     Filter texture_filter(const std::string& name) const;
     std::vector<const VariantParam*> uniforms() const;
     std::vector<const VariantParam*> baked() const;
+    // The param the time builtin is multiplied by (role = "angular_speed"), if the pass has one:
+    // hosts reduce time by its period (shader_time() in uniforms.hpp). A pass has at most one.
+    const VariantParam* angular_speed() const;
 };
 
 // Default: params whose spec says runtime = true stay uniforms, all others are baked.

@@ -15,12 +15,14 @@
 # Use: instance the scene and set `source` to the picture, e.g. the ViewportTexture of the
 # Viewport your game draws into (keep that Viewport before this scene in the tree, so it is drawn
 # first). The scene fills its parent; resize it as any Control. `frame` counts frames (shaders
-# get it as frameCount); set `playing = false` to drive it yourself.
+# get it as frameCount) and `seconds` the time since start (shaders get it reduced exactly, as
+# hostTime); set `playing = false` to drive both yourself.
 extends Control
 
 export(Texture) var source = null setget set_source
 export var playing = true
 export var frame = 0 setget set_frame
+export var seconds = 0.0 setget set_seconds  # a 64-bit float: exact enough for years
 
 # The pipeline (written by crtforge).
 export var pixel_aspect = Vector2(1, 1)
@@ -44,10 +46,11 @@ func _ready():
 	_apply_frame()
 
 
-func _process(_delta):
+func _process(delta):
 	_apply_frame()
 	if playing:
 		frame += 1
+		seconds += delta
 
 
 func set_source(texture):
@@ -59,6 +62,12 @@ func set_source(texture):
 
 func set_frame(value):
 	frame = value
+	if is_inside_tree():
+		_apply_frame()
+
+
+func set_seconds(value):
+	seconds = value
 	if is_inside_tree():
 		_apply_frame()
 
@@ -153,10 +162,27 @@ func _wire():
 
 func _apply_frame():
 	for p in passes:
-		if not p["frame_count"]:
-			continue
-		var mod = int(p["frame_count_mod"])
-		get_node(p["alias"] + "/Pass").material.set_shader_param("frameCount", frame % mod if mod > 0 else frame)
+		var material = get_node(p["alias"] + "/Pass").material
+		if p["frame_count"]:
+			var mod = int(p["frame_count_mod"])
+			material.set_shader_param("frameCount", frame % mod if mod > 0 else frame)
+		if p.has("time_speed"):
+			material.set_shader_param("hostTime", _reduced_time(material, p["time_speed"]))
+
+
+# `seconds` reduced by one period of the pass's angular speed (a uniform's name or a number) in
+# double precision, so the shader's phase time * speed is exact at any hour: what crtforge's
+# other hosts give their shaders as time (crtforge::shader_time()).
+func _reduced_time(material, speed):
+	if typeof(speed) == TYPE_STRING:
+		speed = material.get_shader_param(speed)
+	speed = abs(float(speed))
+	if speed == 0.0:
+		return seconds
+	var phase = fmod(seconds * speed, TAU)
+	if phase < 0.0:
+		phase += TAU
+	return phase / speed
 
 
 # ---- geometry: the same rules as crtforge's scene model (generator/scene.cpp) ----

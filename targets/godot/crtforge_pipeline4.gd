@@ -15,7 +15,8 @@
 # Use: instance the scene and set `source` to the picture, e.g. the ViewportTexture of the
 # SubViewport your game draws into (keep it before this scene in the tree, so it is drawn first).
 # The scene fills its parent; resize it as any Control. `frame` counts frames (shaders get it as
-# frameCount); set `playing = false` to drive it yourself.
+# frameCount) and `seconds` the time since start (shaders get it reduced exactly, as hostTime); set
+# `playing = false` to drive both yourself.
 extends Control
 
 @export var source: Texture2D = null:
@@ -28,6 +29,11 @@ extends Control
 @export var frame := 0:
 	set(value):
 		frame = value
+		if is_inside_tree():
+			_apply_frame()
+@export var seconds := 0.0:  # a 64-bit float: exact enough for years
+	set(value):
+		seconds = value
 		if is_inside_tree():
 			_apply_frame()
 
@@ -52,10 +58,11 @@ func _ready() -> void:
 	_apply_frame()
 
 
-func _process(_delta: float) -> void:
+func _process(delta: float) -> void:
 	_apply_frame()
 	if playing:
 		frame += 1
+		seconds += delta
 
 
 # The texture the original comes from: `source`, or black until one is set.
@@ -129,11 +136,24 @@ func _wire() -> void:
 
 func _apply_frame() -> void:
 	for p in passes:
-		if not p["frame_count"]:
-			continue
-		var mod := int(p["frame_count_mod"])
 		var material := (get_node(p["alias"] + "/Pass") as TextureRect).material as ShaderMaterial
-		material.set_shader_parameter("frameCount", frame % mod if mod > 0 else frame)
+		if p["frame_count"]:
+			var mod := int(p["frame_count_mod"])
+			material.set_shader_parameter("frameCount", frame % mod if mod > 0 else frame)
+		if p.has("time_speed"):
+			material.set_shader_parameter("hostTime", _reduced_time(material, p["time_speed"]))
+
+
+# `seconds` reduced by one period of the pass's angular speed (a uniform's name or a number) in
+# double precision, so the shader's phase time * speed is exact at any hour: what crtforge's
+# other hosts give their shaders as time (crtforge::shader_time()).
+func _reduced_time(material: ShaderMaterial, speed: Variant) -> float:
+	if typeof(speed) == TYPE_STRING:
+		speed = material.get_shader_parameter(speed)
+	var s := absf(float(speed))
+	if s == 0.0:
+		return seconds
+	return fposmod(seconds * s, TAU) / s
 
 
 # ---- geometry: the same rules as crtforge's scene model (generator/scene.cpp) ----

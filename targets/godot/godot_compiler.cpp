@@ -39,7 +39,11 @@ std::string GodotCompiler::builtin_expression(const std::string& member) const {
         for (const VariantParam& p : variant_.params) {
             if (p.spec->role != ParamRole::AngularSpeed) continue;
             const std::string speed = p.uniform ? p.spec->name : float_literal(std::get<double>(p.value));
-            return fmt::format("(TIME * (round({0} * {1} / {2}) * {2} / {1}) / {0})", speed, kRollover, kTau);
+            // hostTime, when the host sets it (crtforge_pipeline.gd does, every frame), is the time
+            // already reduced exactly in double precision (shader_time()); left at -1, TIME with the
+            // rounded speed. Sums, not mix(): each branch reaches the shader bit-exact.
+            return fmt::format("(max({3}, 0.0) + (1.0 - step(0.0, {3})) * (TIME * (round({0} * {1} / {2}) * {2} / {1}) / {0}))",
+                               speed, kRollover, kTau, kHostTime);
         }
         return "TIME";
     }
@@ -226,12 +230,12 @@ void GodotCompiler::emit_header() {
     bool uses_time = false;
     for (Builtin b : variant_.builtins) uses_time = uses_time || b == Builtin::Time;
     if (uses_time) {
-        std::string speed;
-        for (const VariantParam& p : variant_.params)
-            if (p.spec->role == ParamRole::AngularSpeed) speed = p.spec->name;
-        if (!speed.empty()) {
-            statement("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): ", speed, " is");
-            statement("// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.");
+        if (const VariantParam* speed = variant_.angular_speed()) {
+            statement("// Time: crtforge_pipeline.gd (the exported scene) sets ", kHostTime, " every frame to the exact phase time,");
+            statement("// seconds reduced modulo 2*pi/", speed->spec->name, " in double precision. Without it (", kHostTime, " < 0) the shader");
+            statement("// uses TIME, which wraps at rendering/limits/time/time_rollover_secs (3600 s by default): then ", speed->spec->name, " is");
+            statement("// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap, and the");
+            statement("// phase drifts from the exact one by up to t * pi/3600 rad at t seconds.");
         } else {
             statement("// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default).");
         }
@@ -248,6 +252,10 @@ void GodotCompiler::emit_header() {
     for (const VariantParam* p : variant_.uniforms()) {
         statement("// ", p->stage->name, ": ", p->spec->doc, p->spec->unit.empty() ? "" : " (" + p->spec->unit + ")");
         statement(uniform_declaration(*p));
+    }
+    if (uses_time && variant_.angular_speed()) {
+        statement("// Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.");
+        statement("uniform float ", kHostTime, " = -1.0;");
     }
     for (Builtin b : variant_.builtins)
         if (b == Builtin::FrameCount) {

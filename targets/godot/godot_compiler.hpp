@@ -27,6 +27,10 @@ protected:
 
 private:
     static constexpr const char* kBlockMarker = "crtforge_params_block";
+public:
+    // The time reduced by the host (shader_time()); negative (the default): TIME.
+    static constexpr const char* kHostTime = "hostTime";
+private:
     void prepare();  // remaps resources onto Godot builtins
     std::string uniform_declaration(const VariantParam& p) const;
     std::string builtin_expression(const std::string& member) const;

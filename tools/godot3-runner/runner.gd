@@ -20,7 +20,8 @@
 #   --inputs=PATH        raw float32 RGBA pictures, IW x IH each, one per frame of --run
 #   --run=0,1,2          the frames drawn, in order (the scene's `frame` is set to each)
 #   --capture=1,2        the frames whose picture is written, to <--output><frame>.raw
-#   --fps=60             the frame rate: a uniform crtforge_validation_time gets (start + frame / fps) mod 3600
+#   --fps=60             the frame rate: the scene's `seconds` is start + frame / fps, and a uniform
+#                        crtforge_validation_time standing for TIME gets that mod 3600
 #   --start-time=0       seconds at frame 0
 #   --params=PATH        as above, set on every pass that declares the uniform
 #   --fit=aspect         overrides the scene's display fit (stretch, aspect, integer)
@@ -459,6 +460,7 @@ func _run_scene(opts):
 		if i > 0:
 			image.create_from_data(iw, ih, false, Image.FORMAT_RGBAF, f.get_buffer(picture_bytes))
 			source.set_data(image)
+		scene.seconds = start_time + frame / fps  # the pipeline hands its shaders hostTime from it
 		scene.frame = frame
 		# Godot's TIME is the wall clock: the engine pins it through this uniform instead, wrapped
 		# as Godot wraps TIME (rendering/limits/time/time_rollover_secs, 3600 s by default).

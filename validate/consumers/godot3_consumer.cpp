@@ -11,6 +11,8 @@
 
 #include "crtforge/exporter.hpp"
 #include "crtforge/runtime/godot3_engine.hpp"
+#include "crtforge/uniforms.hpp"
+#include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot_scene.hpp"
 #include "validate/consumers/consumer.hpp"
 #include "validate/consumers/godot_shim.hpp"
@@ -45,6 +47,7 @@ var passes = [{"alias": "main"}]
 var playing = false
 var fit = "stretch"
 var frame = 0
+var seconds = 0.0  # the runner sets it; without crtforge_pipeline.gd nothing reads it (the shader uses TIME)
 var source setget _set_source
 
 func _set_source(texture):
@@ -117,6 +120,10 @@ public:
         job.height = r.height;
         for (const VariantParam* p : r.compiled->variant.uniforms()) job.params[p->spec->name] = p->value;
         for (const auto& [name, value] : r.overrides) job.params[name] = value;
+        // What crtforge_pipeline.gd sets every frame: the time reduced exactly.
+        if (r.compiled->variant.angular_speed())
+            job.params[godot::GodotCompiler::kHostTime] =
+                shader_time(r.compiled->variant, effective_values(r.compiled->variant, r.overrides), r.time);
         return engines.godot3().render(job);
     }
 

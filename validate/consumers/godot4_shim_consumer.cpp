@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "crtforge/uniforms.hpp"
+#include "targets/godot/godot_compiler.hpp"
 #include "validate/consumers/consumer.hpp"
 #include "validate/consumers/godot_shim.hpp"
 
@@ -22,6 +23,9 @@ Result<std::vector<uint8_t>> pack_shim_uniforms(const Reflection& reflection, co
         if (m.name == "SCREEN_PIXEL_SIZE") return MemberData{std::vector<float>{1.0f / r.width, 1.0f / r.height}};
         if (m.name == "TIME") return MemberData{std::vector<float>{static_cast<float>(std::fmod(r.time, consumers::kGodotTimeRollover))}};
         if (m.name == "frameCount") return MemberData{static_cast<int32_t>(r.frame_count & 0x7fffffff)};
+        // What crtforge_pipeline.gd sets: the time reduced exactly (the TIME fallback is for hosts without it).
+        if (m.name == godot::GodotCompiler::kHostTime)
+            return MemberData{std::vector<float>{static_cast<float>(shader_time(r.compiled->variant, values, r.time))}};
         auto v = values.find(m.name);
         if (v == values.end())
             return make_validation_error("the Godot shader declares uniform '" + m.name + "' that the variant has no value for");

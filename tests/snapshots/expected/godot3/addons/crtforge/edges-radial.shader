@@ -2,8 +2,11 @@
 // Godot 3 canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.
 // Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);
 // set the node's texture filter to linear.
-// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): pulseRate is
-// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.
+// Time: crtforge_pipeline.gd (the exported scene) sets hostTime every frame to the exact phase time,
+// seconds reduced modulo 2*pi/pulseRate in double precision. Without it (hostTime < 0) the shader
+// uses TIME, which wraps at rendering/limits/time/time_rollover_secs (3600 s by default): then pulseRate is
+// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap, and the
+// phase drifts from the exact one by up to t * pi/3600 rad at t seconds.
 shader_type canvas_item;
 
 // shape: Multiplier on the distance from the centre
@@ -12,9 +15,11 @@ uniform float shapeScale : hint_range(0.0, 2.0, 0.01) = 1.1;
 uniform float pulseDepth : hint_range(0.0, 0.2, 0.005) = 0.04;
 // pulse: Phase speed of the wave (rad/s)
 uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 5.0;
+// Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.
+uniform float hostTime = -1.0;
 
 void fragment()
 {
-    COLOR = vec4((texture(TEXTURE, UV).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((UV * 2.0) - vec2(1.0)) * shapeScale)) * (pulseDepth * sin((UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))).y * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0), 1.0);
+    COLOR = vec4((texture(TEXTURE, UV).xyz * smoothstep(0.89999997615814208984375, 0.300000011920928955078125, length((UV * 2.0) - vec2(1.0)) * shapeScale)) * (pulseDepth * sin((UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))).y * 0.02500000037252902984619140625 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
 }
 

@@ -1,8 +1,11 @@
 // crtforge 0.1.0: preset everything. Every snapshot stage enabled, with spec defaults except where noted
 // Godot 3 canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.
 // Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.
-// TIME wraps at rendering/limits/time/time_rollover_secs (3600 s by default): pulseRate is
-// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap.
+// Time: crtforge_pipeline.gd (the exported scene) sets hostTime every frame to the exact phase time,
+// seconds reduced modulo 2*pi/pulseRate in double precision. Without it (hostTime < 0) the shader
+// uses TIME, which wraps at rendering/limits/time/time_rollover_secs (3600 s by default): then pulseRate is
+// rounded to a multiple of 2*pi/3600 rad/s so the motion stays continuous across the wrap, and the
+// phase drifts from the exact one by up to t * pi/3600 rad at t seconds.
 shader_type canvas_item;
 
 // Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.
@@ -26,6 +29,8 @@ uniform float shapeScale : hint_range(0.0, 2.0, 0.01) = 1.0;
 uniform float pulseDepth : hint_range(0.0, 0.2, 0.005) = 0.05;
 // pulse: Phase speed of the wave (rad/s)
 uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 6.0;
+// Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.
+uniform float hostTime = -1.0;
 
 vec4 _812;
 
@@ -128,7 +133,7 @@ void fragment()
             _805 = edgeColor.rgb.zyx;
             break;
         }
-        _805 = ((_599 * _804 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _802)) * clamp(1.5 - max(_664.x, _664.y), 0.800000011920928955078125, 0.20000000298023223876953125)) * (pulseDepth * sin(_580 * 0.02500000037252902984619140625 + ((TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate) * pulseRate)) + 1.0);
+        _805 = ((_599 * _804 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _802)) * clamp(1.5 - max(_664.x, _664.y), 0.800000011920928955078125, 0.20000000298023223876953125)) * (pulseDepth * sin(_580 * 0.02500000037252902984619140625 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
         break;
     } while(false);
     COLOR = vec4(_805, 1.0);

@@ -1,0 +1,119 @@
+// Issue 12's numerical hard cases that a unit test proves directly (the image-level cases are
+// golden/plan.toml entries judged by validate; docs/hard-cases.md lists both).
+#include <cmath>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "crtforge/uniforms.hpp"
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+using json = nlohmann::json;
+
+namespace {
+
+const std::string& file_data(const TargetOutput& out, const std::string& role) {
+    for (const OutputFile& f : out.files)
+        if (f.manifest_role() == role) return f.data;
+    FAIL("no file with role " << role);
+    static const std::string none;
+    return none;
+}
+
+}  // namespace
+
+TEST_CASE("hosts hand the shader time reduced exactly, so the phase is right at any hour", "[hard][time]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    const CompiledVariant c = test::compile_or_fail(lib, "crt-pulse");
+    REQUIRE(c.variant.angular_speed() != nullptr);
+    CHECK(c.variant.angular_speed()->spec->name == "pulseSpeed");
+    constexpr long double kTau = 6.283185307179586476925286766559L;
+    for (double speed : {20.0, 1.0, 37.5, -3.0}) {
+        const auto values = effective_values(c.variant, {{"pulseSpeed", speed}});
+        for (double seconds : {0.0, 0.5, 1000.0, 3599.5, 3600.5, 1e5, 1e7, 1e9}) {
+            INFO("speed " << speed << ", " << seconds << " s");
+            const float t = static_cast<float>(shader_time(c.variant, values, seconds));
+            CHECK(t >= 0.0f);
+            CHECK(t <= 2 * M_PI / std::fabs(speed) * (1 + 1e-6));
+            // The phase the shader computes in float32 against the exact one, modulo a turn.
+            long double error = std::fmod(static_cast<long double>(t) * speed - static_cast<long double>(seconds) * speed, kTau);
+            if (error > kTau / 2) error -= kTau;
+            if (error < -kTau / 2) error += kTau;
+            CHECK(std::fabs(static_cast<double>(error)) < 2e-6);
+        }
+    }
+    // A speed of zero (or a pass without one) leaves the seconds alone.
+    CHECK(shader_time(c.variant, effective_values(c.variant, {{"pulseSpeed", 0.0}}), 12.5) == 12.5);
+    const CompiledVariant classic = test::compile_or_fail(lib, "classic");
+    CHECK(classic.variant.angular_speed() == nullptr);
+    CHECK(shader_time(classic.variant, effective_values(classic.variant), 1e7) == 1e7);
+}
+
+TEST_CASE("the manifest and every host know how time is reduced", "[hard][time][manifest]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    for (const char* uniforms : {"default", "none"}) {
+        INFO("--uniforms " << uniforms);
+        ExportRequest request;
+        request.presets = {"crt-pulse"};
+        request.options.uniforms = UniformSelection::parse(uniforms).value();
+        auto result = run_export(lib, request, Cache());
+        REQUIRE(result.ok());
+        const auto& files = result.value().files;
+        const json m = json::parse(files.at("manifest.json"));
+        const json& block = m["presets"]["crt-pulse"]["passes"][0]["uniformBlock"];
+        bool found = false;
+        for (const json& member : block["members"])
+            if (member["name"] == "time") {
+                found = true;
+                // The uniform's name when the speed is a uniform, the baked number otherwise.
+                if (std::string(uniforms) == "default") CHECK(member["reduceBy"] == "pulseSpeed");
+                else CHECK(member["reduceBy"] == 20.0);
+            }
+        CHECK(found);
+        // Godot: the shader takes hostTime from the exported scene's script and falls back to TIME.
+        for (const char* version : {"godot3", "godot4"}) {
+            const std::string dir = std::string(version) + "/addons/crtforge/";
+            const std::string& shader = files.at(dir + (std::string(version) == "godot3" ? "crt-pulse.shader" : "crt-pulse.gdshader"));
+            CHECK_THAT(shader, Catch::Contains("uniform float hostTime = -1.0;"));
+            CHECK_THAT(shader, Catch::Contains("max(hostTime, 0.0) + (1.0 - step(0.0, hostTime))"));
+            CHECK_THAT(files.at(dir + "crt-pulse.tscn"), Catch::Contains("time_speed"));
+            CHECK_THAT(files.at(dir + "crtforge_pipeline.gd"), Catch::Contains("\"hostTime\", _reduced_time("));
+        }
+    }
+    // A preset without time has no reduction and no hostTime.
+    const CompiledVariant classic = test::compile_or_fail(lib, "classic");
+    auto godot = emit_target(classic, TargetId::Godot4, Cache());
+    REQUIRE(godot.ok());
+    CHECK_THAT(file_data(godot.value(), "shader"), !Catch::Contains("hostTime"));
+}
+
+TEST_CASE("a pass with two angular speeds is refused at the spec line", "[hard][time]") {
+    test::ScratchTemplates scratch;
+    std::string spec = scratch.read("stages/glow.toml");
+    spec += R"(
+[[param]]
+name = "pulseSpeed2"
+type = "float"
+range = [1.0, 40.0]
+default = 5.0
+doc = "A second speed"
+runtime = true
+role = "angular_speed"
+)";
+    spec.replace(spec.find(R"(params = ["pulseIntensity", "pulseWidth", "pulseSpeed"])"),
+                 std::string(R"(params = ["pulseIntensity", "pulseWidth", "pulseSpeed"])").size(),
+                 R"(params = ["pulseIntensity", "pulseWidth", "pulseSpeed", "pulseSpeed2"])");
+    scratch.write("stages/glow.toml", spec);
+    std::string glsl = scratch.read("stages/glow.glsl");
+    glsl.replace(glsl.find("time * pulseSpeed)"), std::string("time * pulseSpeed)").size(), "time * pulseSpeed + time * pulseSpeed2)");
+    scratch.write("stages/glow.glsl", glsl);
+    auto lib = scratch.load();
+    REQUIRE(lib.ok());
+    auto c = compile_variant(*lib.value(), *lib.value()->find_preset("crt-pulse"), {}, Cache());
+    REQUIRE_FALSE(c.ok());
+    CHECK_THAT(c.error().message, Catch::Contains("two angular_speed params (pulseSpeed, pulseSpeed2)"));
+    CHECK_THAT(c.error().file, Catch::EndsWith("glow.toml"));
+    CHECK(c.error().line > 30);
+    CHECK(c.error().field == "pulseSpeed2.role");
+}
