@@ -82,6 +82,26 @@ std::string source_mapping(const Variant& variant) {
                        float_literal(scale[0]), float_literal(scale[1]));
 }
 
+// The warp stages as one function: stages that sample at a screen-space point other than the
+// fragment's own (the shadow mask's cell centre) warp it as main() warps the fragment. Emitted,
+// like crt_source_uv, only where a snippet calls it; declared before the snippets, defined after.
+constexpr const char* kWarpFunction = "crt_warp";
+
+bool calls_warp(const Pass& pass) {
+    for (const ResolvedStage& rs : pass.stages)
+        if (rs.stage->glsl_source.find(kWarpFunction) != std::string::npos) return true;
+    return false;
+}
+
+std::string warp_function(const Pass& pass) {
+    std::string out = fmt::format("// The warp stages in pass order, for stages that warp a point of their own.\nvec2 {}(vec2 uv) {{\n", kWarpFunction);
+    for (const ResolvedStage& rs : pass.stages) {
+        const std::string& fn = rs.form->functions[static_cast<int>(Hook::Warp)];
+        if (!fn.empty()) out += fmt::format("    uv = {}(uv);  // {} ({})\n", fn, rs.stage->name, rs.form->name);
+    }
+    return out + "    return uv;\n}\n";
+}
+
 bool maps_source(const Variant& variant) {
     return screen_pass_index(*variant.preset) == variant.pass_index && source_uv_scale(*variant.preset) != std::array<double, 2>{1.0, 1.0};
 }
@@ -153,7 +173,10 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
         bool used = maps_source(variant);
         for (const ResolvedStage& rs : pass.stages) used = used || rs.stage->glsl_source.find("crt_source_uv") != std::string::npos;
         if (used) src += source_mapping(variant);
+        const bool warp = calls_warp(pass);
+        if (warp) src += fmt::format("\nvec2 {}(vec2 uv);  // the warp stages, defined after the snippets\n", kWarpFunction);
         for (const ResolvedStage& rs : pass.stages) include(rs.stage->glsl_path, rs.stage->glsl_source);
+        if (warp) include("<generated " + std::string(kWarpFunction) + " for preset " + preset.name + ">", warp_function(pass));
     }
     include("<generated main for preset " + preset.name + (preset.single_pass() ? "" : " pass " + pass.alias) + ">",
             main_body(variant));

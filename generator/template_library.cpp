@@ -18,7 +18,7 @@ namespace {
 const std::set<std::string>& reserved_names() {
     static const std::set<std::string> names = {
         "main", "source", "fragColor", "vTexCoord", "crt", "CrtParams", "CrtFrag", "color", "frag",
-        "inside", "sampleUv", "outputSize", "sourceSize", "time", "frameCount", "hostTime", "PI", "TAU"};
+        "inside", "sampleUv", "outputSize", "sourceSize", "time", "frameCount", "hostTime", "crt_warp", "crt_source_uv", "PI", "TAU"};
     return names;
 }
 

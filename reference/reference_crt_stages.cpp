@@ -32,11 +32,12 @@ bool warp_curvature(const std::string& form, const Params& p, const Fragment&, V
 bool shadow_cell_uv(const std::string& form, const Params& p, const Fragment& f, Vec2& sample_uv) {
     if (form != "shadow") return form == "grille" || form == "atari_grille" || form == "slot";
     if (!p.flag("maskQuantize")) return true;
+    // "One sample per cell": the mask's cell in screen pixels, its centre warped as the pixel was.
     const double size = p.num("maskSize");
-    const Vec2 coord{sample_uv.x * f.output_size.x / size, sample_uv.y * f.output_size.y / size};
+    const Vec2 coord{f.pixel.x / size, f.pixel.y / size};
     const double stagger = fract(std::floor(coord.x) * 0.5);  // odd cell columns shift half a cell
     const Vec2 cell{std::floor(coord.x) + 0.5, std::floor(coord.y + stagger) - stagger + 0.5};
-    sample_uv = {cell.x * size / f.output_size.x, cell.y * size / f.output_size.y};
+    sample_uv = f.warp({cell.x * size / f.output_size.x, cell.y * size / f.output_size.y});
     return true;
 }
 

@@ -172,6 +172,12 @@ Result<Image> render_reference(const ReferenceJob& job) {
     auto failed = [&](const PlannedStage& s, Hook hook) { return unmodelled(*s.resolved, hook_name(hook)); };
 
     // Rows in parallel: every pixel is independent, so the image is the same for any split.
+    // A warp model that has no form fails in the pixel loop first, so here it only warps.
+    base.warp = [&](Vec2 uv) {
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::Warp)) s.model->warp(s.resolved->form->name, params, base, uv);
+        return uv;
+    };
     auto render_rows = [&](int y0, int y1) -> std::optional<Diagnostic> {
         Fragment f = base;  // each thread its own
         auto fail = [&](const PlannedStage& s, Hook hook) -> std::optional<Diagnostic> { return failed(s, hook); };

@@ -5,6 +5,7 @@
 // reference_super_win.cpp); reference_renderer.cpp runs them in the variant's stage order.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -50,6 +51,7 @@ struct Fragment {
     long long frame_count = 0;
     const Sampler* source = nullptr;
     std::map<std::string, const Sampler*> textures;
+    std::function<Vec2(Vec2)> warp;  // the pass's warp stages, for a point other than this pixel
 
     const Sampler& texture(const std::string& name) const { return *textures.at(name); }
     Vec2 source_uv(Vec2 screen) const {

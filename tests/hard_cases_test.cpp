@@ -1,11 +1,16 @@
 // Issue 12's numerical hard cases that a unit test proves directly (the image-level cases are
 // golden/plan.toml entries judged by validate; docs/hard-cases.md lists both).
 #include <cmath>
+#include <map>
+#include <set>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/uniforms.hpp"
+#include "crtforge/validate/target_render.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -116,4 +121,96 @@ role = "angular_speed"
     CHECK_THAT(c.error().file, Catch::EndsWith("glow.toml"));
     CHECK(c.error().line > 30);
     CHECK(c.error().field == "pulseSpeed2.role");
+}
+
+namespace {
+
+// An input whose every texel has its own colour: (x, y) in r, g (exact in half floats), b = 1.
+Image coordinate_image(int width, int height) {
+    Image image = Image::make(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float* p = image.at(x, y);
+            p[0] = static_cast<float>(x) / 1024.0f;
+            p[1] = static_cast<float>(y) / 1024.0f;
+            p[2] = 1.0f;
+            p[3] = 1.0f;
+        }
+    return image;
+}
+
+// Shadow-mask cells (the mask's own, in screen pixels, odd columns staggered by half a cell) that
+// show more than one source texel among their on-screen pixels, over the cells with any.
+std::pair<int, int> cells_with_several_samples(const Image& out, double mask_size) {
+    std::map<std::pair<long, long>, std::set<std::pair<float, float>>> samples;
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            const float* p = out.at(x, y);
+            if (p[2] < 0.5f) continue;  // the bezel
+            const double cx = (x + 0.5) / mask_size, cy = (y + 0.5) / mask_size;
+            const double stagger = std::floor(cx) * 0.5 - std::floor(std::floor(cx) * 0.5);
+            samples[{static_cast<long>(std::floor(cx)), static_cast<long>(std::floor(cy + stagger))}].insert({p[0], p[1]});
+        }
+    int several = 0;
+    for (const auto& [cell, set] : samples) several += set.size() > 1;
+    return {several, static_cast<int>(samples.size())};
+}
+
+}  // namespace
+
+TEST_CASE("the shadow mask samples the source once per screen-space cell under curvature", "[hard][mask]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    // Sizes where no pixel centre lies exactly on a cell edge (5.5 puts every 11th column on one:
+    // which cell such a pixel falls in is the driver's rounding, not a second sample).
+    for (double mask_size : {8.0, 6.4}) {
+        const std::string text = fmt::format(R"(name = "one-sample"
+doc = "Curvature and a quantised shadow mask with no tint: the picture shows which texel each pixel read"
+[stages.curvature]
+curvatureForm = "crt_effect"
+curvature = 0.15
+[stages.mask]
+maskMode = "shadow"
+maskSize = {}
+maskIntensity = 0.0
+maskQuantize = true
+)", mask_size);
+        auto preset = test::resolve_preset_texts({{"one-sample.toml", text}}, "one-sample");
+        INFO((preset.ok() ? std::string() : preset.error().str()));
+        REQUIRE(preset.ok());
+        auto compiled = compile_variant(lib, preset.value(), {}, Cache());
+        REQUIRE(compiled.ok());
+        const Image input = coordinate_image(256, 224);
+        for (auto [width, height] : {std::pair{333, 251}, std::pair{1280, 960}}) {
+            INFO("maskSize " << mask_size << " at " << width << "x" << height);
+            ReferenceJob job;
+            job.variant = &compiled.value().variant;
+            job.input = input;
+            job.filter = SamplerFilter::Nearest;
+            job.width = width;
+            job.height = height;
+            const Image reference = test::require_image(render_reference(job), width, height);
+            const auto [ref_several, ref_cells] = cells_with_several_samples(reference, mask_size);
+            CHECK(ref_cells > 1000 * 8 / mask_size / mask_size * (width * height) / (333 * 251) / 10);
+            CHECK(ref_several == 0);
+
+            static TargetRenderer renderer;
+            for (TargetId target : {TargetId::Spirv, TargetId::Glsl330}) {
+                INFO(target_info(target).name);
+                auto emitted = emit_target(compiled.value(), target, Cache());
+                REQUIRE(emitted.ok());
+                TargetRenderRequest r;
+                r.compiled = &compiled.value();
+                r.target = target;
+                r.output = &emitted.value();
+                r.input = input;
+                r.filter = SamplerFilter::Nearest;
+                r.width = width;
+                r.height = height;
+                const Image rendered = test::require_image(renderer.render(r), width, height);
+                const auto [several, cells] = cells_with_several_samples(rendered, mask_size);
+                CHECK(cells == ref_cells);
+                CHECK(several == 0);
+            }
+        }
+    }
 }

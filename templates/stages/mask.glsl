@@ -17,14 +17,15 @@ vec3 mask_shadow(vec3 color, CrtFrag frag) {
     return color * (1.0 + (maskColor - 1.0) * maskIntensity);
 }
 
-// "Sample texture at warped UV (quantized to mask cell center for shadow mask)": the warped
-// coordinate is snapped to the centre of its maskSize cell, using the mask's stagger.
+// "Sample texture at warped UV (quantized to mask cell center for shadow mask)", "one sample per
+// cell": the cell is the mask's own, in screen pixels (stagger included), and its centre is warped
+// as the fragment was, so every pixel of a cell reads the same source point.
 vec2 mask_shadow_cell_uv(vec2 uv, CrtFrag frag) {
     if (!maskQuantize) return uv;
-    vec2 coord = uv * outputSize / maskSize;
+    vec2 coord = frag.pixel / maskSize;
     float stagger = fract(floor(coord.x) * 0.5);
     vec2 cell = vec2(floor(coord.x) + 0.5, floor(coord.y + stagger) - stagger + 0.5);
-    return cell * maskSize / outputSize;
+    return crt_warp(cell * maskSize / outputSize);
 }
 #endif
 
