@@ -138,7 +138,14 @@ std::string main_body(const Variant& variant) {
     out += calls(Hook::Fetch, "color = {}(color, sampleUv);");
     out += calls(Hook::Color, "color = {}(color, frag);");
     out += calls(Hook::Finish, "color = {}(color, frag);");
-    out += "    fragColor = vec4(color, 1.0);\n";
+    // Alpha only where a stage sets it, so every other shader stays as it was.
+    const std::string alpha = calls(Hook::Alpha, "alpha = {}(alpha, frag);");
+    if (alpha.empty()) {
+        out += "    fragColor = vec4(color, 1.0);\n";
+    } else {
+        out += "    float alpha = 1.0;\n" + alpha;
+        out += "    fragColor = vec4(color, alpha);\n";
+    }
     return out + "}\n";
 }
 

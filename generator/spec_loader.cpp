@@ -19,6 +19,7 @@ const char* hook_name(Hook hook) {
         case Hook::Fetch: return "fetch";
         case Hook::Color: return "color";
         case Hook::Finish: return "finish";
+        case Hook::Alpha: return "alpha";
     }
     return "?";
 }
@@ -159,7 +160,7 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
 
 Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const StageSpec& stage) {
     const std::string prefix = "form";
-    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "warp", "sample_uv", "fetch", "color", "finish"}, prefix); !s.ok())
+    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok())
         return s.error();
     FormSpec f;
     f.where = {r.path(), r.line_of(t)};
@@ -207,7 +208,7 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
         any = any || !fn.value().empty();
     }
     if (!any)
-        return r.error(&t, field, "a form needs at least one function (warp, sample_uv, fetch, color or finish)");
+        return r.error(&t, field, "a form needs at least one function (warp, sample_uv, fetch, color, finish or alpha)");
     return f;
 }
 

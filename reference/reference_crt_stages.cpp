@@ -150,8 +150,16 @@ bool apply_vignette(const std::string& form, const Params& p, const Fragment& f,
     return true;
 }
 
+bool outside_screen(const Fragment& f) { return f.uv.x < 0.0 || f.uv.x > 1.0 || f.uv.y < 0.0 || f.uv.y > 1.0; }
+
+// Retro CRT Effects' crt.frag writes vec4(0.0) outside: its preset sets bezelAlpha = 0.
+bool bezel_alpha(const std::string&, const Params& p, const Fragment& f, double& alpha) {
+    if (outside_screen(f)) alpha = p.num("bezelAlpha");
+    return true;
+}
+
 bool apply_bezel(const std::string&, const Params& p, const Fragment& f, Vec3& color) {
-    if (f.uv.x < 0.0 || f.uv.x > 1.0 || f.uv.y < 0.0 || f.uv.y > 1.0) color = p.color("bezelColor");
+    if (outside_screen(f)) color = p.color("bezelColor");
     return true;
 }
 
@@ -159,7 +167,7 @@ bool apply_bezel(const std::string&, const Params& p, const Fragment& f, Vec3& c
 
 std::vector<StageModel> crt_stage_models() {
     return {
-        {"curvature", warp_curvature, nullptr, nullptr, nullptr, apply_bezel},
+        {"curvature", warp_curvature, nullptr, nullptr, nullptr, apply_bezel, bezel_alpha},
         {"aberration", nullptr, nullptr, fetch_aberration, nullptr, nullptr},
         {"bloom", nullptr, nullptr, fetch_bloom, nullptr, nullptr},
         {"tonemap", nullptr, nullptr, nullptr, tonemap_saturate, nullptr},

@@ -80,7 +80,7 @@ Result<std::vector<PlannedStage>> plan_stages(const Pass& pass) {
         PlannedStage s{&rs, model};
         const std::pair<Hook, bool> hooks[] = {{Hook::Warp, model->warp != nullptr},  {Hook::SampleUv, model->sample_uv != nullptr},
                                                {Hook::Fetch, model->fetch != nullptr}, {Hook::Color, model->color != nullptr},
-                                               {Hook::Finish, model->finish != nullptr}};
+                                               {Hook::Finish, model->finish != nullptr}, {Hook::Alpha, model->alpha != nullptr}};
         for (const auto& [hook, modelled] : hooks)
             if (s.has(hook) && !modelled) return unmodelled(rs, hook_name(hook));
         plan.push_back(s);
@@ -209,10 +209,13 @@ Result<Image> render_reference(const ReferenceJob& job) {
                     if (s.has(Hook::Color) && !s.model->color(s.resolved->form->name, params, f, color)) return fail(s, Hook::Color);
                 for (const PlannedStage& s : plan)
                     if (s.has(Hook::Finish) && !s.model->finish(s.resolved->form->name, params, f, color)) return fail(s, Hook::Finish);
+                double alpha = 1.0;
+                for (const PlannedStage& s : plan)
+                    if (s.has(Hook::Alpha) && !s.model->alpha(s.resolved->form->name, params, f, alpha)) return fail(s, Hook::Alpha);
                 dst[0] = static_cast<float>(color.r);
                 dst[1] = static_cast<float>(color.g);
                 dst[2] = static_cast<float>(color.b);
-                dst[3] = 1.0f;
+                dst[3] = static_cast<float>(alpha);
             }
         }
         return std::nullopt;

@@ -1,5 +1,5 @@
 // The reference model of each stage: for every hook a form provides (warp, sample_uv, fetch,
-// color, finish — the generated main()'s fixed order), a function evaluating that form's formula
+// color, finish, alpha — the generated main()'s fixed order), a function evaluating that form's formula
 // as its document writes it, in double precision. Each reads its params by the spec's names.
 // The models of one family live in one file (reference_crt_stages.cpp, reference_palette.cpp,
 // reference_super_win.cpp); reference_renderer.cpp runs them in the variant's stage order.
@@ -67,6 +67,7 @@ struct StageModel {
     bool (*fetch)(const std::string& form, const Params& p, const Fragment& f, Vec2 sample_uv, Vec3& color) = nullptr;
     bool (*color)(const std::string& form, const Params& p, const Fragment& f, Vec3& color) = nullptr;
     bool (*finish)(const std::string& form, const Params& p, const Fragment& f, Vec3& color) = nullptr;
+    bool (*alpha)(const std::string& form, const Params& p, const Fragment& f, double& alpha) = nullptr;
 };
 
 // The model of a stage, or nullptr when the reference has none.

@@ -10,6 +10,8 @@
 
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/uniforms.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/validate/golden.hpp"
 #include "crtforge/validate/target_render.hpp"
 #include "tests/test_support.hpp"
 
@@ -213,4 +215,64 @@ maskQuantize = true
             }
         }
     }
+}
+
+TEST_CASE("the document's alpha: transparent black outside the Atari screen, judged on every target that shows alpha", "[hard][alpha]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    const CompiledVariant c = test::compile_or_fail(lib, "atari-crt");
+    auto input = make_test_input("pixel_art", 320, 240);  // 1:1, as validate samples it
+    REQUIRE(input.ok());
+    ReferenceJob job;
+    job.variant = &c.variant;
+    job.input = input.value();
+    job.filter = SamplerFilter::Nearest;
+    job.width = 320;
+    job.height = 240;
+    const Image reference = test::require_image(render_reference(job), 320, 240);
+    // crt.frag: fragColor = vec4(0.0) where the distorted uv leaves 0..1 (the corners at curvature 0.1).
+    CHECK(reference.at(0, 0)[3] == 0.0f);
+    CHECK(reference.at(0, 0)[0] == 0.0f);
+    CHECK(reference.at(160, 120)[3] == 1.0f);
+
+    static TargetRenderer renderer;
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl}) {
+        INFO(target_info(target).name);
+        auto emitted = emit_target(c, target, Cache());
+        REQUIRE(emitted.ok());
+        TargetRenderRequest r;
+        r.compiled = &c;
+        r.target = target;
+        r.output = &emitted.value();
+        r.input = input.value();
+        r.filter = SamplerFilter::Nearest;
+        r.width = 320;
+        r.height = 240;
+        const Image rendered = test::require_image(renderer.render(r), 320, 240);
+        CHECK(rendered.at(0, 0)[3] == 0.0f);
+        CHECK(rendered.at(319, 239)[3] == 0.0f);
+        CHECK(rendered.at(160, 120)[3] == 1.0f);
+        auto verdict = judge(rendered, reference, default_tolerance());
+        REQUIRE(verdict.ok());
+        CHECK(verdict.value().alpha_outlier_fraction == 0.0);
+        INFO(verdict.value().reason);
+        CHECK(verdict.value().passed);
+    }
+
+    // The judge fails an opaque bezel where the golden is transparent; a display that composites
+    // (an 8-bit window) sees the golden over black instead.
+    Image opaque = reference;
+    for (size_t p = 0; p < opaque.pixel_count(); ++p) opaque.rgba[p * 4 + 3] = 1.0f;
+    auto wrong = judge(opaque, reference, default_tolerance());
+    REQUIRE(wrong.ok());
+    CHECK_FALSE(wrong.value().passed);
+    CHECK_THAT(wrong.value().reason, Catch::Contains("alpha"));
+    auto displayed = judge(opaque, reference, default_tolerance(), 1.0 / 255.0);
+    REQUIRE(displayed.ok());
+    CHECK(displayed.value().passed);
+
+    // Godot's screen-mode shader replaces the screen, so it composites its alpha over black itself.
+    auto godot = emit_target(c, TargetId::Godot4, Cache());
+    REQUIRE(godot.ok());
+    CHECK_THAT(file_data(godot.value(), "screenShader"), Catch::Contains("COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);"));
+    CHECK_THAT(file_data(godot.value(), "shader"), !Catch::Contains("COLOR.rgb * COLOR.a"));
 }

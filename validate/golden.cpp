@@ -26,6 +26,9 @@ using json = nlohmann::ordered_json;
 
 namespace {
 
+
+}  // namespace
+
 // The default tolerance rests on what every consumer measures against the fp64 reference over
 // every shipped golden (its `why` gives the figures): each bound is a small multiple of that floor,
 // so a wrong constant, one wrong row or a small patch fails (tests/validate_test.cpp), while a
@@ -48,8 +51,6 @@ Tolerance default_tolerance() {
             "displays 8-bit values (Godot 3) adds its step (1/255) per pixel and its RMS (1/255/sqrt 3) to the RMSEs.";
     return t;
 }
-
-}  // namespace
 
 GoldenEntry make_golden_entry(const std::string& preset, const std::string& input, int w, int h, int input_width,
                               int input_height, int frame, std::optional<DisplayFit> fit) {
@@ -608,6 +609,12 @@ Result<Verdict> judge(const Image& render, const Image& reference, const Toleran
         clamped_golden = reference;
         for (float& v : clamped.rgba) v = std::clamp(v, 0.0f, 1.0f);
         for (float& v : clamped_golden.rgba) v = std::clamp(v, 0.0f, 1.0f);
+        // Such a display also composites: the golden's alpha over the black its hosts draw first.
+        for (size_t p = 0; p < clamped_golden.pixel_count(); ++p) {
+            float* px = clamped_golden.rgba.data() + p * 4;
+            for (int c = 0; c < 3; ++c) px[c] *= px[3];
+            px[3] = 1.0f;
+        }
     }
     const Image& golden = clamp ? clamped_golden : reference;
     auto metrics = compare_images(clamped, golden);
@@ -676,7 +683,25 @@ Result<Verdict> judge(const Image& render, const Image& reference, const Toleran
                 }
             v.max_tile_rmse = std::max(v.max_tile_rmse, std::sqrt(sum / count));
         }
+    // Alpha: what the shader writes reaches the user's compositor, so a wrong alpha is a wrong
+    // picture there. A pixel may differ where the golden's alpha changes within 3x3 (the bezel edge).
+    if (!clamp) {
+        size_t alpha_off = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t at = (static_cast<size_t>(y) * w + x) * 4 + 3;
+                float around = 0;
+                for (int ny = std::max(0, y - 1); ny <= std::min(h - 1, y + 1); ++ny)
+                    for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1); ++nx)
+                        around = std::max(around, std::abs(g[(static_cast<size_t>(ny) * w + nx) * 4 + 3] - g[at]));
+                alpha_off += std::abs(r[at] - g[at]) > 0.01f + around;
+            }
+        v.alpha_outlier_fraction = static_cast<double>(alpha_off) / std::max<size_t>(1, d.size());
+    }
     std::vector<std::string> failures;
+    if (v.alpha_outlier_fraction > t.max_outlier_fraction)
+        failures.push_back(fmt::format("{:.3f}% of pixels have an alpha off by more than 0.01 (allowed {:.2f}%)",
+                                       100 * v.alpha_outlier_fraction, 100 * t.max_outlier_fraction));
     const double quantum_rms = output_quantum / std::sqrt(3.0);
     const double max_rmse = t.max_rmse + quantum_rms, max_tile = t.max_tile_rmse + quantum_rms;
     if (v.metrics.rmse > max_rmse) failures.push_back(fmt::format("RMSE {:.5f} > {:.5f}", v.metrics.rmse, max_rmse));

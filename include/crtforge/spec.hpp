@@ -49,10 +49,12 @@ struct ParamSpec {
 //   fetch:     vec3 f(vec3 color, vec2 uv)     — reads the source (aberration, bloom taps)
 //   color:     vec3 f(vec3 color, CrtFrag frag) — shapes the colour (scanlines, mask, vignette...)
 //   finish:    vec3 f(vec3 color, CrtFrag frag) — runs after every color hook (bezel clamp)
-enum class Hook { Warp, SampleUv, Fetch, Color, Finish };
+//   alpha:     float f(float alpha, CrtFrag frag) — the output's alpha, 1 unless a stage sets it
+//              (a transparent bezel); straight, not premultiplied
+enum class Hook { Warp, SampleUv, Fetch, Color, Finish, Alpha };
 const char* hook_name(Hook hook);
-constexpr Hook kAllHooks[] = {Hook::Warp, Hook::SampleUv, Hook::Fetch, Hook::Color, Hook::Finish};
-constexpr int kHookCount = 5;
+constexpr Hook kAllHooks[] = {Hook::Warp, Hook::SampleUv, Hook::Fetch, Hook::Color, Hook::Finish, Hook::Alpha};
+constexpr int kHookCount = 6;
 
 // Values the generated code reads from the host besides params.
 //   outputSize  vec2   the pass's output size in pixels (the screen's rectangle for the last pass)

@@ -125,12 +125,6 @@ void GodotCompiler::prepare() {
 }
 
 std::string GodotCompiler::compile_godot() {
-    std::vector<std::string> speeds;
-    for (const VariantParam& p : variant_.params)
-        if (p.spec->role == ParamRole::AngularSpeed) speeds.push_back(p.spec->name);
-    if (speeds.size() > 1)
-        throw spirv_cross::CompilerError("Godot's TIME wraps, and one TIME expression can keep only one angular speed's "
-                                         "phase continuous across the wrap; this variant has " + join_list(speeds));
     prepare();
     std::string text = compile();
     static const std::regex access(std::string("\\b") + kBlockMarker + "\\.(\\w+)");
@@ -147,9 +141,22 @@ std::string GodotCompiler::compile_godot() {
     }
     out.append(text, last, std::string::npos);
     if (out.find(kBlockMarker) != std::string::npos) throw spirv_cross::CompilerError("unresolved uniform block access");
+    if (screen_mode() && writes_alpha()) {
+        // The screen shader replaces what is on screen: a transparent bezel would show the
+        // unprocessed picture below, so its alpha is composited over black here.
+        const size_t close = out.rfind('}');
+        if (close == std::string::npos) throw spirv_cross::CompilerError("no fragment() body to close");
+        out.insert(close, "    COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);  // screen mode: the bezel's alpha over black\n");
+    }
     if (options_.godot_version >= 4) return out;
     if (screen_mode()) out = with_screen_reads_flipped(out);
     return with_loop_increments(out);
+}
+
+bool GodotCompiler::writes_alpha() const {
+    for (const ResolvedStage& rs : variant_.pass->stages)
+        if (!rs.form->functions[static_cast<int>(Hook::Alpha)].empty()) return true;
+    return false;
 }
 
 std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {

@@ -33,7 +33,15 @@ vec2 curvature_quiet_frame(vec2 uv) {
 // Last in the pass order: everything the warp pushed off the screen shows the bezel. The documents
 // test strictly (uv < 0 || uv > 1), so the exact edge still shows the image. Written with any()
 // rather than || so no target gets a chain of short-circuit branches.
+bool curvature_outside(CrtFrag frag) {
+    return any(bvec4(lessThan(frag.uv, vec2(0.0)), greaterThan(frag.uv, vec2(1.0))));
+}
+
 vec3 curvature_bezel(vec3 color, CrtFrag frag) {
-    bool outside = any(bvec4(lessThan(frag.uv, vec2(0.0)), greaterThan(frag.uv, vec2(1.0))));
-    return outside ? bezelColor : color;
+    return curvature_outside(frag) ? bezelColor : color;
+}
+
+// The bezel's alpha: Retro CRT Effects' crt.frag writes vec4(0.0) outside (bezelAlpha = 0).
+float curvature_bezel_alpha(float alpha, CrtFrag frag) {
+    return curvature_outside(frag) ? bezelAlpha : alpha;
 }

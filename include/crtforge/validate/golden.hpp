@@ -32,6 +32,9 @@ struct Tolerance {
     std::string why;                   // the justification, kept in the manifest
 };
 
+// The bound every golden gets unless golden/plan.toml gives it another (its `why` has the figures).
+Tolerance default_tolerance();
+
 // One reference frame: a preset's scene over a generated input, shown on a display of width x
 // height, at one frame of the sequence (time = frame / the scene's fps; a scene with feedback or
 // history runs every frame before it).
@@ -188,11 +191,13 @@ struct Verdict {
     double outlier_fraction = 0;   // pixels over the per-pixel limit (plus their edge allowance)
     double max_tile_rmse = 0;      // the worst 16x16 tile's RMS error beyond the edge allowance
     double flat_max = 0;           // the largest error where the golden is locally flat (no edge nearby)
+    double alpha_outlier_fraction = 0;  // pixels whose alpha is off by more than 0.01 plus the golden's 3x3 alpha variation
     std::string reason;  // empty when passed; otherwise which bound failed, with numbers
 };
 
 // Compared unclamped (HDR goldens are floats); with an `output_quantum` (a display that clamps)
-// both are clamped to 0..1 first. `output_quantum` is the
+// both are clamped to 0..1 first. Alpha (a transparent bezel) is judged too, pixel by pixel, except
+// with an `output_quantum`: a display composites alpha away. `output_quantum` is the
 // step of the consumer's displayed values when it stores them coarser than half floats (Godot 3's
 // 8-bit display: 1/255, truncated): the per-pixel limit grows by one step and the RMSE and tile
 // limits by its RMS (step / sqrt(3) for truncation).
