@@ -18,6 +18,7 @@ std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_
         exit_code = report(lib.error());
         return nullptr;
     }
+    for (const std::string& w : lib.value()->warnings()) std::fprintf(stderr, "crtforge: %s\n", w.c_str());
     return lib.value();
 }
 

@@ -8,11 +8,14 @@
 
 #include "crtforge/template_library.hpp"
 #include "crtforge/luts.hpp"
+#include "generator/preset_migration.hpp"
 #include "generator/toml_reader.hpp"
 
 namespace crtforge {
 
 using detail::TomlReader;
+using detail::migrate_glitch_preset;
+using detail::preset_format;
 
 namespace {
 
@@ -292,7 +295,7 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
     auto parsed = r.parse(text);
     if (!parsed.ok()) return parsed.error();
     const toml::table& root = parsed.value();
-    if (auto s = r.only_keys(root, {"name", "doc", "base", "filter", "stages", "pass", "passes", "source", "display", "time", "lut"}, "");
+    if (auto s = r.only_keys(root, {"name", "doc", "base", "filter", "stages", "pass", "passes", "source", "display", "time", "lut", "format", "glitch"}, "");
         !s.ok())
         return s.error();
 
@@ -316,6 +319,17 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
     auto filter = r.choice(root, "filter", "", kFilters);
     if (!filter.ok()) return filter.error();
     if (filter.value()) file.filter = static_cast<Filter>(*filter.value());
+
+    auto format = preset_format(r, root);
+    if (!format.ok()) return format.error();
+    file.format = format.value();
+    if (file.format == 1) {
+        if (auto s = migrate_glitch_preset(r, root, library, file); !s.ok()) return s.error();
+        return file;
+    }
+    if (root.get("glitch"))
+        return r.error(root.get("glitch"), "glitch", "[glitch] is the format-1 (Glitch) layout; this file says format = " +
+                                                         std::to_string(file.format));
 
     if (const toml::node* stages = root.get("stages")) {
         auto entries = parse_stage_entries(r, *stages, "stages", library);

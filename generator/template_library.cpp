@@ -147,6 +147,7 @@ Status TemplateLibrary::add_presets(const std::string& dir, bool test_only) {
                               path, 1, "name");
         if (find_preset(file.value().name))
             return make_error("preset '" + file.value().name + "' already exists in the library", path, 1, "name");
+        for (const std::string& w : file.value().warnings) warnings_.push_back(w);
         files.push_back(std::move(file.value()));
     }
     std::vector<Preset> added;

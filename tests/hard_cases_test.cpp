@@ -276,3 +276,71 @@ TEST_CASE("the document's alpha: transparent black outside the Atari screen, jud
     CHECK_THAT(file_data(godot.value(), "screenShader"), Catch::Contains("COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);"));
     CHECK_THAT(file_data(godot.value(), "shader"), !Catch::Contains("COLOR.rgb * COLOR.a"));
 }
+
+TEST_CASE("a legacy Glitch preset loads through the migration, with a warning per key", "[hard][migration]") {
+    test::ScratchTemplates scratch;
+    scratch.write("presets/old-crt.toml", R"(name = "old-crt"
+doc = "A Glitch preset from before the CRT effect existed"
+
+[glitch]
+crtEnabled = true
+curvature = 0.08
+vignetteEnabled = true
+overlayMode = "scanlines"
+overlayIntensity = 0.25
+overlaySpacing = 3.0
+datamoshEnabled = true
+)");
+    auto lib = scratch.load();
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    const auto& warnings = lib.value()->warnings();
+    REQUIRE(warnings.size() == 7);
+    CHECK_THAT(warnings[0], Catch::Contains("old-crt.toml:5: warning: field 'glitch.crtEnabled': Glitch (format 1) key migrated to stages.curvature on"));
+    CHECK_THAT(warnings[1], Catch::Contains("old-crt.toml:6: warning: field 'glitch.curvature'") && Catch::Contains("stages.curvature.curvature"));
+    CHECK_THAT(warnings[4], Catch::Contains(":9: warning: field 'glitch.overlayIntensity'") && Catch::Contains("scanlineIntensity"));
+    CHECK_THAT(warnings[6], Catch::Contains(":11: warning: field 'glitch.datamoshEnabled'") && Catch::Contains("stays with Glitch"));
+
+    // The migrated preset is the CRT effect with Glitch's values and nothing Glitch did not have.
+    const Preset* p = lib.value()->find_preset("old-crt");
+    REQUIRE(p != nullptr);
+    std::map<std::string, std::map<std::string, Value>> stages;
+    for (const ResolvedStage& rs : p->passes.front().stages) stages[rs.stage->name] = rs.values;
+    CHECK(stages.count("mask") == 0);
+    CHECK(stages.count("glow") == 0);
+    REQUIRE(stages.count("curvature") == 1);
+    CHECK(std::get<double>(stages["curvature"]["curvature"]) == 0.08);
+    CHECK(std::get<std::string>(stages["curvature"]["curvatureForm"]) == "crt_effect");
+    REQUIRE(stages.count("scanlines") == 1);
+    CHECK(std::get<double>(stages["scanlines"]["scanlineIntensity"]) == 0.25);
+    CHECK(std::get<double>(stages["scanlines"]["scanlineSpacing"]) == 3.0);
+    REQUIRE(stages.count("vignette") == 1);
+    CHECK(std::get<double>(stages["vignette"]["vignetteExponent"]) == 0.4);
+    // It compiles like any preset.
+    test::compile_or_fail(*lib.value(), "old-crt");
+
+    // What a legacy file gets wrong is still a one-line error at its line and field.
+    struct Case {
+        const char* body;
+        int line;
+        const char* field;
+        const char* says;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"[glitch]\ncrtEnabled = true\ncurvature = 0.9\n", 5, "glitch.curvature", "range"},
+             {"[glitch]\ncrtEnabeld = true\n", 4, "glitch.crtEnabeld", "not a Glitch key"},
+             {"format = 3\n[glitch]\ncrtEnabled = true\n", 3, "format", "not one this crtforge reads"},
+             {"format = 2\n[glitch]\ncrtEnabled = true\n", 4, "glitch", "format-1"},
+             {"[glitch]\ncrtEnabled = true\n[stages.mask]\nmaskSize = 4.0\n", 5, "stages", "format-1"},
+         }) {
+        INFO(c.body);
+        test::ScratchTemplates bad;
+        bad.write("presets/old-crt.toml", std::string("name = \"old-crt\"\ndoc = \"d\"\n") + c.body);
+        auto broken = bad.load();
+        REQUIRE_FALSE(broken.ok());
+        CHECK(broken.error().line == c.line);
+        CHECK(broken.error().field == c.field);
+        CHECK_THAT(broken.error().message, Catch::Contains(c.says));
+        CHECK_THAT(broken.error().file, Catch::EndsWith("old-crt.toml"));
+    }
+}

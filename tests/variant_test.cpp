@@ -32,7 +32,7 @@ TEST_CASE("default: runtime-tunable params stay uniforms, the rest is baked", "[
                                                        "maskIntensity", "vignetteExponent"});
     std::vector<std::string> baked;
     for (const auto* p : v.baked()) baked.push_back(p->spec->name);
-    CHECK(baked == std::vector<std::string>{"curvatureForm", "scanlineForm", "scanlineSharpness", "scanlineSpacing",
+    CHECK(baked == std::vector<std::string>{"curvatureForm", "bezelAlpha", "scanlineForm", "scanlineSharpness", "scanlineSpacing",
                                             "scanlineBrightBoost", "maskMode", "maskBorder", "maskQuantize", "vignetteForm"});
     CHECK(v.builtins == std::vector<Builtin>{Builtin::OutputSize});
 }

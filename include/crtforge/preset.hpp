@@ -141,6 +141,8 @@ struct PresetFile {
     std::vector<LutSpec> luts;             // [lut.<name>]
     std::map<std::string, int> key_lines;  // top-level table -> line, for diagnostics
     SourceLocation where;
+    int format = 2;                        // the file's layout version (1: Glitch's, migrated on load)
+    std::vector<std::string> warnings;     // "file:line: warning: field 'x': ..." (migrated keys)
 };
 
 // A preset after inheritance: the enabled stages (in pass order) and every value they use.

@@ -37,6 +37,9 @@ public:
     const std::string& vertex_source() const { return vertex_; }
     const std::string& vertex_path() const { return vertex_path_; }
     const std::string& dir() const { return dir_; }
+    // What loading noticed but did not refuse, one line each ("file:line: warning: field 'x': ..."):
+    // keys of legacy (format-1, Glitch) presets migrated to the current params.
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
     // Resolves a preset file (inheritance, defaults, validation) against this library. Public so
     // tools and tests can resolve presets that are not in the library's presets/ folder.
@@ -58,6 +61,7 @@ private:
     std::vector<StageSpec> stages_;  // sorted by order
     std::vector<Preset> presets_;
     std::string prelude_, prelude_path_, vertex_, vertex_path_;
+    std::vector<std::string> warnings_;
 };
 
 // Parsers for one file's text; `path` is used in diagnostics only.

@@ -248,6 +248,10 @@ void GodotCompiler::emit_header() {
         }
     }
     statement("shader_type canvas_item;");
+    // A pass before the last writes data for the next pass, not a picture to composite: its
+    // alpha (a transparent bezel) must not blend its colour away.
+    if (writes_alpha() && variant_.pass_index + 1 < variant_.preset->passes.size())
+        statement("render_mode blend_disabled;");
     statement("");
     if (screen && options_.godot_version < 4) {
         statement("// Godot 3's SCREEN_UV and SCREEN_TEXTURE count rows from the bottom of the screen.");

@@ -25,6 +25,12 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
             body += "// " + line + "\n";
             continue;
         }
+        // How Godot blends the output: nothing to check as GLSL (only known modes are kept).
+        static const std::regex render_mode_re(R"(^render_mode\s+(blend_mix|blend_disabled|blend_premul_alpha|unshaded)\s*;\s*$)");
+        if (std::regex_match(line, render_mode_re)) {
+            body += "// " + line + "\n";
+            continue;
+        }
         std::smatch m;
         if (std::regex_match(line, m, uniform_re)) {
             if (m[1] == "sampler2D") {
