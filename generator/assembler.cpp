@@ -109,9 +109,14 @@ bool maps_source(const Variant& variant) {
 // The fixed pass order: warp, sample position, fetch, colour stages, finish.
 std::string main_body(const Variant& variant) {
     const Pass& pass = *variant.pass;
-    std::string out = "void main() {\n";
+    // Every output is finite, whatever the input holds (docs/hard-cases.md): NaN becomes 0 and
+    // anything beyond half's range its largest value, so no consumer's framebuffer, and no later
+    // pass, sees a NaN or an infinity. isnan() selects rather than clamp(), whose NaN result GLSL,
+    // HLSL and WGSL leave undefined.
+    std::string out = "vec4 crt_finite(vec4 c) { return mix(clamp(c, -65504.0, 65504.0), vec4(0.0), isnan(c)); }\n\n";
+    out += "void main() {\n";
     if (pass.stages.empty()) {
-        out += fmt::format("    fragColor = texture({}, {});  // CRT off: plain passthrough blit\n",
+        out += fmt::format("    fragColor = crt_finite(texture({}, {}));  // CRT off: plain passthrough blit\n",
                            kSourceTextureName, kTexCoordName);
         return out + "}\n";
     }
@@ -141,10 +146,10 @@ std::string main_body(const Variant& variant) {
     // Alpha only where a stage sets it, so every other shader stays as it was.
     const std::string alpha = calls(Hook::Alpha, "alpha = {}(alpha, frag);");
     if (alpha.empty()) {
-        out += "    fragColor = vec4(color, 1.0);\n";
+        out += "    fragColor = crt_finite(vec4(color, 1.0));\n";
     } else {
         out += "    float alpha = 1.0;\n" + alpha;
-        out += "    fragColor = vec4(color, alpha);\n";
+        out += "    fragColor = crt_finite(vec4(color, alpha));\n";
     }
     return out + "}\n";
 }

@@ -8,6 +8,7 @@
 
 #include "crtforge/files.hpp"
 #include "crtforge/paths.hpp"
+#include "generator/template_lint.hpp"
 
 namespace crtforge {
 
@@ -120,6 +121,7 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
         auto glsl = read_text_file(s.glsl_path);
         if (!glsl.ok()) return glsl.error();
         s.glsl_source = glsl.value();
+        if (auto lint = detail::lint_stage_source(s); !lint.ok()) return lint.error();
         for (const auto& f : s.forms)
             for (const auto& fn : f.functions)
                 if (!fn.empty() && s.glsl_source.find(fn) == std::string::npos)

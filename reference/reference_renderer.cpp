@@ -18,6 +18,14 @@ namespace crtforge {
 namespace reference {
 
 namespace {
+
+// The rule every generated shader applies to what it writes (docs/hard-cases.md): NaN becomes 0,
+// anything beyond half's range its largest value.
+float finite_output(double v) {
+    if (std::isnan(v)) return 0.0f;
+    return static_cast<float>(std::clamp(v, -65504.0, 65504.0));
+}
+
 ReferenceFault& fault_slot() {
     static ReferenceFault fault;
     return fault;
@@ -189,7 +197,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
                 float* dst = out.at(x, y);
                 if (plan.empty()) {  // no stage: a passthrough blit, alpha included
                     const Rgba c = source.sample(f.screen_uv);
-                    for (int i = 0; i < 4; ++i) dst[i] = static_cast<float>(c[i]);
+                    for (int i = 0; i < 4; ++i) dst[i] = finite_output(c[i]);
                     continue;
                 }
                 f.uv = f.screen_uv;
@@ -212,10 +220,10 @@ Result<Image> render_reference(const ReferenceJob& job) {
                 double alpha = 1.0;
                 for (const PlannedStage& s : plan)
                     if (s.has(Hook::Alpha) && !s.model->alpha(s.resolved->form->name, params, f, alpha)) return fail(s, Hook::Alpha);
-                dst[0] = static_cast<float>(color.r);
-                dst[1] = static_cast<float>(color.g);
-                dst[2] = static_cast<float>(color.b);
-                dst[3] = static_cast<float>(alpha);
+                dst[0] = finite_output(color.r);
+                dst[1] = finite_output(color.g);
+                dst[2] = finite_output(color.b);
+                dst[3] = finite_output(alpha);
             }
         }
         return std::nullopt;

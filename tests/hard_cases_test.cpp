@@ -28,6 +28,12 @@ const std::string& file_data(const TargetOutput& out, const std::string& role) {
     return none;
 }
 
+size_t non_finite_values(const Image& image) {
+    size_t count = 0;
+    for (float v : image.rgba) count += !std::isfinite(v);
+    return count;
+}
+
 }  // namespace
 
 TEST_CASE("hosts hand the shader time reduced exactly, so the phase is right at any hour", "[hard][time]") {
@@ -342,5 +348,59 @@ datamoshEnabled = true
         CHECK(broken.error().field == c.field);
         CHECK_THAT(broken.error().message, Catch::Contains(c.says));
         CHECK_THAT(broken.error().file, Catch::EndsWith("old-crt.toml"));
+    }
+}
+
+TEST_CASE("NaN, infinities and negative values in the input give finite output on every target", "[hard][hdr]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    // Columns of hostile values across a normal ramp: NaN, +Inf, -Inf, -1, 1e30 (Inf in half floats), 70000.
+    const float hostile[] = {std::nanf(""), INFINITY, -INFINITY, -1.0f, 1e30f, 70000.0f};
+    constexpr int kW = 48, kH = 36;
+    Image input = Image::make(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            float* p = input.at(x, y);
+            const float ramp = static_cast<float>(x) / kW;
+            for (int c = 0; c < 3; ++c) p[c] = (x / 4 + c) % 3 == 0 ? hostile[(x / 4 + y / 6) % 6] : ramp;
+            p[3] = 1.0f;
+        }
+    static TargetRenderer renderer;
+    for (const Preset& preset : lib.presets()) {
+        auto passes = compile_scene(lib, preset, {}, Cache());
+        REQUIRE(passes.ok());
+        // The reference applies the same rule (it is what the goldens hold).
+        ReferenceSceneJob rj;
+        rj.library = &lib;
+        rj.preset = &preset;
+        rj.source = [&](int) -> Result<Image> { return input; };
+        rj.width = kW;
+        rj.height = kH;
+        rj.frames = {0};
+        auto reference = render_reference_scene(rj);
+        REQUIRE(reference.ok());
+        INFO(preset.name << " reference");
+        CHECK(non_finite_values(reference.value().front()) == 0);
+        for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl}) {
+            INFO(preset.name << " on " << target_info(target).name);
+            std::vector<TargetOutput> outputs;
+            for (const CompiledVariant& pass : passes.value()) {
+                auto out = emit_target(pass, target, Cache());
+                REQUIRE(out.ok());
+                outputs.push_back(std::move(out.value()));
+            }
+            SceneRenderRequest r;
+            r.preset = &preset;
+            r.passes = &passes.value();
+            r.target = target;
+            r.outputs = &outputs;
+            r.source = [&](int) -> Result<Image> { return input; };
+            r.width = kW;
+            r.height = kH;
+            r.frames = {0};
+            auto images = renderer.render_scene(r);
+            INFO((images.ok() ? std::string() : images.error().str()));
+            REQUIRE(images.ok());
+            CHECK(non_finite_values(images.value().front()) == 0);
+        }
     }
 }

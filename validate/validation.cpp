@@ -84,15 +84,19 @@ std::vector<std::string> compile_checks(const Preset& preset, TargetId target) {
 // What the report shows of a picture: at most 640 pixels wide (the page shows 240), averaged over
 // whole blocks of pixels, so a report of 1080p goldens does not spend minutes encoding PNGs.
 Image report_picture(const Image& image) {
-    const int k = (image.width + 639) / 640;
+    const int k = (std::max(image.width, image.height) + 639) / 640;
     if (k <= 1) return image;
-    Image out = Image::make(image.width / k, image.height / k);
+    // At least one pixel on each side: a 16384x4 row still has a picture. Each output pixel is the
+    // mean of its k x k block, clipped to the image.
+    Image out = Image::make(std::max(1, image.width / k), std::max(1, image.height / k));
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
             float* px = out.at(x, y);
-            for (int dy = 0; dy < k; ++dy)
-                for (int dx = 0; dx < k; ++dx)
-                    for (int c = 0; c < 4; ++c) px[c] += image.at(x * k + dx, y * k + dy)[c] / static_cast<float>(k * k);
+            int count = 0;
+            for (int sy = y * k; sy < std::min(image.height, (y + 1) * k); ++sy)
+                for (int sx = x * k; sx < std::min(image.width, (x + 1) * k); ++sx, ++count)
+                    for (int c = 0; c < 4; ++c) px[c] += image.at(sx, sy)[c];
+            for (int c = 0; c < 4; ++c) px[c] /= static_cast<float>(std::max(1, count));
         }
     return out;
 }

@@ -1,6 +1,6 @@
 #version 450
 
-vec4 _363;
+vec4 _393;
 
 layout(binding = 0, std140) uniform CrtParams
 {
@@ -17,57 +17,58 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec4 _234 = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _238 = _234.xy;
-    vec2 _246 = _234.zw * fma(crt.bendAmount, dot(_238, _238), 1.0);
-    vec4 _346;
-    _346.z = _246.x;
-    _346.w = _246.y;
-    vec2 _253 = _346.wz * 0.5;
-    vec2 _255 = _253 + vec2(0.5);
-    vec4 _193 = texture(source, _255);
-    vec4 _262 = texture(source, _253 + vec2(0.502499997615814208984375, 0.5));
-    vec4 _267 = texture(source, _253 + vec2(0.497500002384185791015625, 0.5));
-    vec4 _274 = texture(source, _253 + vec2(0.5, 0.502499997615814208984375));
-    vec4 _281 = texture(source, _253 + vec2(0.5, 0.497500002384185791015625));
-    vec3 _353;
+    vec4 _253 = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
+    vec2 _257 = _253.xy;
+    vec2 _265 = _253.zw * fma(crt.bendAmount, dot(_257, _257), 1.0);
+    vec4 _374;
+    _374.z = _265.x;
+    _374.w = _265.y;
+    vec2 _272 = _374.wz * 0.5;
+    vec2 _274 = _272 + vec2(0.5);
+    vec4 _210 = texture(source, _274);
+    vec4 _281 = texture(source, _272 + vec2(0.502499997615814208984375, 0.5));
+    vec4 _286 = texture(source, _272 + vec2(0.497500002384185791015625, 0.5));
+    vec4 _293 = texture(source, _272 + vec2(0.5, 0.502499997615814208984375));
+    vec4 _300 = texture(source, _272 + vec2(0.5, 0.497500002384185791015625));
+    vec3 _381;
     do
     {
-        float _298 = _255.x;
-        bool _299 = _298 < 0.0;
-        bool _306;
-        if (!_299)
+        float _317 = _274.x;
+        bool _318 = _317 < 0.0;
+        bool _325;
+        if (!_318)
         {
-            _306 = _298 > 1.0;
+            _325 = _317 > 1.0;
         }
         else
         {
-            _306 = _299;
+            _325 = _318;
         }
-        if (_306)
+        if (_325)
         {
-            _353 = crt.edgeColor;
+            _381 = crt.edgeColor;
             break;
         }
-        float _312 = _255.y;
-        bool _313 = _312 < 0.0;
-        bool _320;
-        if (!_313)
+        float _331 = _274.y;
+        bool _332 = _331 < 0.0;
+        bool _339;
+        if (!_332)
         {
-            _320 = _312 > 1.0;
+            _339 = _331 > 1.0;
         }
         else
         {
-            _320 = _313;
+            _339 = _332;
         }
-        if (_320)
+        if (_339)
         {
-            _353 = crt.edgeColor.zyx;
+            _381 = crt.edgeColor.zyx;
             break;
         }
-        _353 = mix(_193.xyz, (((_262.xyz + _267.xyz) + _274.xyz) + _281.xyz) * 0.25, vec3(crt.tapMix));
+        _381 = mix(_210.xyz, (((_281.xyz + _286.xyz) + _293.xyz) + _300.xyz) * 0.25, vec3(crt.tapMix));
         break;
     } while(false);
-    fragColor = vec4(_353, 1.0);
+    vec4 _228 = vec4(_381, 1.0);
+    fragColor = mix(clamp(_228, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(_228));
 }
 

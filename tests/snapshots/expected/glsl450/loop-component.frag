@@ -13,26 +13,27 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec4 _105 = texture(source, vTexCoord);
-    float _126 = _105.y;
-    vec4 _164;
-    _164 = vec4(_105.x, _126, _105.z, 1.0);
-    int _141;
-    vec4 _161;
-    int _163 = 0;
+    vec4 _123 = texture(source, vTexCoord);
+    float _146 = _123.y;
+    vec4 _193;
+    _193 = vec4(_123.x, _146, _123.z, 1.0);
+    int _161;
+    vec4 _190;
+    int _192 = 0;
     for (;;)
     {
-        _161 = _164;
-        _161.y = fma(_126, 0.89999997615814208984375, 0.00999999977648258209228515625 * float(_163));
-        _141 = _163 + 1;
-        if (_141 >= crt.loopCount)
+        _190 = _193;
+        _190.y = fma(_146, 0.89999997615814208984375, 0.00999999977648258209228515625 * float(_192));
+        _161 = _192 + 1;
+        if (_161 >= crt.loopCount)
         {
             break;
         }
-        _164 = _161;
-        _163 = _141;
+        _193 = _190;
+        _192 = _161;
         continue;
     }
-    fragColor = vec4(_161.xyz * _164.w, 1.0);
+    vec4 _136 = vec4(_190.xyz * _193.w, 1.0);
+    fragColor = mix(clamp(_136, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(_136));
 }
 

@@ -16,41 +16,44 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec2 _160 = vTexCoord * crt.outputSize;
-    vec4 _182 = texture(source, vTexCoord);
-    int _213 = int(_160.x) - 12;
-    float _225 = _160.y;
-    vec3 _244 = _182.xyz * (0.02999999932944774627685546875 * mod(_225 - 4.0, -6.0) + ((-0.001000000047497451305389404296875) * float(_213 / (-3)) + (0.00999999977648258209228515625 * float(_213 % crt.bandWidth) + (0.0199999995529651641845703125 * float(_213 / crt.bandWidth) + 1.0))));
-    vec3 _333;
-    switch (int(_225) & 3)
+    vec2 _179 = vTexCoord * crt.outputSize;
+    vec4 _200 = texture(source, vTexCoord);
+    int _233 = int(_179.x) - 12;
+    float _245 = _179.y;
+    vec3 _264 = _200.xyz * (0.02999999932944774627685546875 * mod(_245 - 4.0, -6.0) + ((-0.001000000047497451305389404296875) * float(_233 / (-3)) + (0.00999999977648258209228515625 * float(_233 % crt.bandWidth) + (0.0199999995529651641845703125 * float(_233 / crt.bandWidth) + 1.0))));
+    vec3 _362;
+    switch (int(_245) & 3)
     {
         case 0:
         {
-            _333 = vec3(1.0, crt.pickDim, crt.pickDim);
+            _362 = vec3(1.0, crt.pickDim, crt.pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _333 = vec3(crt.pickDim, 1.0, crt.pickDim);
+            _362 = vec3(crt.pickDim, 1.0, crt.pickDim);
             break;
         }
         default:
         {
-            _333 = vec3(crt.pickDim, crt.pickDim, 1.0);
+            _362 = vec3(crt.pickDim, crt.pickDim, 1.0);
             break;
         }
     }
-    float _331;
+    float _360;
     if (vTexCoord.x > 0.5)
     {
-        _331 = sqrt(max(_244.y, 0.0));
+        _360 = sqrt(max(_264.y, 0.0));
     }
     else
     {
-        float _283 = _244.y;
-        _331 = _283 * _283;
+        float _303 = _264.y;
+        _360 = _303 * _303;
     }
-    fragColor = vec4(_244 * _333 + vec3(((vTexCoord.y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _331), 1.0);
+    vec4 _218 = vec4(_264 * _362 + vec3(((vTexCoord.y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _360), 1.0);
+    vec4 _325 = clamp(_218, vec4(-65504.0), vec4(65504.0));
+    bvec4 _327 = isnan(_218);
+    fragColor = vec4(_327.x ? vec4(0.0).x : _325.x, _327.y ? vec4(0.0).y : _325.y, _327.z ? vec4(0.0).z : _325.z, _327.w ? vec4(0.0).w : _325.w);
 }
 

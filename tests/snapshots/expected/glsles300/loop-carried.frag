@@ -16,46 +16,49 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec4 _144 = texture(source, vTexCoord);
-    float _170 = dFdx(vTexCoord.x);
-    float _173 = dFdy(vTexCoord.y);
-    vec2 _177 = fwidth(vTexCoord);
-    vec4 _186 = texture(source, vTexCoord + (vec2(_170, _173) * 4.0));
-    vec3 _193 = mix(_144.xyz, _186.xyz, vec3(crt.tapMix * clamp(length(_177) * 100.0, 0.0, 1.0)));
-    float _239;
-    float _241;
-    int _237 = 0;
-    float _238 = 0.0;
+    vec4 _162 = texture(source, vTexCoord);
+    float _190 = dFdx(vTexCoord.x);
+    float _193 = dFdy(vTexCoord.y);
+    vec2 _197 = fwidth(vTexCoord);
+    vec4 _206 = texture(source, vTexCoord + (vec2(_190, _193) * 4.0));
+    vec3 _213 = mix(_162.xyz, _206.xyz, vec3(crt.tapMix * clamp(length(_197) * 100.0, 0.0, 1.0)));
+    float _268;
+    float _270;
+    int _266 = 0;
+    float _267 = 0.0;
     for (;;)
     {
-        if (_237 < crt.loopCount)
+        if (_266 < crt.loopCount)
         {
-            if (_237 == 1)
+            if (_266 == 1)
             {
-                _241 = _238;
-                int _223 = _237 + 1;
-                _238 = _241;
-                _237 = _223;
+                _270 = _267;
+                int _243 = _266 + 1;
+                _267 = _270;
+                _266 = _243;
                 continue;
             }
-            float _216 = (_193.x * float(_237)) * 0.25 + _238;
-            if (_216 > 2.0)
+            float _236 = (_213.x * float(_266)) * 0.25 + _267;
+            if (_236 > 2.0)
             {
-                _239 = _216;
+                _268 = _236;
                 break;
             }
-            _241 = _216;
-            int _223 = _237 + 1;
-            _238 = _241;
-            _237 = _223;
+            _270 = _236;
+            int _243 = _266 + 1;
+            _267 = _270;
+            _266 = _243;
             continue;
         }
         else
         {
-            _239 = _238;
+            _268 = _267;
             break;
         }
     }
-    fragColor = vec4(_193 * (0.100000001490116119384765625 * _239 + 1.0), 1.0);
+    vec4 _180 = vec4(_213 * (0.100000001490116119384765625 * _268 + 1.0), 1.0);
+    vec4 _255 = clamp(_180, vec4(-65504.0), vec4(65504.0));
+    bvec4 _257 = isnan(_180);
+    fragColor = vec4(_257.x ? vec4(0.0).x : _255.x, _257.y ? vec4(0.0).y : _255.y, _257.z ? vec4(0.0).z : _255.z, _257.w ? vec4(0.0).w : _255.w);
 }
 

@@ -9,6 +9,9 @@ in vec2 vTexCoord;
 
 void main()
 {
-    fragColor = texture(source, vTexCoord);
+    vec4 _39 = texture(source, vTexCoord);
+    vec4 _47 = clamp(_39, vec4(-65504.0), vec4(65504.0));
+    bvec4 _49 = isnan(_39);
+    fragColor = vec4(_49.x ? vec4(0.0).x : _47.x, _49.y ? vec4(0.0).y : _47.y, _49.z ? vec4(0.0).z : _47.z, _49.w ? vec4(0.0).w : _47.w);
 }
 

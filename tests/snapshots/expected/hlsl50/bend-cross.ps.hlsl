@@ -1,4 +1,4 @@
-static float4 _363;
+static float4 _393;
 
 cbuffer CrtParams : register(b0)
 {
@@ -26,58 +26,61 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _234 = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _238 = _234.xy;
-    float2 _246 = _234.zw * mad(crt_bendAmount, dot(_238, _238), 1.0f);
-    float4 _346;
-    _346.z = _246.x;
-    _346.w = _246.y;
-    float2 _253 = _346.wz * 0.5f;
-    float2 _255 = _253 + 0.5f.xx;
-    float4 _193 = source.Sample(_source_sampler, _255);
-    float4 _262 = source.Sample(_source_sampler, _253 + float2(0.502499997615814208984375f, 0.5f));
-    float4 _267 = source.Sample(_source_sampler, _253 + float2(0.497500002384185791015625f, 0.5f));
-    float4 _274 = source.Sample(_source_sampler, _253 + float2(0.5f, 0.502499997615814208984375f));
-    float4 _281 = source.Sample(_source_sampler, _253 + float2(0.5f, 0.497500002384185791015625f));
-    float3 _353;
+    float4 _253 = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
+    float2 _257 = _253.xy;
+    float2 _265 = _253.zw * mad(crt_bendAmount, dot(_257, _257), 1.0f);
+    float4 _374;
+    _374.z = _265.x;
+    _374.w = _265.y;
+    float2 _272 = _374.wz * 0.5f;
+    float2 _274 = _272 + 0.5f.xx;
+    float4 _210 = source.Sample(_source_sampler, _274);
+    float4 _281 = source.Sample(_source_sampler, _272 + float2(0.502499997615814208984375f, 0.5f));
+    float4 _286 = source.Sample(_source_sampler, _272 + float2(0.497500002384185791015625f, 0.5f));
+    float4 _293 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.502499997615814208984375f));
+    float4 _300 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.497500002384185791015625f));
+    float3 _381;
     do
     {
-        float _298 = _255.x;
-        bool _299 = _298 < 0.0f;
-        bool _306;
-        if (!_299)
+        float _317 = _274.x;
+        bool _318 = _317 < 0.0f;
+        bool _325;
+        if (!_318)
         {
-            _306 = _298 > 1.0f;
+            _325 = _317 > 1.0f;
         }
         else
         {
-            _306 = _299;
+            _325 = _318;
         }
-        if (_306)
+        if (_325)
         {
-            _353 = crt_edgeColor;
+            _381 = crt_edgeColor;
             break;
         }
-        float _312 = _255.y;
-        bool _313 = _312 < 0.0f;
-        bool _320;
-        if (!_313)
+        float _331 = _274.y;
+        bool _332 = _331 < 0.0f;
+        bool _339;
+        if (!_332)
         {
-            _320 = _312 > 1.0f;
+            _339 = _331 > 1.0f;
         }
         else
         {
-            _320 = _313;
+            _339 = _332;
         }
-        if (_320)
+        if (_339)
         {
-            _353 = crt_edgeColor.zyx;
+            _381 = crt_edgeColor.zyx;
             break;
         }
-        _353 = lerp(_193.xyz, (((_262.xyz + _267.xyz) + _274.xyz) + _281.xyz) * 0.25f, crt_tapMix.xxx);
+        _381 = lerp(_210.xyz, (((_281.xyz + _286.xyz) + _293.xyz) + _300.xyz) * 0.25f, crt_tapMix.xxx);
         break;
     } while(false);
-    fragColor = float4(_353, 1.0f);
+    float4 _228 = float4(_381, 1.0f);
+    float4 _353 = clamp(_228, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _355 = isnan(_228);
+    fragColor = float4(_355.x ? 0.0f.xxxx.x : _353.x, _355.y ? 0.0f.xxxx.y : _353.y, _355.z ? 0.0f.xxxx.z : _353.z, _355.w ? 0.0f.xxxx.w : _353.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

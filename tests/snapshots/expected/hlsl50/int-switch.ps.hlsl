@@ -43,42 +43,45 @@ float4 mod(float4 x, float4 y)
 
 void frag_main()
 {
-    float2 _160 = vTexCoord * crt_outputSize;
-    float4 _182 = source.Sample(_source_sampler, vTexCoord);
-    int _213 = int(_160.x) - 12;
-    float _225 = _160.y;
-    float3 _244 = _182.xyz * mad(0.02999999932944774627685546875f, mod(_225 - 4.0f, -6.0f), mad(-0.001000000047497451305389404296875f, float(_213 / (-3)), mad(0.00999999977648258209228515625f, float(_213 % crt_bandWidth), mad(0.0199999995529651641845703125f, float(_213 / crt_bandWidth), 1.0f))));
-    float3 _333;
-    switch (int(_225) & 3)
+    float2 _179 = vTexCoord * crt_outputSize;
+    float4 _200 = source.Sample(_source_sampler, vTexCoord);
+    int _233 = int(_179.x) - 12;
+    float _245 = _179.y;
+    float3 _264 = _200.xyz * mad(0.02999999932944774627685546875f, mod(_245 - 4.0f, -6.0f), mad(-0.001000000047497451305389404296875f, float(_233 / (-3)), mad(0.00999999977648258209228515625f, float(_233 % crt_bandWidth), mad(0.0199999995529651641845703125f, float(_233 / crt_bandWidth), 1.0f))));
+    float3 _362;
+    switch (int(_245) & 3)
     {
         case 0:
         {
-            _333 = float3(1.0f, crt_pickDim, crt_pickDim);
+            _362 = float3(1.0f, crt_pickDim, crt_pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _333 = float3(crt_pickDim, 1.0f, crt_pickDim);
+            _362 = float3(crt_pickDim, 1.0f, crt_pickDim);
             break;
         }
         default:
         {
-            _333 = float3(crt_pickDim, crt_pickDim, 1.0f);
+            _362 = float3(crt_pickDim, crt_pickDim, 1.0f);
             break;
         }
     }
-    float _331;
+    float _360;
     if (vTexCoord.x > 0.5f)
     {
-        _331 = sqrt(max(_244.y, 0.0f));
+        _360 = sqrt(max(_264.y, 0.0f));
     }
     else
     {
-        float _283 = _244.y;
-        _331 = _283 * _283;
+        float _303 = _264.y;
+        _360 = _303 * _303;
     }
-    fragColor = float4(mad(_244, _333, (((vTexCoord.y < 0.5f) ? 0.00999999977648258209228515625f : (-0.00999999977648258209228515625f)) * _331).xxx), 1.0f);
+    float4 _218 = float4(mad(_264, _362, (((vTexCoord.y < 0.5f) ? 0.00999999977648258209228515625f : (-0.00999999977648258209228515625f)) * _360).xxx), 1.0f);
+    float4 _325 = clamp(_218, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _327 = isnan(_218);
+    fragColor = float4(_327.x ? 0.0f.xxxx.x : _325.x, _327.y ? 0.0f.xxxx.y : _325.y, _327.z ? 0.0f.xxxx.z : _325.z, _327.w ? 0.0f.xxxx.w : _325.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

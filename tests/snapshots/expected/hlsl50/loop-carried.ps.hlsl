@@ -23,47 +23,50 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _144 = source.Sample(_source_sampler, vTexCoord);
-    float _170 = ddx(vTexCoord.x);
-    float _173 = ddy(vTexCoord.y);
-    float2 _177 = fwidth(vTexCoord);
-    float4 _186 = source.Sample(_source_sampler, vTexCoord + (float2(_170, _173) * 4.0f));
-    float3 _193 = lerp(_144.xyz, _186.xyz, (crt_tapMix * clamp(length(_177) * 100.0f, 0.0f, 1.0f)).xxx);
-    float _239;
-    float _241;
-    int _237 = 0;
-    float _238 = 0.0f;
+    float4 _162 = source.Sample(_source_sampler, vTexCoord);
+    float _190 = ddx(vTexCoord.x);
+    float _193 = ddy(vTexCoord.y);
+    float2 _197 = fwidth(vTexCoord);
+    float4 _206 = source.Sample(_source_sampler, vTexCoord + (float2(_190, _193) * 4.0f));
+    float3 _213 = lerp(_162.xyz, _206.xyz, (crt_tapMix * clamp(length(_197) * 100.0f, 0.0f, 1.0f)).xxx);
+    float _268;
+    float _270;
+    int _266 = 0;
+    float _267 = 0.0f;
     for (;;)
     {
-        if (_237 < crt_loopCount)
+        if (_266 < crt_loopCount)
         {
-            if (_237 == 1)
+            if (_266 == 1)
             {
-                _241 = _238;
-                int _223 = _237 + 1;
-                _238 = _241;
-                _237 = _223;
+                _270 = _267;
+                int _243 = _266 + 1;
+                _267 = _270;
+                _266 = _243;
                 continue;
             }
-            float _216 = mad(_193.x * float(_237), 0.25f, _238);
-            if (_216 > 2.0f)
+            float _236 = mad(_213.x * float(_266), 0.25f, _267);
+            if (_236 > 2.0f)
             {
-                _239 = _216;
+                _268 = _236;
                 break;
             }
-            _241 = _216;
-            int _223 = _237 + 1;
-            _238 = _241;
-            _237 = _223;
+            _270 = _236;
+            int _243 = _266 + 1;
+            _267 = _270;
+            _266 = _243;
             continue;
         }
         else
         {
-            _239 = _238;
+            _268 = _267;
             break;
         }
     }
-    fragColor = float4(_193 * mad(0.100000001490116119384765625f, _239, 1.0f), 1.0f);
+    float4 _180 = float4(_213 * mad(0.100000001490116119384765625f, _268, 1.0f), 1.0f);
+    float4 _255 = clamp(_180, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _257 = isnan(_180);
+    fragColor = float4(_257.x ? 0.0f.xxxx.x : _255.x, _257.y ? 0.0f.xxxx.y : _255.y, _257.z ? 0.0f.xxxx.z : _255.z, _257.w ? 0.0f.xxxx.w : _255.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

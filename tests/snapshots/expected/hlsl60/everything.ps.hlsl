@@ -1,4 +1,4 @@
-static float4 _812;
+static float4 _842;
 
 cbuffer CrtParams : register(b0, space0)
 {
@@ -53,107 +53,110 @@ float4 mod(float4 x, float4 y)
 
 void frag_main()
 {
-    float2 _385 = vTexCoord * crt_outputSize;
-    float4 _471 = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _475 = _471.xy;
-    float2 _483 = _471.zw * mad(crt_bendAmount, dot(_475, _475), 1.0f);
-    float4 _776;
-    _776.z = _483.x;
-    _776.w = _483.y;
-    float2 _492 = (_776.wz * 0.5f) + 0.5f.xx;
-    float _498 = _492.x;
-    float _501 = _492.y;
-    float3 _522 = lerp(source.Sample(_source_sampler, _492).xyz, source.Sample(_source_sampler, _492 + (float2(ddx(_498), ddy(_501)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(_492)) * 100.0f, 0.0f, 1.0f)).xxx);
-    float _529 = _522.y;
-    float4 _801;
-    _801 = float4(_522.x, _529, _522.z, 1.0f);
-    int _544;
-    float4 _783;
-    int _800 = 0;
+    float2 _402 = vTexCoord * crt_outputSize;
+    float4 _490 = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
+    float2 _494 = _490.xy;
+    float2 _502 = _490.zw * mad(crt_bendAmount, dot(_494, _494), 1.0f);
+    float4 _804;
+    _804.z = _502.x;
+    _804.w = _502.y;
+    float2 _511 = (_804.wz * 0.5f) + 0.5f.xx;
+    float _517 = _511.x;
+    float _520 = _511.y;
+    float3 _541 = lerp(source.Sample(_source_sampler, _511).xyz, source.Sample(_source_sampler, _511 + (float2(ddx(_517), ddy(_520)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(_511)) * 100.0f, 0.0f, 1.0f)).xxx);
+    float _548 = _541.y;
+    float4 _829;
+    _829 = float4(_541.x, _548, _541.z, 1.0f);
+    int _563;
+    float4 _811;
+    int _828 = 0;
     for (;;)
     {
-        _783 = _801;
-        _783.y = mad(_529, 0.5f, 0.00999999977648258209228515625f * float(_800));
-        _544 = _800 + 1;
-        if (_544 >= crt_loopCount)
+        _811 = _829;
+        _811.y = mad(_548, 0.5f, 0.00999999977648258209228515625f * float(_828));
+        _563 = _828 + 1;
+        if (_563 >= crt_loopCount)
         {
             break;
         }
-        _801 = _783;
-        _800 = _544;
+        _829 = _811;
+        _828 = _563;
         continue;
     }
-    int _568 = int(_385.x) - 10;
-    float _580 = _385.y;
-    float3 _599 = (_783.xyz * _801.w) * mad(0.02999999932944774627685546875f, mod(_580 - 4.0f, -5.0f), mad(-0.001000000047497451305389404296875f, float(_568 / (-3)), mad(0.00999999977648258209228515625f, float(_568 % crt_bandWidth), mad(0.0199999995529651641845703125f, float(_568 / crt_bandWidth), 1.0f))));
-    float3 _804;
-    switch (int(_580) & 3)
+    int _587 = int(_402.x) - 10;
+    float _599 = _402.y;
+    float3 _618 = (_811.xyz * _829.w) * mad(0.02999999932944774627685546875f, mod(_599 - 4.0f, -5.0f), mad(-0.001000000047497451305389404296875f, float(_587 / (-3)), mad(0.00999999977648258209228515625f, float(_587 % crt_bandWidth), mad(0.0199999995529651641845703125f, float(_587 / crt_bandWidth), 1.0f))));
+    float3 _832;
+    switch (int(_599) & 3)
     {
         case 0:
         {
-            _804 = float3(1.0f, crt_pickDim, crt_pickDim);
+            _832 = float3(1.0f, crt_pickDim, crt_pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _804 = float3(crt_pickDim, 1.0f, crt_pickDim);
+            _832 = float3(crt_pickDim, 1.0f, crt_pickDim);
             break;
         }
         default:
         {
-            _804 = float3(crt_pickDim, crt_pickDim, 1.0f);
+            _832 = float3(crt_pickDim, crt_pickDim, 1.0f);
             break;
         }
     }
-    float _802;
-    if (_498 > 0.5f)
+    float _830;
+    if (_517 > 0.5f)
     {
-        _802 = sqrt(max(_599.y, 0.0f));
+        _830 = sqrt(max(_618.y, 0.0f));
     }
     else
     {
-        float _633 = _599.y;
-        _802 = _633 * _633;
+        float _652 = _618.y;
+        _830 = _652 * _652;
     }
-    float2 _664 = abs((_492 * 2.0f) - 1.0f.xx) * crt_shapeScale;
-    float3 _805;
+    float2 _683 = abs((_511 * 2.0f) - 1.0f.xx) * crt_shapeScale;
+    float3 _833;
     do
     {
-        bool _701 = _498 < 0.0f;
-        bool _708;
-        if (!_701)
+        bool _720 = _517 < 0.0f;
+        bool _727;
+        if (!_720)
         {
-            _708 = _498 > 1.0f;
+            _727 = _517 > 1.0f;
         }
         else
         {
-            _708 = _701;
+            _727 = _720;
         }
-        if (_708)
+        if (_727)
         {
-            _805 = crt_edgeColor;
+            _833 = crt_edgeColor;
             break;
         }
-        bool _715 = _501 < 0.0f;
-        bool _722;
-        if (!_715)
+        bool _734 = _520 < 0.0f;
+        bool _741;
+        if (!_734)
         {
-            _722 = _501 > 1.0f;
+            _741 = _520 > 1.0f;
         }
         else
         {
-            _722 = _715;
+            _741 = _734;
         }
-        if (_722)
+        if (_741)
         {
-            _805 = crt_edgeColor.zyx;
+            _833 = crt_edgeColor.zyx;
             break;
         }
-        _805 = (mad(_599, _804, (((vTexCoord.y < 0.5f) ? 0.00999999977648258209228515625f : (-0.00999999977648258209228515625f)) * _802).xxx) * clamp(1.5f - max(_664.x, _664.y), 0.800000011920928955078125f, 0.20000000298023223876953125f)) * mad(crt_pulseDepth, sin(mad(_580, 0.02500000037252902984619140625f, crt_time * crt_pulseRate)), 1.0f);
+        _833 = (mad(_618, _832, (((vTexCoord.y < 0.5f) ? 0.00999999977648258209228515625f : (-0.00999999977648258209228515625f)) * _830).xxx) * clamp(1.5f - max(_683.x, _683.y), 0.800000011920928955078125f, 0.20000000298023223876953125f)) * mad(crt_pulseDepth, sin(mad(_599, 0.02500000037252902984619140625f, crt_time * crt_pulseRate)), 1.0f);
         break;
     } while(false);
-    fragColor = float4(_805, 1.0f);
+    float4 _466 = float4(_833, 1.0f);
+    float4 _755 = clamp(_466, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _757 = isnan(_466);
+    fragColor = float4(_757.x ? 0.0f.xxxx.x : _755.x, _757.y ? 0.0f.xxxx.y : _755.y, _757.z ? 0.0f.xxxx.z : _755.z, _757.w ? 0.0f.xxxx.w : _755.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -22,27 +22,30 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _105 = source.Sample(_source_sampler, vTexCoord);
-    float _126 = _105.y;
-    float4 _164;
-    _164 = float4(_105.x, _126, _105.z, 1.0f);
-    int _141;
-    float4 _161;
-    int _163 = 0;
+    float4 _123 = source.Sample(_source_sampler, vTexCoord);
+    float _146 = _123.y;
+    float4 _193;
+    _193 = float4(_123.x, _146, _123.z, 1.0f);
+    int _161;
+    float4 _190;
+    int _192 = 0;
     for (;;)
     {
-        _161 = _164;
-        _161.y = mad(_126, 0.89999997615814208984375f, 0.00999999977648258209228515625f * float(_163));
-        _141 = _163 + 1;
-        if (_141 >= crt_loopCount)
+        _190 = _193;
+        _190.y = mad(_146, 0.89999997615814208984375f, 0.00999999977648258209228515625f * float(_192));
+        _161 = _192 + 1;
+        if (_161 >= crt_loopCount)
         {
             break;
         }
-        _164 = _161;
-        _163 = _141;
+        _193 = _190;
+        _192 = _161;
         continue;
     }
-    fragColor = float4(_161.xyz * _164.w, 1.0f);
+    float4 _136 = float4(_190.xyz * _193.w, 1.0f);
+    float4 _180 = clamp(_136, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _182 = isnan(_136);
+    fragColor = float4(_182.x ? 0.0f.xxxx.x : _180.x, _182.y ? 0.0f.xxxx.y : _180.y, _182.z ? 0.0f.xxxx.z : _180.z, _182.w ? 0.0f.xxxx.w : _180.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

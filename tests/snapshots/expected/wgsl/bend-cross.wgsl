@@ -33,52 +33,61 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _306: bool;
-  var _320: bool;
-  var _353: vec3<f32>;
-  let _232 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let _234 = _232 - vec4<f32>(1.0);
-  let _238 = _234.xy;
-  let _246 = _234.zw * fma(crt.bendAmount, dot(_238, _238), 1.0);
-  var _346 = vec4<f32>();
-  _346.z = _246.x;
-  var _348 = _346;
-  _348.w = _246.y;
-  let _253 = _348.wz * 0.5;
-  let _255 = _253 + vec2<f32>(0.5);
-  let _193 = textureSample(source, source_sampler, _255);
-  let _262 = textureSample(source, source_sampler, _253 + vec2<f32>(0.5025, 0.5));
-  let _267 = textureSample(source, source_sampler, _253 + vec2<f32>(0.4975, 0.5));
-  let _274 = textureSample(source, source_sampler, _253 + vec2<f32>(0.5, 0.5025));
-  let _281 = textureSample(source, source_sampler, _253 + vec2<f32>(0.5, 0.4975));
-  let _291 = mix(_193.xyz, (((_262.xyz + _267.xyz) + _274.xyz) + _281.xyz) * 0.25, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
+  var _325: bool;
+  var _339: bool;
+  var _381: vec3<f32>;
+  let _251 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let _253 = _251 - vec4<f32>(1.0);
+  let _257 = _253.xy;
+  let _265 = _253.zw * fma(crt.bendAmount, dot(_257, _257), 1.0);
+  var _374 = vec4<f32>();
+  _374.z = _265.x;
+  var _376 = _374;
+  _376.w = _265.y;
+  let _272 = _376.wz * 0.5;
+  let _274 = _272 + vec2<f32>(0.5);
+  let _210 = textureSample(source, source_sampler, _274);
+  let _281 = textureSample(source, source_sampler, _272 + vec2<f32>(0.5025, 0.5));
+  let _286 = textureSample(source, source_sampler, _272 + vec2<f32>(0.4975, 0.5));
+  let _293 = textureSample(source, source_sampler, _272 + vec2<f32>(0.5, 0.5025));
+  let _300 = textureSample(source, source_sampler, _272 + vec2<f32>(0.5, 0.4975));
+  let _310 = mix(_210.xyz, (((_281.xyz + _286.xyz) + _293.xyz) + _300.xyz) * 0.25, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
   switch (0u) {
     default: {
-      let _299 = _255.x < 0.0;
-      if (!_299) {
-        _306 = _255.x > 1.0;
+      let _318 = _274.x < 0.0;
+      if (!_318) {
+        _325 = _274.x > 1.0;
       } else {
-        _306 = _299;
+        _325 = _318;
       }
-      if (_306) {
-        _353 = crt.edgeColor;
-        fragColor = vec4<f32>(_353.x, _353.y, _353.z, 1.0);
+      if (_325) {
+        _381 = crt.edgeColor;
+        let _228 = vec4<f32>(_381.x, _381.y, _381.z, 1.0);
+        let _355 = (bitcast<vec4<u32>>(_228) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _356 = select(clamp(_228, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _355);
+        fragColor = _356;
         return fragColor;
       }
-      let _313 = _255.y < 0.0;
-      if (!_313) {
-        _320 = _255.y > 1.0;
+      let _332 = _274.y < 0.0;
+      if (!_332) {
+        _339 = _274.y > 1.0;
       } else {
-        _320 = _313;
+        _339 = _332;
       }
-      if (_320) {
-        _353 = crt.edgeColor.zyx;
-        fragColor = vec4<f32>(_353.x, _353.y, _353.z, 1.0);
+      if (_339) {
+        _381 = crt.edgeColor.zyx;
+        let _228_1 = vec4<f32>(_381.x, _381.y, _381.z, 1.0);
+        let _355_1 = (bitcast<vec4<u32>>(_228_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _356_1 = select(clamp(_228_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _355_1);
+        fragColor = _356_1;
         return fragColor;
       }
-      _353 = _291;
+      _381 = _310;
     }
   }
-  fragColor = vec4<f32>(_353.x, _353.y, _353.z, 1.0);
+  let _228_2 = vec4<f32>(_381.x, _381.y, _381.z, 1.0);
+  let _355_2 = (bitcast<vec4<u32>>(_228_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _356_2 = select(clamp(_228_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _355_2);
+  fragColor = _356_2;
   return fragColor;
 }

@@ -34,11 +34,14 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  let _116 = textureSample(source, source_sampler, vTexCoord);
-  let _145 = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _151 = 1.5 - max(_145.x, _145.y);
-  let _173 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let _177 = (_116.xyz * (1.0 - min(max(_151, 0.8), 0.2))) * fma(crt.pulseDepth, sin(_173), 1.0);
-  fragColor = vec4<f32>(_177.x, _177.y, _177.z, 1.0);
+  let _135 = textureSample(source, source_sampler, vTexCoord);
+  let _166 = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _172 = 1.5 - max(_166.x, _166.y);
+  let _194 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let _198 = (_135.xyz * (1.0 - min(max(_172, 0.8), 0.2))) * fma(crt.pulseDepth, sin(_194), 1.0);
+  let _153 = vec4<f32>(_198.x, _198.y, _198.z, 1.0);
+  let _206 = (bitcast<vec4<u32>>(_153) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _207 = select(clamp(_153, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _206);
+  fragColor = _207;
   return fragColor;
 }

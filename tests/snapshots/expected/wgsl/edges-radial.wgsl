@@ -34,11 +34,14 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  let _107 = textureSample(source, source_sampler, vTexCoord);
-  let _135 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _136_t = clamp((_135 - 0.9) / (0.3 - 0.9), f32(0.0), f32(1.0));
-  let _154 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let _158 = (_107.xyz * (_136_t * _136_t * (3.0 - 2.0 * _136_t))) * fma(crt.pulseDepth, sin(_154), 1.0);
-  fragColor = vec4<f32>(_158.x, _158.y, _158.z, 1.0);
+  let _126 = textureSample(source, source_sampler, vTexCoord);
+  let _156 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _157_t = clamp((_156 - 0.9) / (0.3 - 0.9), f32(0.0), f32(1.0));
+  let _175 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let _179 = (_126.xyz * (_157_t * _157_t * (3.0 - 2.0 * _157_t))) * fma(crt.pulseDepth, sin(_175), 1.0);
+  let _144 = vec4<f32>(_179.x, _179.y, _179.z, 1.0);
+  let _187 = (bitcast<vec4<u32>>(_144) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _188 = select(clamp(_144, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _187);
+  fragColor = _188;
   return fragColor;
 }

@@ -40,102 +40,111 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _801: vec4<f32>;
-  var _800: i32;
-  var _804: vec3<f32>;
-  var _802: f32;
-  var _708: bool;
-  var _722: bool;
-  var _805: vec3<f32>;
-  var _783: vec4<f32>;
-  var _544: i32;
-  let _385 = vTexCoord * crt.outputSize;
-  let _469 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let _471 = _469 - vec4<f32>(1.0);
-  let _475 = _471.xy;
-  let _483 = _471.zw * fma(crt.bendAmount, dot(_475, _475), 1.0);
-  var _776 = vec4<f32>();
-  _776.z = _483.x;
-  var _778 = _776;
-  _778.w = _483.y;
-  let _492 = (_778.wz * 0.5) + vec2<f32>(0.5);
-  let _398 = (_492 * 2.0) - vec2<f32>(1.0);
-  let _406 = textureSample(source, source_sampler, _492);
-  let _508 = length(fwidth(_492)) * 100.0;
-  let _515 = textureSample(source, source_sampler, _492 + (vec2<f32>(dpdx(_492.x), dpdy(_492.y)) * 4.0));
-  let _520 = crt.tapMix * clamp(_508, 0.0, 1.0);
-  let _522 = mix(_406.xyz, _515.xyz, vec3<f32>(_520, _520, _520));
-  let _531 = vec4<f32>(_522.x, _522.y, _522.z, 1.0);
-  _801 = _531;
-  _800 = 0i;
+  var _829: vec4<f32>;
+  var _828: i32;
+  var _832: vec3<f32>;
+  var _830: f32;
+  var _727: bool;
+  var _741: bool;
+  var _833: vec3<f32>;
+  var _811: vec4<f32>;
+  var _563: i32;
+  let _402 = vTexCoord * crt.outputSize;
+  let _488 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let _490 = _488 - vec4<f32>(1.0);
+  let _494 = _490.xy;
+  let _502 = _490.zw * fma(crt.bendAmount, dot(_494, _494), 1.0);
+  var _804 = vec4<f32>();
+  _804.z = _502.x;
+  var _806 = _804;
+  _806.w = _502.y;
+  let _511 = (_806.wz * 0.5) + vec2<f32>(0.5);
+  let _415 = (_511 * 2.0) - vec2<f32>(1.0);
+  let _423 = textureSample(source, source_sampler, _511);
+  let _527 = length(fwidth(_511)) * 100.0;
+  let _534 = textureSample(source, source_sampler, _511 + (vec2<f32>(dpdx(_511.x), dpdy(_511.y)) * 4.0));
+  let _539 = crt.tapMix * clamp(_527, 0.0, 1.0);
+  let _541 = mix(_423.xyz, _534.xyz, vec3<f32>(_539, _539, _539));
+  let _550 = vec4<f32>(_541.x, _541.y, _541.z, 1.0);
+  _829 = _550;
+  _828 = 0i;
   loop {
-    _783 = _801;
-    _783.y = fma(_522.y, 0.5, 0.01 * f32(_800));
-    _544 = _800 + 1i;
-    if (_544 >= crt.loopCount) {
+    _811 = _829;
+    _811.y = fma(_541.y, 0.5, 0.01 * f32(_828));
+    _563 = _828 + 1i;
+    if (_563 >= crt.loopCount) {
       break;
     }
     continuing {
-      _801 = _783;
-      _800 = _544;
+      _829 = _811;
+      _828 = _563;
     }
   }
-  let _568 = i32(_385.x) - 10i;
-  let _576_rem = _568 % crt.bandWidth;
-  let _576_1 = select(_576_rem, _576_rem + crt.bandWidth, (_576_rem != i32()) & ((_576_rem < i32()) != (crt.bandWidth < i32())));
-  let _581 = _385.y - 4.0;
-  let _591 = fma(0.01, f32(_576_1), fma(0.02, f32(_568 / crt.bandWidth), 1.0));
-  let _598 = fma(0.03, _581 - (-5.0) * floor(_581 / (-5.0)), fma((-0.001), f32(_568 / (-3i)), _591));
-  let _599 = (_783.xyz * _801.w) * _598;
-  switch (i32(_385.y) & 3i) {
+  let _587 = i32(_402.x) - 10i;
+  let _595_rem = _587 % crt.bandWidth;
+  let _595_1 = select(_595_rem, _595_rem + crt.bandWidth, (_595_rem != i32()) & ((_595_rem < i32()) != (crt.bandWidth < i32())));
+  let _600 = _402.y - 4.0;
+  let _610 = fma(0.01, f32(_595_1), fma(0.02, f32(_587 / crt.bandWidth), 1.0));
+  let _617 = fma(0.03, _600 - (-5.0) * floor(_600 / (-5.0)), fma((-0.001), f32(_587 / (-3i)), _610));
+  let _618 = (_811.xyz * _829.w) * _617;
+  switch (i32(_402.y) & 3i) {
     case 0i: {
-      _804 = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
+      _832 = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
     }
     case 1i, 2i: {
-      _804 = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
+      _832 = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
     }
     default: {
-      _804 = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
+      _832 = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
     }
   }
-  if (_492.x > 0.5) {
-    _802 = sqrt(max(_599.y, 0.0));
+  if (_511.x > 0.5) {
+    _830 = sqrt(max(_618.y, 0.0));
   } else {
-    _802 = _599.y * _599.y;
+    _830 = _618.y * _618.y;
   }
-  let _652 = select((-0.01), 0.01, vTexCoord.y < 0.5) * _802;
-  let _664 = abs(_398) * crt.shapeScale;
-  let _670 = 1.5 - max(_664.x, _664.y);
-  let _675 = fma(_599, _804, vec3<f32>(_652, _652, _652)) * min(max(_670, 0.8), 0.2);
-  let _692 = fma(crt.pulseDepth, sin(fma(_385.y, 0.025, crt.time * crt.pulseRate)), 1.0);
-  let _693 = _675 * _692;
+  let _671 = select((-0.01), 0.01, vTexCoord.y < 0.5) * _830;
+  let _683 = abs(_415) * crt.shapeScale;
+  let _689 = 1.5 - max(_683.x, _683.y);
+  let _694 = fma(_618, _832, vec3<f32>(_671, _671, _671)) * min(max(_689, 0.8), 0.2);
+  let _711 = fma(crt.pulseDepth, sin(fma(_402.y, 0.025, crt.time * crt.pulseRate)), 1.0);
+  let _712 = _694 * _711;
   switch (0u) {
     default: {
-      let _701 = _492.x < 0.0;
-      if (!_701) {
-        _708 = _492.x > 1.0;
+      let _720 = _511.x < 0.0;
+      if (!_720) {
+        _727 = _511.x > 1.0;
       } else {
-        _708 = _701;
+        _727 = _720;
       }
-      if (_708) {
-        _805 = crt.edgeColor;
-        fragColor = vec4<f32>(_805.x, _805.y, _805.z, 1.0);
+      if (_727) {
+        _833 = crt.edgeColor;
+        let _466 = vec4<f32>(_833.x, _833.y, _833.z, 1.0);
+        let _757 = (bitcast<vec4<u32>>(_466) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _758 = select(clamp(_466, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _757);
+        fragColor = _758;
         return fragColor;
       }
-      let _715 = _492.y < 0.0;
-      if (!_715) {
-        _722 = _492.y > 1.0;
+      let _734 = _511.y < 0.0;
+      if (!_734) {
+        _741 = _511.y > 1.0;
       } else {
-        _722 = _715;
+        _741 = _734;
       }
-      if (_722) {
-        _805 = crt.edgeColor.zyx;
-        fragColor = vec4<f32>(_805.x, _805.y, _805.z, 1.0);
+      if (_741) {
+        _833 = crt.edgeColor.zyx;
+        let _466_1 = vec4<f32>(_833.x, _833.y, _833.z, 1.0);
+        let _757_1 = (bitcast<vec4<u32>>(_466_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _758_1 = select(clamp(_466_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _757_1);
+        fragColor = _758_1;
         return fragColor;
       }
-      _805 = _693;
+      _833 = _712;
     }
   }
-  fragColor = vec4<f32>(_805.x, _805.y, _805.z, 1.0);
+  let _466_2 = vec4<f32>(_833.x, _833.y, _833.z, 1.0);
+  let _757_2 = (bitcast<vec4<u32>>(_466_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _758_2 = select(clamp(_466_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _757_2);
+  fragColor = _758_2;
   return fragColor;
 }

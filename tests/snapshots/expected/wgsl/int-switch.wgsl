@@ -32,35 +32,38 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _333: vec3<f32>;
-  var _331: f32;
-  let _160 = vTexCoord * crt.outputSize;
-  let _182 = textureSample(source, source_sampler, vTexCoord);
-  let _213 = i32(_160.x) - 12i;
-  let _221_rem = _213 % crt.bandWidth;
-  let _221_1 = select(_221_rem, _221_rem + crt.bandWidth, (_221_rem != i32()) & ((_221_rem < i32()) != (crt.bandWidth < i32())));
-  let _226 = _160.y - 4.0;
-  let _236 = fma(0.01, f32(_221_1), fma(0.02, f32(_213 / crt.bandWidth), 1.0));
-  let _243 = fma(0.03, _226 - (-6.0) * floor(_226 / (-6.0)), fma((-0.001), f32(_213 / (-3i)), _236));
-  let _244 = _182.xyz * _243;
-  switch (i32(_160.y) & 3i) {
+  var _362: vec3<f32>;
+  var _360: f32;
+  let _179 = vTexCoord * crt.outputSize;
+  let _200 = textureSample(source, source_sampler, vTexCoord);
+  let _233 = i32(_179.x) - 12i;
+  let _241_rem = _233 % crt.bandWidth;
+  let _241_1 = select(_241_rem, _241_rem + crt.bandWidth, (_241_rem != i32()) & ((_241_rem < i32()) != (crt.bandWidth < i32())));
+  let _246 = _179.y - 4.0;
+  let _256 = fma(0.01, f32(_241_1), fma(0.02, f32(_233 / crt.bandWidth), 1.0));
+  let _263 = fma(0.03, _246 - (-6.0) * floor(_246 / (-6.0)), fma((-0.001), f32(_233 / (-3i)), _256));
+  let _264 = _200.xyz * _263;
+  switch (i32(_179.y) & 3i) {
     case 0i: {
-      _333 = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
+      _362 = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
     }
     case 1i, 2i: {
-      _333 = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
+      _362 = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
     }
     default: {
-      _333 = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
+      _362 = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
     }
   }
   if (vTexCoord.x > 0.5) {
-    _331 = sqrt(max(_244.y, 0.0));
+    _360 = sqrt(max(_264.y, 0.0));
   } else {
-    _331 = _244.y * _244.y;
+    _360 = _264.y * _264.y;
   }
-  let _297 = select((-0.01), 0.01, vTexCoord.y < 0.5) * _331;
-  let _299 = fma(_244, _333, vec3<f32>(_297, _297, _297));
-  fragColor = vec4<f32>(_299.x, _299.y, _299.z, 1.0);
+  let _317 = select((-0.01), 0.01, vTexCoord.y < 0.5) * _360;
+  let _319 = fma(_264, _362, vec3<f32>(_317, _317, _317));
+  let _218 = vec4<f32>(_319.x, _319.y, _319.z, 1.0);
+  let _327 = (bitcast<vec4<u32>>(_218) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _328 = select(clamp(_218, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _327);
+  fragColor = _328;
   return fragColor;
 }

@@ -32,40 +32,43 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _238: f32;
-  var _237: i32;
-  var _241: f32;
-  var _239: f32;
-  let _144 = textureSample(source, source_sampler, vTexCoord);
-  let _179 = length(fwidth(vTexCoord)) * 100.0;
-  let _185 = vTexCoord + (vec2<f32>(dpdx(vTexCoord.x), dpdy(vTexCoord.y)) * 4.0);
-  let _186 = textureSample(source, source_sampler, _185);
-  let _191 = crt.tapMix * clamp(_179, 0.0, 1.0);
-  let _193 = mix(_144.xyz, _186.xyz, vec3<f32>(_191, _191, _191));
-  _238 = 0.0;
-  _237 = 0i;
+  var _267: f32;
+  var _266: i32;
+  var _270: f32;
+  var _268: f32;
+  let _162 = textureSample(source, source_sampler, vTexCoord);
+  let _199 = length(fwidth(vTexCoord)) * 100.0;
+  let _205 = vTexCoord + (vec2<f32>(dpdx(vTexCoord.x), dpdy(vTexCoord.y)) * 4.0);
+  let _206 = textureSample(source, source_sampler, _205);
+  let _211 = crt.tapMix * clamp(_199, 0.0, 1.0);
+  let _213 = mix(_162.xyz, _206.xyz, vec3<f32>(_211, _211, _211));
+  _267 = 0.0;
+  _266 = 0i;
   loop {
-    if (!(_237 < crt.loopCount)) {
-      _239 = _238;
+    if (!(_266 < crt.loopCount)) {
+      _268 = _267;
       break;
     }
-    if (_237 == 1i) {
-      _241 = _238;
+    if (_266 == 1i) {
+      _270 = _267;
       continue;
     }
-    let _216 = fma(_193.x * f32(_237), 0.25, _238);
-    if (_216 > 2.0) {
-      _239 = _216;
+    let _236 = fma(_213.x * f32(_266), 0.25, _267);
+    if (_236 > 2.0) {
+      _268 = _236;
       break;
     }
-    _241 = _216;
+    _270 = _236;
     continuing {
-      let _223 = _237 + 1i;
-      _238 = _241;
-      _237 = _223;
+      let _243 = _266 + 1i;
+      _267 = _270;
+      _266 = _243;
     }
   }
-  let _229 = _193 * fma(0.1, _239, 1.0);
-  fragColor = vec4<f32>(_229.x, _229.y, _229.z, 1.0);
+  let _249 = _213 * fma(0.1, _268, 1.0);
+  let _180 = vec4<f32>(_249.x, _249.y, _249.z, 1.0);
+  let _257 = (bitcast<vec4<u32>>(_180) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _258 = select(clamp(_180, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _257);
+  fragColor = _258;
   return fragColor;
 }

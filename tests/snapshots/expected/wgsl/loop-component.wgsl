@@ -31,27 +31,30 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _164: vec4<f32>;
-  var _163: i32;
-  var _161: vec4<f32>;
-  var _141: i32;
-  let _105 = textureSample(source, source_sampler, vTexCoord);
-  let _128 = vec4<f32>(_105.x, _105.y, _105.z, 1.0);
-  _164 = _128;
-  _163 = 0i;
+  var _193: vec4<f32>;
+  var _192: i32;
+  var _190: vec4<f32>;
+  var _161: i32;
+  let _123 = textureSample(source, source_sampler, vTexCoord);
+  let _148 = vec4<f32>(_123.x, _123.y, _123.z, 1.0);
+  _193 = _148;
+  _192 = 0i;
   loop {
-    _161 = _164;
-    _161.y = fma(_105.y, 0.9, 0.01 * f32(_163));
-    _141 = _163 + 1i;
-    if (_141 >= crt.loopCount) {
+    _190 = _193;
+    _190.y = fma(_123.y, 0.9, 0.01 * f32(_192));
+    _161 = _192 + 1i;
+    if (_161 >= crt.loopCount) {
       break;
     }
     continuing {
-      _164 = _161;
-      _163 = _141;
+      _193 = _190;
+      _192 = _161;
     }
   }
-  let _154 = _161.xyz * _164.w;
-  fragColor = vec4<f32>(_154.x, _154.y, _154.z, 1.0);
+  let _174 = _190.xyz * _193.w;
+  let _136 = vec4<f32>(_174.x, _174.y, _174.z, 1.0);
+  let _182 = (bitcast<vec4<u32>>(_136) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _183 = select(clamp(_136, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _182);
+  fragColor = _183;
   return fragColor;
 }

@@ -25,6 +25,9 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  fragColor = textureSample(source, source_sampler, vTexCoord);
+  let _39 = textureSample(source, source_sampler, vTexCoord);
+  let _49 = (bitcast<vec4<u32>>(_39) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _50 = select(clamp(_39, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _49);
+  fragColor = _50;
   return fragColor;
 }

@@ -30,110 +30,113 @@ uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 6.0;
 // Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.
 uniform float hostTime = -1.0;
 
-vec4 _812;
+vec4 _842;
 
 void fragment()
 {
-    vec2 _385 = UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))));
-    vec4 _471 = (vec4(UV.xyyx) * 2.0) - vec4(1.0);
-    vec2 _475 = _471.xy;
-    vec2 _483 = _471.zw * (bendAmount * dot(_475, _475) + 1.0);
-    vec4 _776;
-    _776.z = _483.x;
-    _776.w = _483.y;
-    vec2 _492 = (_776.wz * 0.5) + vec2(0.5);
-    float _498 = _492.x;
-    float _501 = _492.y;
-    vec3 _522 = mix(texture(TEXTURE, _492).xyz, texture(TEXTURE, _492 + (vec2(dFdx(_498), dFdy(_501)) * 4.0)).xyz, vec3(tapMix * clamp(length(fwidth(_492)) * 100.0, 0.0, 1.0)));
-    float _529 = _522.y;
-    vec4 _801;
-    _801 = vec4(_522.x, _529, _522.z, 1.0);
-    int _544;
-    vec4 _783;
-    int _800 = 0;
+    vec2 _402 = UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))));
+    vec4 _490 = (vec4(UV.xyyx) * 2.0) - vec4(1.0);
+    vec2 _494 = _490.xy;
+    vec2 _502 = _490.zw * (bendAmount * dot(_494, _494) + 1.0);
+    vec4 _804;
+    _804.z = _502.x;
+    _804.w = _502.y;
+    vec2 _511 = (_804.wz * 0.5) + vec2(0.5);
+    float _517 = _511.x;
+    float _520 = _511.y;
+    vec3 _541 = mix(texture(TEXTURE, _511).xyz, texture(TEXTURE, _511 + (vec2(dFdx(_517), dFdy(_520)) * 4.0)).xyz, vec3(tapMix * clamp(length(fwidth(_511)) * 100.0, 0.0, 1.0)));
+    float _548 = _541.y;
+    vec4 _829;
+    _829 = vec4(_541.x, _548, _541.z, 1.0);
+    int _563;
+    vec4 _811;
+    int _828 = 0;
     for (;;)
     {
-        _783 = _801;
-        _783.y = _529 * 0.5 + (0.00999999977648258209228515625 * float(_800));
-        _544 = _800 + 1;
-        if (_544 >= loopCount)
+        _811 = _829;
+        _811.y = _548 * 0.5 + (0.00999999977648258209228515625 * float(_828));
+        _563 = _828 + 1;
+        if (_563 >= loopCount)
         {
             break;
         }
-        _801 = _783;
-        _800 = _544;
+        _829 = _811;
+        _828 = _563;
         continue;
     }
-    int _568 = int(_385.x) - 10;
-    float _580 = _385.y;
-    vec3 _599 = (_783.xyz * _801.w) * (0.02999999932944774627685546875 * mod(_580 - 4.0, -5.0) + ((-0.001000000047497451305389404296875) * float(_568 / (-3)) + (0.00999999977648258209228515625 * float(_568 % bandWidth) + (0.0199999995529651641845703125 * float(_568 / bandWidth) + 1.0))));
-    vec3 _804;
-    switch (int(_580) & 3)
+    int _587 = int(_402.x) - 10;
+    float _599 = _402.y;
+    vec3 _618 = (_811.xyz * _829.w) * (0.02999999932944774627685546875 * mod(_599 - 4.0, -5.0) + ((-0.001000000047497451305389404296875) * float(_587 / (-3)) + (0.00999999977648258209228515625 * float(_587 % bandWidth) + (0.0199999995529651641845703125 * float(_587 / bandWidth) + 1.0))));
+    vec3 _832;
+    switch (int(_599) & 3)
     {
         case 0:
         {
-            _804 = vec3(1.0, pickDim, pickDim);
+            _832 = vec3(1.0, pickDim, pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _804 = vec3(pickDim, 1.0, pickDim);
+            _832 = vec3(pickDim, 1.0, pickDim);
             break;
         }
         default:
         {
-            _804 = vec3(pickDim, pickDim, 1.0);
+            _832 = vec3(pickDim, pickDim, 1.0);
             break;
         }
     }
-    float _802;
-    if (_498 > 0.5)
+    float _830;
+    if (_517 > 0.5)
     {
-        _802 = sqrt(max(_599.y, 0.0));
+        _830 = sqrt(max(_618.y, 0.0));
     }
     else
     {
-        float _633 = _599.y;
-        _802 = _633 * _633;
+        float _652 = _618.y;
+        _830 = _652 * _652;
     }
-    vec2 _664 = abs((_492 * 2.0) - vec2(1.0)) * shapeScale;
-    vec3 _805;
+    vec2 _683 = abs((_511 * 2.0) - vec2(1.0)) * shapeScale;
+    vec3 _833;
     do
     {
-        bool _701 = _498 < 0.0;
-        bool _708;
-        if (!_701)
+        bool _720 = _517 < 0.0;
+        bool _727;
+        if (!_720)
         {
-            _708 = _498 > 1.0;
+            _727 = _517 > 1.0;
         }
         else
         {
-            _708 = _701;
+            _727 = _720;
         }
-        if (_708)
+        if (_727)
         {
-            _805 = edgeColor.rgb;
+            _833 = edgeColor.rgb;
             break;
         }
-        bool _715 = _501 < 0.0;
-        bool _722;
-        if (!_715)
+        bool _734 = _520 < 0.0;
+        bool _741;
+        if (!_734)
         {
-            _722 = _501 > 1.0;
+            _741 = _520 > 1.0;
         }
         else
         {
-            _722 = _715;
+            _741 = _734;
         }
-        if (_722)
+        if (_741)
         {
-            _805 = edgeColor.rgb.zyx;
+            _833 = edgeColor.rgb.zyx;
             break;
         }
-        _805 = ((_599 * _804 + vec3(((UV.y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _802)) * clamp(1.5 - max(_664.x, _664.y), 0.800000011920928955078125, 0.20000000298023223876953125)) * (pulseDepth * sin(_580 * 0.02500000037252902984619140625 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
+        _833 = ((_618 * _832 + vec3(((UV.y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _830)) * clamp(1.5 - max(_683.x, _683.y), 0.800000011920928955078125, 0.20000000298023223876953125)) * (pulseDepth * sin(_599 * 0.02500000037252902984619140625 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
         break;
     } while(false);
-    COLOR = vec4(_805, 1.0);
+    vec4 _466 = vec4(_833, 1.0);
+    vec4 _755 = clamp(_466, vec4(-65504.0), vec4(65504.0));
+    bvec4 _757 = isnan(_466);
+    COLOR = vec4(_757.x ? vec4(0.0).x : _755.x, _757.y ? vec4(0.0).y : _755.y, _757.z ? vec4(0.0).z : _755.z, _757.w ? vec4(0.0).w : _755.w);
 }
 

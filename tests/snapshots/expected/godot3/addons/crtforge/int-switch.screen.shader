@@ -13,41 +13,44 @@ uniform float pickDim : hint_range(0.0, 1.0, 0.01) = 0.6;
 
 void fragment()
 {
-    vec2 _160 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
-    vec4 _182 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
-    int _213 = int(_160.x) - 12;
-    float _225 = _160.y;
-    vec3 _244 = _182.xyz * (0.02999999932944774627685546875 * mod(_225 - 4.0, -6.0) + ((-0.001000000047497451305389404296875) * float(_213 / (-3)) + (0.00999999977648258209228515625 * float(_213 % bandWidth) + (0.0199999995529651641845703125 * float(_213 / bandWidth) + 1.0))));
-    vec3 _333;
-    switch (int(_225) & 3)
+    vec2 _179 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
+    vec4 _200 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
+    int _233 = int(_179.x) - 12;
+    float _245 = _179.y;
+    vec3 _264 = _200.xyz * (0.02999999932944774627685546875 * mod(_245 - 4.0, -6.0) + ((-0.001000000047497451305389404296875) * float(_233 / (-3)) + (0.00999999977648258209228515625 * float(_233 % bandWidth) + (0.0199999995529651641845703125 * float(_233 / bandWidth) + 1.0))));
+    vec3 _362;
+    switch (int(_245) & 3)
     {
         case 0:
         {
-            _333 = vec3(1.0, pickDim, pickDim);
+            _362 = vec3(1.0, pickDim, pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _333 = vec3(pickDim, 1.0, pickDim);
+            _362 = vec3(pickDim, 1.0, pickDim);
             break;
         }
         default:
         {
-            _333 = vec3(pickDim, pickDim, 1.0);
+            _362 = vec3(pickDim, pickDim, 1.0);
             break;
         }
     }
-    float _331;
+    float _360;
     if (crt_flip_y(SCREEN_UV).x > 0.5)
     {
-        _331 = sqrt(max(_244.y, 0.0));
+        _360 = sqrt(max(_264.y, 0.0));
     }
     else
     {
-        float _283 = _244.y;
-        _331 = _283 * _283;
+        float _303 = _264.y;
+        _360 = _303 * _303;
     }
-    COLOR = vec4(_244 * _333 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _331), 1.0);
+    vec4 _218 = vec4(_264 * _362 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.00999999977648258209228515625 : (-0.00999999977648258209228515625)) * _360), 1.0);
+    vec4 _325 = clamp(_218, vec4(-65504.0), vec4(65504.0));
+    bvec4 _327 = isnan(_218);
+    COLOR = vec4(_327.x ? vec4(0.0).x : _325.x, _327.y ? vec4(0.0).y : _325.y, _327.z ? vec4(0.0).z : _325.z, _327.w ? vec4(0.0).w : _325.w);
 }
 

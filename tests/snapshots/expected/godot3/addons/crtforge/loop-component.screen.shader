@@ -11,26 +11,29 @@ uniform int loopCount : hint_range(0, 16, 1) = 3;
 
 void fragment()
 {
-    vec4 _105 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
-    float _126 = _105.y;
-    vec4 _164;
-    _164 = vec4(_105.x, _126, _105.z, 1.0);
-    int _141;
-    vec4 _161;
-    int _163 = 0;
+    vec4 _123 = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
+    float _146 = _123.y;
+    vec4 _193;
+    _193 = vec4(_123.x, _146, _123.z, 1.0);
+    int _161;
+    vec4 _190;
+    int _192 = 0;
     for (;;)
     {
-        _161 = _164;
-        _161.y = _126 * 0.89999997615814208984375 + (0.00999999977648258209228515625 * float(_163));
-        _141 = _163 + 1;
-        if (_141 >= loopCount)
+        _190 = _193;
+        _190.y = _146 * 0.89999997615814208984375 + (0.00999999977648258209228515625 * float(_192));
+        _161 = _192 + 1;
+        if (_161 >= loopCount)
         {
             break;
         }
-        _164 = _161;
-        _163 = _141;
+        _193 = _190;
+        _192 = _161;
         continue;
     }
-    COLOR = vec4(_161.xyz * _164.w, 1.0);
+    vec4 _136 = vec4(_190.xyz * _193.w, 1.0);
+    vec4 _180 = clamp(_136, vec4(-65504.0), vec4(65504.0));
+    bvec4 _182 = isnan(_136);
+    COLOR = vec4(_182.x ? vec4(0.0).x : _180.x, _182.y ? vec4(0.0).y : _180.y, _182.z ? vec4(0.0).z : _180.z, _182.w ? vec4(0.0).w : _180.w);
 }
 

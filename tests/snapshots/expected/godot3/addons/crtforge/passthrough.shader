@@ -7,6 +7,9 @@ shader_type canvas_item;
 
 void fragment()
 {
-    COLOR = texture(TEXTURE, UV);
+    vec4 _39 = texture(TEXTURE, UV);
+    vec4 _47 = clamp(_39, vec4(-65504.0), vec4(65504.0));
+    bvec4 _49 = isnan(_39);
+    COLOR = vec4(_49.x ? vec4(0.0).x : _47.x, _49.y ? vec4(0.0).y : _47.y, _49.z ? vec4(0.0).z : _47.z, _49.w ? vec4(0.0).w : _47.w);
 }
 

@@ -1,0 +1,60 @@
+#include "generator/template_lint.hpp"
+
+#include <regex>
+#include <sstream>
+
+namespace crtforge::detail {
+
+namespace {
+
+// The snippet with // and /* */ comments blanked (newlines kept, so lines still count).
+std::string without_comments(const std::string& text) {
+    std::string out = text;
+    for (size_t i = 0; i + 1 < out.size(); ++i) {
+        if (out[i] == '/' && out[i + 1] == '/') {
+            while (i < out.size() && out[i] != '\n') out[i++] = ' ';
+        } else if (out[i] == '/' && out[i + 1] == '*') {
+            for (; i + 1 < out.size() && !(out[i] == '*' && out[i + 1] == '/'); ++i)
+                if (out[i] != '\n') out[i] = ' ';
+            if (i + 1 < out.size()) out[i] = out[i + 1] = ' ';
+        }
+    }
+    return out;
+}
+
+int line_at(const std::string& text, size_t offset) {
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+}
+
+}  // namespace
+
+Status lint_stage_source(const StageSpec& stage) {
+    const std::string text = without_comments(stage.glsl_source);
+    auto fail = [&](size_t at, const std::string& message) -> Status {
+        return make_error(message, stage.glsl_path, line_at(text, at), "glsl");
+    };
+    const std::string number = R"(([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))";
+    static const std::regex smoothstep(R"(\bsmoothstep\s*\(\s*)" + number + R"(\s*,\s*)" + number + R"(\s*,)");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), smoothstep); it != std::sregex_iterator(); ++it)
+        if (std::stod((*it)[1]) >= std::stod((*it)[2]))
+            return fail(static_cast<size_t>(it->position()),
+                        "smoothstep(" + (*it)[1].str() + ", " + (*it)[2].str() + ", x) has its edges reversed or equal: undefined in "
+                        "GLSL and HLSL and an error in WGSL; write 1.0 - smoothstep(" + (*it)[2].str() + ", " + (*it)[1].str() + ", x)");
+    static const std::regex pow_negative(R"(\bpow\s*\(\s*-\s*(?:\d|\.\d))");
+    if (std::smatch m; std::regex_search(text, m, pow_negative))
+        return fail(static_cast<size_t>(m.position()), "pow() of a negative constant base is undefined (NaN on most GPUs)");
+    static const std::regex divide_zero(R"(/\s*0*\.?0+(?:[eE][-+]?\d+)?\b(?![.\d]))");
+    if (std::smatch m; std::regex_search(text, m, divide_zero))
+        return fail(static_cast<size_t>(m.position()), "division by a literal zero");
+    for (const ParamSpec& p : stage.params) {
+        if (p.type != ParamType::Float || !p.min || !p.max || !(*p.min <= 0.0 && *p.max >= 0.0)) continue;
+        const std::regex divide_param(R"(/\s*)" + p.name + R"(\b(?!\s*[-+]))");
+        if (std::smatch m; std::regex_search(text, m, divide_param))
+            return fail(static_cast<size_t>(m.position()),
+                        "divides by " + p.name + ", whose range includes 0 (" + p.where.file + ":" + std::to_string(p.where.line) +
+                            "): guard it (max(" + p.name + ", eps)) or start the range above 0");
+    }
+    return Ok{};
+}
+
+}  // namespace crtforge::detail
