@@ -26,6 +26,19 @@ int line_at(const std::string& text, size_t offset) {
     return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
 }
 
+// Line `line` (1-based) of the raw snippet, comments included.
+std::string raw_line(const std::string& text, int line) {
+    std::istringstream in(text);
+    std::string out;
+    for (int i = 0; i < line && std::getline(in, out); ++i) {}
+    return out;
+}
+
+const ParamSpec* float_param(const StageSpec& stage, const std::string& name) {
+    const ParamSpec* p = stage.find_param(name);
+    return p && p->type == ParamType::Float && p->min && p->max ? p : nullptr;
+}
+
 }  // namespace
 
 Status lint_stage_source(const StageSpec& stage) {
@@ -40,6 +53,20 @@ Status lint_stage_source(const StageSpec& stage) {
             return fail(static_cast<size_t>(it->position()),
                         "smoothstep(" + (*it)[1].str() + ", " + (*it)[2].str() + ", x) has its edges reversed or equal: undefined in "
                         "GLSL and HLSL and an error in WGSL; write 1.0 - smoothstep(" + (*it)[2].str() + ", " + (*it)[1].str() + ", x)");
+    // Edges from a param: reversed or equal at some value of its range.
+    static const std::regex smoothstep_param(R"(\bsmoothstep\s*\(\s*(\w+|)" + number + R"()\s*,\s*(\w+|)" + number + R"()\s*,)");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), smoothstep_param); it != std::sregex_iterator(); ++it) {
+        const std::string a = (*it)[1], b = (*it)[3];
+        const ParamSpec* pa = float_param(stage, a);
+        const ParamSpec* pb = float_param(stage, b);
+        const bool reversible = (pa && !pb && std::isdigit(static_cast<unsigned char>(b.back())) && *pa->max >= std::stod(b)) ||
+                                (pb && !pa && std::isdigit(static_cast<unsigned char>(a.back())) && *pb->min <= std::stod(a)) ||
+                                (pa && pb && *pa->max >= *pb->min);
+        if (reversible)
+            return fail(static_cast<size_t>(it->position()),
+                        "smoothstep(" + a + ", " + b + ", x): the params' ranges let the edges meet or cross, which is undefined "
+                        "in GLSL and HLSL; keep the ranges apart");
+    }
     static const std::regex pow_negative(R"(\bpow\s*\(\s*-\s*(?:\d|\.\d))");
     if (std::smatch m; std::regex_search(text, m, pow_negative))
         return fail(static_cast<size_t>(m.position()), "pow() of a negative constant base is undefined (NaN on most GPUs)");
@@ -49,10 +76,13 @@ Status lint_stage_source(const StageSpec& stage) {
     for (const ParamSpec& p : stage.params) {
         if (p.type != ParamType::Float || !p.min || !p.max || !(*p.min <= 0.0 && *p.max >= 0.0)) continue;
         const std::regex divide_param(R"(/\s*)" + p.name + R"(\b(?!\s*[-+]))");
-        if (std::smatch m; std::regex_search(text, m, divide_param))
-            return fail(static_cast<size_t>(m.position()),
-                        "divides by " + p.name + ", whose range includes 0 (" + p.where.file + ":" + std::to_string(p.where.line) +
-                            "): guard it (max(" + p.name + ", eps)) or start the range above 0");
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), divide_param); it != std::sregex_iterator(); ++it) {
+            const size_t at = static_cast<size_t>(it->position());
+            // A division the code guards says so on its line: "// guarded: <why>".
+            if (raw_line(stage.glsl_source, line_at(text, at)).find("guarded:") != std::string::npos) continue;
+            return fail(at, "divides by " + p.name + ", whose range includes 0 (" + p.where.file + ":" + std::to_string(p.where.line) +
+                                "): guard it (max(" + p.name + ", eps), or a test with \"// guarded: why\" on the line) or start the range above 0");
+        }
     }
     return Ok{};
 }

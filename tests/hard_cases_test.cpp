@@ -1,5 +1,6 @@
 // Issue 12's numerical hard cases that a unit test proves directly (the image-level cases are
 // golden/plan.toml entries judged by validate; docs/hard-cases.md lists both).
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -403,4 +404,40 @@ TEST_CASE("NaN, infinities and negative values in the input give finite output o
             CHECK(non_finite_values(images.value().front()) == 0);
         }
     }
+}
+
+TEST_CASE("the generator rejects undefined constructs in a stage snippet at its file and line", "[hard][lint]") {
+    struct Case {
+        std::string code;  // appended to vignette.glsl as line N+2
+        std::string says;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"float lint_a(float x) { return smoothstep(0.85, 0.4, x); }", "edges reversed or equal"},
+             {"float lint_b(float x) { return smoothstep(0.5, 0.5, x); }", "edges reversed or equal"},
+             {"float lint_c(float x) { return pow(-2.0, x); }", "negative constant base"},
+             {"float lint_d(float x) { return x / 0.0; }", "literal zero"},
+             {"float lint_e(float x) { return x / vignetteStrength; }", "divides by vignetteStrength, whose range includes 0"},
+             {"float lint_f(float x) { return smoothstep(vignetteStrength, 0.5, x); }", "ranges let the edges meet or cross"},
+         }) {
+        INFO(c.code);
+        test::ScratchTemplates scratch;
+        std::string glsl = scratch.read("stages/vignette.glsl");
+        const int line = static_cast<int>(std::count(glsl.begin(), glsl.end(), '\n')) + 2;
+        scratch.write("stages/vignette.glsl", glsl + "\n" + c.code + "\n");
+        auto lib = scratch.load();
+        REQUIRE_FALSE(lib.ok());
+        CHECK_THAT(lib.error().file, Catch::EndsWith("vignette.glsl"));
+        CHECK(lib.error().line == line);
+        CHECK(lib.error().field == "glsl");
+        CHECK_THAT(lib.error().message, Catch::Contains(c.says));
+    }
+    // In comments, guarded, or safe by range: accepted.
+    test::ScratchTemplates scratch;
+    scratch.write("stages/vignette.glsl", scratch.read("stages/vignette.glsl") +
+                                              "\n// return smoothstep(0.85, 0.4, x); x / 0.0\n"
+                                              "float lint_g(float x) { return vignetteStrength > 0.0 ? x / vignetteStrength : x; }  // guarded: > 0\n"
+                                              "float lint_h(float x) { return x / 0.5 + smoothstep(0.4, 0.85, x); }\n");
+    auto lib = scratch.load();
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    CHECK(lib.ok());
 }

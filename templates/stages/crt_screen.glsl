@@ -10,7 +10,7 @@ vec2 crt_screen_perspective(vec2 uv) {
     vec2 flat_point = (uv * 2.0 - 1.0) * vec2(aspect, 1.0) / screenZoom;
     vec2 hit = flat_point;
     if (screenCurvature > 0.0) {
-        float radius = 1.0 / screenCurvature;
+        float radius = 1.0 / screenCurvature;  // guarded: screenCurvature > 0 here
         vec3 dir = vec3(flat_point, cameraDistance);       // camera -> the flat screen point
         vec3 oc = vec3(0.0, 0.0, -cameraDistance - radius);  // camera - sphere centre
         float a = dot(dir, dir);
