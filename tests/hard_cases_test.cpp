@@ -11,6 +11,7 @@
 
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/uniforms.hpp"
+#include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/validate/target_render.hpp"
@@ -440,4 +441,57 @@ TEST_CASE("the generator rejects undefined constructs in a stage snippet at its 
     auto lib = scratch.load();
     INFO((lib.ok() ? std::string() : lib.error().str()));
     CHECK(lib.ok());
+}
+
+TEST_CASE("every runtime param at either end of its range renders finite and like the reference", "[hard][params]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    static TargetRenderer renderer;
+    int checked = 0;
+    for (const Preset& preset : lib.presets()) {
+        auto passes = compile_scene(lib, preset, {}, Cache());
+        REQUIRE(passes.ok());
+        const int iw = preset.scene.source_width ? preset.scene.source_width : 64;
+        const int ih = preset.scene.source_width ? preset.scene.source_height : 48;
+        auto input = make_test_input("pixel_art", iw, ih);
+        REQUIRE(input.ok());
+        std::map<std::string, const ParamSpec*> params;  // every numeric uniform of every pass
+        for (const CompiledVariant& pass : passes.value())
+            for (const VariantParam* p : pass.variant.uniforms())
+                if ((p->spec->type == ParamType::Float || p->spec->type == ParamType::Int) && p->spec->min) params[p->spec->name] = p->spec;
+        for (const auto& [name, spec] : params)
+            for (double end : {*spec->min, *spec->max}) {
+                const Value value = spec->type == ParamType::Int ? Value{static_cast<int64_t>(end)} : Value{end};
+                INFO(preset.name << ": " << name << " = " << end);
+                ReferenceSceneJob rj;
+                rj.library = &lib;
+                rj.preset = &preset;
+                rj.overrides = {{name, value}};
+                rj.source = [&](int) -> Result<Image> { return input.value(); };
+                rj.width = 64;
+                rj.height = 48;
+                rj.frames = {0};
+                auto reference = render_reference_scene(rj);
+                REQUIRE(reference.ok());
+                CHECK(non_finite_values(reference.value().front()) == 0);
+                SceneRenderRequest r;
+                r.preset = &preset;
+                r.passes = &passes.value();
+                r.target = TargetId::Spirv;
+                r.overrides = {{name, value}};
+                r.source = rj.source;
+                r.width = 64;
+                r.height = 48;
+                r.frames = {0};
+                auto rendered = renderer.render_scene(r);
+                INFO((rendered.ok() ? std::string() : rendered.error().str()));
+                REQUIRE(rendered.ok());
+                CHECK(non_finite_values(rendered.value().front()) == 0);
+                auto m = compare_images(rendered.value().front(), reference.value().front());
+                REQUIRE(m.ok());
+                // Agreement is the goldens' job (exact bounds, jitter maps); here: no blow-up at the ends.
+                CHECK(m.value().rmse < 0.01);
+                ++checked;
+            }
+    }
+    CHECK(checked > 60);
 }

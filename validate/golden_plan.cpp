@@ -147,8 +147,9 @@ public:
                 rule.input_size = is.value();
             }
             auto frame_number = [&](const toml::node& f) -> Result<int> {
-                if (!f.is_integer() || *f.value<int64_t>() < 0 || *f.value<int64_t>() > 1000000)
-                    return error(&f, "golden.frame", "must be a frame number 0..1000000");
+                // Past 2^24 frame counters leave float32's integers (parity, modulo): the hard case.
+                if (!f.is_integer() || *f.value<int64_t>() < 0 || *f.value<int64_t>() > (int64_t{1} << 30))
+                    return error(&f, "golden.frame", "must be a frame number 0..2^30");
                 return static_cast<int>(*f.value<int64_t>());
             };
             if (t.get("frame") && t.get("frames")) return error(t.get("frames"), "golden.frames", "give frame or frames, not both");
@@ -488,6 +489,10 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
                     // A scene that states its source size is fed pictures of that size.
                     if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
                     for (int frame : rule.frames) {
+                        // A scene with feedback or history runs every frame before the one shown.
+                        if (frame > 1000000 && (p.has_feedback() || p.history_depth() > 0))
+                            return make_error("frame " + std::to_string(frame) + " of '" + p.name + "', which keeps state between frames: "
+                                              "it would run every frame before it (at most 1000000)", path, rule.line, "golden.frame");
                         // The configuration's entry, placed: make_golden_entry gives the rest.
                         const GoldenEntry placed = make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit);
                         GoldenEntry e = config;
