@@ -30,6 +30,22 @@ Result<toml::table> TomlReader::parse(const std::string& text) const {
     }
 }
 
+std::string unsafe_text(const std::string& text) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c < 0x20 || c == 0x7f) return fmt::format("control character U+{:04X} at byte {}", c, i);
+        // U+0085 (C2 85), U+2028 and U+2029 (E2 80 A8/A9) end a line for some consumers.
+        if (c == 0xC2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) == 0x85)
+            return fmt::format("line terminator U+0085 at byte {}", i);
+        if (c == 0xE2 && i + 2 < text.size() && static_cast<unsigned char>(text[i + 1]) == 0x80 &&
+            (static_cast<unsigned char>(text[i + 2]) == 0xA8 || static_cast<unsigned char>(text[i + 2]) == 0xA9))
+            return fmt::format("line terminator U+{:04X} at byte {}", static_cast<unsigned char>(text[i + 2]) == 0xA8 ? 0x2028 : 0x2029, i);
+    }
+    // In a // comment a trailing backslash continues the comment onto the next line.
+    if (!text.empty() && text.back() == '\\') return "a trailing backslash";
+    return {};
+}
+
 Result<std::string> TomlReader::string(const toml::table& owner, const std::string& key,
                                        const std::string& prefix, bool required) const {
     const toml::node* node = owner.get(key);
@@ -38,7 +54,10 @@ Result<std::string> TomlReader::string(const toml::table& owner, const std::stri
         return std::string{};
     }
     if (!node->is_string()) return error(node, join_field(prefix, key), "must be a string");
-    return std::string(node->as_string()->get());
+    std::string text(node->as_string()->get());
+    if (const std::string bad = unsafe_text(text); !bad.empty())
+        return error(node, join_field(prefix, key), "has a " + bad + " (text reaches generated code's comments; one plain line only)");
+    return text;
 }
 
 Result<std::optional<int64_t>> TomlReader::integer(const toml::table& owner, const std::string& key,
@@ -106,6 +125,8 @@ Result<std::vector<std::string>> TomlReader::strings(const toml::table& owner, c
         if (!item.is_string())
             return error(&item, join_field(prefix, key), "must be an array of strings");
         out.emplace_back(item.as_string()->get());
+        if (const std::string bad = unsafe_text(out.back()); !bad.empty())
+            return error(&item, join_field(prefix, key), "has a " + bad + " (one plain line only)");
     }
     return out;
 }
@@ -166,6 +187,7 @@ Result<Value> TomlReader::typed_value(const toml::node& node, ParamType type,
         case ParamType::Enum: {
             if (!node.is_string()) return error(&node, field, "must be a string (enum param)");
             std::string v(node.as_string()->get());
+            if (const std::string bad = unsafe_text(v); !bad.empty()) return error(&node, field, "has a " + bad);
             for (const auto& e : enum_values)
                 if (e == v) return Value{v};
             const std::string list = join_list(enum_values);

@@ -66,6 +66,10 @@ private:
 };
 
 std::string join_field(const std::string& prefix, const std::string& key);
+// What makes a text unsafe to copy into generated code (a control character, a Unicode line
+// terminator, a trailing backslash), described for an error; empty when the text is plain.
+// Every string the spec and preset readers take goes through it.
+std::string unsafe_text(const std::string& text);
 bool is_identifier(const std::string& name);
 
 }  // namespace crtforge::detail

@@ -495,3 +495,32 @@ TEST_CASE("every runtime param at either end of its range renders finite and lik
     }
     CHECK(checked > 60);
 }
+
+TEST_CASE("text that reaches generated code is one plain line: control characters and line terminators are refused", "[hard][text]") {
+    struct Case {
+        std::string rel, from, to, field, says;
+    };
+    const std::string unit_line = "unit = \"px\"";
+    for (const Case& c : std::vector<Case>{
+             {"stages/glow.toml", "doc = \"Amplitude of the brightness ripple\"", "doc = \"Amplitude\\rvec4 injected;\"", "doc", "U+000D"},
+             {"stages/glow.toml", unit_line, "unit = \"px\\nuniform float injected;\"", "unit", "U+000A"},
+             {"stages/glow.toml", unit_line, "unit = \"px\xE2\x80\xA8x\"", "unit", "U+2028"},
+             {"stages/glow.toml", unit_line, "unit = \"px\xC2\x85x\"", "unit", "U+0085"},
+             {"stages/glow.toml", unit_line, "unit = \"px\\\\\"", "unit", "trailing backslash"},
+             {"presets/crt-pulse.toml", "doc = \"", "doc = \"\\u000b", "doc", "U+000B"},
+         }) {
+        INFO(c.rel << ": " << c.to);
+        test::ScratchTemplates scratch;
+        std::string text = scratch.read(c.rel);
+        const size_t at = text.find(c.from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, c.from.size(), c.to);
+        scratch.write(c.rel, text);
+        auto lib = scratch.load();
+        REQUIRE_FALSE(lib.ok());
+        CHECK_THAT(lib.error().file, Catch::EndsWith(c.rel.substr(c.rel.find('/') + 1)));
+        CHECK(lib.error().line > 0);
+        CHECK_THAT(lib.error().field, Catch::EndsWith(c.field));
+        CHECK_THAT(lib.error().message, Catch::Contains(c.says));
+    }
+}
