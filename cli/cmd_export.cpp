@@ -45,7 +45,7 @@ Runner add_export_command(CLI::App& app, const GlobalOptions& g) {
         // Everything is produced in memory first: a failure leaves no partial output behind.
         auto result = run_export(*lib, request, cache);
         if (!result.ok()) return report(result.error());
-        if (auto s = write_files(args->out, result.value().files); !s.ok()) return report(s.error());
+        if (auto s = write_export(args->out, result.value().files); !s.ok()) return report(s.error());
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (!args->quiet)
             fmt::print("exported {} presets x {} targets ({} files + manifest.json) to {} in {:.0f} ms "

@@ -1,5 +1,11 @@
 // The export pipeline: determinism, the cache, and the manifest's contents.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <catch2/catch.hpp>
@@ -122,4 +128,60 @@ TEST_CASE("export rejects unknown presets without producing files", "[export][er
     REQUIRE_FALSE(result.ok());
     CHECK(result.error().field == "--preset");
     CHECK_THAT(result.error().message, Catch::Contains("nope"));
+}
+
+TEST_CASE("an export replaces its directory all at once, under a lock, and cleans up after a killed run", "[export][atomic]") {
+    namespace fs = std::filesystem;
+    test::TempDir tmp;
+    const std::string out = tmp / "out";
+    auto files_in = [](const std::string& dir) {
+        std::set<std::string> names;
+        for (const auto& e : fs::recursive_directory_iterator(dir))
+            if (e.is_regular_file()) names.insert(fs::relative(e.path(), dir).string());
+        return names;
+    };
+    auto run = [&](const std::string& args) { return test::run_crtforge("export --quiet --out '" + out + "' " + args); };
+
+    REQUIRE(run("--preset classic --preset crt-pulse").exit_code == 0);
+    const auto two = files_in(out);
+    CHECK(two.count("manifest.json") == 1);
+    // A re-export of fewer presets leaves no stale file behind.
+    REQUIRE(run("--preset classic").exit_code == 0);
+    const auto one = files_in(out);
+    CHECK(one.size() < two.size());
+    for (const std::string& f : one) CHECK(f.find("crt-pulse") == std::string::npos);
+    // Nothing beside --out is left over.
+    for (const auto& e : fs::directory_iterator(tmp.path()))
+        CHECK((e.path().filename() == "out" || e.path().filename().string() == ".out.crtforge-lock"));
+
+    // While another export holds the lock, a second one fails clearly and writes nothing.
+    {
+        const int fd = ::open((tmp / ".out.crtforge-lock").c_str(), O_CREAT | O_RDWR, 0644);
+        REQUIRE(fd >= 0);
+        REQUIRE(::flock(fd, LOCK_EX) == 0);
+        const auto busy = run("--preset crt-pulse");
+        ::close(fd);
+        CHECK(busy.exit_code == 2);
+        CHECK_THAT(busy.err, Catch::Contains("another crtforge export is writing this directory"));
+        CHECK(files_in(out) == one);
+    }
+
+    // A run killed between moving the old export aside and moving the new one in: the next run
+    // puts the old one back before deciding, and removes the half-written staging.
+    fs::rename(out, tmp / ".out.crtforge-old");
+    fs::create_directories(tmp / ".out.crtforge-staging/glsl330");
+    std::ofstream(tmp / ".out.crtforge-staging/glsl330/half.frag") << "half";
+    REQUIRE(run("--preset classic").exit_code == 0);
+    CHECK(files_in(out) == one);
+    CHECK_FALSE(fs::exists(tmp / ".out.crtforge-old"));
+    CHECK_FALSE(fs::exists(tmp / ".out.crtforge-staging"));
+
+    // A folder of someone else's files is not replaced.
+    const std::string mine = tmp / "mine";
+    fs::create_directories(mine);
+    std::ofstream(mine + "/notes.txt") << "mine";
+    const auto refused = test::run_crtforge("export --quiet --preset classic --out '" + mine + "'");
+    CHECK(refused.exit_code == 2);
+    CHECK_THAT(refused.err, Catch::Contains("is not a crtforge export"));
+    CHECK(files_in(mine) == std::set<std::string>{"notes.txt"});
 }

@@ -54,6 +54,15 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
 // Writes files under dir atomically per file; refuses to write anything if dir cannot be created.
 Status write_files(const std::string& dir, const std::map<std::string, std::string>& files);
 
+// An export as a whole (generator/export_dir.cpp): `files` are written into a staging directory
+// beside `out` and swapped in, so `out` holds exactly them (no stale file of an earlier export)
+// or, on any failure, what it held before. A second export to the same `out` while one runs fails
+// clearly (a lock the kernel releases if the process dies); an interrupted run's leftovers are
+// cleaned, or put back, by the next. A non-empty `out` that is not an earlier export (no
+// manifest.json) is refused rather than replaced. Nothing is written when `out` already holds
+// exactly `files`.
+Status write_export(const std::string& out, const std::map<std::string, std::string>& files);
+
 // Relative path of one exported file: "<target>/<stem><suffix>" (stem: Variant::file_stem()).
 std::string export_path(const std::string& stem, TargetId target, const std::string& suffix);
 

@@ -34,14 +34,13 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  let _126 = textureSample(source, source_sampler, vTexCoord);
-  let _156 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _157_t = clamp((_156 - 0.9) / (0.3 - 0.9), f32(0.0), f32(1.0));
-  let _175 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let _179 = (_126.xyz * (_157_t * _157_t * (3.0 - 2.0 * _157_t))) * fma(crt.pulseDepth, sin(_175), 1.0);
-  let _144 = vec4<f32>(_179.x, _179.y, _179.z, 1.0);
-  let _187 = (bitcast<vec4<u32>>(_144) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _188 = select(clamp(_144, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _187);
-  fragColor = _188;
+  let _127 = textureSample(source, source_sampler, vTexCoord);
+  let _157 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _177 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let _181 = (_127.xyz * (1.0 - smoothstep(0.3, 0.9, _157))) * fma(crt.pulseDepth, sin(_177), 1.0);
+  let _145 = vec4<f32>(_181.x, _181.y, _181.z, 1.0);
+  let _189 = (bitcast<vec4<u32>>(_145) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _190 = select(clamp(_145, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _189);
+  fragColor = _190;
   return fragColor;
 }

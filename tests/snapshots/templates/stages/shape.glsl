@@ -1,8 +1,9 @@
-// Covers: smoothstep and clamp with reversed constant edges, and a baked bool branch folded by the optimiser.
+// Covers: smoothstep as the generator accepts it (reversed constant edges are refused: template_lint),
+// clamp with reversed constant edges, and a baked bool branch folded by the optimiser.
 
 #ifdef CRT_FORM_shape_radial
 vec3 shape_radial(vec3 color, CrtFrag frag) {
-    float v = smoothstep(0.9, 0.3, length(frag.centered) * shapeScale);
+    float v = 1.0 - smoothstep(0.3, 0.9, length(frag.centered) * shapeScale);
     if (shapeInvert) v = 1.0 - v;
     return color * v;
 }

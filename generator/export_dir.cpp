@@ -1,0 +1,107 @@
+// An export directory replaced all at once: written in full beside --out, then swapped in, under
+// a lock, so a reader never sees a manifest describing files that are missing, stale or another
+// run's.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "crtforge/exporter.hpp"
+#include "crtforge/files.hpp"
+
+namespace crtforge {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// flock() on a file beside the directory: released by the kernel when the process dies, so a
+// killed export never leaves a lock behind.
+class DirLock {
+public:
+    explicit DirLock(const std::string& path) : fd_(::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
+        locked_ = fd_ >= 0 && ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
+    }
+    ~DirLock() {
+        if (fd_ >= 0) ::close(fd_);  // closing releases the lock; the file stays (removing it would race)
+    }
+    DirLock(const DirLock&) = delete;
+    DirLock& operator=(const DirLock&) = delete;
+    bool locked() const { return locked_; }
+
+private:
+    int fd_;
+    bool locked_ = false;
+};
+
+bool same_contents(const std::string& dir, const std::map<std::string, std::string>& files) {
+    std::error_code ec;
+    size_t count = 0;
+    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (it->is_regular_file(ec)) ++count;
+    if (ec || count != files.size()) return false;
+    for (const auto& [path, data] : files) {
+        auto existing = read_text_file(dir + "/" + path);
+        if (!existing.ok() || existing.value() != data) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+Status write_export(const std::string& out, const std::map<std::string, std::string>& files) {
+    std::error_code ec;
+    const fs::path target = fs::path(out).lexically_normal();
+    const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
+    const fs::path dir = target.filename().empty() ? target.parent_path() : target;
+    const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+    if (name.empty() || name == "." || name == "..") return make_error("needs a directory name", out, 0, "--out");
+    fs::create_directories(parent, ec);
+    if (ec) return make_error("cannot create the parent directory: " + ec.message(), parent.string(), 0, "--out");
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) return make_error("exists and is not a directory", out, 0, "--out");
+    // Replacing a folder that is not an earlier export would delete a user's files.
+    if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir / "manifest.json", ec))
+        return make_error("exists and is not a crtforge export (no manifest.json): give a new or empty directory", out, 0, "--out");
+
+    const std::string base = (parent / ("." + name.string() + ".crtforge-")).string();
+    DirLock lock(base + "lock");
+    if (!lock.locked()) return make_error("another crtforge export is writing this directory; try again when it ends", out, 0, "--out");
+
+    // Leftovers of an interrupted run: put back a directory moved aside but never replaced, then
+    // remove half-written stagings.
+    const fs::path old = base + "old";
+    if (!fs::exists(dir, ec) && fs::is_directory(old, ec)) fs::rename(old, dir, ec);
+    fs::remove_all(old, ec);
+    const fs::path staging = base + "staging";
+    fs::remove_all(staging, ec);
+
+    if (fs::is_directory(dir, ec) && same_contents(dir.string(), files)) return Ok{};  // nothing to write
+    for (const auto& [path, data] : files)
+        if (auto s = write_file_atomic((staging / path).string(), data); !s.ok()) {
+            fs::remove_all(staging, ec);
+            return s;
+        }
+    // The swap: the old export aside, the new one in, the old one gone. A kill between the two
+    // renames leaves the old export at <parent>/.<name>.crtforge-old, which the next run puts back.
+    if (fs::exists(dir, ec)) {
+        fs::rename(dir, old, ec);
+        if (ec) {
+            fs::remove_all(staging, ec);
+            return make_error("cannot move the previous export aside: " + ec.message(), out, 0, "--out");
+        }
+    }
+    fs::rename(staging, dir, ec);
+    if (ec) {
+        const std::string why = ec.message();
+        std::error_code restore;
+        fs::rename(old, dir, restore);
+        fs::remove_all(staging, restore);
+        return make_error("cannot move the new export into place: " + why, out, 0, "--out");
+    }
+    fs::remove_all(old, ec);
+    return Ok{};
+}
+
+}  // namespace crtforge
