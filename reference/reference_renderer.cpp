@@ -154,14 +154,14 @@ Result<Image> render_reference(const ReferenceJob& job) {
 
     const auto values = effective_values(variant, job.overrides);
     const Params params(values);
-    const Sampler source(job.input, job.filter, job.wrap);
+    const Sampler source(job.input, job.filter, job.wrap, job.texel_jitter);
     std::map<std::string, Sampler> samplers;
     for (const std::string& name : variant.textures) {
         auto t = job.textures.find(name);
         if (t == job.textures.end()) return make_error("reference job lacks texture '" + name + "' of the pass");
         if (!t->second.image.consistent() || t->second.image.empty())
             return make_error("reference job's texture '" + name + "' is empty or inconsistent");
-        samplers.emplace(name, Sampler(t->second.image, t->second.filter, t->second.wrap));
+        samplers.emplace(name, Sampler(t->second.image, t->second.filter, t->second.wrap, job.texel_jitter));
     }
 
     const bool screen_pass = screen_pass_index(*variant.preset) == variant.pass_index;
@@ -333,6 +333,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             rj.height = sizes[i].height;
             rj.time = job.start_time + frame / preset.scene.fps;
             rj.jitter = job.jitter;
+            rj.texel_jitter = job.texel_jitter;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();

@@ -32,7 +32,7 @@ Rgba Sampler::sample(Vec2 uv) const {
     // Far outside 0..1 (or not finite) every wrap mode has long since settled: keep the texel
     // arithmetic inside int.
     auto tame = [](double t) { return std::isfinite(t) ? std::clamp(t, -1e8, 1e8) : 0.0; };
-    const double u = tame(uv.x * image_.width + reference_fault().sampler_shift), v = tame(uv.y * image_.height);
+    const double u = tame(uv.x * image_.width + reference_fault().sampler_shift + shift_), v = tame(uv.y * image_.height + shift_);
     if (filter_ == SamplerFilter::Nearest)
         return texel(static_cast<int>(std::floor(u)), static_cast<int>(std::floor(v)));
     // Bilinear between the four texel centres around (u, v).

@@ -15,8 +15,8 @@ using Rgba = std::array<double, 4>;
 
 class Sampler {
 public:
-    Sampler(const Image& image, SamplerFilter filter, WrapMode wrap = WrapMode::ClampToEdge)
-        : image_(image), filter_(filter), wrap_(wrap) {}
+    Sampler(const Image& image, SamplerFilter filter, WrapMode wrap = WrapMode::ClampToEdge, double shift = 0.0)
+        : image_(image), filter_(filter), wrap_(wrap), shift_(shift) {}
     Rgba sample(Vec2 uv) const;
     Vec3 rgb(Vec2 uv) const {
         const Rgba c = sample(uv);
@@ -31,6 +31,7 @@ private:
     const Image& image_;
     SamplerFilter filter_;
     WrapMode wrap_;
+    double shift_;  // texels added to every read's position on both axes (ReferenceJob::texel_jitter)
 };
 
 }  // namespace crtforge::reference

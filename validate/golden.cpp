@@ -146,6 +146,18 @@ Result<Image> golden_input(const GoldenEntry& entry, int frame) {
 
 namespace {
 
+// The jitter: of the order of fp32's rounding of a pixel position near 1000 (ulp 6e-5) and, for
+// values, a few times fp32's relative step, so only discontinuities within a driver's rounding of
+// the sample are found (a larger jitter would also flag a palette quantiser's near-ties, which
+// every driver rounds alike).
+constexpr double kJitterPixels = 1.0 / 16384.0;
+// Texture reads move too, by the order of fp32's rounding of a coordinate computed through a
+// dozen operations (a warped mask-cell centre), so a computed sample on a texel edge is found.
+constexpr double kJitterTexels = 1.0 / 4096.0;
+constexpr double kJitterGain = 1.0 / 1048576.0;
+// A change under jitter below the per-pixel limit needs no allowance: the limit covers it.
+constexpr double kFlip = 0.01;
+
 Result<std::vector<Image>> render_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence,
                                              std::array<double, 2> jitter, double input_gain) {
     if (sequence.empty()) return std::vector<Image>{};
@@ -162,19 +174,12 @@ Result<std::vector<Image>> render_references(const TemplateLibrary& library, con
     job.overrides = first.overrides;
     job.start_time = first.start_time;
     job.jitter = jitter;
+    job.texel_jitter = jitter[0] == 0.0 ? 0.0 : (jitter[0] > 0 ? kJitterTexels : -kJitterTexels);
     job.input_gain = input_gain;
     for (const GoldenEntry* e : sequence) job.frames.push_back(e->frame);
     return render_reference_scene(job);
 }
 
-// The jitter: of the order of fp32's rounding of a pixel position near 1000 (ulp 6e-5) and, for
-// values, a few times fp32's relative step, so only discontinuities within a driver's rounding of
-// the sample are found (a larger jitter would also flag a palette quantiser's near-ties, which
-// every driver rounds alike).
-constexpr double kJitterPixels = 1.0 / 16384.0;
-constexpr double kJitterGain = 1.0 / 1048576.0;
-// A change under jitter below the per-pixel limit needs no allowance: the limit covers it.
-constexpr double kFlip = 0.01;
 
 }  // namespace
 
@@ -660,6 +665,27 @@ Result<Verdict> judge(const Image& render, const Image& reference, const Toleran
     // The judged RMSE: relative above 1, beyond the reference's own flips (compare_images's plain
     // RMSE stays in the metrics' max and SSIM).
     v.metrics.rmse = std::sqrt(squares / std::max<size_t>(1, d.size() * 3));
+    // SSIM, like the RMSE, over what the reference's own flips do not explain: a pixel whose
+    // error is within its jitter allowance counts as the golden's (a mask cell edge exactly on a
+    // pixel centre, every 11th column at maskSize 5.5, would otherwise weigh on the structure).
+    if (unstable && !unstable->empty()) {
+        Image explained = clamped;
+        bool any = false;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = static_cast<size_t>(y) * w + x;
+                const float flip = unstable->at(x, y)[0];
+                if (flip > 0 && d[i] <= flip) {
+                    for (int c = 0; c < 3; ++c) explained.rgba[i * 4 + c] = g[i * 4 + c];
+                    any = true;
+                }
+            }
+        if (any) {
+            auto m = compare_images(explained, golden);
+            if (!m.ok()) return m.error();
+            v.metrics.ssim = m.value().ssim;
+        }
+    }
     size_t outliers = 0;
     for (size_t i = 0; i < d.size(); ++i) {
         if (d[i] > t.outlier_threshold + output_quantum + edge[i]) ++outliers;

@@ -39,6 +39,9 @@ struct ReferenceJob {
     // Moves every pixel's sample point by this many pixels: a discontinuity that falls exactly on
     // a pixel centre shows as a change (golden update's jittered renders).
     std::array<double, 2> jitter{0.0, 0.0};
+    // Moves every texture read by this many texels on both axes: a computed sample point exactly
+    // on a texel edge (a warped mask-cell centre under nearest filtering) shows as a change.
+    double texel_jitter = 0.0;
 };
 
 // Renders one pass's math. A stage or form the reference has no model for is an error, never a
@@ -64,6 +67,7 @@ struct ReferenceSceneJob {
     // (a mask cell edge on a pixel centre, a quantiser threshold on an input value): every pass's
     // sample points move by `jitter` pixels and the original's RGB is scaled by `input_gain`.
     std::array<double, 2> jitter{0.0, 0.0};
+    double texel_jitter = 0.0;  // ReferenceJob::texel_jitter, for every pass
     double input_gain = 1.0;
 };
 
