@@ -40,7 +40,7 @@ std::string testing_columns(const std::set<int>& columns) {
 TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation, both sets", "[golden][matrix]") {
     const auto plan = test::golden_plan_or_fail(test::validation_library(), golden_dir());
     std::set<std::string> configs, hosts;
-    size_t full = 0, portrait = 0, odd = 0, k4 = 0, stages = 0;
+    size_t full = 0, portrait = 0, odd = 0, k4 = 0, stages = 0, past_2_24 = 0;
     for (const GoldenEntry& e : plan) {
         configs.insert(e.config);
         if (!e.host.empty()) hosts.insert(e.host);
@@ -48,10 +48,12 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
         portrait += e.height > e.width;
         odd += e.width % 2 == 1 && e.height % 2 == 1;
         k4 += e.width == 3840;
-        stages += e.preset.rfind("stage-", 0) == 0;
+        stages += e.preset.rfind("stage-", 0) == 0 && e.frame == 0;
+        past_2_24 += e.frame > (1 << 24);
     }
     for (const char* c : {"bezel", "draw1", "draw3", "uniforms-all", "uniforms-none", "medium", "mediump", "t1", "t1000", "t3599",
-                          "t3601", "t100000", "odd", "portrait", "tiny", "godot-defaults", "godot-material", "godot-screen"})
+                          "t3601", "t100000", "t1e7", "mediump-t100000", "row8k", "col8k", "px1", "line", "odd", "portrait", "tiny",
+                          "godot-defaults", "godot-material", "godot-screen"})
         CHECK(configs.count(c));
     CHECK(hosts == std::set<std::string>{"defaults", "material", "screen"});
     CHECK(full > 0);
@@ -64,6 +66,8 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     for (const Preset& p : test::validation_library().presets()) isolation_presets += p.test_only;
     CHECK(isolation_presets >= 20);
     CHECK(stages == 2 * isolation_presets);
+    // Frame counters past 2^24, on the stage that reads frameCount.
+    CHECK(past_2_24 == 2);
 }
 
 TEST_CASE("parameter draws are fixed by the seed, inside each range and on its step grid", "[golden][matrix]") {

@@ -24,7 +24,7 @@ struct PlanRule {
     bool stage_presets = false; // every stage-isolation preset (golden/stages/)
     std::vector<std::string> except;  // presets left out of "all" / "stages"
     std::vector<std::string> presets;
-    bool requires_time = false;
+    std::optional<Builtin> requires_builtin;  // only presets whose shaders read it
     std::vector<std::string> inputs;
     int width = 0, height = 0;
     std::vector<int> frames{0};
@@ -130,8 +130,10 @@ public:
                 rule.except = list.value();
             }
             if (const toml::node* r = t.get("requires")) {
-                if (!r->is_string() || *r->value<std::string>() != "time") return error(r, "golden.requires", "must be \"time\"");
-                rule.requires_time = true;
+                const std::string what = r->is_string() ? *r->value<std::string>() : "";
+                if (what != "time" && what != "frame_count")
+                    return error(r, "golden.requires", "must be \"time\" or \"frame_count\"");
+                rule.requires_builtin = what == "time" ? Builtin::Time : Builtin::FrameCount;
             }
             auto inputs = names(t, "inputs", "golden.inputs");
             if (!inputs.ok()) return inputs.error();
@@ -334,11 +336,15 @@ private:
     std::string path_;
 };
 
-bool reads_time(const TemplateLibrary& library, const Preset& preset) {
-    auto variant = make_variant(library, preset, {});
-    if (!variant.ok()) return false;
-    const auto& b = variant.value().builtins;
-    return std::find(b.begin(), b.end(), Builtin::Time) != b.end();
+// Whether any pass of the preset reads the builtin.
+bool reads_builtin(const TemplateLibrary& library, const Preset& preset, Builtin builtin) {
+    for (size_t pass = 0; pass < preset.passes.size(); ++pass) {
+        auto variant = make_variant(library, preset, {}, pass);
+        if (!variant.ok()) continue;
+        const auto& b = variant.value().builtins;
+        if (std::find(b.begin(), b.end(), builtin) != b.end()) return true;
+    }
+    return false;
 }
 
 // splitmix64: a fixed, portable sequence (std's distributions differ between libraries).
@@ -475,12 +481,12 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
     std::vector<GoldenEntry> out;
     std::set<std::string> ids;
     for (const Preset& p : library.presets()) {
-        const bool time = reads_time(library, p);
+
         for (const PlanRule& rule : plan.value().rules) {
             const bool named = std::find(rule.presets.begin(), rule.presets.end(), p.name) != rule.presets.end();
             const bool excepted = std::find(rule.except.begin(), rule.except.end(), p.name) != rule.except.end();
             const bool chosen = named || (!excepted && (p.test_only ? rule.stage_presets : rule.all_presets));
-            if (!chosen || (rule.requires_time && !time)) continue;
+            if (!chosen || (rule.requires_builtin && !reads_builtin(library, p, *rule.requires_builtin))) continue;
             auto configs = configurations(library, p, rule, path);
             if (!configs.ok()) return configs.error();
             for (const GoldenEntry& config : configs.value())
