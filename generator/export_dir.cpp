@@ -65,7 +65,9 @@ Status write_export(const std::string& out, const std::map<std::string, std::str
     if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir / "manifest.json", ec))
         return make_error("exists and is not a crtforge export (no manifest.json): give a new or empty directory", out, 0, "--out");
 
-    const std::string base = (parent / ("." + name.string() + ".crtforge-")).string();
+    std::string hidden = ".";
+    hidden.append(name.string()).append(".crtforge-");  // appends: GCC 12 misreads a chain of + here (-Wrestrict)
+    const std::string base = (parent / hidden).string();
     DirLock lock(base + "lock");
     if (!lock.locked()) return make_error("another crtforge export is writing this directory; try again when it ends", out, 0, "--out");
 

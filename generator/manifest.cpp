@@ -16,6 +16,12 @@ json value_to_json(const Value& value) {
     return json::array({c[0], c[1], c[2]});
 }
 
+json time_reduce_by(const Variant& variant) {
+    const VariantParam* speed = variant.angular_speed();
+    if (!speed) return nullptr;
+    return speed->uniform ? json(speed->spec->name) : value_to_json(speed->value);
+}
+
 namespace {
 
 const VariantParam* find_param(const Variant& v, const std::string& name) {
@@ -43,10 +49,10 @@ json uniform_block(const CompiledVariant& compiled) {
                                                            : "seconds since start; keep it continuous";
             // How hosts reduce the seconds (shader_time()): fmod(seconds * |S|, 2 pi) / |S| in double
             // precision, S the named uniform's value or the baked number.
-            if (const VariantParam* speed = compiled.variant.angular_speed(); builtin == Builtin::Time && speed) {
+            if (builtin == Builtin::Time && compiled.variant.angular_speed()) {
                 member["doc"] = "seconds since start, reduced by the host in double precision: fmod(seconds * |S|, 2*pi) / |S|, "
                                 "S = reduceBy (a uniform's name or a number)";
-                member["reduceBy"] = speed->uniform ? json(speed->spec->name) : value_to_json(speed->value);
+                member["reduceBy"] = time_reduce_by(compiled.variant);
             }
         } else if (const VariantParam* p = find_param(compiled.variant, m.name)) {
             member["stage"] = p->stage->name;

@@ -21,6 +21,10 @@ struct ManifestTargetEntry {
 
 nlohmann::ordered_json value_to_json(const Value& value);
 
+// The speed a pass's time is reduced by (shader_time()), as hosts read it: the uniform's name
+// when the speed is a uniform, the baked number otherwise; null when the pass has none.
+nlohmann::ordered_json time_reduce_by(const Variant& variant);
+
 // The preset-level part: scene, LUTs, and per pass its stages, baked values, uniform block and
 // textures (the caller adds each pass's "targets").
 nlohmann::ordered_json preset_manifest(const Preset& preset, const std::vector<CompiledVariant>& passes);

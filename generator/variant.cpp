@@ -58,6 +58,12 @@ std::vector<const VariantParam*> Variant::uniforms() const {
     return out;
 }
 
+bool Variant::writes_alpha() const {
+    for (const ResolvedStage& rs : pass->stages)
+        if (!rs.form->functions[static_cast<int>(Hook::Alpha)].empty()) return true;
+    return false;
+}
+
 const VariantParam* Variant::angular_speed() const {
     for (const VariantParam& p : params)
         if (p.spec->role == ParamRole::AngularSpeed) return &p;

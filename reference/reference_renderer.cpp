@@ -274,7 +274,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
     }
 
     // With state between frames every frame up to the last kept one runs; without, only the kept ones.
-    const bool stateful = preset.has_feedback() || preset.history_depth() > 0;
+    const bool stateful = preset.keeps_state();
     int last = 0;
     for (int f : job.frames) {
         if (f < 0) return make_error("frame " + std::to_string(f) + " is negative", {}, 0, "--frames");

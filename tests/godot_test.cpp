@@ -12,12 +12,7 @@ using namespace crtforge;
 
 namespace {
 
-const OutputFile& file(const TargetOutput& out, const std::string& role) {
-    for (const auto& f : out.files)
-        if (f.manifest_role() == role) return f;
-    FAIL("no file with role " << role);
-    throw;  // unreachable
-}
+const OutputFile& file(const TargetOutput& out, const std::string& role) { return test::file_with_role(out, role); }
 
 TargetOutput emit(const std::string& preset, TargetId target, size_t pass = 0) {
     const TemplateLibrary& lib = test::shipped_library();

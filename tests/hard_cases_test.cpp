@@ -22,12 +22,47 @@ using json = nlohmann::json;
 
 namespace {
 
-const std::string& file_data(const TargetOutput& out, const std::string& role) {
-    for (const OutputFile& f : out.files)
-        if (f.manifest_role() == role) return f.data;
-    FAIL("no file with role " << role);
-    static const std::string none;
-    return none;
+// Frame 0 of a preset's scene over one picture, on a width x height display: the reference's.
+Image reference_frame(const Preset& preset, const Image& input, int width, int height,
+                      const std::map<std::string, Value>& overrides = {}) {
+    ReferenceSceneJob job;
+    job.library = &test::shipped_library();
+    job.preset = &preset;
+    job.overrides = overrides;
+    job.source = [&](int) -> Result<Image> { return input; };
+    job.width = width;
+    job.height = height;
+    job.frames = {0};
+    auto images = render_reference_scene(job);
+    INFO((images.ok() ? std::string() : images.error().str()));
+    REQUIRE(images.ok());
+    return images.value().front();
+}
+
+// The same through one target's consumer, from the target's emitted files.
+Image target_frame(const Preset& preset, const std::vector<CompiledVariant>& passes, TargetId target, const Image& input,
+                   int width, int height, const std::map<std::string, Value>& overrides = {}) {
+    static TargetRenderer renderer;
+    std::vector<TargetOutput> outputs;
+    for (const CompiledVariant& pass : passes) {
+        auto out = emit_target(pass, target, Cache());
+        REQUIRE(out.ok());
+        outputs.push_back(std::move(out.value()));
+    }
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &passes;
+    r.target = target;
+    r.outputs = &outputs;
+    r.overrides = overrides;
+    r.source = [&](int) -> Result<Image> { return input; };
+    r.width = width;
+    r.height = height;
+    r.frames = {0};
+    auto images = renderer.render_scene(r);
+    INFO((images.ok() ? std::string() : images.error().str()));
+    REQUIRE(images.ok());
+    return images.value().front();
 }
 
 size_t non_finite_values(const Image& image) {
@@ -100,7 +135,7 @@ TEST_CASE("the manifest and every host know how time is reduced", "[hard][time][
     const CompiledVariant classic = test::compile_or_fail(lib, "classic");
     auto godot = emit_target(classic, TargetId::Godot4, Cache());
     REQUIRE(godot.ok());
-    CHECK_THAT(file_data(godot.value(), "shader"), !Catch::Contains("hostTime"));
+    CHECK_THAT(test::file_with_role(godot.value(), "shader").data, !Catch::Contains("hostTime"));
 }
 
 TEST_CASE("a pass with two angular speeds is refused at the spec line", "[hard][time]") {
@@ -281,8 +316,8 @@ TEST_CASE("the document's alpha: transparent black outside the Atari screen, jud
     // Godot's screen-mode shader replaces the screen, so it composites its alpha over black itself.
     auto godot = emit_target(c, TargetId::Godot4, Cache());
     REQUIRE(godot.ok());
-    CHECK_THAT(file_data(godot.value(), "screenShader"), Catch::Contains("COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);"));
-    CHECK_THAT(file_data(godot.value(), "shader"), !Catch::Contains("COLOR.rgb * COLOR.a"));
+    CHECK_THAT(test::file_with_role(godot.value(), "screenShader").data, Catch::Contains("COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);"));
+    CHECK_THAT(test::file_with_role(godot.value(), "shader").data, !Catch::Contains("COLOR.rgb * COLOR.a"));
 }
 
 TEST_CASE("a legacy Glitch preset loads through the migration, with a warning per key", "[hard][migration]") {
@@ -366,43 +401,15 @@ TEST_CASE("NaN, infinities and negative values in the input give finite output o
             for (int c = 0; c < 3; ++c) p[c] = (x / 4 + c) % 3 == 0 ? hostile[(x / 4 + y / 6) % 6] : ramp;
             p[3] = 1.0f;
         }
-    static TargetRenderer renderer;
     for (const Preset& preset : lib.presets()) {
         auto passes = compile_scene(lib, preset, {}, Cache());
         REQUIRE(passes.ok());
         // The reference applies the same rule (it is what the goldens hold).
-        ReferenceSceneJob rj;
-        rj.library = &lib;
-        rj.preset = &preset;
-        rj.source = [&](int) -> Result<Image> { return input; };
-        rj.width = kW;
-        rj.height = kH;
-        rj.frames = {0};
-        auto reference = render_reference_scene(rj);
-        REQUIRE(reference.ok());
         INFO(preset.name << " reference");
-        CHECK(non_finite_values(reference.value().front()) == 0);
+        CHECK(non_finite_values(reference_frame(preset, input, kW, kH)) == 0);
         for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl}) {
             INFO(preset.name << " on " << target_info(target).name);
-            std::vector<TargetOutput> outputs;
-            for (const CompiledVariant& pass : passes.value()) {
-                auto out = emit_target(pass, target, Cache());
-                REQUIRE(out.ok());
-                outputs.push_back(std::move(out.value()));
-            }
-            SceneRenderRequest r;
-            r.preset = &preset;
-            r.passes = &passes.value();
-            r.target = target;
-            r.outputs = &outputs;
-            r.source = [&](int) -> Result<Image> { return input; };
-            r.width = kW;
-            r.height = kH;
-            r.frames = {0};
-            auto images = renderer.render_scene(r);
-            INFO((images.ok() ? std::string() : images.error().str()));
-            REQUIRE(images.ok());
-            CHECK(non_finite_values(images.value().front()) == 0);
+            CHECK(non_finite_values(target_frame(preset, passes.value(), target, input, kW, kH)) == 0);
         }
     }
 }
@@ -445,7 +452,6 @@ TEST_CASE("the generator rejects undefined constructs in a stage snippet at its 
 
 TEST_CASE("every runtime param at either end of its range renders finite and like the reference", "[hard][params]") {
     const TemplateLibrary& lib = test::shipped_library();
-    static TargetRenderer renderer;
     int checked = 0;
     for (const Preset& preset : lib.presets()) {
         auto passes = compile_scene(lib, preset, {}, Cache());
@@ -462,31 +468,11 @@ TEST_CASE("every runtime param at either end of its range renders finite and lik
             for (double end : {*spec->min, *spec->max}) {
                 const Value value = spec->type == ParamType::Int ? Value{static_cast<int64_t>(end)} : Value{end};
                 INFO(preset.name << ": " << name << " = " << end);
-                ReferenceSceneJob rj;
-                rj.library = &lib;
-                rj.preset = &preset;
-                rj.overrides = {{name, value}};
-                rj.source = [&](int) -> Result<Image> { return input.value(); };
-                rj.width = 64;
-                rj.height = 48;
-                rj.frames = {0};
-                auto reference = render_reference_scene(rj);
-                REQUIRE(reference.ok());
-                CHECK(non_finite_values(reference.value().front()) == 0);
-                SceneRenderRequest r;
-                r.preset = &preset;
-                r.passes = &passes.value();
-                r.target = TargetId::Spirv;
-                r.overrides = {{name, value}};
-                r.source = rj.source;
-                r.width = 64;
-                r.height = 48;
-                r.frames = {0};
-                auto rendered = renderer.render_scene(r);
-                INFO((rendered.ok() ? std::string() : rendered.error().str()));
-                REQUIRE(rendered.ok());
-                CHECK(non_finite_values(rendered.value().front()) == 0);
-                auto m = compare_images(rendered.value().front(), reference.value().front());
+                const Image reference = reference_frame(preset, input.value(), 64, 48, {{name, value}});
+                CHECK(non_finite_values(reference) == 0);
+                const Image rendered = target_frame(preset, passes.value(), TargetId::Spirv, input.value(), 64, 48, {{name, value}});
+                CHECK(non_finite_values(rendered) == 0);
+                auto m = compare_images(rendered, reference);
                 REQUIRE(m.ok());
                 // Agreement is the goldens' job (exact bounds, jitter maps); here: no blow-up at the ends.
                 CHECK(m.value().rmse < 0.01);

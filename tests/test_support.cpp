@@ -124,4 +124,11 @@ Image require_image(Result<Image> image, int width, int height) {
     return std::move(image).value();
 }
 
+const OutputFile& file_with_role(const TargetOutput& out, const std::string& role) {
+    for (const auto& f : out.files)
+        if (f.manifest_role() == role) return f;
+    FAIL("no file with role " << role);
+    throw;  // unreachable
+}
+
 }  // namespace crtforge::test

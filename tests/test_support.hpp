@@ -85,6 +85,9 @@ Image require_image(Result<Image> image, int width, int height);
 // The golden plan of a golden directory; fails the test on any error.
 std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const std::string& golden_dir);
 
+// The emitted file with this manifest role ("shader", "screenShader", ...); fails the test if none.
+const OutputFile& file_with_role(const TargetOutput& out, const std::string& role);
+
 // Compiles and emits one preset through every target; fails the test on any error.
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,
                                 const VariantOptions& options = {});

@@ -496,7 +496,7 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
                     if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
                     for (int frame : rule.frames) {
                         // A scene with feedback or history runs every frame before the one shown.
-                        if (frame > 1000000 && (p.has_feedback() || p.history_depth() > 0))
+                        if (frame > 1000000 && p.keeps_state())
                             return make_error("frame " + std::to_string(frame) + " of '" + p.name + "', which keeps state between frames: "
                                               "it would run every frame before it (at most 1000000)", path, rule.line, "golden.frame");
                         // The configuration's entry, placed: make_golden_entry gives the rest.

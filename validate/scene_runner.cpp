@@ -58,7 +58,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         if (!image.ok()) return image.error();
         luts[lut.name] = std::move(image.value());
     }
-    const bool stateful = preset.has_feedback() || preset.history_depth() > 0;
+    const bool stateful = preset.keeps_state();
     std::vector<int> run = r.frames;
     if (stateful) {
         const int last = r.frames.empty() ? -1 : *std::max_element(r.frames.begin(), r.frames.end());

@@ -187,6 +187,8 @@ struct Preset {
     // previous frame's output: what a host must keep between frames.
     int history_depth() const;
     bool has_feedback() const;
+    // Feedback or history: frame n needs every frame before it run first.
+    bool keeps_state() const { return has_feedback() || history_depth() > 0; }
 };
 
 }  // namespace crtforge

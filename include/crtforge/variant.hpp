@@ -58,6 +58,8 @@ struct Variant {
     // The param the time builtin is multiplied by (role = "angular_speed"), if the pass has one:
     // hosts reduce time by its period (shader_time() in uniforms.hpp). A pass has at most one.
     const VariantParam* angular_speed() const;
+    // Whether a stage of the pass sets the output's alpha (a form with an alpha hook).
+    bool writes_alpha() const;
 };
 
 // Default: params whose spec says runtime = true stay uniforms, all others are baked.

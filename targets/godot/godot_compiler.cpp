@@ -141,7 +141,7 @@ std::string GodotCompiler::compile_godot() {
     }
     out.append(text, last, std::string::npos);
     if (out.find(kBlockMarker) != std::string::npos) throw spirv_cross::CompilerError("unresolved uniform block access");
-    if (screen_mode() && writes_alpha()) {
+    if (screen_mode() && variant_.writes_alpha()) {
         // The screen shader replaces what is on screen: a transparent bezel would show the
         // unprocessed picture below, so its alpha is composited over black here.
         const size_t close = out.rfind('}');
@@ -151,12 +151,6 @@ std::string GodotCompiler::compile_godot() {
     if (options_.godot_version >= 4) return out;
     if (screen_mode()) out = with_screen_reads_flipped(out);
     return with_loop_increments(out);
-}
-
-bool GodotCompiler::writes_alpha() const {
-    for (const ResolvedStage& rs : variant_.pass->stages)
-        if (!rs.form->functions[static_cast<int>(Hook::Alpha)].empty()) return true;
-    return false;
 }
 
 std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
@@ -250,7 +244,7 @@ void GodotCompiler::emit_header() {
     statement("shader_type canvas_item;");
     // A pass before the last writes data for the next pass, not a picture to composite: its
     // alpha (a transparent bezel) must not blend its colour away.
-    if (writes_alpha() && variant_.pass_index + 1 < variant_.preset->passes.size())
+    if (variant_.writes_alpha() && variant_.pass_index + 1 < variant_.preset->passes.size())
         statement("render_mode blend_disabled;");
     statement("");
     if (screen && options_.godot_version < 4) {

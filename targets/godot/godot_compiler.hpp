@@ -37,7 +37,6 @@ private:
     static std::string with_loop_increments(const std::string& text);  // Godot 3's for-loop syntax
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
-    bool writes_alpha() const;  // a stage of the pass sets the output's alpha (Hook::Alpha)
     const Variant& variant_;
     godot::Options options_;
     std::map<std::string, std::string> member_expressions_;  // block member -> Godot expression  // qualified: CompilerGLSL has its own nested Options

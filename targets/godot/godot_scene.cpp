@@ -8,6 +8,7 @@
 
 #include "crtforge/scene.hpp"
 #include "crtforge/version.hpp"
+#include "generator/manifest.hpp"
 #include "targets/godot/godot_writer.hpp"
 
 namespace crtforge::godot {
@@ -193,8 +194,7 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int v
         entry["frame_count"] = std::find(variant.builtins.begin(), variant.builtins.end(), Builtin::FrameCount) != variant.builtins.end();
         entry["frame_count_mod"] = pass.frame_count_mod;
         // The speed `seconds` is reduced by for the pass's hostTime: a uniform's name or the baked value.
-        if (const VariantParam* speed = variant.angular_speed())
-            entry["time_speed"] = speed->uniform ? json(speed->spec->name) : json(std::get<double>(speed->value));
+        if (variant.angular_speed()) entry["time_speed"] = json(detail::time_reduce_by(variant));
         passes.push_back(std::move(entry));
     }
     std::sort(feedback.begin(), feedback.end());

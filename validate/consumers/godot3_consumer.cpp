@@ -165,7 +165,7 @@ public:
         std::vector<int> run = r.frames;
         std::sort(run.begin(), run.end());
         run.erase(std::unique(run.begin(), run.end()), run.end());
-        if ((preset.has_feedback() || preset.history_depth() > 0) && !run.empty()) {
+        if (preset.keeps_state() && !run.empty()) {
             const int last = run.back();
             run.clear();
             for (int f = 0; f <= last; ++f) run.push_back(f);
