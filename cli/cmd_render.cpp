@@ -7,19 +7,20 @@
 #include "cli/cli_common.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/image_io.hpp"
+#include "crtforge/parse_number.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/validate/target_render.hpp"
 
 namespace crtforge::cli {
 
 Result<std::pair<int, int>> parse_size(const std::string& text) {
-    int w = 0, h = 0, consumed = 0;
-    char x = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || (x != 'x' && x != 'X') ||
-        consumed != static_cast<int>(text.size()) || w < 1 || h < 1 || w > kMaxImageDimension || h > kMaxImageDimension)
+    const auto size = parse_int_pair(text, 'x', 'X');
+    if (!size || size->first < 1 || size->second < 1 || size->first > kMaxImageDimension || size->second > kMaxImageDimension)
         return make_error(fmt::format("'{}' must be WIDTHxHEIGHT, each 1..{} (e.g. 640x480)", text, kMaxImageDimension), {}, 0,
                           "--size");
-    return std::make_pair(w, h);
+    if (const std::string over = image_budget_error(static_cast<int>(size->first), static_cast<int>(size->second)); !over.empty())
+        return make_error("'" + text + "' " + over, {}, 0, "--size");
+    return std::make_pair(static_cast<int>(size->first), static_cast<int>(size->second));
 }
 
 namespace {
@@ -96,13 +97,12 @@ Status write_output(const std::string& path, const Image& image) {
 
 // "A:B" (inclusive, A <= B) or a single frame.
 Result<std::vector<int>> parse_frames(const std::string& text) {
-    int a = 0, b = 0, consumed = 0;
-    char colon = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%n", &a, &colon, &b, &consumed) != 3 || colon != ':' ||
-        consumed != static_cast<int>(text.size()) || a < 0 || b < a || b > 1000000 || b - a >= 10000)
+    const auto range = parse_int_pair(text, ':');
+    const int64_t a = range ? range->first : -1, b = range ? range->second : -1;
+    if (!range || a < 0 || b < a || b > 1000000 || b - a >= 10000)
         return make_error("'" + text + "' must be A:B with 0 <= A <= B <= 1000000 and at most 10000 frames", {}, 0, "--frames");
     std::vector<int> frames;
-    for (int f = a; f <= b; ++f) frames.push_back(f);
+    for (int64_t f = a; f <= b; ++f) frames.push_back(static_cast<int>(f));
     return frames;
 }
 

@@ -87,6 +87,24 @@ const std::string& Cache::build_id() {
     return id;
 }
 
+namespace {
+
+// An entry: a header naming the format, the key and a checksum of the payload, then the payload.
+// Any mismatch (truncation, a flipped bit, a same-length edit, another key's file) is a miss; the
+// recompiled result then overwrites the entry, so a damaged cache heals itself.
+constexpr std::string_view kEntryMagic = "crtforge-cache 2\n";
+
+std::string checksum(std::string_view data) {
+    const XXH128_hash_t h = XXH3_128bits(data.data(), data.size());
+    return fmt::format("{:016x}{:016x}", h.high64, h.low64);
+}
+
+std::string entry_header(const std::string& key, std::string_view payload) {
+    return std::string(kEntryMagic) + key + "\n" + checksum(payload) + "\n";
+}
+
+}  // namespace
+
 std::optional<std::string> Cache::get(const std::string& kind, const std::string& key) const {
     if (!enabled()) return std::nullopt;
     std::ifstream in(dir_ + "/" + kind + "/" + key, std::ios::binary);
@@ -96,21 +114,27 @@ std::optional<std::string> Cache::get(const std::string& kind, const std::string
     }
     std::ostringstream data;
     data << in.rdbuf();
-    std::string blob = data.str();
-    // Entries end with their own key: a truncated or foreign file is a miss, not a wrong answer.
-    if (blob.size() < key.size() || blob.compare(blob.size() - key.size(), key.size(), key) != 0) {
+    const std::string blob = data.str();
+    const size_t header_size = kEntryMagic.size() + key.size() + 1 + 32 + 1;
+    if (blob.size() < header_size || blob.compare(0, kEntryMagic.size(), kEntryMagic) != 0) {
+        ++rejected_;
         ++misses_;
         return std::nullopt;
     }
-    blob.resize(blob.size() - key.size());
+    std::string payload = blob.substr(header_size);
+    if (blob.compare(0, header_size, entry_header(key, payload)) != 0) {
+        ++rejected_;
+        ++misses_;
+        return std::nullopt;
+    }
     ++hits_;
-    return blob;
+    return payload;
 }
 
 void Cache::put(const std::string& kind, const std::string& key, std::string_view data) const {
     if (!enabled()) return;
-    std::string blob(data);
-    blob += key;
+    std::string blob = entry_header(key, data);
+    blob += data;
     // A cache that cannot be written is only slower; never an error for the user.
     (void)write_file_atomic(dir_ + "/" + kind + "/" + key, blob);
 }

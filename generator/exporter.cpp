@@ -58,8 +58,10 @@ Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
         compile_memo().modules.emplace(key, words);
     };
     if (auto hit = cache.get("spirv", key); hit && hit->size() % 4 == 0 && !hit->empty()) {
+        // A cached module reaches SPIRV-Cross and the drivers: it must be valid SPIR-V, whatever
+        // happened to the file (the checksum catches damage; this catches the rest).
         SpirvBinary words = from_bytes(*hit);
-        if (words[0] == 0x07230203u) {
+        if (words[0] == 0x07230203u && validate_spirv(words).ok()) {
             remember(words);
             return words;
         }
@@ -95,6 +97,17 @@ bool get_field(std::string_view& in, std::string& field) {
     return true;
 }
 
+// A count of one or two digits.
+bool parse_count(const std::string& field, int& n) {
+    if (field.empty() || field.size() > 2) return false;
+    n = 0;
+    for (char c : field) {
+        if (c < '0' || c > '9') return false;
+        n = n * 10 + (c - '0');
+    }
+    return true;
+}
+
 std::string serialize(const TargetOutput& out) {
     std::string blob;
     put_field(blob, std::to_string(out.files.size()));
@@ -117,15 +130,16 @@ std::string serialize(const TargetOutput& out) {
 std::optional<TargetOutput> deserialize(std::string_view in) {
     TargetOutput out;
     std::string field, stage, suffix, data, role, path, name, how;
-    if (!get_field(in, field) || field.size() > 2) return std::nullopt;
-    for (int n = std::stoi(field); n > 0; --n) {
+    int n = 0;
+    if (!get_field(in, field) || !parse_count(field, n)) return std::nullopt;
+    for (; n > 0; --n) {
         if (!get_field(in, stage) || !get_field(in, suffix) || !get_field(in, data) || !get_field(in, role) ||
             !get_field(in, path))
             return std::nullopt;
         out.files.push_back({stage == "vert" ? ShaderStage::Vertex : ShaderStage::Fragment, suffix, data, role, path});
     }
-    if (!get_field(in, field) || field.size() > 2) return std::nullopt;
-    for (int n = std::stoi(field); n > 0; --n) {
+    if (!get_field(in, field) || !parse_count(field, n)) return std::nullopt;
+    for (; n > 0; --n) {
         if (!get_field(in, name) || !get_field(in, how)) return std::nullopt;
         out.bindings.emplace_back(name, how);
     }
@@ -134,17 +148,37 @@ std::optional<TargetOutput> deserialize(std::string_view in) {
     return out;
 }
 
-// Everything besides the SPIR-V that a target may print: Godot files carry the preset's name, doc,
-// filter and every uniform's default, and two presets can share one SPIR-V module.
+// Exact text of a value: value_to_string rounds colours to 8 bits.
+std::string exact_value(const Value& value) {
+    if (auto c = std::get_if<Color>(&value)) return fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
+    return value_to_string(value);
+}
+
+std::string optional_number(const std::optional<double>& x) { return x ? fmt::format("{}", *x) : std::string("-"); }
+
+// Everything besides the SPIR-V that a target may print or decide by: Godot files carry the
+// preset's name and doc and every param's range, step, unit, doc and default (hint_range, inspector
+// text), and two presets can share one SPIR-V module. Every field of ParamSpec is here, so an edit
+// to any of them is a new key; text fields are length-prefixed so no two fingerprints collide.
 std::string variant_fingerprint(const Variant& v) {
-    std::string out = v.file_stem() + "\n" + v.preset->doc + "\n";
+    auto text = [](const std::string& s) { return fmt::format("{}:{}", s.size(), s); };
+    std::string out = text(v.file_stem()) + text(v.preset->doc) +
+                      fmt::format("pass {} of {};alpha {};", v.pass_index, v.preset->passes.size(), v.writes_alpha());
+    out += fmt::format("frame_mod {};", v.pass->frame_count_mod);
     for (const PassInput& input : v.pass->inputs)
-        out += input.binding + ":" + input.from.str() + ":" + filter_name(input.filter) + ":" + wrap_name(input.wrap) + "\n";
+        out += text(input.binding) + text(input.from.str()) + filter_name(input.filter) + ":" + wrap_name(input.wrap) +
+               (input.mipmap ? ":mip;" : ";");
+    for (const std::string& t : v.textures) out += "texture " + text(t);
+    for (Builtin b : v.builtins) out += fmt::format("builtin {};", static_cast<int>(b));
     for (const VariantParam& p : v.params) {
-        // Exact values: value_to_string rounds colours to 8 bits.
-        std::string value = value_to_string(p.value);
-        if (auto c = std::get_if<Color>(&p.value)) value = fmt::format("{} {} {}", (*c)[0], (*c)[1], (*c)[2]);
-        out += p.spec->name + (p.uniform ? "=u:" : "=c:") + value + "\n";
+        const ParamSpec& spec = *p.spec;
+        out += text(spec.name) + (p.uniform ? "u:" : "c:") + text(exact_value(p.value));
+        out += fmt::format("type {};min {};max {};step {};role {};runtime {};", static_cast<int>(spec.type),
+                           optional_number(spec.min), optional_number(spec.max), optional_number(spec.step),
+                           static_cast<int>(spec.role), spec.runtime);
+        out += text(exact_value(spec.default_value)) + text(spec.unit) + text(spec.doc);
+        for (const std::string& e : spec.enum_values) out += text(e);
+        out += "\n";
     }
     return out;
 }

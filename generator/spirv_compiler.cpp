@@ -1,5 +1,6 @@
 // glslang (in-process) -> SPIR-V -> SPIRV-Tools optimise + validate.
 #include "crtforge/spirv_compiler.hpp"
+#include "crtforge/parse_number.hpp"
 #include "crtforge/version.hpp"
 
 #include <mutex>
@@ -44,7 +45,9 @@ Diagnostic diagnostic_from_log(const std::string& log, const std::string& fallba
         if (std::regex_match(line, m, located)) {
             std::string file = m[1].str();
             if (file == "0" || file.empty()) file = fallback_file;
-            return make_error(stage_label + ": " + m[3].str(), file, std::stoi(m[2].str()));
+            const auto line_number = parse_int(m[2].str());
+            const int at = line_number && *line_number <= 1000000000 ? static_cast<int>(*line_number) : 0;
+            return make_error(stage_label + ": " + m[3].str(), file, at);
         }
         return make_error(stage_label + ": " + line.substr(7), fallback_file);
     }

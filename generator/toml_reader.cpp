@@ -1,5 +1,6 @@
 #include "generator/toml_reader.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
@@ -20,7 +21,62 @@ bool is_identifier(const std::string& name) {
     return name.rfind("gl_", 0) != 0 && name.find("__") == std::string::npos;
 }
 
+namespace {
+
+// Bounds checked before toml++ sees the text: its parser recurses once per dotted-key segment
+// (a header of ~40 000 segments overflowed the stack), and no template file needs more than a few.
+constexpr size_t kMaxTomlBytes = 4u << 20;
+constexpr int kMaxKeySegments = 32;
+
+// The longest chain of dotted-key segments outside strings and comments, and the line it is on.
+// Numbers (1.5, times) have one dot; quoted segments ("a"."b") count like bare ones.
+std::pair<int, int> longest_dotted_key(const std::string& text) {
+    int longest = 0, longest_line = 1, dots = 0, line = 1;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') {
+            ++line;
+            dots = 0;
+        } else if (c == '#') {
+            while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+        } else if (c == '"' || c == '\'') {
+            // Skip the string (basic strings honour backslash escapes; triple quotes span lines).
+            const bool triple = text.compare(i, 3, std::string(3, c)) == 0;
+            const std::string close = triple ? std::string(3, c) : std::string(1, c);
+            size_t j = i + close.size();
+            while (j < text.size() && text.compare(j, close.size(), close) != 0) {
+                if (text[j] == '\\' && c == '"') ++j;
+                else if (text[j] == '\n') {
+                    if (!triple) break;
+                    ++line;
+                }
+                ++j;
+            }
+            i = std::min(text.size(), j + close.size()) - 1;
+        } else if (c == '.') {
+            if (++dots > longest) {
+                longest = dots;
+                longest_line = line;
+            }
+        } else if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == ' ' || c == '\t')) {
+            dots = 0;
+        }
+    }
+    return {longest + 1, longest_line};
+}
+
+}  // namespace
+
+Status check_toml_bounds(const std::string& text, const std::string& path) {
+    if (text.size() > kMaxTomlBytes)
+        return make_error(fmt::format("is {} bytes; a template file may have at most {}", text.size(), kMaxTomlBytes), path);
+    if (auto [segments, line] = longest_dotted_key(text); segments > kMaxKeySegments)
+        return make_error(fmt::format("a key of {} dotted segments; at most {} are allowed", segments, kMaxKeySegments), path, line);
+    return Ok{};
+}
+
 Result<toml::table> TomlReader::parse(const std::string& text) const {
+    if (auto bounds = check_toml_bounds(text, path_); !bounds.ok()) return bounds.error();
     try {
         return toml::parse(text, path_);
     } catch (const toml::parse_error& e) {

@@ -12,6 +12,10 @@
 
 namespace crtforge::detail {
 
+// What toml++ may be given: a bounded size and bounded dotted keys (its parser recurses per key
+// segment). A file beyond them is an error at the offending line, never a stack overflow.
+Status check_toml_bounds(const std::string& text, const std::string& path);
+
 class TomlReader {
 public:
     explicit TomlReader(std::string path) : path_(std::move(path)) {}

@@ -35,17 +35,41 @@ ReferenceFault& fault_slot() {
 const ReferenceFault& reference_fault() { return fault_slot(); }
 void install_reference_fault(const ReferenceFault& fault) { fault_slot() = fault; }
 
-double Params::num(const std::string& name) const {
-    const Value& v = values_.at(name);
-    const double factor = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
-    if (auto d = std::get_if<double>(&v)) return *d * factor;
-    return static_cast<double>(std::get<int64_t>(v)) * factor;
+template <typename T>
+const T* Params::find(const std::string& name, const char* type) const {
+    auto it = values_.find(name);
+    const T* value = it == values_.end() ? nullptr : std::get_if<T>(&it->second);
+    if (!value) missing_.note("param '" + name + "' (" + type + ")");
+    return value;
 }
-bool Params::flag(const std::string& name) const { return std::get<bool>(values_.at(name)); }
+
+double Params::num(const std::string& name) const {
+    const double factor = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
+    auto it = values_.find(name);
+    if (it != values_.end()) {
+        if (auto i = std::get_if<int64_t>(&it->second)) return static_cast<double>(*i) * factor;
+    }
+    const double* d = find<double>(name, "a number");
+    return d ? *d * factor : 0.0;
+}
+bool Params::flag(const std::string& name) const {
+    const bool* b = find<bool>(name, "a bool");
+    return b && *b;
+}
 Vec3 Params::color(const std::string& name) const {
-    const Color& c = std::get<Color>(values_.at(name));
+    const Color* c = find<Color>(name, "a colour");
+    if (!c) return {0, 0, 0};
     const double f = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
-    return {c[0] * f, c[1] * f, c[2] * f};
+    return {(*c)[0] * f, (*c)[1] * f, (*c)[2] * f};
+}
+
+const Sampler& Fragment::texture(const std::string& name) const {
+    auto it = textures.find(name);
+    if (it != textures.end() && it->second) return *it->second;
+    if (missing) missing->note("texture '" + name + "'");
+    static const Image black = Image::make(1, 1);
+    static const Sampler none(black, SamplerFilter::Nearest);
+    return none;
 }
 
 const StageModel* find_stage_model(const std::string& stage) {
@@ -139,9 +163,10 @@ Image lut_image(const LutImage& lut) {
 
 Result<Image> render_reference(const ReferenceJob& job) {
     if (!job.variant || !job.variant->preset || !job.variant->pass) return make_error("reference job without a variant");
-    if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension)
+    if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension ||
+        !image_budget_error(job.width, job.height).empty())
         return make_error("output size " + std::to_string(job.width) + "x" + std::to_string(job.height) + " is outside 1.." +
-                              std::to_string(kMaxImageDimension),
+                              std::to_string(kMaxImageDimension) + " per side or beyond the image memory budget",
                           {}, 0, "--size");
     if (job.input.width <= 0 || job.input.height <= 0 ||
         job.input.rgba.size() != static_cast<size_t>(job.input.width) * job.input.height * 4)
@@ -153,7 +178,8 @@ Result<Image> render_reference(const ReferenceJob& job) {
     const std::vector<PlannedStage>& plan = planned.value();
 
     const auto values = effective_values(variant, job.overrides);
-    const Params params(values);
+    const MissingNames missing;
+    const Params params(values, missing);
     const Sampler source(job.input, job.filter, job.wrap, job.texel_jitter);
     std::map<std::string, Sampler> samplers;
     for (const std::string& name : variant.textures) {
@@ -176,6 +202,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
     base.time = job.time;
     base.frame_count = job.frame_count;
     base.source = &source;
+    base.missing = &missing;
     for (const auto& [name, sampler] : samplers) base.textures[name] = &sampler;
     auto failed = [&](const PlannedStage& s, Hook hook) { return unmodelled(*s.resolved, hook_name(hook)); };
 
@@ -237,6 +264,14 @@ Result<Image> render_reference(const ReferenceJob& job) {
     for (auto& th : pool) th.join();
     for (const auto& e : errors)
         if (e) return *e;
+    if (const auto names = missing.names(); !names.empty()) {
+        std::string list;
+        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+        return make_error("the reference's models read " + list + ", which pass '" + variant.pass->alias + "' of preset '" +
+                              variant.preset->name + "' does not have (renamed or removed in the templates?): no reference "
+                              "image; approve a reviewed render instead (crtforge golden approve)",
+                          variant.preset->where.file, variant.preset->where.line);
+    }
     return out;
 }
 
@@ -248,9 +283,10 @@ Status reference_models(const Preset& preset) {
 
 Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) {
     if (!job.library || !job.preset || !job.source) return make_error("reference scene job without a preset or a source");
-    if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension)
+    if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension ||
+        !image_budget_error(job.width, job.height).empty())
         return make_error("display size " + std::to_string(job.width) + "x" + std::to_string(job.height) + " is outside 1.." +
-                              std::to_string(kMaxImageDimension),
+                              std::to_string(kMaxImageDimension) + " per side or beyond the image memory budget",
                           {}, 0, "--size");
     if (job.frames.empty()) return std::vector<Image>{};
     const Preset& preset = *job.preset;

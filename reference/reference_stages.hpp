@@ -7,6 +7,8 @@
 
 #include <functional>
 #include <map>
+#include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,15 +29,39 @@ struct ReferenceFault {
 const ReferenceFault& reference_fault();
 void install_reference_fault(const ReferenceFault& fault);
 
+// What a model may read that the templates do not provide (a param or texture renamed or removed
+// in a user's templates): noted, answered with zero, and turned into one Diagnostic after the
+// render — never an exception out of a worker thread. Shared by the render's threads.
+class MissingNames {
+public:
+    void note(const std::string& what) const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        names_.insert(what);
+    }
+    std::set<std::string> names() const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return names_;
+    }
+
+private:
+    mutable std::mutex mutex_;
+    mutable std::set<std::string> names_;
+};
+
 class Params {
 public:
-    explicit Params(const std::map<std::string, Value>& values) : values_(values) {}
+    Params(const std::map<std::string, Value>& values, const MissingNames& missing) : values_(values), missing_(missing) {}
     double num(const std::string& name) const;  // float or int param
     bool flag(const std::string& name) const;
     Vec3 color(const std::string& name) const;
 
 private:
+    // The value of that name and type, or nullptr (noted as missing).
+    template <typename T>
+    const T* find(const std::string& name, const char* type) const;
+
     const std::map<std::string, Value>& values_;
+    const MissingNames& missing_;
 };
 
 // What every stage may read about the fragment being shaded (cf. the CRT-effect document's
@@ -53,7 +79,9 @@ struct Fragment {
     std::map<std::string, const Sampler*> textures;
     std::function<Vec2(Vec2)> warp;  // the pass's warp stages, for a point other than this pixel
 
-    const Sampler& texture(const std::string& name) const { return *textures.at(name); }
+    const MissingNames* missing = nullptr;
+    // The pass's texture of that name; one the pass lacks is noted and reads as transparent black.
+    const Sampler& texture(const std::string& name) const;
     Vec2 source_uv(Vec2 screen) const {
         return {(screen.x - 0.5) * source_scale.x + 0.5, (screen.y - 0.5) * source_scale.y + 0.5};
     }

@@ -13,6 +13,7 @@
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/variant.hpp"
+#include "generator/toml_reader.hpp"
 
 namespace crtforge {
 
@@ -80,16 +81,14 @@ public:
         const int64_t w = *a->get(0)->value<int64_t>(), h = *a->get(1)->value<int64_t>();
         if (w < 1 || h < 1 || w > kMaxImageDimension || h > kMaxImageDimension)
             return error(node, field, fmt::format("{}x{} is outside 1..{}", w, h, kMaxImageDimension));
+        if (const std::string over = image_budget_error(w, h); !over.empty()) return error(node, field, fmt::format("{}x{} {}", w, h, over));
         return std::make_pair(static_cast<int>(w), static_cast<int>(h));
     }
 
     Result<Plan> read(const std::string& text, const TemplateLibrary& library) const {
-        toml::table root;
-        try {
-            root = toml::parse(text, path_);
-        } catch (const toml::parse_error& e) {
-            return make_error(std::string(e.description()), path_, static_cast<int>(e.source().begin.line));
-        }
+        auto parsed = detail::TomlReader(path_).parse(text);
+        if (!parsed.ok()) return parsed.error();
+        const toml::table& root = parsed.value();
         Plan plan;
         for (const auto& [key, node] : root)
             if (key != "golden") return error(&node, std::string(key.str()), "unknown key");

@@ -134,7 +134,9 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             if (!image.ok()) return image.error();
             current[i] = std::move(image.value());
         }
-        if (std::find(r.frames.begin(), r.frames.end(), frame) != r.frames.end()) kept[frame] = current.back();
+        // The display frame is moved, not copied, unless the next frame still reads it.
+        if (std::find(r.frames.begin(), r.frames.end(), frame) != r.frames.end())
+            kept[frame] = stateful ? current.back() : std::move(current.back());
         if (stateful) {
             previous = std::move(current);
             history.push_front(original.value());
@@ -142,7 +144,10 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         }
     }
     std::vector<Image> out;
-    for (int f : r.frames) out.push_back(kept.at(f));
+    for (size_t k = 0; k < r.frames.size(); ++k) {
+        const bool again = std::find(r.frames.begin() + static_cast<std::ptrdiff_t>(k) + 1, r.frames.end(), r.frames[k]) != r.frames.end();
+        out.push_back(again ? kept.at(r.frames[k]) : std::move(kept.at(r.frames[k])));
+    }
     return out;
 }
 

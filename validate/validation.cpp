@@ -2,6 +2,7 @@
 // checks on worker threads: the consumer compiles the target's files, then every golden of the
 // preset is rendered through that consumer and judged.
 #include "crtforge/validate/validation.hpp"
+#include "crtforge/parse_number.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -27,14 +28,11 @@ size_t ValidationReport::failed() const {
 
 Result<Shard> Shard::parse(const std::string& text) {
     Shard s;
-    unsigned i = 0, n = 0;
-    char slash = 0;
-    int consumed = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%n", &i, &slash, &n, &consumed) != 3 || slash != '/' ||
-        consumed != static_cast<int>(text.size()) || n == 0 || i == 0 || i > n)
-        return make_error("'" + text + "' is not a shard: expected i/n with 1 <= i <= n, e.g. 2/4", {}, 0, "--shard");
-    s.index = i;
-    s.count = n;
+    const auto pair = parse_int_pair(text, '/');
+    if (!pair || pair->second < 1 || pair->first < 1 || pair->first > pair->second || pair->second > 100000)
+        return make_error("'" + text + "' is not a shard: expected i/n with 1 <= i <= n <= 100000, e.g. 2/4", {}, 0, "--shard");
+    s.index = static_cast<unsigned>(pair->first);
+    s.count = static_cast<unsigned>(pair->second);
     return s;
 }
 

@@ -1,6 +1,7 @@
 // A content-addressed cache: blobs stored under a hash of everything that determines them, so an
-// unchanged variant is neither recompiled nor re-emitted. Writes are atomic (temp + rename);
-// an unreadable or truncated entry is treated as a miss.
+// unchanged variant is neither recompiled nor re-emitted. Writes are atomic (temp + rename). Every
+// entry carries its key and a checksum of its payload, verified on read: an unreadable, truncated
+// or edited entry is a miss (counted in rejected()), and the caller's put() heals it.
 #pragma once
 
 #include <atomic>
@@ -32,11 +33,12 @@ public:
 
     unsigned hits() const { return hits_; }
     unsigned misses() const { return misses_; }
+    unsigned rejected() const { return rejected_; }  // entries found but damaged (also misses)
 
 private:
     std::string dir_;
     // Safe to share between the export's worker threads.
-    mutable std::atomic<unsigned> hits_{0}, misses_{0};
+    mutable std::atomic<unsigned> hits_{0}, misses_{0}, rejected_{0};
 };
 
 }  // namespace crtforge

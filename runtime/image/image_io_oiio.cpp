@@ -4,7 +4,11 @@
 #include "crtforge/runtime/image_io.hpp"
 #include "runtime/image/image_io_module.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +19,7 @@
 #include <system_error>
 #include <vector>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace crtforge {
@@ -44,23 +49,19 @@ std::string first_non_finite(const Image& image) {
 }
 
 // Spreads n stored channels (1 grey, 2 grey+alpha, 3 RGB, 4+ RGBA) over RGBA, alpha defaulting to 1.
-Image expand_to_rgba(const std::vector<float>& stored, int width, int height, int channels) {
-    Image image = Image::make(width, height);
+// Pixels read with `channels` channels into the first slots of each RGBA pixel, completed in place:
+// grey (1 or 2 channels) fills R, G and B; a missing alpha is 1. No second full-size copy.
+void complete_rgba(Image& image, int channels) {
     const std::size_t count = image.pixel_count();
     for (std::size_t p = 0; p < count; ++p) {
-        const float* s = stored.data() + p * static_cast<std::size_t>(channels);
         float* d = image.rgba.data() + p * 4;
         if (channels <= 2) {
-            d[0] = d[1] = d[2] = s[0];
-            d[3] = channels == 2 ? s[1] : 1.0f;
-        } else {
-            d[0] = s[0];
-            d[1] = s[1];
-            d[2] = s[2];
-            d[3] = channels >= 4 ? s[3] : 1.0f;
+            d[3] = channels == 2 ? d[1] : 1.0f;
+            d[1] = d[2] = d[0];
+        } else if (channels == 3) {
+            d[3] = 1.0f;
         }
     }
-    return image;
 }
 
 Status check_writable_image(const std::string& path, const Image& image) {
@@ -77,25 +78,50 @@ Status check_writable_image(const std::string& path, const Image& image) {
     return Ok{};
 }
 
-// Writes `pixels` (of `pixel_type`, RGBA, tightly packed) with the OIIO writer for `format_name`
-// to a temporary file beside `path`, then renames it into place. The spec carries no attributes
-// beyond the ones set here, so nothing time- or host-dependent reaches the file.
+// Writes all of `bytes` to a new file at `path`; every write() and the close() are checked, so a
+// full disk or a file-size limit is an error, never a truncated file reported as written.
+std::string write_all(const std::string& path, const std::vector<unsigned char>& bytes) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return std::string("cannot open for writing: ") + std::strerror(errno);
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const std::string why = n < 0 ? std::strerror(errno) : "no progress";
+            ::close(fd);
+            return "write failed after " + std::to_string(done) + " of " + std::to_string(bytes.size()) + " bytes: " + why;
+        }
+        done += static_cast<size_t>(n);
+    }
+    if (::close(fd) != 0) return std::string("write failed at close: ") + std::strerror(errno);
+    return {};
+}
+
+// Encodes `pixels` (of `pixel_type`, RGBA, tightly packed) with the OIIO writer for `format_name`
+// into memory, writes the bytes to a temporary file beside `path` with checked writes, then renames
+// it into place. (OIIO's own file writing does not report a short write.) The spec carries no
+// attributes beyond the ones set here, so nothing time- or host-dependent reaches the file.
 Status write_atomically(const std::string& path, const char* format_name, const OIIO::ImageSpec& spec,
                         OIIO::TypeDesc pixel_type, const void* pixels) {
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format_name);
     if (!out) return make_error("OpenImageIO has no " + std::string(format_name) + " writer: " + or_unknown(OIIO::geterror()), path);
+    if (!out->supports("ioproxy")) return make_error("OpenImageIO's " + std::string(format_name) + " writer cannot encode to memory", path);
 
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput proxy(encoded);
     std::string failure;
-    if (!out->open(tmp, spec)) {
-        failure = "cannot open for writing: " + or_unknown(out->geterror());
+    if (!out->set_ioproxy(&proxy) || !out->open(tmp, spec)) {
+        failure = "cannot encode: " + or_unknown(out->geterror());
     } else if (!out->write_image(pixel_type, pixels)) {
-        failure = "write failed: " + or_unknown(out->geterror());
+        failure = "encoding failed: " + or_unknown(out->geterror());
         out->close();
     } else if (!out->close()) {
-        failure = "write failed: " + or_unknown(out->geterror());
+        failure = "encoding failed: " + or_unknown(out->geterror());
     }
     out.reset();
+    if (failure.empty()) failure = write_all(tmp, encoded);
 
     std::error_code ec;
     if (failure.empty()) {
@@ -136,19 +162,28 @@ Result<Image> oiio_read_image(const std::string& path) {
         return close_with("image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                           ", larger than the " + std::to_string(kMaxImageDimension) + " pixel limit");
     }
+    if (const std::string over = image_budget_error(spec.width, spec.height); !over.empty())
+        return close_with("image " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " " + over);
     if (spec.deep) return close_with("deep images are not supported");
     if (spec.depth > 1) return close_with("volume images are not supported");
 
     // Integer formats arrive normalised to 0..1 by OIIO's conversion to float; no colour transform.
     const int channels = std::min(spec.nchannels, 4);
-    std::vector<float> stored(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
-                              static_cast<std::size_t>(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, stored.data())) {
-        return close_with("cannot read pixels (corrupt or truncated file?): " + or_unknown(in->geterror()));
+    Image image = Image::make(spec.width, spec.height);
+    // Bands of rows, so OIIO's own conversion buffers stay a band's size, not the image's.
+    constexpr int kBandRows = 256;
+    const bool tiled = spec.tile_width > 0;
+    for (int y = 0; y < spec.height; y += tiled ? spec.height : kBandRows) {
+        const int end = tiled ? spec.height : std::min(spec.height, y + kBandRows);
+        float* band = image.at(0, y);
+        const bool read = tiled ? in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, band, 4 * sizeof(float))
+                                : in->read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, channels, OIIO::TypeDesc::FLOAT, band,
+                                                     4 * sizeof(float));
+        if (!read) return close_with("cannot read pixels (corrupt or truncated file?): " + or_unknown(in->geterror()));
     }
     in->close();
 
-    Image image = expand_to_rgba(stored, spec.width, spec.height, channels);
+    complete_rgba(image, channels);
     if (const std::string where = first_non_finite(image); !where.empty()) {
         return make_error("non-finite pixel value at " + where, path);
     }
@@ -159,15 +194,19 @@ Status oiio_write_png(const std::string& path, const Image& image, int bits) {
     if (bits != 8 && bits != 16) return make_error("PNG bit depth must be 8 or 16, not " + std::to_string(bits), path);
     if (Status ok = check_writable_image(path, image); !ok) return ok;
 
-    // Quantise here rather than in OIIO so the rounding (nearest, no dither) is ours and exact.
+    // Quantise here rather than in OIIO so the rounding (nearest, no dither) is ours and exact; into
+    // the one buffer of the file's depth (a large image is not held twice more).
     const double max_code = bits == 8 ? 255.0 : 65535.0;
-    std::vector<uint16_t> codes(image.rgba.size());
-    for (std::size_t i = 0; i < codes.size(); ++i) {
-        const double v = std::clamp(static_cast<double>(image.rgba[i]), 0.0, 1.0);
-        codes[i] = static_cast<uint16_t>(std::lround(v * max_code));
-    }
+    auto code = [&](float value) { return std::lround(std::clamp(static_cast<double>(value), 0.0, 1.0) * max_code); };
+    std::vector<uint16_t> codes;
     std::vector<uint8_t> bytes;
-    if (bits == 8) bytes.assign(codes.begin(), codes.end());
+    if (bits == 8) {
+        bytes.resize(image.rgba.size());
+        for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(code(image.rgba[i]));
+    } else {
+        codes.resize(image.rgba.size());
+        for (std::size_t i = 0; i < codes.size(); ++i) codes[i] = static_cast<uint16_t>(code(image.rgba[i]));
+    }
 
     const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
     OIIO::ImageSpec spec(image.width, image.height, 4, type);

@@ -515,6 +515,8 @@ Result<Image> make_test_input(const std::string& name, int width, int height, in
                                   " is out of range (each side 1.." + std::to_string(kMaxImageDimension) + ")",
                               {}, 0, "input");
         }
+        if (const std::string over = image_budget_error(width, height); !over.empty())
+            return make_error("test input size " + std::to_string(width) + "x" + std::to_string(height) + " " + over, {}, 0, "input");
         if (frame < 0) return make_error("frame " + std::to_string(frame) + " is negative", {}, 0, "frame");
         Image image = g.make_frame ? g.make_frame(width, height, frame) : g.make(width, height);
         // Every value exactly a half float: consumers that upload inputs as rgba16float (Dawn

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace crtforge {
@@ -11,6 +12,19 @@ namespace crtforge {
 // Largest width or height of any image crtforge reads, renders or writes: llvmpipe's largest 2D
 // texture and render target (a 16384 x 16384 RGBA float image is already 4 GiB).
 inline constexpr int kMaxImageDimension = 16384;
+
+// The image memory budget: no image crtforge reads, renders or writes has more pixels than this
+// (8192 x 8192 or 16384 x 4096; 1 GiB as RGBA float). Readers check it from the file's header,
+// before decoding; a render at the budget peaks at about 6 GiB (docs/hard-cases.md, "Memory").
+inline constexpr std::size_t kMaxImagePixels = std::size_t{8192} * 8192;
+
+// Empty when a width x height image fits the budget, else the reason, for a message.
+inline std::string image_budget_error(long long width, long long height) {
+    if (width > 0 && height > 0 && static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) > kMaxImagePixels)
+        return "is " + std::to_string(width * height / 1000000) + " Mpx, beyond the image memory budget of " +
+               std::to_string(kMaxImagePixels / 1000000) + " Mpx (e.g. 8192x8192)";
+    return {};
+}
 
 // Row-major, row 0 is the TOP row, 4 floats per pixel (R, G, B, A). Values are linear (never
 // sRGB-encoded) and may exceed 1.0 or go below 0.0 (HDR intermediates), so nothing clamps them.

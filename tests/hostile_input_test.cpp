@@ -1,0 +1,247 @@
+// Issue 13's hostile and careless inputs: a cache that cannot lie, bounded inputs, exceptions that
+// stay Diagnostics. Each case here failed on main before its fix.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include "crtforge/runtime/image_io.hpp"
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void overwrite(const fs::path& path, const std::string& data) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << data;
+}
+
+// Every file below dir, keyed by its path relative to dir.
+std::map<std::string, std::string> tree(const std::string& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.is_regular_file()) out[fs::relative(e.path(), dir).string()] = slurp(e.path());
+    return out;
+}
+
+std::vector<fs::path> cache_entries(const std::string& dir) {
+    std::vector<fs::path> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.is_regular_file()) out.push_back(e.path());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a cache entry edited in place is a miss, and the next put heals it", "[hostile][cache]") {
+    test::TempDir dir;
+    Cache cache(dir.path());
+    const std::string key = Cache::key({"edited"});
+    cache.put("kind", key, "const float k = 1.25;");
+    const fs::path entry = dir / ("kind/" + key);
+    std::string data = slurp(entry);
+    const size_t at = data.find("1.25");
+    REQUIRE(at != std::string::npos);
+    data.replace(at, 4, "9.75");  // same length: only the checksum can tell
+    overwrite(entry, data);
+    CHECK_FALSE(cache.get("kind", key).has_value());
+    CHECK(cache.rejected() == 1);
+    cache.put("kind", key, "const float k = 1.25;");
+    CHECK(cache.get("kind", key) == std::optional<std::string>("const float k = 1.25;"));
+    // Another key's entry copied over this one is not this key's answer.
+    const std::string other = Cache::key({"other"});
+    cache.put("kind", other, "other payload");
+    fs::copy_file(dir / ("kind/" + other), entry, fs::copy_options::overwrite_existing);
+    CHECK_FALSE(cache.get("kind", key).has_value());
+}
+
+TEST_CASE("flipped bits in cached SPIR-V and target entries never reach an export", "[hostile][cache]") {
+    // Fresh processes, so only the on-disk cache can answer (no in-process memo).
+    test::TempDir cache, expected_dir;
+    const std::string args = " export --preset classic,crt-pulse --target spirv,glsl330,hlsl50,wgsl,godot4 -q --out ";
+    auto uncached = test::run_crtforge("--no-cache" + args + expected_dir.path());
+    REQUIRE(uncached.exit_code == 0);
+    const auto expected = tree(expected_dir.path());
+    REQUIRE(test::run_crtforge("--cache-dir " + cache.path() + args + (expected_dir / "warm")).exit_code == 0);
+    const std::vector<fs::path> entries = cache_entries(cache.path());
+    REQUIRE(entries.size() >= 10);
+    // A bit in the header, in the checksum and in the payload of several entries, SPIR-V ones included.
+    uint32_t seed = 12345;
+    for (int trial = 0; trial < 12; ++trial) {
+        const fs::path& entry = entries[static_cast<size_t>(trial) * 7 % entries.size()];
+        std::string data = slurp(entry);
+        REQUIRE(!data.empty());
+        seed = seed * 1664525u + 1013904223u;
+        const size_t at = trial % 3 == 0 ? 3 : trial % 3 == 1 ? 60 % data.size() : data.size() / 2 + seed % (data.size() / 2);
+        data[at] = static_cast<char>(data[at] ^ (1 << (seed >> 29)));
+        overwrite(entry, data);
+        test::TempDir out;
+        auto run = test::run_crtforge("--cache-dir " + cache.path() + args + out.path());
+        INFO("trial " << trial << ": bit flipped at byte " << at << " of " << entry.string() << "\n" << run.err);
+        REQUIRE(run.exit_code == 0);
+        CHECK(tree(out.path()) == expected);
+        // Healed: the entry holds the right answer again.
+        auto again = test::run_crtforge("--cache-dir " + cache.path() + args + (out / "again"));
+        CHECK(again.exit_code == 0);
+        CHECK(tree(out / "again") == expected);
+    }
+}
+
+TEST_CASE("the target cache key covers every param field that reaches the output", "[hostile][cache]") {
+    test::ScratchTemplates scratch;
+    test::TempDir cache_dir;
+    Cache cache(cache_dir.path());
+    ExportRequest request;
+    request.presets = {"classic"};
+    request.targets = {TargetId::Godot4, TargetId::Godot3, TargetId::Wgsl};
+    auto before_lib = scratch.load();
+    REQUIRE(before_lib.ok());
+    REQUIRE(run_export(*before_lib.value(), request, cache).ok());
+    const std::string spec = scratch.read("stages/scanlines.toml");
+    // Each edit changes no GLSL: only the range, step, unit or doc of a runtime param.
+    const std::vector<std::pair<std::string, std::string>> edits = {
+        {"range = [0.0, 1.0]\nstep = 0.01\ndefault = 0.3\ndoc = \"Darkness", "range = [0.0, 0.9]\nstep = 0.01\ndefault = 0.3\ndoc = \"Darkness"},
+        {"step = 0.01\ndefault = 0.3\ndoc = \"Darkness", "step = 0.05\ndefault = 0.3\ndoc = \"Darkness"},
+        {"doc = \"Darkness of the scanlines (0 = none)\"", "doc = \"Darkness of the scanlines (0 = none), edited\""},
+        {"doc = \"Darkness of the scanlines (0 = none)\"", "doc = \"Darkness of the scanlines (0 = none)\"\nunit = \"fraction\""},
+    };
+    for (const auto& [from, to] : edits) {
+        INFO(to);
+        std::string edited = spec;
+        const size_t at = edited.find(from);
+        REQUIRE(at != std::string::npos);
+        edited.replace(at, from.size(), to);
+        scratch.write("stages/scanlines.toml", edited);
+        auto lib = scratch.load();
+        REQUIRE(lib.ok());
+        auto warm = run_export(*lib.value(), request, cache);
+        auto fresh = run_export(*lib.value(), request, Cache());
+        REQUIRE(warm.ok());
+        REQUIRE(fresh.ok());
+        CHECK(warm.value().files == fresh.value().files);
+        scratch.write("stages/scanlines.toml", spec);
+    }
+}
+
+TEST_CASE("a TOML key of thousands of dotted segments is an error at its line, not a stack overflow", "[hostile][toml]") {
+    std::string segments = "a";
+    for (int i = 0; i < 40000; ++i) segments += ".a";
+    for (const std::string& text : {"name = \"deep\"\n[" + segments + "]\nx = 1\n", "name = \"deep\"\nx = { " + segments + " = 1 }\n",
+                                    "name = \"deep\"\n" + segments + " = 1\n"}) {
+        auto preset = parse_preset_file(text, "deep.toml", &test::shipped_library());
+        REQUIRE_FALSE(preset.ok());
+        CHECK(preset.error().line == 2);
+        CHECK_THAT(preset.error().message, Catch::Contains("dotted segments"));
+        auto spec = parse_stage_spec(text, "deep.toml");
+        REQUIRE_FALSE(spec.ok());
+        CHECK(spec.error().line == 2);
+    }
+    // Dots inside strings, comments and numbers are not key segments.
+    std::string fine = "name = \"fine\"  # " + segments + "\ndoc = \"" + segments + "\"\n";
+    auto ok = parse_preset_file(fine, "fine.toml", &test::shipped_library());
+    CHECK(ok.ok());
+}
+
+TEST_CASE("a write that fails part-way (file size limit) is an error and leaves no file", "[hostile][io]") {
+    test::TempDir dir;
+    // RLIMIT_FSIZE of 20 KiB: the kernel refuses the write past it, like a full disk.
+    const std::string limit = "trap '' XFSZ; ulimit -f 20; ";
+    auto png = test::run_command(limit + "'" CRTFORGE_BINARY "' render --preset classic --input pixel_art --size 640x480 --output " +
+                                 (dir / "out.png"));
+    CHECK(png.exit_code == 2);
+    CHECK_THAT(png.err, Catch::Contains("write failed"));
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+    auto exr = test::run_command(limit + "'" CRTFORGE_BINARY "' render --preset classic --input pixel_art --size 640x480 --output " +
+                                 (dir / "out.exr"));
+    CHECK(exr.exit_code == 2);
+    CHECK_FALSE(fs::exists(dir / "out.exr"));
+    // An export whose manifest cannot be written: nothing at --out.
+    auto exported = test::run_command("trap '' XFSZ; ulimit -f 2; '" CRTFORGE_BINARY "' --no-cache export --preset super-win --out " +
+                                      (dir / "export"));
+    CHECK(exported.exit_code == 2);
+    CHECK_FALSE(fs::exists(dir / "export"));
+    size_t leftovers = 0;
+    for (const auto& e : fs::directory_iterator(dir.path())) leftovers += e.path().filename().string().find("tmp") != std::string::npos;
+    CHECK(leftovers == 0);
+}
+
+TEST_CASE("a param renamed in the templates is a reference error, not an abort", "[hostile][reference]") {
+    test::ScratchTemplates scratch;
+    // Renamed everywhere in the templates (spec, snippet, presets): only the reference still knows the old name.
+    for (const auto& e : fs::recursive_directory_iterator(scratch.dir())) {
+        if (!e.is_regular_file()) continue;
+        std::string text = slurp(e.path());
+        bool renamed = false;
+        for (size_t at = text.find("scanlineIntensity"); at != std::string::npos; at = text.find("scanlineIntensity", at)) {
+            text.replace(at, 17, "scanDarkness");
+            renamed = true;
+        }
+        if (renamed) overwrite(e.path(), text);
+    }
+    test::TempDir out;
+    auto run = test::run_crtforge("--templates " + scratch.dir() + " render --reference --preset classic --input pixel_art --size 64x48 --output " +
+                                  (out / "r.png"));
+    CHECK(run.exit_code == 2);
+    CHECK_THAT(run.err, Catch::Contains("param 'scanlineIntensity'"));
+    CHECK_THAT(run.err, Catch::Contains("classic.toml"));
+    CHECK_FALSE(fs::exists(out / "r.png"));
+    // The same templates still export and render on Vulkan: only the reference lacks the name.
+    auto vulkan = test::run_crtforge("--templates " + scratch.dir() + " render --preset classic --input pixel_art --size 64x48 --output " +
+                                     (out / "v.png"));
+    CHECK(vulkan.exit_code == 0);
+}
+
+TEST_CASE("sizes, frames and shards beyond 32 bits are refused, not wrapped around", "[hostile][cli]") {
+    for (const std::string& size : {"4294967297x1", "1x4294967297", "+64x48", "64x48x", " 64x48", "64 x48", "0x0", "16385x1"}) {
+        INFO(size);
+        auto run = test::run_crtforge("render --preset classic --input pixel_art --size '" + size + "' --output /tmp/never.png");
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("--size"));
+    }
+    auto budget = test::run_crtforge("render --preset classic --input pixel_art --size 16384x16384 --output /tmp/never.png");
+    CHECK(budget.exit_code == 2);
+    CHECK_THAT(budget.err, Catch::Contains("image memory budget"));
+    for (const std::string& shard : {"4294967297/4", "1/4294967297", "0/4", "5/4", "1/0", "-1/4"}) {
+        INFO(shard);
+        auto run = test::run_crtforge("validate --preset classic --target spirv --shard '" + shard + "'");
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("--shard"));
+    }
+    auto frames = test::run_crtforge("render --preset classic --input pixel_art --frames 4294967296:4294967297 --output '/tmp/never_%d.png'");
+    CHECK(frames.exit_code == 2);
+}
+
+TEST_CASE("an image beyond the memory budget is refused from its header, before decoding", "[hostile][image]") {
+    // A PNG whose header says 9000 x 9000 (81 Mpx) followed by no pixel data: refused for its size,
+    // not decoded (decoding would report a truncated file).
+    auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+    std::string png("\x89PNG\r\n\x1a\n", 8);
+    const std::string ihdr = "IHDR" + be32(9000) + be32(9000) + std::string("\x08\x02\x00\x00\x00", 5);
+    auto crc32 = [](const std::string& bytes) {
+        uint32_t crc = 0xFFFFFFFFu;
+        for (unsigned char c : bytes) {
+            crc ^= c;
+            for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+        }
+        return crc ^ 0xFFFFFFFFu;
+    };
+    png += be32(13) + ihdr + be32(crc32(ihdr));
+    png += be32(0) + "IDAT" + be32(crc32("IDAT")) + be32(0) + "IEND" + be32(crc32("IEND"));
+    test::TempDir dir;
+    overwrite(dir / "huge.png", png);
+    auto read = read_image(dir / "huge.png");
+    REQUIRE_FALSE(read.ok());
+    CHECK_THAT(read.error().message, Catch::Contains("image memory budget"));
+}
