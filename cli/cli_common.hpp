@@ -2,6 +2,8 @@
 // diagnostics as one line, and the exit-code convention (0 ok, 1 validation failure, 2 bad input).
 #pragma once
 
+#include <algorithm>
+
 #include <memory>
 #include <string>
 
@@ -55,6 +57,15 @@ Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::strin
 
 // Shared parsing helpers.
 Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"
+
+// Repeated --preset / --target entries name one thing once: the first of each is kept, in order.
+template <typename T>
+void drop_repeats(std::vector<T>& items) {
+    std::vector<T> kept;
+    for (const T& item : items)
+        if (std::find(kept.begin(), kept.end(), item) == kept.end()) kept.push_back(item);
+    items = std::move(kept);
+}
 std::string default_golden_dir();                                    // $CRTFORGE_GOLDEN or the source tree's golden/
 
 }  // namespace crtforge::cli

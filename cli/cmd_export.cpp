@@ -39,6 +39,8 @@ Runner add_export_command(CLI::App& app, const GlobalOptions& g) {
         if (!options.ok()) return report(options.error());
         request.options = options.value();
         request.presets = args->presets;
+        drop_repeats(request.presets);
+        drop_repeats(request.targets);
         auto lib = load_library(g, code);
         if (!lib) return code;
         Cache cache = make_cache(g);

@@ -11,13 +11,15 @@
 #include <unistd.h>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/runtime/dawn_engine.hpp"
+#include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/validate/validation.hpp"
 
 namespace crtforge::cli {
 
 namespace {
 struct ValidateArgs {
-    std::string report, shard = "1/1", golden, device, second_device = "auto", matrix = "main";
+    std::string report, shard = "1/1", golden, device, second_device = "auto", matrix = "main", run_id;
     std::vector<std::string> presets, targets, inputs;
     unsigned jobs = 1;
     bool compile_only = false;
@@ -48,6 +50,33 @@ Result<std::optional<SecondDriver>> second_driver(const std::string& choice, con
     }
     if (choice == "auto") return std::optional<SecondDriver>{};
     return make_error("no Vulkan device matches '" + choice + "' (see 'crtforge devices')", {}, 0, "--second-device");
+}
+
+// What the arguments ask for that this machine cannot give is a usage error (exit 2) before
+// anything runs, not a column of failed checks (exit 1): a --device no driver has, and Dawn
+// (Node.js and the runner's npm package) when the WGSL target renders.
+Status check_machine(const ValidateRequest& request, const std::string& device) {
+    if (!device.empty()) {
+        auto devices = list_vulkan_devices();
+        if (!devices.ok()) return make_error(devices.error().message, {}, 0, "--device");
+        bool found = false;
+        const bool index = std::all_of(device.begin(), device.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+        auto lower = [](std::string t) {
+            for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            return t;
+        };
+        for (size_t i = 0; i < devices.value().size(); ++i)
+            found = found || (index ? device == std::to_string(i) : lower(devices.value()[i].name).find(lower(device)) != std::string::npos);
+        if (!found)
+            return make_error("no Vulkan device matches '" + device + "' (" + std::to_string(devices.value().size()) +
+                                  " devices; see 'crtforge devices')",
+                              {}, 0, "--device");
+    }
+    const bool wgsl = request.targets.empty() ||
+                      std::find(request.targets.begin(), request.targets.end(), TargetId::Wgsl) != request.targets.end();
+    if (wgsl)  // WGSL compile checks run in Dawn too
+        if (auto dawn = DawnEngine::check_setup(); !dawn.ok()) return make_error(dawn.error().message, {}, 0, "--target wgsl");
+    return Ok{};
 }
 
 // Plain lines when piped (CI logs), an in-place progress bar on a terminal.
@@ -117,6 +146,8 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         ->check(CLI::IsMember({"main", "full"}))
         ->capture_default_str();
     cmd->add_flag("--compile-only", a->compile_only, "Only the compile checks, no renders");
+    cmd->add_option("--run-id", a->run_id,
+                    "Names the run in report.json (default: derived from what it checks); give every shard of a CI run the same one");
     return [&g, a]() {
         const auto start = std::chrono::steady_clock::now();
         int code = kExitOk;
@@ -131,6 +162,9 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         request.shard = shard.value();
         request.presets = a->presets;
         request.inputs = a->inputs;
+        drop_repeats(request.targets);
+        drop_repeats(request.presets);
+        drop_repeats(request.inputs);
         request.render = !a->compile_only;
         request.full_matrix = a->matrix == "full";
         request.golden_dir = a->golden.empty() ? default_golden_dir() : a->golden;
@@ -143,6 +177,10 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
             request.second_label = second.value()->label;
         }
         request.jobs = a->jobs;
+        if (auto machine = check_machine(request, a->device); !machine.ok()) return report(machine.error());
+        request.run_id = a->run_id;
+        if (!a->report.empty())
+            if (auto s = prepare_report_dir(a->report); !s.ok()) return report(s.error());
         auto lib = load_library(g, code);
         if (!lib) return code;
         if (auto s = add_golden_presets(*lib, request.golden_dir); !s.ok()) return report(s.error());

@@ -296,10 +296,24 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         pass.stages = std::move(stages.value());
         pass.where = leaf->where;
         pass.inputs.push_back({"source", {}, preset.filter, Wrap::ClampToEdge, false, 0});
-        for (const std::string& t : pass.texture_names())
-            return make_error("stage of preset '" + name + "' reads texture '" + t +
-                                  "': only a [[pass]] can bind it ([pass.textures] " + t + " = \"...\")",
-                              leaf->where.file, 1, "stages");
+        for (const std::string& t : pass.texture_names()) {
+            // Blame the entry that enabled the stage reading it, in whichever file of the chain.
+            std::string file = leaf->where.file, field = "stages";
+            int line = 1;
+            for (const ResolvedStage& rs : pass.stages) {
+                if (std::find(rs.form->textures.begin(), rs.form->textures.end(), t) == rs.form->textures.end()) continue;
+                for (const PresetFile* f : chain)
+                    for (const PresetStageEntry& e : f->stages)
+                        if (e.stage == rs.stage->name && line == 1) {
+                            file = f->where.file;
+                            line = e.line;
+                            field = "stages." + e.stage;
+                        }
+            }
+            return make_error("stage of preset '" + name + "' reads texture '" + t + "': only a [[pass]] can bind it ([pass.textures] " +
+                                  t + " = \"...\")",
+                              file, line, field);
+        }
         preset.passes.push_back(std::move(pass));
         if (preset.scene.source_fit != SourceFit::Stretch && !preset.scene.source_width)
             return make_error("a source fit other than stretch needs the source's size ([source] size = [w, h])",

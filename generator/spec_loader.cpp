@@ -1,10 +1,12 @@
 // Parses and validates one stage spec (templates/stages/<stage>.toml).
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <fmt/format.h>
 
 #include "crtforge/template_library.hpp"
+#include "generator/reserved_words.hpp"
 #include "generator/toml_reader.hpp"
 
 namespace crtforge {
@@ -82,6 +84,10 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
     p.name = name.value();
     if (!detail::is_identifier(p.name))
         return r.error(t.get("name"), join_field(prefix, "name"), "'" + p.name + "' is not a valid GLSL identifier");
+    if (const std::string language = detail::reserving_language(p.name); !language.empty())
+        return r.error(t.get("name"), "param." + p.name,
+                       "'" + p.name + "' is a keyword or builtin of " + language +
+                           " (a param becomes a uniform of its name in every target): choose another name");
     const std::string field = "param." + p.name;
 
     auto type = r.string(t, "type", field, true);
@@ -114,12 +120,17 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
             return r.error(range, join_field(field, "range"), "must be [min, max]");
         p.min = a->get(0)->value<double>();
         p.max = a->get(1)->value<double>();
+        // Bounds reach generated code (Godot's hint_range) and the validator's sweeps: finite, and
+        // within float32 so every target reads the same number.
+        for (const std::optional<double>& bound : {p.min, p.max})
+            if (!bound || !std::isfinite(*bound) || std::fabs(*bound) > 3.0e38)
+                return r.error(range, join_field(field, "range"), "bounds must be finite numbers within float range");
         if (!(*p.min < *p.max)) return r.error(range, join_field(field, "range"), "min must be below max");
     } else if (numeric) {
         return r.error(&t, join_field(field, "range"), "a float or int param needs a range [min, max]");
     }
     if (const toml::node* step = t.get("step")) {
-        if (!numeric || !step->is_number() || !(step->value<double>().value_or(0) > 0))
+        if (!numeric || !step->is_number() || !(step->value<double>().value_or(0) > 0) || !std::isfinite(*step->value<double>()))
             return r.error(step, join_field(field, "step"), "must be a positive number on a float or int param");
         p.step = step->value<double>();
     }

@@ -245,3 +245,125 @@ TEST_CASE("an image beyond the memory budget is refused from its header, before 
     REQUIRE_FALSE(read.ok());
     CHECK_THAT(read.error().message, Catch::Contains("image memory budget"));
 }
+
+TEST_CASE("keywords and builtins of any target are refused as param names at the spec line", "[hostile][spec]") {
+    const std::map<std::string, std::string> names = {
+        {"texture", "GLSL"}, {"mix", "GLSL"}, {"lerp", "HLSL"}, {"cbuffer", "HLSL"}, {"fn", "WGSL"}, {"override", "WGSL"},
+        {"TIME", "Godot"}, {"SCREEN_UV", "Godot"}, {"hint_range", "Godot"}};
+    for (const auto& [name, language] : names) {
+        INFO(name);
+        test::ScratchTemplates scratch;
+        std::string spec = scratch.read("stages/vignette.toml");
+        const size_t at = spec.find("[[param]]\nname = \"");
+        REQUIRE(at != std::string::npos);
+        spec.insert(at, "[[param]]\nname = \"" + name + "\"\ntype = \"float\"\nrange = [0.0, 1.0]\ndefault = 0.5\ndoc = \"x\"\n\n");
+        scratch.write("stages/vignette.toml", spec);
+        auto lib = scratch.load();
+        REQUIRE_FALSE(lib.ok());
+        CHECK_THAT(lib.error().message, Catch::Contains(language));
+        CHECK_THAT(lib.error().file, Catch::EndsWith("stages/vignette.toml"));
+        CHECK(lib.error().line == static_cast<int>(std::count(spec.begin(), spec.begin() + static_cast<std::ptrdiff_t>(at), '\n')) + 2);
+    }
+}
+
+TEST_CASE("infinite or out-of-float range bounds are refused", "[hostile][spec]") {
+    for (const std::string range : {"[0.0, inf]", "[-inf, 1.0]", "[0.0, nan]", "[0.0, 1e300]"}) {
+        INFO(range);
+        const std::string text = "name = \"s\"\ndoc = \"d\"\norder = 99\n\n[[param]]\nname = \"sParam\"\ntype = \"float\"\nrange = " + range +
+                                 "\ndefault = 0.5\ndoc = \"x\"\n\n[[form]]\nname = \"f\"\ndoc = \"d\"\ncolor = \"s_color\"\n";
+        auto spec = parse_stage_spec(text, "s.toml");
+        REQUIRE_FALSE(spec.ok());
+        CHECK(spec.error().line == 8);
+        CHECK(spec.error().field == "param.sParam.range");
+    }
+}
+
+TEST_CASE("an inherited stage's texture error points at the line that enabled the stage", "[hostile][preset]") {
+    auto preset = test::resolve_preset_texts(
+        {{"base.toml", "name = \"base\"\ndoc = \"b\"\n\n\n[stages.color_grade]\ngradeStrength = 0.5\n"},
+         {"leaf.toml", "name = \"leaf\"\ndoc = \"l\"\nbase = \"base\"\n"}},
+        "leaf");
+    REQUIRE_FALSE(preset.ok());
+    CHECK(preset.error().file == "base.toml");
+    CHECK(preset.error().line == 5);
+    CHECK(preset.error().field == "stages.color_grade");
+}
+
+TEST_CASE("what the machine lacks for validate is a usage error (exit 2), not failed checks", "[hostile][cli][validate]") {
+    auto device = test::run_crtforge("validate --preset classic --target spirv --device 99");
+    CHECK(device.exit_code == 2);
+    CHECK_THAT(device.err, Catch::Contains("--device"));
+    auto named = test::run_crtforge("validate --preset classic --target spirv --device no-such-gpu");
+    CHECK(named.exit_code == 2);
+    auto node = test::run_crtforge("validate --preset classic --target wgsl", "PATH=/nonexistent");
+    CHECK(node.exit_code == 2);
+    CHECK_THAT(node.err, Catch::Contains("nodejs and npm"));
+    // WGSL's compile checks run in Dawn too; a run without the WGSL target needs no Node.js.
+    auto no_wgsl = test::run_crtforge("validate --preset classic --target spirv --compile-only", "PATH=/nonexistent");
+    CHECK(no_wgsl.exit_code == 0);
+}
+
+TEST_CASE("repeated --preset and --target entries run once", "[hostile][cli]") {
+    auto once = test::run_crtforge("validate --preset classic --target spirv,glsl330 --compile-only");
+    auto twice = test::run_crtforge("validate --preset classic,classic --preset classic --target spirv,glsl330,spirv --compile-only");
+    REQUIRE(once.exit_code == 0);
+    REQUIRE(twice.exit_code == 0);
+    auto checks = [](const std::string& out) { return out.substr(out.find("validate:"), out.find(" checks") - out.find("validate:")); };
+    CHECK(checks(once.out) == checks(twice.out));
+}
+
+TEST_CASE("validate --report replaces an earlier report and refuses a folder that is not one", "[hostile][cli][validate]") {
+    test::TempDir report;
+    fs::create_directories(report / "images/stale.golden");
+    overwrite(report / "images/stale.golden/spirv.png", "old");
+    overwrite(report / "report.json", "{}");
+    auto run = test::run_crtforge("validate --preset webgpu-post --target spirv --input color_bars --report " + report.path());
+    REQUIRE(run.exit_code == 0);
+    CHECK_FALSE(fs::exists(report / "images/stale.golden"));
+    CHECK(fs::exists(report / "report.html"));
+    test::TempDir other;
+    overwrite(other / "notes.txt", "mine");
+    auto refused = test::run_crtforge("validate --preset webgpu-post --target spirv --input color_bars --report " + other.path());
+    CHECK(refused.exit_code == 2);
+    CHECK_THAT(refused.err, Catch::Contains("--report"));
+    CHECK(slurp(other / "notes.txt") == "mine");
+}
+
+TEST_CASE("report merge takes every shard of one run once, and nothing else", "[hostile][cli][validate]") {
+    test::TempDir root;
+    const std::string common = "validate --preset classic,webgpu-post --target spirv --compile-only";
+    for (int i = 1; i <= 3; ++i)
+        REQUIRE(test::run_crtforge(common + fmt::format(" --shard {}/3 --report {}", i, root / fmt::format("s{}", i))).exit_code == 0);
+    REQUIRE(test::run_crtforge(common + " --run-id other --shard 2/3 --report " + (root / "foreign")).exit_code == 0);
+    REQUIRE(test::run_crtforge(common + " --shard 1/2 --report " + (root / "half")).exit_code == 0);
+    auto merge = [&](const std::string& dirs) { return test::run_crtforge("report merge --out " + (root / "m") + " " + dirs); };
+    auto all = merge(root / "s1" + " " + (root / "s2") + " " + (root / "s3"));
+    CHECK(all.exit_code == 0);
+    auto repeated = merge(root / "s1" + " " + (root / "s2") + " " + (root / "s2"));
+    CHECK(repeated.exit_code == 2);
+    CHECK_THAT(repeated.err, Catch::Contains("twice"));
+    auto missing = merge(root / "s1" + " " + (root / "s3"));
+    CHECK(missing.exit_code == 2);
+    CHECK_THAT(missing.err, Catch::Contains("missing: 2/3"));
+    auto foreign = merge(root / "s1" + " " + (root / "foreign") + " " + (root / "s3"));
+    CHECK(foreign.exit_code == 2);
+    CHECK_THAT(foreign.err, Catch::Contains("another run"));
+    auto counts = merge(root / "s1" + " " + (root / "half"));
+    CHECK(counts.exit_code == 2);
+}
+
+TEST_CASE("a corrupt PNG is one crtforge line, with libpng's words inside it", "[hostile][image]") {
+    test::TempDir dir;
+    // A valid PNG cut short in its pixel data: libpng prints its own line unless crtforge folds it in.
+    Image picture = Image::make(64, 64, {0.25f, 0.5f, 0.75f, 1.0f});
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) picture.set_pixel(x, y, {x / 63.0f, y / 63.0f, ((x * 7 + y * 13) % 64) / 63.0f, 1.0f});
+    REQUIRE(write_png(dir / "whole.png", picture, 8).ok());
+    const std::string whole = slurp(dir / "whole.png");
+    overwrite(dir / "cut.png", whole.substr(0, whole.size() / 2));
+    auto run = test::run_crtforge("render --preset classic --input " + (dir / "cut.png") + " --output " + (dir / "out.png"));
+    CHECK(run.exit_code == 2);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    CHECK_THAT(run.err, Catch::StartsWith("crtforge: "));
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+}

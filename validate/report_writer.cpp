@@ -1,6 +1,7 @@
 // report.json (machine-readable, mergeable across shards), junit.xml (one test case per check) and
 // report.html (a contact sheet: pictures first, metrics under each render).
 #include <algorithm>
+#include <filesystem>
 #include <map>
 
 #include <fmt/format.h>
@@ -46,6 +47,7 @@ json golden_json(const GoldenEntry& g) {
 
 std::string report_json(const ValidationReport& report) {
     json j;
+    j["run"] = {{"id", report.run_id}, {"shard", report.shard_index}, {"shards", report.shard_count}};
     j["summary"] = {{"checks", report.checks.size()}, {"passed", report.passed()}, {"failed", report.failed()}};
     j["consumers"] = json::object();
     for (const auto& [t, c] : report.consumers) j["consumers"][t] = c;
@@ -201,16 +203,53 @@ Status write_report(const ValidationReport& report, const std::string& dir) {
     return write_file_atomic(dir + "/report.html", report_html(report));
 }
 
+Status prepare_report_dir(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) return Ok{};
+    if (!fs::is_directory(dir, ec)) return make_error("is not a folder", dir, 0, "--report");
+    if (fs::is_empty(dir, ec)) return Ok{};
+    if (!fs::exists(fs::path(dir) / "report.json", ec))
+        return make_error("holds files but no report.json: not an earlier report, so it is left alone (choose an empty or new folder)",
+                          dir, 0, "--report");
+    for (const char* name : {"images", "report.json", "junit.xml", "report.html"}) {
+        fs::remove_all(fs::path(dir) / name, ec);
+        if (ec) return make_error("cannot remove the earlier report's " + std::string(name) + ": " + ec.message(), dir, 0, "--report");
+    }
+    return Ok{};
+}
+
 Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
     ValidationReport merged;
     std::map<std::string, GoldenEntry> goldens;
     std::vector<std::string> golden_order;
+    std::map<unsigned, std::string> shard_paths;  // index -> report, to refuse repeats
     for (const auto& dir : dirs) {
         const std::string path = dir + "/report.json";
         auto text = read_text_file(path);
         if (!text.ok()) return text.error();
         json j = json::parse(text.value(), nullptr, false);
         if (j.is_discarded() || !j.contains("checks")) return make_error("not a crtforge report", path);
+        // Shards of one run, each once, all of them.
+        const json* run = j.contains("run") && j["run"].is_object() ? &j["run"] : nullptr;
+        if (!run || !(*run)["id"].is_string() || !(*run)["shard"].is_number_unsigned() || !(*run)["shards"].is_number_unsigned())
+            return make_error("report without a run id and shard (made by an older crtforge? run validate again)", path, 0, "run");
+        const std::string id = (*run)["id"].get<std::string>();
+        const unsigned index = (*run)["shard"].get<unsigned>(), count = (*run)["shards"].get<unsigned>();
+        if (shard_paths.empty()) {
+            merged.run_id = id;
+            merged.shard_count = count;
+        } else if (id != merged.run_id) {
+            return make_error("shard of another run (" + id + ", not " + merged.run_id + " like " + shard_paths.begin()->second +
+                                  "): merge the shards of one validate run",
+                              path, 0, "run.id");
+        } else if (count != merged.shard_count) {
+            return make_error(fmt::format("shard of {} shards, but {} says {}", count, shard_paths.begin()->second, merged.shard_count),
+                              path, 0, "run.shards");
+        }
+        if (index < 1 || index > count) return make_error(fmt::format("shard {} of {} is out of range", index, count), path, 0, "run.shard");
+        if (auto [it, fresh] = shard_paths.emplace(index, path); !fresh)
+            return make_error(fmt::format("shard {}/{} twice: also {}", index, count, it->second), path, 0, "run.shard");
         try {
             for (const auto& [t, c] : j.at("consumers").items())
                 if (std::none_of(merged.consumers.begin(), merged.consumers.end(), [&](const auto& p) { return p.first == t; }))
@@ -256,6 +295,13 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
             return make_error(std::string("malformed report: ") + e.what(), path);
         }
     }
+    if (shard_paths.size() != merged.shard_count) {
+        std::string missing;
+        for (unsigned i = 1; i <= merged.shard_count && missing.size() < 200; ++i)
+            if (!shard_paths.count(i)) missing += (missing.empty() ? "" : ", ") + fmt::format("{}/{}", i, merged.shard_count);
+        return make_error("shards missing: " + missing + " (merge every shard of the run)", shard_paths.begin()->second, 0, "run.shards");
+    }
+    merged.shard_index = merged.shard_count = 1;  // the whole run again
     for (const auto& id : golden_order) merged.goldens.push_back(goldens.at(id));
     // Restore the unsharded order: preset, then target order, then compile before render checks
     // in golden order.

@@ -3,6 +3,7 @@
 // preset is rendered through that consumer and judged.
 #include "crtforge/validate/validation.hpp"
 #include "crtforge/parse_number.hpp"
+#include "crtforge/version.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -15,7 +16,10 @@
 #include <optional>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "crtforge/exporter.hpp"
+#include "crtforge/files.hpp"
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/validate/target_render.hpp"
@@ -325,6 +329,18 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
         for (const auto& t : all_targets()) targets.push_back(t.id);
 
     ValidationReport report;
+    report.shard_index = request.shard.index;
+    report.shard_count = request.shard.count;
+    report.run_id = request.run_id;
+    if (report.run_id.empty()) {
+        std::string what = fmt::format("{}|render {}|full {}|", CRTFORGE_VERSION, request.render, request.full_matrix);
+        for (const auto& p : request.presets) what += "preset " + p + "|";
+        for (TargetId t : targets) what += std::string("target ") + target_info(t).name + "|";
+        for (const auto& i : request.inputs) what += "input " + i + "|";
+        if (request.render)
+            if (auto manifest = read_text_file(request.golden_dir + "/manifest.json"); manifest.ok()) what += manifest.value();
+        report.run_id = Cache::key({what}).substr(0, 16);
+    }
     if (request.render) {
         auto goldens = load_golden_manifest(request.golden_dir);
         if (!goldens.ok()) return goldens.error();

@@ -86,6 +86,18 @@ std::string webgpu_package_problem(const fs::path& runner_dir) {
     return {};
 }
 
+// What this machine lacks to run the Dawn runner at all, before anything starts.
+Status runner_setup(const fs::path& runner_dir) {
+    if (find_on_path("node").empty())
+        return make_error("Dawn rendering needs Node.js: install the Debian packages nodejs and npm ('node' is not on PATH)");
+    const fs::path script = runner_dir / "runner.mjs";
+    std::error_code ec;
+    if (!fs::is_regular_file(script, ec)) return make_error(fmt::format("the WGSL runner is missing: no '{}'", script.string()));
+    if (const std::string problem = webgpu_package_problem(runner_dir); !problem.empty())
+        return make_error(problem + ": run scripts/setup.sh");
+    return Ok{};
+}
+
 const char* format_name(OutputFormat format) {
     switch (format) {
         case OutputFormat::Rgba8Unorm: return "rgba8unorm";
@@ -206,15 +218,9 @@ struct DawnEngine::Impl {
     }
 
     Status start() {
+        if (auto setup = runner_setup(runner_dir); !setup.ok()) return setup;
         const std::string node = find_on_path("node");
-        if (node.empty())
-            return make_error("Dawn rendering needs Node.js: install the Debian packages nodejs and npm ('node' is not on PATH)");
         const fs::path script = runner_dir / "runner.mjs";
-        std::error_code ec;
-        if (!fs::is_regular_file(script, ec))
-            return make_error(fmt::format("the WGSL runner is missing: no '{}'", script.string()));
-        if (const std::string problem = webgpu_package_problem(runner_dir); !problem.empty())
-            return make_error(problem + ": run scripts/setup.sh");
 
         int sockets[2] = {-1, -1};
         if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) != 0)
@@ -350,6 +356,8 @@ struct DawnEngine::Impl {
 DawnEngine::DawnEngine(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 DawnEngine::~DawnEngine() = default;
+
+Status DawnEngine::check_setup() { return runner_setup(fs::path(data_path("tools/wgsl-runner")).lexically_normal()); }
 
 Result<std::unique_ptr<DawnEngine>> DawnEngine::create() {
     try {

@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <mutex>
 
 #include <algorithm>
 #include <cmath>
@@ -137,7 +139,73 @@ Status write_atomically(const std::string& path, const char* format_name, const 
 
 }  // namespace
 
+static Result<Image> read_image_quietly(const std::string& path);
+
+// While it lives, what the process writes to stderr goes to a temporary file instead: libpng's
+// default error handler prints "libpng error: ..." itself before OIIO reports the failure, and a
+// crtforge error is one line. Readers take turns (the redirection is process-wide); text captured
+// from a read that succeeds (or from another thread meanwhile) is passed on to stderr unchanged.
+class StderrCapture {
+public:
+    StderrCapture() : lock_(mutex()) {
+        std::fflush(stderr);
+        file_ = std::tmpfile();
+        saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
+        if (saved_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
+    }
+    ~StderrCapture() {
+        const std::string text = release();
+        if (!text.empty()) (void)!::write(STDERR_FILENO, text.data(), text.size());
+    }
+    // Restores stderr and returns what was captured (then nothing is passed on at destruction).
+    std::string take() {
+        std::string text = release();
+        while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+        for (char& c : text)
+            if (c == '\n') c = ' ';
+        return text;
+    }
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::string release() {
+        std::string text;
+        if (saved_ < 0) return text;
+        std::fflush(stderr);
+        ::dup2(saved_, STDERR_FILENO);
+        ::close(saved_);
+        saved_ = -1;
+        std::rewind(file_);
+        char chunk[512];
+        size_t n = 0;
+        while ((n = std::fread(chunk, 1, sizeof chunk, file_)) > 0 && text.size() < 4096) text.append(chunk, n);
+        std::fclose(file_);
+        file_ = nullptr;
+        return text;
+    }
+
+    std::lock_guard<std::mutex> lock_;
+    std::FILE* file_ = nullptr;
+    int saved_ = -1;
+};
+
 Result<Image> oiio_read_image(const std::string& path) {
+    StderrCapture captured;
+    auto image = read_image_quietly(path);
+    if (!image.ok()) {
+        // libpng's own line, if any, is part of this one-line error, not a line before it.
+        const std::string said = captured.take();
+        Diagnostic d = image.error();
+        if (!said.empty() && d.message.find(said) == std::string::npos) d.message += " (" + said + ")";
+        return d;
+    }
+    return image;
+}
+
+static Result<Image> read_image_quietly(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) return make_error("file not found", path);
     if (fs::is_directory(path, ec)) return make_error("is a directory, not an image file", path);

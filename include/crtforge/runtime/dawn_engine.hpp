@@ -82,6 +82,8 @@ public:
     //  - Dawn finds no adapter: says it needs Mesa's GLES through EGL_PLATFORM=surfaceless;
     //  - the runner fails to start otherwise: its last log line.
     static Result<std::unique_ptr<DawnEngine>> create();
+    // The first two checks of create() without starting anything: for a clear exit 2 before a run.
+    static Status check_setup();
     ~DawnEngine();
     DawnEngine(const DawnEngine&) = delete;
     DawnEngine& operator=(const DawnEngine&) = delete;

@@ -29,6 +29,11 @@ struct CheckResult {
 };
 
 struct ValidationReport {
+    // Which run this is: shards of one run share the id (derived from what the run checks: the
+    // goldens, presets, targets and inputs, or --run-id) and carry their index of the count, so
+    // `report merge` refuses shards of other runs, repeated shards and missing ones.
+    std::string run_id;
+    unsigned shard_index = 1, shard_count = 1;
     std::vector<CheckResult> checks;              // fixed order: preset, target, check
     std::vector<GoldenEntry> goldens;             // the goldens this run rendered against
     std::vector<std::pair<std::string, std::string>> consumers;  // target -> consumer description
@@ -59,6 +64,7 @@ struct ValidateRequest {
     bool full_matrix = false;
     Shard shard;
     unsigned jobs = 1;                 // worker threads, each with its own engines
+    std::string run_id;                // empty: derived from the request (ValidationReport::run_id)
 };
 
 using ProgressFn = std::function<void(size_t done, size_t total, const CheckResult&)>;
@@ -69,6 +75,10 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
 // report.json, junit.xml and report.html into dir. No timestamps or timings: the same results give
 // byte-identical files.
 Status write_report(const ValidationReport& report, const std::string& dir);
+// Before a run writes into `dir`: an earlier report there (report.json) is removed with its
+// images, so nothing of another run stays beside this one; a non-empty folder that is not a
+// report is refused (it is not ours to empty).
+Status prepare_report_dir(const std::string& dir);
 
 // Concatenates shard reports (their report.json files) into one report, in the full run's order.
 Result<ValidationReport> merge_reports(const std::vector<std::string>& report_dirs);
