@@ -1,5 +1,6 @@
 // Variant -> GLSL 450 source for glslang.
 #include "crtforge/assembler.hpp"
+#include "crtforge/inert_text.hpp"
 
 #include <array>
 
@@ -11,15 +12,9 @@ namespace crtforge {
 
 namespace {
 
-// One line of doc for a declaration comment; never lets a newline through.
-std::string one_line(const std::string& text) {
-    std::string out;
-    for (char c : text) out += (c == '\n' || c == '\r') ? ' ' : c;
-    return out;
-}
 
 std::string line_directive(int line, const std::string& file) {
-    return fmt::format("#line {} \"{}\"\n", line, file);
+    return fmt::format("#line {} \"{}\"\n", line, inert_quoted(file));
 }
 
 const char* builtin_comment(Builtin b) {
@@ -52,7 +47,7 @@ std::string declarations(const Variant& variant) {
             std::string range;
             if (p->spec->min) range = fmt::format(" [{}, {}]", *p->spec->min, *p->spec->max);
             out += fmt::format("    {} {};  // {}{} {}\n", glsl_type_for(p->spec->type), p->spec->name,
-                               p->stage->name, range, one_line(p->spec->doc));
+                               p->stage->name, range, inert_comment(p->spec->doc));
         }
         out += "};\n";
     }

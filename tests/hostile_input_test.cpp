@@ -367,3 +367,35 @@ TEST_CASE("a corrupt PNG is one crtforge line, with libpng's words inside it", "
     CHECK_THAT(run.err, Catch::StartsWith("crtforge: "));
     CHECK_FALSE(fs::exists(dir / "out.png"));
 }
+
+TEST_CASE("text the loaders would refuse stays inert in generated code all the same", "[hostile][inert]") {
+    // Past the loader (a tool building presets in memory): every line terminator a consumer may
+    // honour, and a trailing backslash, in the preset's doc and a param's doc and unit.
+    const std::string hostile = std::string("doc\r\x0b\x0c") + "\xC2\x85" + "\xE2\x80\xA8" + "\xE2\x80\xA9" + "\nvec4 injected; \\";
+    Preset p = *test::shipped_library().find_preset("classic");
+    p.doc = hostile;
+    ParamSpec spec = *test::shipped_library().find_param("scanlineIntensity");
+    spec.doc = hostile;
+    spec.unit = hostile;
+    auto variant = make_variant(test::shipped_library(), p, {});
+    REQUIRE(variant.ok());
+    for (VariantParam& vp : variant.value().params)
+        if (vp.spec->name == spec.name) vp.spec = &spec;
+    CompiledVariant compiled = test::compile_or_fail(test::shipped_library(), "classic");
+    compiled.variant = variant.value();
+    const AssembledShader assembled = assemble(test::shipped_library(), compiled.variant);
+    std::vector<std::string> texts = {assembled.fragment};
+    for (TargetId target : {TargetId::Godot3, TargetId::Godot4, TargetId::Wgsl, TargetId::Glsl450, TargetId::Hlsl50}) {
+        auto out = emit_target(compiled, target, Cache());
+        REQUIRE(out.ok());
+        for (const OutputFile& f : out.value().files) texts.push_back(f.data);
+    }
+    for (const std::string& text : texts) {
+        for (const char* terminator : {"\r", "\x0b", "\x0c", "\xC2\x85", "\xE2\x80\xA8", "\xE2\x80\xA9", "\\\n"})
+            CHECK(text.find(terminator) == std::string::npos);
+        // The would-be code stays in the comment it came with.
+        std::istringstream lines(text);
+        for (std::string line; std::getline(lines, line);)
+            if (line.find("vec4 injected;") != std::string::npos) CHECK(line.find("//") < line.find("vec4 injected;"));
+    }
+}

@@ -1,4 +1,5 @@
 #include "targets/godot/godot_compiler.hpp"
+#include "crtforge/inert_text.hpp"
 
 #include <regex>
 
@@ -220,7 +221,7 @@ std::string GodotCompiler::with_loop_increments(const std::string& text) {
 void GodotCompiler::emit_header() {
     const Preset& preset = *variant_.preset;
     const bool screen = options_.mode == Mode::Screen;
-    statement("// crtforge ", CRTFORGE_VERSION, ": preset ", preset.name, ". ", preset.doc);
+    statement("// crtforge ", CRTFORGE_VERSION, ": preset ", preset.name, ". ", inert_comment(preset.doc));
     statement("// Godot ", options_.godot_version, " canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.");
     if (screen) {
         statement("// Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.");
@@ -255,7 +256,7 @@ void GodotCompiler::emit_header() {
     if (screen && options_.godot_version >= 4)
         statement("uniform sampler2D screen_texture : hint_screen_texture, filter_", filter_name(variant_.texture_filter("source")), ", repeat_disable;");
     for (const VariantParam* p : variant_.uniforms()) {
-        statement("// ", p->stage->name, ": ", p->spec->doc, p->spec->unit.empty() ? "" : " (" + p->spec->unit + ")");
+        statement("// ", p->stage->name, ": ", inert_comment(p->spec->doc), p->spec->unit.empty() ? "" : " (" + inert_comment(p->spec->unit) + ")");
         statement(uniform_declaration(*p));
     }
     if (uses_time && variant_.angular_speed()) {

@@ -1,4 +1,5 @@
 #include "targets/wgsl/wgsl_writer.hpp"
+#include "crtforge/inert_text.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -20,7 +21,7 @@ EmitOptions emit_options(const Variant& variant) {
         "{}\n"
         "Draw 3 vertices with no vertex buffers: {} makes a full-screen triangle, {} shades it.\n"
         "Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.",
-        variant.file_stem(), variant.preset->doc, kVertexEntry, kFragmentEntry);
+        variant.file_stem(), inert_comment(variant.preset->doc), kVertexEntry, kFragmentEntry);
     if (variant.options.precision == Precision::Medium)
         options.header_comment += "\nMedium precision: WGSL has no relaxed precision, so this is the full-precision f32 shader.";
     return options;
