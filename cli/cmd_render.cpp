@@ -164,9 +164,14 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         const Preset* preset = preset_found.value();
         auto source = input_source(a->input, preset);
         if (!source.ok()) return report(source.error());
-        auto first = source.value()(frames.front());
-        if (!first.ok()) return report(first.error());
-        const int w = size ? size->first : first.value().width, h = size ? size->second : first.value().height;
+        int w = size ? size->first : 0, h = size ? size->second : 0;
+        {
+            // The first frame only says the display size (and that it loads); not kept, so a large
+            // picture is not held once more through the render.
+            auto first = source.value()(frames.front());
+            if (!first.ok()) return report(first.error());
+            if (!size) std::tie(w, h) = std::make_pair(first.value().width, first.value().height);
+        }
         std::map<std::string, Image> file_luts;
         for (const LutSpec& lut : preset->luts) {
             if (!lut.generator.empty()) continue;

@@ -1,5 +1,6 @@
 // crtforge: a thin command line over the crtforge library.
 #include <cstdio>
+#include <new>
 #include <iostream>
 
 #include "cli/cli_common.hpp"
@@ -88,7 +89,19 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "crtforge: error: %s (see 'crtforge --help')\n", msg.c_str());
         return kExitUsage;
     }
-    for (auto& [cmd, run] : commands)
-        if (cmd->parsed()) return run();
+    // Every failure is meant to arrive as a Diagnostic; this is the last line of defence, so an
+    // exception that escapes anyway is still one line and exit 2, never an abort.
+    try {
+        for (auto& [cmd, run] : commands)
+            if (cmd->parsed()) return run();
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "crtforge: error: out of memory (an input beyond what this machine holds?)\n");
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        std::string msg = e.what();
+        for (char& c : msg) if (c == '\n') c = ' ';
+        std::fprintf(stderr, "crtforge: internal error: %s (a crtforge bug: please report it with the command line)\n", msg.c_str());
+        return kExitUsage;
+    }
     return kExitUsage;
 }

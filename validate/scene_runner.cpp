@@ -81,10 +81,15 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
                 if (preset.passes[i].alias == alias) return i;
             return preset.passes.size();
         };
+        // The frame's original is moved into its last reader when no later frame needs it (a
+        // large picture is not held twice more); otherwise each reader gets a copy.
+        int original_reads = 0;
+        for (const Pass& pass : preset.passes)
+            for (const PassInput& in : pass.inputs) original_reads += in.from.kind == TextureSource::Kind::Original && in.from.frames_back == 0;
         auto resolve = [&](const TextureSource& from) -> Image {
             switch (from.kind) {
                 case TextureSource::Kind::Original:
-                    if (from.frames_back == 0) return original.value();
+                    if (from.frames_back == 0) return --original_reads == 0 && !stateful ? std::move(original.value()) : original.value();
                     if (static_cast<size_t>(from.frames_back) <= history.size()) return history[from.frames_back - 1];
                     return Image::make(source.width, source.height);
                 case TextureSource::Kind::Pass: return current[index_of(from.name)];
