@@ -20,6 +20,7 @@ namespace crtforge::cli {
 namespace {
 struct ValidateArgs {
     std::string report, shard = "1/1", golden, device, second_device = "auto", matrix = "main", run_id;
+    bool strict = false;
     std::vector<std::string> presets, targets, inputs;
     unsigned jobs = 1;
     bool compile_only = false;
@@ -102,15 +103,17 @@ void print_summary(const ValidationReport& r) {
         if (std::find(names.begin(), names.end(), c.target) == names.end()) names.push_back(c.target);
     size_t width = 10;
     for (const std::string& n : names) width = std::max(width, n.size());
-    fmt::print("{:<{}} {:>7} {:>7} {:>10} {:>9} {:>9}  {}\n", "target", width, "passed", "failed", "max RMSE", "min SSIM", "max |d|",
-               "consumer");
+    fmt::print("{:<{}} {:>7} {:>7} {:>9} {:>10} {:>9} {:>9}  {}\n", "target", width, "passed", "failed", "unrendered", "max RMSE",
+               "min SSIM", "max |d|", "consumer");
     for (const std::string& name : names) {
-        size_t pass = 0, fail = 0;
+        size_t pass = 0, fail = 0, unrendered = 0, measured = 0;
         double rmse = 0, ssim = 1, maxabs = 0;
         for (const auto& c : r.checks) {
             if (c.target != name) continue;
             (c.passed ? pass : fail)++;
+            unrendered += c.not_rendered;
             if (c.verdict) {
+                ++measured;
                 rmse = std::max(rmse, c.verdict->metrics.rmse);
                 ssim = std::min(ssim, c.verdict->metrics.ssim);
                 maxabs = std::max(maxabs, c.verdict->metrics.max_abs);
@@ -119,7 +122,10 @@ void print_summary(const ValidationReport& r) {
         std::string consumer;
         for (const auto& [n, desc] : r.consumers)
             if (n == name) consumer = desc;
-        fmt::print("{:<{}} {:>7} {:>7} {:>10.5f} {:>9.4f} {:>9.4f}  {}\n", name, width, pass, fail, rmse, ssim, maxabs, consumer);
+        // Metrics only where something was measured: no render, no RMSE 0 / SSIM 1.
+        const std::string metrics = measured ? fmt::format("{:>10.5f} {:>9.4f} {:>9.4f}", rmse, ssim, maxabs)
+                                             : fmt::format("{:>10} {:>9} {:>9}", "-", "-", "-");
+        fmt::print("{:<{}} {:>7} {:>7} {:>9} {}  {}\n", name, width, pass, fail, unrendered, metrics, consumer);
     }
 }
 }  // namespace
@@ -146,6 +152,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         ->check(CLI::IsMember({"main", "full"}))
         ->capture_default_str();
     cmd->add_flag("--compile-only", a->compile_only, "Only the compile checks, no renders");
+    cmd->add_flag("--strict", a->strict, "A preset x target that no golden judges fails (default: reported as not rendered, passing)");
     cmd->add_option("--run-id", a->run_id,
                     "Names the run in report.json (default: derived from what it checks); give every shard of a CI run the same one");
     return [&g, a]() {
@@ -179,6 +186,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         request.jobs = a->jobs;
         if (auto machine = check_machine(request, a->device); !machine.ok()) return report(machine.error());
         request.run_id = a->run_id;
+        request.strict = a->strict;
         if (!a->report.empty())
             if (auto s = prepare_report_dir(a->report); !s.ok()) return report(s.error());
         auto lib = load_library(g, code);
@@ -192,8 +200,10 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
             if (auto s = write_report(r, a->report); !s.ok()) return report(s.error());
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         print_summary(r);
-        fmt::print("validate: {} passed, {} failed ({} checks over {} goldens of the {} matrix, shard {}/{}, {:.1f} s){}\n",
-                   r.passed(), r.failed(), r.checks.size(), r.goldens.size(), a->matrix, request.shard.index, request.shard.count, secs,
+        const size_t unrendered = static_cast<size_t>(std::count_if(r.checks.begin(), r.checks.end(), [](const CheckResult& c) { return c.not_rendered; }));
+        fmt::print("validate: {} passed, {} failed{} ({} checks over {} goldens of the {} matrix, shard {}/{}, {:.1f} s){}\n",
+                   r.passed(), r.failed(), unrendered ? fmt::format(", {} not rendered (no golden{})", unrendered, a->strict ? ": failed under --strict" : "") : "",
+                   r.checks.size(), r.goldens.size(), a->matrix, request.shard.index, request.shard.count, secs,
                    a->report.empty() ? "" : ", report: " + a->report + "/report.html");
         return r.failed() ? kExitValidation : kExitOk;
     };

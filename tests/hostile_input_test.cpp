@@ -399,3 +399,22 @@ TEST_CASE("text the loaders would refuse stays inert in generated code all the s
             if (line.find("vec4 injected;") != std::string::npos) CHECK(line.find("//") < line.find("vec4 injected;"));
     }
 }
+
+TEST_CASE("a preset without goldens is reported as not rendered, never as a measured pass", "[hostile][validate]") {
+    test::ScratchTemplates scratch;
+    scratch.write("presets/newlook.toml", "name = \"newlook\"\ndoc = \"A studio look\"\nbase = \"classic\"\n\n[stages.scanlines]\nscanlineIntensity = 0.7\n");
+    test::TempDir report;
+    auto run = test::run_crtforge("--templates " + scratch.dir() + " validate --preset newlook --target spirv --report " + report.path());
+    CHECK(run.exit_code == 0);
+    CHECK_THAT(run.out, Catch::Contains("1 not rendered (no golden)"));
+    // No metrics that were never measured: the summary row shows dashes, not RMSE 0 / SSIM 1.
+    CHECK_THAT(run.out, Catch::Contains("        -         -         -"));
+    CHECK_THAT(run.out, !Catch::Contains("0.00000"));
+    const std::string json = slurp(report / "report.json");
+    CHECK_THAT(json, Catch::Contains("\"status\": \"not-rendered\""));
+    CHECK_THAT(slurp(report / "junit.xml"), Catch::Contains("<skipped message=\"not rendered: no golden"));
+    CHECK_THAT(slurp(report / "report.html"), Catch::Contains("Not rendered: no golden"));
+    auto strict = test::run_crtforge("--templates " + scratch.dir() + " validate --preset newlook --target spirv --strict");
+    CHECK(strict.exit_code == 1);
+    CHECK_THAT(strict.out, Catch::Contains("failed under --strict"));
+}

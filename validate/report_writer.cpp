@@ -57,6 +57,7 @@ std::string report_json(const ValidationReport& report) {
     for (const CheckResult& c : report.checks) {
         json e{{"preset", c.preset}, {"target", c.target}, {"check", c.check}, {"passed", c.passed}};
         if (!c.message.empty()) e["message"] = c.message;
+        if (c.not_rendered) e["status"] = "not-rendered";
         if (c.verdict) e["metrics"] = metrics_json(*c.verdict);
         j["checks"].push_back(std::move(e));
     }
@@ -77,7 +78,9 @@ std::string junit_xml(const ValidationReport& report) {
             if (c.target != t) continue;
             ++tests;
             cases += "    <testcase classname=\"" + escape(c.target + "." + c.preset) + "\" name=\"" + escape(c.check) + "\"";
-            if (c.passed) {
+            if (c.passed && c.not_rendered) {
+                cases += ">\n      <skipped message=\"" + escape(c.message) + "\"/>\n    </testcase>\n";
+            } else if (c.passed) {
                 cases += "/>\n";
             } else {
                 ++failures;
@@ -189,9 +192,16 @@ std::string report_html(const ValidationReport& report) {
     }
     std::string compile_failures;
     for (const auto& c : report.checks)
-        if (!c.passed && c.golden_id.empty())
+        if (!c.passed && c.golden_id.empty() && !c.not_rendered)
             compile_failures += "<li>" + escape(c.preset + " " + c.target + " " + c.check + ": " + c.message) + "</li>\n";
     if (!compile_failures.empty()) h += "<h2 class=bad>Compile failures</h2><ul>\n" + compile_failures + "</ul>\n";
+    std::string unrendered;
+    for (const auto& c : report.checks)
+        if (c.not_rendered) unrendered += "<li>" + escape(c.preset + " on " + c.target) + "</li>\n";
+    if (!unrendered.empty())
+        h += "<h2 class=bad>Not rendered: no golden</h2><p>Compiled only; nothing was rendered or measured. <code>crtforge golden update</code> "
+             "makes goldens, <code>crtforge golden approve</code> stores reviewed renders; <code>--strict</code> fails these.</p><ul>\n" +
+             unrendered + "</ul>\n";
     return h + "</body></html>\n";
 }
 
@@ -272,6 +282,7 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
             for (const auto& c : j.at("checks")) {
                 CheckResult r{c.at("preset"), c.at("target"), c.at("check"), c.at("passed"), c.value("message", ""), {}, {}};
                 if (r.check.rfind("render:", 0) == 0) r.golden_id = r.check.substr(7);
+                r.not_rendered = c.value("status", "") == "not-rendered";
                 if (r.check.rfind("agree:", 0) == 0) r.golden_id = r.check.substr(6);
                 if (c.contains("metrics")) {
                     const auto& m = c.at("metrics");

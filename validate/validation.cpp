@@ -205,6 +205,17 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             results.push_back(std::move(r));
         }
 
+    // Never silently green: a rendering run with no golden for this preset on this target says so
+    // as its own status, with no metrics (a pass unless --strict).
+    if (request.render && !job.second && job.goldens.empty()) {
+        CheckResult r{preset->name, target, "render", !request.strict,
+                      "not rendered: no golden judges this preset on this target (crtforge golden update makes them; "
+                      "crtforge golden approve stores a reviewed render where the reference has no model)",
+                      {}, {}};
+        r.not_rendered = true;
+        results.push_back(std::move(r));
+    }
+
     // Each sequence (a preset on one input, display and fit) renders once for all its frames.
     std::vector<const GoldenEntry*> entries;
     std::map<const GoldenEntry*, const GoldenData*> data_of;
@@ -400,7 +411,7 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
             }
             auto mine = judged_by(goldens, t);
             // The second driver's jobs render only: the first driver's compile checks stand for both.
-            total += (second ? 0 : compile_checks(p, t).size()) + render_checks(mine, t);
+            total += (second ? 0 : compile_checks(p, t).size()) + render_checks(mine, t) + (request.render && !second && mine.empty());
             jobs.push_back(Job{work, t, std::move(mine), second});
         };
         for (TargetId t : targets) add_job(t, false);

@@ -26,6 +26,9 @@ struct CheckResult {
     std::string message;    // one line: what failed and why
     std::optional<Verdict> verdict;  // render checks
     std::string golden_id;           // render checks
+    // A rendering run found no golden for this preset on this target: nothing was rendered or
+    // measured (check "render", no verdict). Passes unless --strict; never shown as RMSE 0.
+    bool not_rendered = false;
 };
 
 struct ValidationReport {
@@ -65,6 +68,7 @@ struct ValidateRequest {
     Shard shard;
     unsigned jobs = 1;                 // worker threads, each with its own engines
     std::string run_id;                // empty: derived from the request (ValidationReport::run_id)
+    bool strict = false;               // a preset x target with no golden fails instead of passing
 };
 
 using ProgressFn = std::function<void(size_t done, size_t total, const CheckResult&)>;
