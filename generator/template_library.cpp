@@ -79,21 +79,58 @@ std::string display_dir(const std::string& dir) {
 
 }  // namespace
 
+namespace {
+
+// The files of one kind across the layers, by file stem: a later layer's file replaces an earlier
+// one of the same name. Sorted by stem, like one folder's listing. A layer may lack the folder.
+Result<std::vector<std::string>> layered_files(const std::vector<std::string>& layers, const std::string& sub, const std::string& ext) {
+    std::map<std::string, std::string> by_stem;
+    for (const std::string& layer : layers) {
+        std::error_code ec;
+        if (!std::filesystem::is_directory(layer + "/" + sub, ec)) continue;
+        auto files = list_files(layer + "/" + sub, ext);
+        if (!files.ok()) return files.error();
+        for (const std::string& f : files.value()) by_stem[file_stem(f)] = f;
+    }
+    std::vector<std::string> out;
+    for (const auto& [stem, path] : by_stem) out.push_back(path);
+    return out;
+}
+
+}  // namespace
+
 Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string& dir_arg) {
     const std::string dir = display_dir(dir_arg);
     auto lib = std::make_shared<TemplateLibrary>();
     lib->dir_ = dir;
 
-    lib->prelude_path_ = dir + "/prelude.glsl";
+    // A folder with its own prelude.glsl is a whole template set; one without is an overlay: its
+    // stages/ and presets/ go on top of the shipped templates, replacing files of the same name.
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) return make_error("is not a template folder", dir, 0, "--templates");
+    std::vector<std::string> layers{dir};
+    if (!std::filesystem::exists(dir + "/prelude.glsl", ec)) {
+        const std::string shipped = display_dir(default_dir());
+        if (std::filesystem::equivalent(shipped, dir, ec))
+            return make_error("the shipped templates lack prelude.glsl", dir);
+        if (!std::filesystem::is_directory(dir + "/stages", ec) && !std::filesystem::is_directory(dir + "/presets", ec))
+            return make_error("has neither prelude.glsl (a whole template set) nor stages/ or presets/ (an overlay on the shipped "
+                              "templates)",
+                              dir, 0, "--templates");
+        layers.insert(layers.begin(), shipped);
+        lib->overlay_ = true;
+    }
+
+    lib->prelude_path_ = layers.front() + "/prelude.glsl";
     auto prelude = read_text_file(lib->prelude_path_);
     if (!prelude.ok()) return prelude.error();
     lib->prelude_ = prelude.value();
-    lib->vertex_path_ = dir + "/fullscreen.vert";
+    lib->vertex_path_ = layers.front() + "/fullscreen.vert";
     auto vertex = read_text_file(lib->vertex_path_);
     if (!vertex.ok()) return vertex.error();
     lib->vertex_ = vertex.value();
 
-    auto spec_files = list_files(dir + "/stages", ".toml");
+    auto spec_files = layered_files(layers, "stages", ".toml");
     if (!spec_files.ok()) return spec_files.error();
     if (spec_files.value().empty()) return make_error("no stage specs (*.toml) found", dir + "/stages");
     std::map<std::string, std::string> param_owner;  // param -> "file:line" of first declaration
@@ -117,7 +154,7 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
                 return make_error("param names are global (they become uniform names); already declared at " + it->second,
                                   path, p.where.line, "param." + p.name);
         }
-        s.glsl_path = dir + "/stages/" + s.name + ".glsl";
+        s.glsl_path = std::filesystem::path(path).parent_path().string() + "/" + s.name + ".glsl";
         auto glsl = read_text_file(s.glsl_path);
         if (!glsl.ok()) return glsl.error();
         s.glsl_source = glsl.value();
@@ -131,15 +168,21 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
     std::sort(lib->stages_.begin(), lib->stages_.end(),
               [](const StageSpec& a, const StageSpec& b) { return a.order < b.order; });
 
-    if (auto s = lib->add_presets(dir + "/presets", false); !s.ok()) return s.error();
+    auto preset_files = layered_files(layers, "presets", ".toml");
+    if (!preset_files.ok()) return preset_files.error();
+    if (auto s = lib->add_preset_files(preset_files.value(), false); !s.ok()) return s.error();
     return lib;
 }
 
 Status TemplateLibrary::add_presets(const std::string& dir, bool test_only) {
     auto preset_files = list_files(dir, ".toml");
     if (!preset_files.ok()) return preset_files.error();
+    return add_preset_files(preset_files.value(), test_only);
+}
+
+Status TemplateLibrary::add_preset_files(const std::vector<std::string>& paths, bool test_only) {
     std::vector<PresetFile> files;
-    for (const auto& path : preset_files.value()) {
+    for (const auto& path : paths) {
         auto text = read_text_file(path);
         if (!text.ok()) return text.error();
         auto file = parse_preset_file(text.value(), path, this);

@@ -148,3 +148,42 @@ TEST_CASE("an approved golden's agreement check catches a target that disagrees 
     REQUIRE(verdict.ok());
     CHECK_FALSE(verdict.value().passed);
 }
+
+TEST_CASE("an overlay folder adds a studio's stages and presets on top of the shipped templates", "[user-stage][overlay]") {
+    test::TempDir overlay;
+    REQUIRE(write_file_atomic(overlay / "stages/user_posterize.toml", kStageSpec).ok());
+    REQUIRE(write_file_atomic(overlay / "stages/user_posterize.glsl", kStageGlsl).ok());
+    REQUIRE(write_file_atomic(overlay / "presets/my-poster.toml", kPreset).ok());
+    // A studio's own take on a shipped preset replaces it; presets based on it follow.
+    REQUIRE(write_file_atomic(overlay / "presets/classic.toml",
+                              "name = \"classic\"\ndoc = \"The studio's classic\"\nbase = \"atari-crt\"\n\n[stages.scanlines]\n"
+                              "scanlineIntensity = 0.25\n")
+                .ok());
+    auto loaded = TemplateLibrary::load(overlay.path());
+    REQUIRE(loaded.ok());
+    const TemplateLibrary& lib = *loaded.value();
+    CHECK(lib.overlay());
+    CHECK(lib.presets().size() == test::shipped_library().presets().size() + 1);
+    REQUIRE(lib.find_stage("user_posterize"));
+    REQUIRE(lib.find_preset("my-poster"));
+    CHECK(lib.find_preset("classic")->doc == "The studio's classic");
+    CHECK(lib.find_preset("crt-pulse")->doc == test::shipped_library().find_preset("crt-pulse")->doc);
+
+    test::TempDir out;
+    auto exported = test::run_crtforge("--templates " + overlay.path() + " export -q --preset my-poster,classic --target glsl330 --out " + out.path());
+    CHECK(exported.exit_code == 0);
+    CHECK(fs::exists(out / "glsl330/my-poster.frag"));
+
+    // An overlay stage whose order a shipped stage holds: refused at the overlay's file.
+    std::string clash = kStageSpec;
+    clash.replace(clash.find("order = 45"), 10, "order = " + std::to_string(test::shipped_library().stages().front().order));
+    REQUIRE(write_file_atomic(overlay / "stages/user_posterize.toml", clash).ok());
+    auto refused = TemplateLibrary::load(overlay.path());
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().str(), Catch::Contains("order"));
+    // A folder that is neither a template set nor an overlay.
+    test::TempDir empty;
+    auto neither = TemplateLibrary::load(empty.path());
+    REQUIRE_FALSE(neither.ok());
+    CHECK_THAT(neither.error().message, Catch::Contains("overlay"));
+}

@@ -17,6 +17,9 @@ class TemplateLibrary {
 public:
     // Loads <dir>/stages/*.toml (+ .glsl), <dir>/prelude.glsl, <dir>/fullscreen.vert and
     // <dir>/presets/*.toml. Any invalid file fails the whole load with its first diagnostic.
+    // A folder without prelude.glsl is an overlay: its stages/ and presets/ (either may be absent)
+    // go on top of the shipped templates (default_dir()), a file replacing the shipped one of the
+    // same name: a studio keeps only its own stages and presets.
     static Result<std::shared_ptr<TemplateLibrary>> load(const std::string& dir);
 
     // The directory compiled into the binary (the source tree's templates/), overridable with
@@ -37,6 +40,7 @@ public:
     const std::string& vertex_source() const { return vertex_; }
     const std::string& vertex_path() const { return vertex_path_; }
     const std::string& dir() const { return dir_; }
+    bool overlay() const { return overlay_; }  // dir() went on top of the shipped templates
     // What loading noticed but did not refuse, one line each ("file:line: warning: field 'x': ..."):
     // keys of legacy (format-1, Glitch) presets migrated to the current params.
     const std::vector<std::string>& warnings() const { return warnings_; }
@@ -53,6 +57,7 @@ public:
 
 private:
     Status add_presets(const std::string& dir, bool test_only);
+    Status add_preset_files(const std::vector<std::string>& paths, bool test_only);
     // resolve(), tracking the presets being resolved (`preset = "..."` references nest).
     Result<Preset> resolve_preset(const std::vector<PresetFile>& files, const std::string& name,
                                   std::set<std::string>& visiting) const;
@@ -62,6 +67,7 @@ private:
     std::vector<Preset> presets_;
     std::string prelude_, prelude_path_, vertex_, vertex_path_;
     std::vector<std::string> warnings_;
+    bool overlay_ = false;
 };
 
 // Parsers for one file's text; `path` is used in diagnostics only.
