@@ -220,6 +220,8 @@ Runner add_report_command(CLI::App& app, const GlobalOptions&) {
     return [out, dirs]() {
         auto merged = merge_reports(*dirs);
         if (!merged.ok()) return report(merged.error());
+        if (auto s = prepare_report_dir(*out); !s.ok()) return report(s.error());
+        if (auto s = copy_report_images(*dirs, *out); !s.ok()) return report(s.error());
         if (auto s = write_report(merged.value(), *out); !s.ok()) return report(s.error());
         print_summary(merged.value());
         fmt::print("report merge: {} passed, {} failed ({} checks from {} shards) into {}\n", merged.value().passed(),

@@ -331,7 +331,7 @@ TEST_CASE("validate --report replaces an earlier report and refuses a folder tha
 
 TEST_CASE("report merge takes every shard of one run once, and nothing else", "[hostile][cli][validate]") {
     test::TempDir root;
-    const std::string common = "validate --preset classic,webgpu-post --target spirv --compile-only";
+    const std::string common = "validate --preset classic,webgpu-post --target spirv,glsl330 --input color_bars --second-device none";
     for (int i = 1; i <= 3; ++i)
         REQUIRE(test::run_crtforge(common + fmt::format(" --shard {}/3 --report {}", i, root / fmt::format("s{}", i))).exit_code == 0);
     REQUIRE(test::run_crtforge(common + " --run-id other --shard 2/3 --report " + (root / "foreign")).exit_code == 0);
@@ -339,6 +339,20 @@ TEST_CASE("report merge takes every shard of one run once, and nothing else", "[
     auto merge = [&](const std::string& dirs) { return test::run_crtforge("report merge --out " + (root / "m") + " " + dirs); };
     auto all = merge(root / "s1" + " " + (root / "s2") + " " + (root / "s3"));
     CHECK(all.exit_code == 0);
+    // The merged report shows every shard's pictures.
+    size_t pictures = 0, shard_pictures = 0;
+    for (const auto& e : fs::recursive_directory_iterator(root / "m/images")) pictures += e.is_regular_file();
+    for (const char* shard : {"s1", "s2", "s3"})
+        for (const auto& e : fs::recursive_directory_iterator(root / (std::string(shard) + "/images")))
+            shard_pictures += e.is_regular_file() && e.path().filename().string().find("golden") == std::string::npos &&
+                              e.path().filename().string().find("input") == std::string::npos;
+    CHECK(shard_pictures > 0);
+    CHECK(pictures >= shard_pictures);
+    const std::string html = slurp(root / "m/report.html");
+    for (size_t at = html.find("src=\"images/"); at != std::string::npos; at = html.find("src=\"images/", at + 1)) {
+        const std::string src = html.substr(at + 5, html.find('"', at + 5) - at - 5);
+        CHECK(fs::exists(root / ("m/" + src)));
+    }
     auto repeated = merge(root / "s1" + " " + (root / "s2") + " " + (root / "s2"));
     CHECK(repeated.exit_code == 2);
     CHECK_THAT(repeated.err, Catch::Contains("twice"));

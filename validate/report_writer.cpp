@@ -229,6 +229,25 @@ Status prepare_report_dir(const std::string& dir) {
     return Ok{};
 }
 
+Status copy_report_images(const std::vector<std::string>& shard_dirs, const std::string& out) {
+    namespace fs = std::filesystem;
+    for (const std::string& dir : shard_dirs) {
+        std::error_code ec;
+        const fs::path images = fs::path(dir) / "images";
+        if (!fs::is_directory(images, ec)) continue;
+        for (auto it = fs::recursive_directory_iterator(images, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+            if (!it->is_regular_file(ec)) continue;
+            const fs::path to = fs::path(out) / "images" / fs::relative(it->path(), images, ec);
+            if (fs::exists(to, ec)) continue;
+            fs::create_directories(to.parent_path(), ec);
+            if (!ec) fs::copy_file(it->path(), to, ec);
+            if (ec) return make_error("cannot copy a shard's picture: " + ec.message(), it->path().string(), 0, "--out");
+        }
+        if (ec) return make_error("cannot read the shard's pictures: " + ec.message(), images.string());
+    }
+    return Ok{};
+}
+
 Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
     ValidationReport merged;
     std::map<std::string, GoldenEntry> goldens;

@@ -83,6 +83,10 @@ Status write_report(const ValidationReport& report, const std::string& dir);
 // images, so nothing of another run stays beside this one; a non-empty folder that is not a
 // report is refused (it is not ours to empty).
 Status prepare_report_dir(const std::string& dir);
+// The pictures of shard reports (<dir>/images/<golden>/...) into one report folder, so the merged
+// report.html shows them. Shards render disjoint (preset, target) pairs; a file two shards both
+// hold (the input and golden pictures of a golden) is the same picture, and the first is kept.
+Status copy_report_images(const std::vector<std::string>& shard_dirs, const std::string& out);
 
 // Concatenates shard reports (their report.json files) into one report, in the full run's order.
 Result<ValidationReport> merge_reports(const std::vector<std::string>& report_dirs);
