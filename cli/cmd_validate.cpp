@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/cli_common.hpp"
+#include "cli/github_actions.hpp"
 #include "crtforge/runtime/dawn_engine.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/validate/validation.hpp"
@@ -200,6 +201,10 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
             if (auto s = write_report(r, a->report); !s.ok()) return report(s.error());
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         print_summary(r);
+        annotate_for_github(r, [&](const std::string& name) {
+            const Preset* p = lib->find_preset(name);
+            return p ? p->where : SourceLocation{};
+        });
         const size_t unrendered = static_cast<size_t>(std::count_if(r.checks.begin(), r.checks.end(), [](const CheckResult& c) { return c.not_rendered; }));
         fmt::print("validate: {} passed, {} failed{} ({} checks over {} goldens of the {} matrix, shard {}/{}, {:.1f} s){}\n",
                    r.passed(), r.failed(), unrendered ? fmt::format(", {} not rendered (no golden{})", unrendered, a->strict ? ": failed under --strict" : "") : "",
@@ -224,6 +229,7 @@ Runner add_report_command(CLI::App& app, const GlobalOptions&) {
         if (auto s = copy_report_images(*dirs, *out); !s.ok()) return report(s.error());
         if (auto s = write_report(merged.value(), *out); !s.ok()) return report(s.error());
         print_summary(merged.value());
+        annotate_for_github(merged.value(), {});
         fmt::print("report merge: {} passed, {} failed ({} checks from {} shards) into {}\n", merged.value().passed(),
                    merged.value().failed(), merged.value().checks.size(), dirs->size(), *out);
         return merged.value().failed() ? kExitValidation : kExitOk;

@@ -238,3 +238,48 @@ TEST_CASE("render --frames writes one file per frame, an input sequence feeds th
                       "--frame");
     check_usage_error(test::run_crtforge("render --preset classic --input color_bars --frames 3:1 --output '" + out + "'"), "--frames");
 }
+
+TEST_CASE("under GitHub Actions, validate annotates failures and writes the step summary", "[cli][validate][ci]") {
+    test::TempDir golden, work;
+    fs::copy_file(std::string(CRTFORGE_SOURCE_DIR) + "/golden/plan.toml", golden / "plan.toml");
+    REQUIRE(test::run_crtforge("golden update --dir '" + golden.path() + "' --filter webgpu-post.color_bars").exit_code == 0);
+    REQUIRE(write_png(golden / "webgpu-post.color_bars.320x240.f0.png", Image::make(320, 240, {1.0f, 0.0f, 1.0f, 1.0f}), 16).ok());
+    const std::string args = "validate --golden-dir '" + golden.path() + "' --preset webgpu-post --target spirv --input color_bars --second-device none";
+    auto r = test::run_crtforge(args, "GITHUB_ACTIONS=true GITHUB_STEP_SUMMARY='" + (work / "summary.md") + "'");
+    CHECK(r.exit_code == 1);
+    // One ::error per failed check, at the preset's file, titled by the check.
+    CHECK_THAT(r.out, Catch::Contains("::error file=") && Catch::Contains("templates/presets/webgpu-post.toml,line=1,title=webgpu-post spirv render%3Awebgpu-post.color_bars"));
+    std::ifstream in(work / "summary.md");
+    const std::string summary((std::istreambuf_iterator<char>(in)), {});
+    CHECK_THAT(summary, Catch::Contains("| spirv | 2 | 1 | 0 |"));
+    CHECK_THAT(summary, Catch::Contains("| webgpu-post | spirv | render:webgpu-post.color_bars.320x240.f0 |"));
+    // Outside GitHub Actions: no workflow commands.
+    auto plain = test::run_crtforge(args);
+    CHECK_THAT(plain.out, !Catch::Contains("::error"));
+}
+
+TEST_CASE("the CI kit's crtforge command lines use only options crtforge has", "[cli][ci]") {
+    const std::string help = test::run_crtforge("--help").out + test::run_crtforge("validate --help").out +
+                             test::run_crtforge("report merge --help").out;
+    size_t options = 0;
+    for (const char* kit : {"docs/ci/github-actions.yml", "docs/ci/gitlab-ci.yml"}) {
+        std::ifstream in(std::string(CRTFORGE_SOURCE_DIR) + "/" + kit);
+        REQUIRE(in);
+        const std::string text((std::istreambuf_iterator<char>(in)), {});
+        // Every --option on the lines that run crtforge (and their continuation lines).
+        bool in_command = false;
+        std::istringstream lines(text);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.find("build/crtforge") != std::string::npos) in_command = true;
+            else if (line.find("--") == std::string::npos || line.find('#') < line.find("--")) in_command = false;
+            if (!in_command) continue;
+            for (size_t at = line.find(" --"); at != std::string::npos; at = line.find(" --", at + 1)) {
+                const std::string option = line.substr(at + 1, line.find_first_of(" =\"\\", at + 1) - at - 1);
+                INFO(kit << ": " << option);
+                CHECK_THAT(help, Catch::Contains(option + " ") || Catch::Contains(option + ","));
+                ++options;
+            }
+        }
+    }
+    CHECK(options >= 12);
+}
