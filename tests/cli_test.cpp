@@ -193,6 +193,16 @@ TEST_CASE("validate exits 1 on a failing comparison and 2 on bad arguments", "[c
     CHECK_THAT(r.out, Catch::Contains("FAIL webgpu-post spirv render:webgpu-post.color_bars.320x240.f0"));
     CHECK(fs::exists(report / "report.html"));
     CHECK(fs::exists(report / "images/webgpu-post.color_bars.320x240.f0/spirv.diff.png"));
+    // The HTML report: the failure index first, the failing golden before the folded passing ones,
+    // pictures at 1:1.
+    std::ifstream html_in(report / "report.html");
+    const std::string html((std::istreambuf_iterator<char>(html_in)), {});
+    const size_t index = html.find("1 cause</h2>"), failing = html.find("id=\"g-webgpu-post.color_bars.320x240.f0\""),
+                 folded = html.find("<details>");
+    CHECK(index != std::string::npos);
+    CHECK(index < failing);
+    CHECK((folded == std::string::npos || failing < folded));
+    CHECK_THAT(html, Catch::Contains("spirv.png\" alt=\"spirv\" width=\"320\" height=\"240\""));
     check_usage_error(test::run_crtforge("validate --shard 3/2"), "--shard");
     check_usage_error(test::run_crtforge("validate --input nothing --preset classic"), "--input");
 }

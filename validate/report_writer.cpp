@@ -92,6 +92,66 @@ std::string junit_xml(const ValidationReport& report) {
     return out + "</testsuites>\n";
 }
 
+// A failure's cause without its numbers: checks that failed for one reason (a shader a consumer
+// rejects fails every render of that preset on that target) group under one entry.
+std::string cause_of(const std::string& message) {
+    std::string out;
+    for (char c : message) {
+        const bool digit = (c >= '0' && c <= '9') || c == '.';
+        if (digit) {
+            if (out.empty() || out.back() != '#') out += '#';
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+// Right after the summary: every failure, each root cause once with how many checks it failed and
+// links to them (compile failures included), so a page of 26 identical failures reads as one.
+std::string failure_index(const ValidationReport& report) {
+    struct Group {
+        std::string message;  // the first check's own message
+        std::vector<const CheckResult*> checks;
+    };
+    std::vector<Group> groups;
+    std::map<std::string, size_t> index;  // cause -> group
+    for (const CheckResult& c : report.checks) {
+        if (c.passed || c.not_rendered) continue;
+        auto [it, fresh] = index.emplace(cause_of(c.message), groups.size());
+        if (fresh) groups.push_back({c.message, {}});
+        groups[it->second].checks.push_back(&c);
+    }
+    if (groups.empty()) return {};
+    std::string h = fmt::format("<h2 class=bad>Failures: {} check{}, {} cause{}</h2><ol>\n", report.failed(), report.failed() == 1 ? "" : "s",
+                                groups.size(), groups.size() == 1 ? "" : "s");
+    for (const Group& g : groups) {
+        std::vector<std::string> targets, presets;
+        for (const CheckResult* c : g.checks) {
+            if (std::find(targets.begin(), targets.end(), c->target) == targets.end()) targets.push_back(c->target);
+            if (std::find(presets.begin(), presets.end(), c->preset) == presets.end()) presets.push_back(c->preset);
+        }
+        auto joined = [](const std::vector<std::string>& items) {
+            std::string out;
+            for (const std::string& i : items) out += (out.empty() ? "" : ", ") + escape(i);
+            return out;
+        };
+        h += fmt::format("<li><b>{} check{}</b> on {} · preset {}<br><code>{}</code><br>", g.checks.size(), g.checks.size() > 1 ? "s" : "",
+                         joined(targets), joined(presets), escape(g.message));
+        size_t shown = 0;
+        for (const CheckResult* c : g.checks) {
+            if (++shown > 30) {
+                h += fmt::format(" … {} more", g.checks.size() - 30);
+                break;
+            }
+            const std::string label = escape(c->target + " " + c->check);
+            h += c->golden_id.empty() ? label + " " : "<a href=\"#g-" + escape(c->golden_id) + "\">" + label + "</a> ";
+        }
+        h += "</li>\n";
+    }
+    return h + "</ol>\n";
+}
+
 std::string report_html(const ValidationReport& report) {
     std::vector<std::string> targets;
     for (const auto& c : report.checks)
@@ -106,7 +166,8 @@ std::string report_html(const ValidationReport& report) {
          "h1,h2{font-weight:600}table{border-collapse:collapse}td,th{padding:4px 8px;border-bottom:1px solid #333;text-align:left}"
          ".sheet{display:flex;flex-wrap:wrap;gap:8px;margin:6px 0 22px}.strip{flex-wrap:nowrap;overflow-x:auto;margin:2px 0}"
          "figure{margin:0;padding:4px;background:#1c1c1c;border:2px solid #2a2a2a}figure.fail{border-color:#e33}"
-         "figure img{display:block;width:240px;image-rendering:pixelated}figcaption{font-size:12px;max-width:240px}"
+         "figure img{display:block;image-rendering:pixelated}figcaption{font-size:12px;min-width:160px}"
+         "details>summary{cursor:pointer;font-size:16px;margin:14px 0}a{color:#8bd}"
          ".bad{color:#f66}.ok{color:#7d7}\n</style></head><body>\n";
     h += fmt::format("<h1>crtforge validate: <span class=\"{}\">{} passed, {} failed</span> of {} checks</h1>\n",
                      report.failed() ? "bad" : "ok", report.passed(), report.failed(), report.checks.size());
@@ -129,11 +190,13 @@ std::string report_html(const ValidationReport& report) {
                          escape(t), escape(consumer), pass, fail ? "bad" : "ok", fail, max_rmse, min_ssim);
     }
     h += "</table>\n";
+    h += failure_index(report);
     // One figure per (golden, row): the input, the golden, or a target's render with its verdict.
     auto figure = [&](const GoldenEntry& g, const std::string& row, const std::string& label) {
         if (row == "input" || row == "golden")
-            return fmt::format("<figure><img src=\"images/{}/{}.png\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n", escape(g.id), row,
-                               row, label);
+            return fmt::format("<figure><img src=\"images/{}/{}.png\" alt=\"{}\" width=\"{}\" height=\"{}\"><figcaption style=\"max-width:{}px\">{}</figcaption></figure>\n",
+                               escape(g.id), row, row, row == "input" ? g.input_width : g.width, row == "input" ? g.input_height : g.height,
+                               std::max(160, g.width), label);
         auto it = render_checks.find({g.id, row});
         if (it == render_checks.end()) return std::string();
         const CheckResult& c = *it->second;
@@ -142,11 +205,13 @@ std::string report_html(const ValidationReport& report) {
             caption += fmt::format("<br>RMSE {:.5f} · SSIM {:.4f}<br>max {:.3f} · PSNR {:.1f} dB", c.verdict->metrics.rmse,
                                    c.verdict->metrics.ssim, c.verdict->metrics.max_abs, c.verdict->metrics.psnr);
         if (!c.passed) caption += "<br><span class=bad>" + escape(c.message) + "</span>";
-        std::string out = fmt::format("<figure class=\"{}\"><img src=\"images/{}/{}.png\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                                      c.passed ? "" : "fail", escape(g.id), escape(row), escape(row), caption);
+        // 1:1 (a scaled CRT picture moirés), the caption as wide as the picture.
+        std::string out = fmt::format(
+            "<figure class=\"{}\"><img src=\"images/{}/{}.png\" alt=\"{}\" width=\"{}\" height=\"{}\"><figcaption style=\"max-width:{}px\">{}</figcaption></figure>\n",
+            c.passed ? "" : "fail", escape(g.id), escape(row), escape(row), g.width, g.height, std::max(160, g.width), caption);
         if (!c.passed && c.verdict)
-            out += fmt::format("<figure class=fail><img src=\"images/{}/{}.diff.png\" alt=\"diff\"><figcaption>{} diff (red = tolerance)</figcaption></figure>\n",
-                               escape(g.id), escape(row), escape(row));
+            out += fmt::format("<figure class=fail><img src=\"images/{}/{}.diff.png\" alt=\"diff\" width=\"{}\" height=\"{}\"><figcaption>{} diff (red = tolerance)</figcaption></figure>\n",
+                               escape(g.id), escape(row), g.width, g.height, escape(row));
         return out;
     };
     // Goldens of one sequence (the same scene at several frames) show as strips: a row per
@@ -161,13 +226,29 @@ std::string report_html(const ValidationReport& report) {
         if (fresh) sequences.emplace_back();
         sequences[it->second].push_back(&g);
     }
+    // Sequences with a failing check first, then the passing ones folded away.
+    auto failing = [&](const std::vector<const GoldenEntry*>& sequence) {
+        for (const GoldenEntry* g : sequence)
+            for (const auto& t : targets)
+                if (auto it = render_checks.find({g->id, t}); it != render_checks.end() && !it->second->passed) return true;
+        return false;
+    };
+    std::stable_partition(sequences.begin(), sequences.end(), failing);
     std::string current_preset;
+    bool folded = false;
     for (const auto& sequence : sequences) {
         const GoldenEntry& first = *sequence.front();
+        if (!folded && !failing(sequence)) {
+            folded = true;
+            current_preset.clear();
+            h += "<details><summary>Passing goldens (click to show)</summary>\n";
+        }
         if (first.preset != current_preset) {
             current_preset = first.preset;
             h += "<h2>" + escape(first.preset) + "</h2>\n";
         }
+        for (const GoldenEntry* g : sequence) h += "<a id=\"g-" + escape(g->id) + "\"></a>";
+        h += "\n";
         const std::string fit = first.fit ? std::string(", ") + display_fit_name(*first.fit) : std::string();
         if (sequence.size() == 1) {
             h += fmt::format("<div>{} — {}×{}{}, frame {}</div>\n<div class=sheet>\n", escape(first.input), first.width, first.height, fit,
@@ -190,11 +271,7 @@ std::string report_html(const ValidationReport& report) {
             if (!strip.empty()) h += "<div class=\"sheet strip\">\n" + strip + "</div>\n";
         }
     }
-    std::string compile_failures;
-    for (const auto& c : report.checks)
-        if (!c.passed && c.golden_id.empty() && !c.not_rendered)
-            compile_failures += "<li>" + escape(c.preset + " " + c.target + " " + c.check + ": " + c.message) + "</li>\n";
-    if (!compile_failures.empty()) h += "<h2 class=bad>Compile failures</h2><ul>\n" + compile_failures + "</ul>\n";
+    if (folded) h += "</details>\n";
     std::string unrendered;
     for (const auto& c : report.checks)
         if (c.not_rendered) unrendered += "<li>" + escape(c.preset + " on " + c.target) + "</li>\n";
