@@ -134,6 +134,10 @@ TEST_CASE("Godot 3 and Godot 4 outputs differ only where the dialects differ", "
                 // Godot 3's screen counts rows from the bottom: crt_flip_y around SCREEN_UV and every
                 // screen read, which reads the full-resolution level (textureLod ..., 0.0).
                 if (line.rfind("// Godot 3's SCREEN_UV", 0) == 0 || line.rfind("vec2 crt_flip_y(", 0) == 0) continue;
+                // Setup notes name each version's own nodes and settings.
+                if (line.rfind("// Node mode:", 0) == 0 || line.rfind("// turn the texture's Filter", 0) == 0 ||
+                    line.rfind("// Needs the GLES3 renderer", 0) == 0)
+                    continue;
                 line = unflip_screen_reads(line);
                 line = std::regex_replace(line, std::regex(R"(crt_flip_y\(SCREEN_UV\))"), "SCREEN_UV");
                 line = std::regex_replace(line, std::regex(R"(uniform vec4 (\w+) : hint_color = vec4\(([^,]+), ([^,]+), ([^,]+), 1\.0\);)"),
@@ -149,7 +153,11 @@ TEST_CASE("Godot 3 and Godot 4 outputs differ only where the dialects differ", "
                 normalised.push_back(line);
             }
             // Godot 4 declares the screen texture; Godot 3 has it built in.
-            g4.erase(std::remove_if(g4.begin(), g4.end(), [](const std::string& l) { return l.find("hint_screen_texture") != std::string::npos; }),
+            g4.erase(std::remove_if(g4.begin(), g4.end(),
+                                    [](const std::string& l) {
+                                        return l.find("hint_screen_texture") != std::string::npos || l.rfind("// Node mode:", 0) == 0 ||
+                                               l.rfind("// set the node's texture_filter", 0) == 0;
+                                    }),
                      g4.end());
             for (std::string& line : g4) {
                 line = std::regex_replace(line, std::regex(R"(^(uniform sampler2D \w+) : filter_\w+, repeat_\w+;$)"), "$1;");
@@ -224,4 +232,14 @@ TEST_CASE("the TIME-wrap rule follows the spec's angular_speed role, not a param
     CHECK_THAT(plain, !Catch::Contains("round(scrollRate"));
     CHECK_THAT(plain, Catch::Contains("TIME * scrollRate"));
     CHECK_THAT(plain, !Catch::Contains("hostTime"));
+}
+
+TEST_CASE("each Godot version's setup notes use that version's names, and Godot 3 states its renderer", "[godot]") {
+    const std::string g4 = file(emit("classic", TargetId::Godot4, 0), "shader").data;
+    const std::string g3 = file(emit("classic", TargetId::Godot3, 0), "shader").data;
+    CHECK_THAT(g4, Catch::Contains("Sprite2D") && Catch::Contains("SubViewport") && Catch::Contains("texture_filter to Linear"));
+    CHECK_THAT(g3, Catch::Contains("Sprite, a Viewport") && !Catch::Contains("Sprite2D") && !Catch::Contains("SubViewport"));
+    CHECK_THAT(g3, Catch::Contains("Filter flag on") && Catch::Contains("Needs the GLES3 renderer"));
+    // The nearest-filtered palette presets say so.
+    CHECK_THAT(file(emit("atari-16", TargetId::Godot3, 0), "shader").data, Catch::Contains("Filter flag off"));
 }

@@ -39,6 +39,10 @@ var _flagged = {}
 
 
 func _ready():
+	# The pass shaders read dFdx (the node's size in pixels); GLES2 rejects them and Godot would then
+	# show the raw picture with only a shader compile message. Say what is wrong instead.
+	if OS.get_current_video_driver() == OS.VIDEO_DRIVER_GLES2:
+		push_error("crtforge: %s needs the GLES3 renderer (Project Settings > Rendering > Quality > Driver); its shaders read dFdx, which GLES2 lacks" % name)
 	_load_luts()
 	_wire()
 	_layout()

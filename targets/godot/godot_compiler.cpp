@@ -226,8 +226,16 @@ void GodotCompiler::emit_header() {
     if (screen) {
         statement("// Screen mode: put it on a ColorRect covering the screen; it post-processes what is drawn below.");
     } else {
-        statement("// Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);");
-        statement("// set the node's texture filter to ", filter_name(variant_.texture_filter("source")), ".");
+        const bool linear = variant_.texture_filter("source") == Filter::Linear;
+        if (options_.godot_version >= 4) {
+            statement("// Node mode: put it on the node showing the picture (TextureRect, Sprite2D, a SubViewport's texture);");
+            statement("// set the node's texture_filter to ", linear ? "Linear" : "Nearest", ".");
+        } else {
+            statement("// Node mode: put it on the node showing the picture (TextureRect, Sprite, a Viewport's texture);");
+            statement("// turn the texture's Filter flag ", linear ? "on" : "off", " (Import dock, or Texture.flags).");
+            // dFdx gives the node's size in pixels; GLES2 has no derivatives and would show the raw picture.
+            statement("// Needs the GLES3 renderer: it reads dFdx, which GLES2 lacks (Godot then shows the raw picture).");
+        }
     }
     bool uses_time = false;
     for (Builtin b : variant_.builtins) uses_time = uses_time || b == Builtin::Time;

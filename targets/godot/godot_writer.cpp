@@ -49,7 +49,9 @@ std::string readme(int version) {
     out += "Every runtime parameter shows in the inspector with its range; baked parameters are constants.\n";
     if (version < 4)
         out += "\nGodot 3 sets filtering per texture, not per read: where two passes read one texture with\n"
-               "different filters, the scene file's header says which one applies.\n";
+               "different filters, the scene file's header says which one applies.\n"
+               "\nThe shaders need the GLES3 renderer (they read dFdx, which GLES2 lacks); under GLES2 the scene's\n"
+               "script reports it as an error.\n";
     return out;
 }
 

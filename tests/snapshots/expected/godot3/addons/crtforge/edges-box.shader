@@ -1,7 +1,8 @@
 // crtforge 0.1.0: preset edges-box. edges-radial with the box form, inverted
 // Godot 3 canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.
-// Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);
-// set the node's texture filter to linear.
+// Node mode: put it on the node showing the picture (TextureRect, Sprite, a Viewport's texture);
+// turn the texture's Filter flag on (Import dock, or Texture.flags).
+// Needs the GLES3 renderer: it reads dFdx, which GLES2 lacks (Godot then shows the raw picture).
 // Time: crtforge_pipeline.gd (the exported scene) sets hostTime every frame to the exact phase time,
 // seconds reduced modulo 2*pi/pulseRate in double precision. Without it (hostTime < 0) the shader
 // uses TIME, which wraps at rendering/limits/time/time_rollover_secs (3600 s by default): then pulseRate is

@@ -1,7 +1,8 @@
 // crtforge 0.1.0: preset int-switch. intmath bands and pick rows
 // Godot 3 canvas_item. Generated from SPIR-V: edit the crtforge templates, not this file.
-// Node mode: put it on the node showing the picture (TextureRect, Sprite, a SubViewport's texture);
-// set the node's texture filter to linear.
+// Node mode: put it on the node showing the picture (TextureRect, Sprite, a Viewport's texture);
+// turn the texture's Filter flag on (Import dock, or Texture.flags).
+// Needs the GLES3 renderer: it reads dFdx, which GLES2 lacks (Godot then shows the raw picture).
 shader_type canvas_item;
 
 // intmath: Width of one band (px)
