@@ -30,10 +30,12 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     CHECK(first.value().files == warm.value().files);
     CHECK(cache.hits() > 0);
     // Per pass: 6 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module;
-    // per preset: its LUTs, and per Godot target its scene and a copy of the LUTs; one README and
-    // one pipeline script per Godot addon, the manifest.
+    // per preset: its LUTs, and per Godot target its scene and a copy of the LUTs, and for a
+    // single-pass preset the screen material and the overlay scene; one README and one pipeline
+    // script per Godot addon, the manifest.
     size_t expected = 2 + 2 + 1;
-    for (const Preset& p : lib.presets()) expected += p.passes.size() * (6 * 2 + 2 * 3 + 1) + p.luts.size() + 2 * (1 + p.luts.size());
+    for (const Preset& p : lib.presets())
+        expected += p.passes.size() * (6 * 2 + 2 * 3 + 1) + p.luts.size() + 2 * (1 + p.luts.size()) + (p.single_pass() ? 2 * 2 : 0);
     CHECK(first.value().files.size() == expected);
 }
 

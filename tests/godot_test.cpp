@@ -1,10 +1,14 @@
 // The Godot targets: dialect rules, inspector hints, both modes, materials, and that the Godot 3 and
 // Godot 4 outputs differ only where the dialects differ.
+#include <array>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 
 #include <catch2/catch.hpp>
 
+#include "crtforge/files.hpp"
+#include "crtforge/runtime/godot3_engine.hpp"
 #include "crtforge/validate/target_render.hpp"
 #include "tests/test_support.hpp"
 
@@ -242,4 +246,89 @@ TEST_CASE("each Godot version's setup notes use that version's names, and Godot 
     CHECK_THAT(g3, Catch::Contains("Filter flag on") && Catch::Contains("Needs the GLES3 renderer"));
     // The nearest-filtered palette presets say so.
     CHECK_THAT(file(emit("atari-16", TargetId::Godot3, 0), "shader").data, Catch::Contains("Filter flag off"));
+}
+
+TEST_CASE("the overlay scene post-processes the screen in a real Godot 3 and lets clicks through", "[godot][godot3][overlay]") {
+    // A project as a user's: a picture (white left half, black right half), a Button, and the
+    // exported overlay instanced on top; it prints pixels of its own window and whether the click
+    // on the button went through the overlay.
+    test::TempDir project;
+    auto exported = test::run_crtforge("--no-cache export -q --preset classic --target godot3 --out " + (project / "export"));
+    REQUIRE(exported.exit_code == 0);
+    std::filesystem::rename(project / "export/godot3/addons", project / "addons");
+    REQUIRE(write_file_atomic(project / "project.godot",
+                              "config_version=4\n\n[application]\nrun/main_scene=\"res://main.tscn\"\n\n[display]\n"
+                              "window/size/width=320\nwindow/size/height=240\n")
+                .ok());
+    REQUIRE(write_file_atomic(project / "main.gd", R"(extends Node2D
+var clicked = false
+func _ready():
+	add_child(load("res://addons/crtforge/classic.overlay.tscn").instance())
+	$Button.connect("pressed", self, "_on_pressed")
+	yield(get_tree(), "idle_frame")
+	yield(VisualServer, "frame_post_draw")
+	yield(VisualServer, "frame_post_draw")
+	var img = get_viewport().get_texture().get_data()
+	img.flip_y()
+	img.lock()
+	var c = img.get_pixel(80, 120)
+	var d = img.get_pixel(240, 120)
+	var e = img.get_pixel(1, 1)
+	print("WHITE %f %f %f" % [c.r, c.g, c.b])
+	print("BLACK %f %f %f" % [d.r, d.g, d.b])
+	print("CORNER %f %f %f" % [e.r, e.g, e.b])
+	for pressed in [true, false]:
+		var ev = InputEventMouseButton.new()
+		ev.button_index = BUTTON_LEFT
+		ev.position = Vector2(40, 220)
+		ev.global_position = ev.position
+		ev.pressed = pressed
+		get_tree().input_event(ev)
+	yield(get_tree(), "idle_frame")
+	print("CLICKED %s" % str(clicked))
+	get_tree().quit()
+func _on_pressed():
+	clicked = true
+)").ok());
+    REQUIRE(write_file_atomic(project / "main.tscn", R"([gd_scene load_steps=2 format=2]
+
+[ext_resource path="res://main.gd" type="Script" id=1]
+
+[node name="Main" type="Node2D"]
+script = ExtResource( 1 )
+
+[node name="White" type="ColorRect" parent="."]
+margin_right = 160.0
+margin_bottom = 240.0
+color = Color( 1, 1, 1, 1 )
+
+[node name="Black" type="ColorRect" parent="."]
+margin_left = 160.0
+margin_right = 320.0
+margin_bottom = 240.0
+color = Color( 0, 0, 0, 1 )
+
+[node name="Button" type="Button" parent="."]
+margin_left = 10.0
+margin_top = 200.0
+margin_right = 90.0
+margin_bottom = 235.0
+)").ok());
+    auto log = run_godot3_project(project.path());
+    REQUIRE(log.ok());
+    auto rgb = [&](const std::string& label) {
+        std::smatch m;
+        const std::regex line(label + R"( ([0-9.]+) ([0-9.]+) ([0-9.]+))");
+        REQUIRE(std::regex_search(log.value(), m, line));
+        return std::array<double, 3>{std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+    };
+    // The white half comes out shaded by the preset (scanline, mask, vignette), neither untouched
+    // nor blanked; the corner is the bezel's black; the click reached the button below.
+    const auto white = rgb("WHITE");
+    CHECK(white[0] < 0.99);
+    CHECK(white[0] > 0.5);
+    CHECK(white[1] < white[0]);  // classic's aperture mask dims two channels per column
+    const auto corner = rgb("CORNER");
+    CHECK(corner[0] + corner[1] + corner[2] == 0.0);
+    CHECK_THAT(log.value(), Catch::Contains("CLICKED True"));
 }

@@ -406,17 +406,25 @@ Result<bool> add_project_files(const fs::path& project, const std::map<std::stri
 
 // The part of a render every mode shares: a private runner project in `dir` (plus the job's own
 // files), an Xvfb, Godot run on it with `user_args`, and its output turned into diagnostics.
+Status run_godot_on(const fs::path& dir, const fs::path& project, const std::vector<std::string>& user_args, int timeout_seconds,
+                    std::string* log_out);
+
 Status run_runner(const fs::path& dir, const std::map<std::string, std::string>& project_files,
                   const std::vector<std::string>& user_args, int timeout_seconds) {
+    const fs::path project = dir / "project";
+    if (auto s = copy_runner(data_path("tools/godot3-runner"), project); !s.ok()) return s;
+    if (auto added = add_project_files(project, project_files); !added.ok()) return added.error();
+    return run_godot_on(dir, project, user_args, timeout_seconds, nullptr);
+}
+
+// Godot 3 on `project` under a private Xvfb (scratch files in `dir`); its output in *log_out.
+Status run_godot_on(const fs::path& dir, const fs::path& project, const std::vector<std::string>& user_args, int timeout_seconds,
+                    std::string* log_out) {
     const std::string godot = find_on_path("godot3");
     const std::string xvfb = find_on_path("Xvfb");
     if (godot.empty() || xvfb.empty())
         return make_error(fmt::format("Godot 3 rendering needs {} ('{}' is not on PATH)", kPackages,
                                       godot.empty() ? "godot3" : "Xvfb"));
-    const fs::path project = dir / "project";
-    if (auto s = copy_runner(data_path("tools/godot3-runner"), project); !s.ok()) return s;
-    if (auto added = add_project_files(project, project_files); !added.ok()) return added.error();
-
     auto server = start_xvfb(xvfb, dir);
     if (!server.ok()) return server.error();
 
@@ -446,6 +454,7 @@ Status run_runner(const fs::path& dir, const std::map<std::string, std::string>&
     }
     godot_process.reaped();
     server.value().process->stop();
+    if (log_out) *log_out = log;
 
     if (WIFEXITED(*status)) return diagnose(log, WEXITSTATUS(*status), "");
     return diagnose(log, -1, describe_status(*status));
@@ -547,6 +556,17 @@ Result<Image> render_godot3(const Godot3Job& job) {
     if (!args.ok()) return args.error();
     if (auto s = run_runner(dir, {}, args.value(), job.timeout_seconds); !s.ok()) return s.error();
     return read_output(dir / "output.raw", job.width, job.height);
+}
+
+Result<std::string> run_godot3_project(const std::string& project_dir, int timeout_seconds) {
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::path(project_dir) / "project.godot", ec))
+        return job_error("no project.godot in '" + project_dir + "'", "project");
+    auto scratch = ScratchDir::create();
+    if (!scratch.ok()) return scratch.error();
+    std::string log;
+    if (auto s = run_godot_on(scratch.value().path(), project_dir, {}, timeout_seconds, &log); !s.ok()) return s.error();
+    return log;
 }
 
 Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {

@@ -11,9 +11,10 @@ namespace {
 
 std::string literal(double v) { return fmt::format("{}", v); }
 
-// A ShaderMaterial resource with every runtime param at the preset's value.
-std::string material_resource(const Variant& variant, int version) {
-    const std::string shader_path = "res://addons/crtforge/" + variant.file_stem() + shader_extension(version);
+// A ShaderMaterial resource with every runtime param at the preset's value, for the node-mode
+// shader or (`suffix` ".screen") the screen-mode one.
+std::string material_resource(const Variant& variant, int version, const std::string& suffix = "") {
+    const std::string shader_path = "res://addons/crtforge/" + variant.file_stem() + suffix + shader_extension(version);
     std::string out;
     if (version >= 4) {
         out += "[gd_resource type=\"ShaderMaterial\" load_steps=2 format=3]\n\n";
@@ -25,6 +26,28 @@ std::string material_resource(const Variant& variant, int version) {
         out += "[resource]\nshader = ExtResource( 1 )\n";
     }
     for (const std::string& line : material_param_lines(variant, version)) out += line + "\n";
+    return out;
+}
+
+// The screen-mode shader ready to drop in: a CanvasLayer above the game (layer 100) holding a
+// full-rect ColorRect with the preset's screen material, ignoring the mouse so the GUI below still
+// gets every click.
+std::string overlay_scene(const Variant& variant, int version) {
+    const std::string material = "res://addons/crtforge/" + variant.file_stem() + ".screen.tres";
+    std::string out;
+    if (version >= 4) {
+        out += "[gd_scene load_steps=2 format=3]\n\n";
+        out += "[ext_resource type=\"ShaderMaterial\" path=\"" + material + "\" id=\"1\"]\n\n";
+        out += "[node name=\"CrtOverlay\" type=\"CanvasLayer\"]\nlayer = 100\n\n";
+        out += "[node name=\"Screen\" type=\"ColorRect\" parent=\".\"]\nmaterial = ExtResource(\"1\")\n"
+               "anchors_preset = 15\nanchor_right = 1.0\nanchor_bottom = 1.0\ngrow_horizontal = 2\ngrow_vertical = 2\nmouse_filter = 2\n";
+    } else {
+        out += "[gd_scene load_steps=2 format=2]\n\n";
+        out += "[ext_resource path=\"" + material + "\" type=\"ShaderMaterial\" id=1]\n\n";
+        out += "[node name=\"CrtOverlay\" type=\"CanvasLayer\"]\nlayer = 100\n\n";
+        out += "[node name=\"Screen\" type=\"ColorRect\" parent=\".\"]\nmaterial = ExtResource( 1 )\n"
+               "anchor_right = 1.0\nanchor_bottom = 1.0\nmouse_filter = 2\n";
+    }
     return out;
 }
 
@@ -45,7 +68,21 @@ std::string readme(int version) {
            "  texture filter as the shader's header says.\n";
     out += "- `<preset>.screen" + ext + "`: screen mode, for single-pass presets. Put a ColorRect over the whole\n"
            "  screen (anchors: full rect) and give it a ShaderMaterial with this shader; it post-processes\n"
-           "  everything drawn below it.\n\n";
+           "  everything drawn below it. `<preset>.screen.tres` is that material with the preset's values.\n";
+    out += "- `<preset>.overlay.tscn`: the screen mode ready to drop in, for single-pass presets: instance it\n"
+           "  anywhere in your main scene. A CanvasLayer (layer 100) holds a full-rect ColorRect with the\n"
+           "  screen material; its mouse filter is Ignore, so the GUI below still gets every click.\n\n";
+    out += "## Stretch modes\n\n"
+           "- `display/window/stretch/mode` = `disabled` or `" + std::string(version >= 4 ? "canvas_items" : "2d") + "`: the overlay works as is;\n"
+           "  the shader runs at the window's resolution.\n"
+           "- `" + std::string(version >= 4 ? "viewport" : "viewport") + "` (the usual pixel-art setup, e.g. 256x224): the whole canvas, overlay\n"
+           "  included, is drawn at the low resolution and scaled up, so scanlines become several pixels\n"
+           "  tall and text shreds. Use the scene instead: set the stretch mode to `disabled` (or\n"
+           "  `" + std::string(version >= 4 ? "canvas_items" : "2d") + "`), draw the game into a " + std::string(version >= 4 ? "SubViewport" : "Viewport") +
+           " of the low resolution (filter off on its\n"
+           "  texture), and show that texture through `<preset>.tscn` filling the window: the effect then runs\n"
+           "  after the upscale, at the window's resolution, and the scene keeps the picture's aspect\n"
+           "  (its display fit).\n\n";
     out += "Every runtime parameter shows in the inspector with its range; baked parameters are constants.\n";
     if (version < 4)
         out += "\nGodot 3 sets filtering per texture, not per read: where two passes read one texture with\n"
@@ -98,6 +135,12 @@ Result<TargetOutput> generate(const TargetInput& input, int version) {
                          "addons/crtforge/" + preset + ".screen" + ext});
     out.files.push_back({ShaderStage::Fragment, ".tres", material_resource(*input.variant, version), "material",
                          "addons/crtforge/" + preset + ".tres"});
+    if (input.variant->preset->single_pass()) {
+        out.files.push_back({ShaderStage::Fragment, ".screen.tres", material_resource(*input.variant, version, ".screen"),
+                             "screenMaterial", "addons/crtforge/" + preset + ".screen.tres"});
+        out.files.push_back({ShaderStage::Fragment, ".overlay.tscn", overlay_scene(*input.variant, version), "overlay",
+                             "addons/crtforge/" + preset + ".overlay.tscn"});
+    }
     out.files.push_back({ShaderStage::Fragment, ".md", readme(version), "readme", "addons/crtforge/README.md"});
     out.bindings.push_back({"source", "node mode: the node's TEXTURE at UV; screen mode: " +
                                           std::string(version >= 4 ? "screen_texture (hint_screen_texture)" : "SCREEN_TEXTURE") + " at SCREEN_UV"});

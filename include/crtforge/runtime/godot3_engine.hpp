@@ -68,6 +68,11 @@ struct Godot3Job {
 //  - Godot crashes, times out or gives no pixels: ErrorKind::Validation.
 Result<Image> render_godot3(const Godot3Job& job);
 
+// Godot 3 (GLES3) running a whole project (its main scene) under a private Xvfb, as the renders
+// do; returns what it printed. For checks of exported files in a real Godot 3 project (the
+// overlay scene's test); errors as above.
+Result<std::string> run_godot3_project(const std::string& project_dir, int timeout_seconds = 60);
+
 // A crtforge scene exported for Godot 3 (<preset>.tscn with crtforge_pipeline.gd), run as a game
 // runs it: the scene instanced in a W x H HDR viewport, its `source` an ImageTexture whose pixels
 // change every frame, its `frame` set to each frame of `run` in turn.
