@@ -1,4 +1,4 @@
-// crtforge bench [--preset NAME ...] [--size WxH] [--input NAME] [--frame N] [--draws N]
+// crtforge bench [--preset NAME ...] [--size WxH] [--input NAME] [--frame N] [--draws N] [--supersample N]
 //                [--repeats N] [--device NAME|INDEX]
 // Each pass of each preset's scene timed on Vulkan by GPU timestamps, as a ratio to a blit of the
 // same sizes measured in the same run (crtforge/validate/bench.hpp).
@@ -17,16 +17,20 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     struct Options {
         std::vector<std::string> presets;
         std::string size = "1280x960", input = "pixel_art", device;
-        int frame = 1, draws = 40, repeats = 5;
+        int frame = 1, draws = 40, repeats = 5, supersample = 4;
     };
     auto o = std::make_shared<Options>();
-    cmd->add_option("--preset", o->presets, "Presets to time (repeatable; default: all)");
+    cmd->add_option("--preset", o->presets, "Presets to time (repeat or comma-separate; default: all)")->delimiter(',');
     cmd->add_option("--size", o->size, "Display size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--input", o->input, "Generated test input, at the preset's source size")->capture_default_str();
     cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
     cmd->add_option("--draws", o->draws, "Draws per timing")->check(CLI::Range(1, 100000))->capture_default_str();
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the median is reported)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
+    cmd->add_option("--supersample", o->supersample,
+                    "Error against the point-sampled fp64 reference and an N x N supersampled one (0: no error columns)")
+        ->check(CLI::Range(0, 16))
+        ->capture_default_str();
     return [&g, o]() {
         int code = kExitOk;
         auto lib = load_library(g, code);
@@ -54,6 +58,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         options.draws = o->draws;
         options.repeats = o->repeats;
         options.vulkan.device = o->device;
+        options.supersample = o->supersample;
         for (const Preset* preset : presets) {
             auto timing = bench_scene(*lib, *preset, options);
             if (!timing.ok()) return report(timing.error());

@@ -83,7 +83,7 @@ Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, 
 
 struct RenderArgs {
     std::string preset, target = "spirv", input, output, size, device, frames, fit;
-    int frame = 0;
+    int frame = 0, supersample = 1;
     bool reference = false;
     VariantFlags flags;
 };
@@ -132,6 +132,9 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--frames", a->frames, "Frames A:B (inclusive): one output file each")->excludes(frame);
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
     cmd->add_flag("--reference", a->reference, "Render with the CPU double-precision reference instead");
+    cmd->add_option("--supersample", a->supersample,
+                    "With --reference: N x N samples per display pixel, box-filtered (the aliasing-free reference)")
+        ->check(CLI::Range(1, 16));
     a->flags.add_to(*cmd);
     return [&g, a]() {
         int code = kExitOk;
@@ -181,6 +184,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         }
         Cache cache = make_cache(g);
 
+        if (a->supersample != 1 && !a->reference) return report(make_error("needs --reference", {}, 0, "--supersample"));
         Result<std::vector<Image>> images = make_error("not rendered");
         if (a->reference) {
             ReferenceSceneJob job;
@@ -192,6 +196,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             job.fit = fit.value();
             job.frames = frames;
             job.file_luts = file_luts;
+            job.supersample = a->supersample;
             images = render_reference_scene(job);
         } else {
             auto compiled = compile_scene(*lib, *preset, options.value(), cache);

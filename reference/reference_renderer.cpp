@@ -168,6 +168,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
         return make_error("output size " + std::to_string(job.width) + "x" + std::to_string(job.height) + " is outside 1.." +
                               std::to_string(kMaxImageDimension) + " per side or beyond the image memory budget",
                           {}, 0, "--size");
+    if (job.supersample < 1 || job.supersample > 16) return make_error("supersampling must be 1..16 samples per side", {}, 0, "--supersample");
     if (job.input.width <= 0 || job.input.height <= 0 ||
         job.input.rgba.size() != static_cast<size_t>(job.input.width) * job.input.height * 4)
         return make_error("reference job has an empty or inconsistent input image");
@@ -204,7 +205,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
     base.source = &source;
     base.missing = &missing;
     for (const auto& [name, sampler] : samplers) base.textures[name] = &sampler;
-    auto failed = [&](const PlannedStage& s, Hook hook) { return unmodelled(*s.resolved, hook_name(hook)); };
+    auto failed = [&](const PlannedStage& s, Hook hook) -> std::optional<Diagnostic> { return unmodelled(*s.resolved, hook_name(hook)); };
 
     // Rows in parallel: every pixel is independent, so the image is the same for any split.
     // A warp model that has no form fails in the pixel loop first, so here it only warps.
@@ -213,44 +214,59 @@ Result<Image> render_reference(const ReferenceJob& job) {
             if (s.has(Hook::Warp)) s.model->warp(s.resolved->form->name, params, base, uv);
         return uv;
     };
+    // One sample of the pass's math at output position (px, py), written finite into dst.
+    auto shade = [&](Fragment& f, double px, double py, float* dst) -> std::optional<Diagnostic> {
+        f.screen_uv = {px / job.width, py / job.height};
+        f.pixel = {px, py};
+        if (plan.empty()) {  // no stage: a passthrough blit, alpha included
+            const Rgba c = source.sample(f.screen_uv);
+            for (int i = 0; i < 4; ++i) dst[i] = finite_output(c[i]);
+            return std::nullopt;
+        }
+        f.uv = f.screen_uv;
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::Warp) && !s.model->warp(s.resolved->form->name, params, f, f.uv)) return failed(s, Hook::Warp);
+        f.centered = f.uv * 2.0 - Vec2{1, 1};
+        Vec2 sample_uv = f.uv;
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::SampleUv) && !s.model->sample_uv(s.resolved->form->name, params, f, sample_uv)) return failed(s, Hook::SampleUv);
+        if (maps_source) sample_uv = f.source_uv(sample_uv);
+        Vec3 color = source.rgb(sample_uv);
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::Fetch) && !s.model->fetch(s.resolved->form->name, params, f, sample_uv, color)) return failed(s, Hook::Fetch);
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::Color) && !s.model->color(s.resolved->form->name, params, f, color)) return failed(s, Hook::Color);
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::Finish) && !s.model->finish(s.resolved->form->name, params, f, color)) return failed(s, Hook::Finish);
+        double alpha = 1.0;
+        for (const PlannedStage& s : plan)
+            if (s.has(Hook::Alpha) && !s.model->alpha(s.resolved->form->name, params, f, alpha)) return failed(s, Hook::Alpha);
+        dst[0] = finite_output(color.r);
+        dst[1] = finite_output(color.g);
+        dst[2] = finite_output(color.b);
+        dst[3] = finite_output(alpha);
+        return std::nullopt;
+    };
+    const int n = std::max(1, job.supersample);
     auto render_rows = [&](int y0, int y1) -> std::optional<Diagnostic> {
         Fragment f = base;  // each thread its own
-        auto fail = [&](const PlannedStage& s, Hook hook) -> std::optional<Diagnostic> { return failed(s, hook); };
         for (int y = y0; y < y1; ++y) {
             for (int x = 0; x < job.width; ++x) {
-                const double px = x + 0.5 + job.jitter[0], py = y + 0.5 + job.jitter[1];
-                f.screen_uv = {px / job.width, py / job.height};
-                f.pixel = {px, py};
                 float* dst = out.at(x, y);
-                if (plan.empty()) {  // no stage: a passthrough blit, alpha included
-                    const Rgba c = source.sample(f.screen_uv);
-                    for (int i = 0; i < 4; ++i) dst[i] = finite_output(c[i]);
+                if (n == 1) {
+                    if (auto e = shade(f, x + 0.5 + job.jitter[0], y + 0.5 + job.jitter[1], dst)) return e;
                     continue;
                 }
-                f.uv = f.screen_uv;
-                for (const PlannedStage& s : plan)
-                    if (s.has(Hook::Warp) && !s.model->warp(s.resolved->form->name, params, f, f.uv)) return fail(s, Hook::Warp);
-                f.centered = f.uv * 2.0 - Vec2{1, 1};
-                Vec2 sample_uv = f.uv;
-                for (const PlannedStage& s : plan)
-                    if (s.has(Hook::SampleUv) && !s.model->sample_uv(s.resolved->form->name, params, f, sample_uv))
-                        return fail(s, Hook::SampleUv);
-                if (maps_source) sample_uv = f.source_uv(sample_uv);
-                Vec3 color = source.rgb(sample_uv);
-                for (const PlannedStage& s : plan)
-                    if (s.has(Hook::Fetch) && !s.model->fetch(s.resolved->form->name, params, f, sample_uv, color))
-                        return fail(s, Hook::Fetch);
-                for (const PlannedStage& s : plan)
-                    if (s.has(Hook::Color) && !s.model->color(s.resolved->form->name, params, f, color)) return fail(s, Hook::Color);
-                for (const PlannedStage& s : plan)
-                    if (s.has(Hook::Finish) && !s.model->finish(s.resolved->form->name, params, f, color)) return fail(s, Hook::Finish);
-                double alpha = 1.0;
-                for (const PlannedStage& s : plan)
-                    if (s.has(Hook::Alpha) && !s.model->alpha(s.resolved->form->name, params, f, alpha)) return fail(s, Hook::Alpha);
-                dst[0] = finite_output(color.r);
-                dst[1] = finite_output(color.g);
-                dst[2] = finite_output(color.b);
-                dst[3] = finite_output(alpha);
+                // The pixel's footprint: n x n samples on a regular grid, box-filtered (the mean of
+                // what a display would integrate), in double.
+                double sum[4] = {0, 0, 0, 0};
+                float one[4];
+                for (int sy = 0; sy < n; ++sy)
+                    for (int sx = 0; sx < n; ++sx) {
+                        if (auto e = shade(f, x + (sx + 0.5) / n + job.jitter[0], y + (sy + 0.5) / n + job.jitter[1], one)) return e;
+                        for (int i = 0; i < 4; ++i) sum[i] += one[i];
+                    }
+                for (int i = 0; i < 4; ++i) dst[i] = finite_output(sum[i] / (n * n));
             }
         }
         return std::nullopt;
@@ -370,6 +386,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             rj.time = job.start_time + frame / preset.scene.fps;
             rj.jitter = job.jitter;
             rj.texel_jitter = job.texel_jitter;
+            if (i + 1 == preset.passes.size()) rj.supersample = job.supersample;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();

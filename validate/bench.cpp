@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "crtforge/exporter.hpp"
+#include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/validate/target_render.hpp"
@@ -127,6 +128,25 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
         t.blit_ns = base.value().first;
         out.passes.push_back(std::move(t));
     }
+    // Speed against error: the frame just rendered on Vulkan against the two references.
+    if (o.supersample > 0) {
+        ReferenceSceneJob ref;
+        ref.library = &library;
+        ref.preset = &preset;
+        ref.source = [&](int frame) { return make_test_input(o.input, source_width, source_height, frame); };
+        ref.width = o.width;
+        ref.height = o.height;
+        ref.frames = {o.frame};
+        for (int n : {1, o.supersample}) {
+            ref.supersample = n;
+            auto reference = render_reference_scene(ref);
+            if (!reference.ok()) return reference.error();
+            auto metrics = compare_images(rendered.value().front(), reference.value().front());
+            if (!metrics.ok()) return metrics.error();
+            (n == 1 ? out.vs_point : out.vs_supersampled) = metrics.value();
+        }
+        out.supersample = o.supersample;
+    }
     auto source = make_test_input(o.input, source_width, source_height, o.frame);
     if (!source.ok()) return source.error();
     auto display = blit(source.value(), o.width, o.height, OutputFormat::Rgba16Float);
@@ -146,6 +166,11 @@ std::string format_scene_timing(const SceneTiming& t) {
                          p.ns / 1000, p.blit_ns / 1000, p.ratio(), 100 * p.spread);
     s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f}\n", "scene", "", fmt::format("{}x{}", t.width, t.height),
                      "", t.total_ns() / 1000, t.display_blit_ns / 1000, t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0);
+    auto error_line = [](const char* label, const ImageMetrics& m) {
+        return fmt::format("error vs {:<26} RMSE {:.5f}  PSNR {:5.1f} dB  max |d| {:.4f}  SSIM {:.4f}\n", label, m.rmse, m.psnr, m.max_abs, m.ssim);
+    };
+    if (t.vs_point) s += error_line("point-sampled fp64:", *t.vs_point);
+    if (t.vs_supersampled) s += error_line(fmt::format("{0}x{0} supersampled fp64:", t.supersample).c_str(), *t.vs_supersampled);
     return s;
 }
 

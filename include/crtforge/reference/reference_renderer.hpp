@@ -42,6 +42,10 @@ struct ReferenceJob {
     // Moves every texture read by this many texels on both axes: a computed sample point exactly
     // on a texel edge (a warped mask-cell centre under nearest filtering) shows as a change.
     double texel_jitter = 0.0;
+    // Samples per pixel side: 1 is the point-sampled reference (what a perfect fp32 shader gives:
+    // its distance measures arithmetic error); n > 1 box-filters n x n samples over each pixel's
+    // footprint (its distance also measures aliasing: mask and scanline moire). 1..16.
+    int supersample = 1;
 };
 
 // Renders one pass's math. A stage or form the reference has no model for is an error, never a
@@ -69,6 +73,7 @@ struct ReferenceSceneJob {
     std::array<double, 2> jitter{0.0, 0.0};
     double texel_jitter = 0.0;  // ReferenceJob::texel_jitter, for every pass
     double input_gain = 1.0;
+    int supersample = 1;        // ReferenceJob::supersample, for the display's pass
 };
 
 // Test-only: injects a fault into the oracle, to prove that validate notices a wrong reference

@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "crtforge/preset.hpp"
+#include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/template_library.hpp"
 
@@ -19,6 +22,9 @@ struct BenchOptions {
     int frame = 1;                    // the frame whose passes are timed (earlier ones run first)
     int draws = 40;                   // draws per timing
     int repeats = 5;                  // timings per job; the median is kept
+    // Error of the timed frame against the two double-precision references: point-sampled
+    // (arithmetic error) and `supersample` x `supersample` box-filtered (also aliasing). 0: none.
+    int supersample = 4;
     EngineOptions vulkan;
 };
 
@@ -39,6 +45,9 @@ struct SceneTiming {
     std::vector<PassTiming> passes;
     double display_blit_ns = 0;      // a blit of the source onto the whole display
     double total_ns() const;
+    // The Vulkan frame against the point-sampled reference and the supersampled one (when measured).
+    std::optional<ImageMetrics> vs_point, vs_supersampled;
+    int supersample = 0;
 };
 
 Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& options);

@@ -1,0 +1,95 @@
+// crtforge bench's speed-against-error data (issue 11): the structure of a timing and the error of
+// the timed frame against the point-sampled and the supersampled reference. No timing is asserted
+// here (speed lives in the bench command); only that each figure is there and the errors mean what
+// they say.
+#include <catch2/catch.hpp>
+
+#include "crtforge/reference/reference_renderer.hpp"
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/validate/bench.hpp"
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+
+namespace {
+
+Image reference_frame(const Preset& preset, int width, int height, int supersample, const std::string& input = "pixel_art") {
+    ReferenceSceneJob job;
+    job.library = &test::shipped_library();
+    job.preset = &preset;
+    job.source = [input](int frame) { return make_test_input(input, 320, 240, frame); };
+    job.width = width;
+    job.height = height;
+    job.frames = {0};
+    job.supersample = supersample;
+    auto images = render_reference_scene(job);
+    REQUIRE(images.ok());
+    return images.value().front();
+}
+
+}  // namespace
+
+TEST_CASE("the supersampled reference box-filters each pixel's footprint", "[bench][reference]") {
+    const Preset& classic = *test::shipped_library().find_preset("classic");
+    const Image point = reference_frame(classic, 160, 120, 1);
+    const Image four = reference_frame(classic, 160, 120, 4);
+    // Supersampling changes where the picture has detail below the pixel (scanlines, mask, the
+    // bezel edge), and only a little on average.
+    auto diff = compare_images(four, point);
+    REQUIRE(diff.ok());
+    CHECK(diff.value().rmse > 0.005);
+    CHECK(diff.value().rmse < 0.2);
+    // The bezel's edge is anti-aliased: some pixel on the top-left curve lies strictly between the
+    // bezel's black and the picture.
+    bool partial = false;
+    for (int x = 0; x < 40 && !partial; ++x)
+        for (int y = 0; y < 40 && !partial; ++y) {
+            const float a = four.at(x, y)[3];
+            partial = a > 0.05f && a < 0.95f && point.at(x, y)[3] != a;
+        }
+    // (classic's bezel is opaque black: its alpha is 1 everywhere; the colour shows the blend.)
+    if (!partial)
+        for (int x = 0; x < 40 && !partial; ++x)
+            for (int y = 0; y < 40 && !partial; ++y) {
+                const float g = four.at(x, y)[1], p = point.at(x, y)[1];
+                partial = (p == 0.0f) != (g == 0.0f) || (g > 0.0f && g < p * 0.9f);
+            }
+    CHECK(partial);
+    // The passthrough preset of a linear ramp (grey_ramp's top half) is the same either way: the box
+    // filter of a linear function is its value at the centre.
+    const Preset& passthrough = *test::shipped_library().find_preset("passthrough");
+    const Image ramp4 = reference_frame(passthrough, 320, 240, 4, "grey_ramp"), ramp1 = reference_frame(passthrough, 320, 240, 1, "grey_ramp");
+    double worst = 0;
+    for (int y = 0; y < 118; ++y)
+        for (int x = 1; x < 319; ++x) worst = std::max(worst, static_cast<double>(std::abs(ramp4.at(x, y)[0] - ramp1.at(x, y)[0])));
+    CHECK(worst < 1e-3);  // the sampler models Vulkan's 8-bit sub-texel weights
+}
+
+TEST_CASE("bench reports every pass and the frame's error against both references", "[bench]") {
+    BenchOptions options;
+    options.width = 160;
+    options.height = 120;
+    options.draws = 1;
+    options.repeats = 1;
+    options.supersample = 4;
+    for (const char* name : {"crt-shadow-mask", "super-win"}) {
+        INFO(name);
+        const Preset& preset = *test::shipped_library().find_preset(name);
+        auto timing = bench_scene(test::shipped_library(), preset, options);
+        REQUIRE(timing.ok());
+        CHECK(timing.value().passes.size() == preset.passes.size());
+        for (const PassTiming& p : timing.value().passes) {
+            CHECK(p.ns > 0);
+            CHECK(p.blit_ns > 0);
+        }
+        REQUIRE(timing.value().vs_point);
+        REQUIRE(timing.value().vs_supersampled);
+        // The shader matches the point reference to float precision; against the supersampled one
+        // it also shows what point sampling aliases (the shadow mask's cells, the bezel's edge).
+        CHECK(timing.value().vs_point->rmse < 0.002);
+        if (preset.single_pass()) CHECK(timing.value().vs_supersampled->rmse > 2 * timing.value().vs_point->rmse);
+        const std::string table = format_scene_timing(timing.value());
+        CHECK_THAT(table, Catch::Contains("error vs point-sampled fp64") && Catch::Contains("4x4 supersampled fp64"));
+    }
+}
