@@ -3,6 +3,9 @@
 // here (speed lives in the bench command); only that each figure is there and the errors mean what
 // they say.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "crtforge/files.hpp"
 
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/image_compare.hpp"
@@ -92,4 +95,24 @@ TEST_CASE("bench reports every pass and the frame's error against both reference
         const std::string table = format_scene_timing(timing.value());
         CHECK_THAT(table, Catch::Contains("error vs point-sampled fp64") && Catch::Contains("4x4 supersampled fp64"));
     }
+}
+
+TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front", "[bench][cli]") {
+    test::TempDir out;
+    auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,atari-16,super-win --out " + out.path());
+    REQUIRE(run.exit_code == 0);
+    auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
+    REQUIRE(json.size() == 4);
+    size_t on_front = 0;
+    for (const auto& preset : json) {
+        CHECK(preset["ratio"].get<double>() > 0);
+        CHECK(preset["errorVsPoint"]["rmse"].get<double>() < 0.002);
+        CHECK(preset["errorVsSupersampled"].is_object());
+        on_front += preset["pareto"].get<bool>();
+    }
+    CHECK(on_front >= 1);
+    const std::string md = read_text_file(out / "bench.md").value();
+    CHECK_THAT(md, Catch::Contains("| crt-shadow-mask | 320x240 | 1 |"));
+    const std::string svg = read_text_file(out / "bench.svg").value();
+    CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">super-win</text>"));
 }

@@ -55,4 +55,11 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
 // A fixed-width table: one row per pass (size, format, ns per draw, blit, ratio), then the scene.
 std::string format_scene_timing(const SceneTiming& timing);
 
+// The files of `crtforge bench --out DIR` (validate/bench_report.cpp): every figure as JSON, a
+// markdown table, and an SVG plot of error (against the supersampled reference, log scale) against
+// cost (ratio to a blit), the Pareto front marked.
+std::string bench_json(const std::vector<SceneTiming>& timings);
+std::string bench_markdown(const std::vector<SceneTiming>& timings);
+std::string bench_svg(const std::vector<SceneTiming>& timings);
+
 }  // namespace crtforge

@@ -1,0 +1,150 @@
+// crtforge bench's files: bench.json (every figure), bench.md (a table) and bench.svg (error against
+// cost, one point per preset, the Pareto front joined): see crtforge/validate/bench.hpp.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "crtforge/validate/bench.hpp"
+
+namespace crtforge {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+double scene_ratio(const SceneTiming& t) { return t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0; }
+
+json metrics_json(const std::optional<ImageMetrics>& m) {
+    if (!m) return nullptr;
+    return {{"rmse", m->rmse}, {"psnr", m->psnr}, {"maxAbs", m->max_abs}, {"ssim", m->ssim}};
+}
+
+// The presets no other preset beats on both cost and error (against the supersampled reference).
+std::vector<size_t> pareto_front(const std::vector<SceneTiming>& timings) {
+    std::vector<size_t> front;
+    for (size_t i = 0; i < timings.size(); ++i) {
+        if (!timings[i].vs_supersampled) continue;
+        bool dominated = false;
+        for (size_t j = 0; j < timings.size() && !dominated; ++j) {
+            if (j == i || !timings[j].vs_supersampled) continue;
+            const double ci = scene_ratio(timings[i]), cj = scene_ratio(timings[j]);
+            const double ei = timings[i].vs_supersampled->rmse, ej = timings[j].vs_supersampled->rmse;
+            dominated = cj <= ci && ej <= ei && (cj < ci || ej < ei);
+        }
+        if (!dominated) front.push_back(i);
+    }
+    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return scene_ratio(timings[a]) < scene_ratio(timings[b]); });
+    return front;
+}
+
+std::string xml_escape(const std::string& s) {
+    std::string out;
+    for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+    return out;
+}
+
+}  // namespace
+
+std::string bench_json(const std::vector<SceneTiming>& timings) {
+    json out = json::array();
+    const std::vector<size_t> front = pareto_front(timings);
+    for (size_t i = 0; i < timings.size(); ++i) {
+        const SceneTiming& t = timings[i];
+        json passes = json::array();
+        for (const PassTiming& p : t.passes)
+            passes.push_back({{"alias", p.alias}, {"input", {p.input_width, p.input_height}}, {"output", {p.width, p.height}},
+                              {"format", p.format}, {"nsPerDraw", p.ns}, {"blitNs", p.blit_ns}, {"ratio", p.ratio()}, {"spread", p.spread}});
+        out.push_back({{"preset", t.preset},
+                       {"device", t.device},
+                       {"display", {t.width, t.height}},
+                       {"frame", t.frame},
+                       {"drawsPerTiming", t.draws},
+                       {"passes", passes},
+                       {"sceneNs", t.total_ns()},
+                       {"displayBlitNs", t.display_blit_ns},
+                       {"ratio", scene_ratio(t)},
+                       {"errorVsPoint", metrics_json(t.vs_point)},
+                       {"errorVsSupersampled", metrics_json(t.vs_supersampled)},
+                       {"supersample", t.supersample},
+                       {"pareto", std::find(front.begin(), front.end(), i) != front.end()}});
+    }
+    return out.dump(2) + "\n";
+}
+
+std::string bench_markdown(const std::vector<SceneTiming>& timings) {
+    const std::vector<size_t> front = pareto_front(timings);
+    std::string md = "| preset | display | passes | cost (x blit) | RMSE vs point fp64 | RMSE vs supersampled fp64 | SSIM vs supersampled | Pareto |\n"
+                     "|---|---|---:|---:|---:|---:|---:|:---:|\n";
+    for (size_t i = 0; i < timings.size(); ++i) {
+        const SceneTiming& t = timings[i];
+        auto num = [](const std::optional<ImageMetrics>& m, bool ssim) {
+            if (!m) return std::string("-");
+            return ssim ? fmt::format("{:.4f}", m->ssim) : fmt::format("{:.5f}", m->rmse);
+        };
+        md += fmt::format("| {} | {}x{} | {} | {:.2f} | {} | {} | {} | {} |\n", t.preset, t.width, t.height, t.passes.size(), scene_ratio(t),
+                          num(t.vs_point, false), num(t.vs_supersampled, false), num(t.vs_supersampled, true),
+                          std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
+    }
+    return md;
+}
+
+std::string bench_svg(const std::vector<SceneTiming>& timings) {
+    // Cost on x (ratio to a blit, linear), error against the supersampled reference on y (log).
+    constexpr double W = 760, H = 500, L = 70, R = 30, T = 50, B = 50;
+    double max_cost = 1, min_err = 1e9, max_err = 0;
+    for (const SceneTiming& t : timings) {
+        max_cost = std::max(max_cost, scene_ratio(t));
+        if (t.vs_supersampled) {
+            min_err = std::min(min_err, std::max(t.vs_supersampled->rmse, 1e-6));
+            max_err = std::max(max_err, t.vs_supersampled->rmse);
+        }
+    }
+    if (max_err <= 0) min_err = 1e-4, max_err = 1e-1;
+    const double lo = std::floor(std::log10(min_err)), hi = std::max(lo + 1, std::ceil(std::log10(max_err)));
+    // About eight x ticks of 1, 2, 5, 10, ... blits.
+    double step = 1;
+    while (max_cost / step > 8) step = step == 1 ? 2 : step == 2 ? 5 : step * 2;
+    const double xmax = step * std::ceil((max_cost + 0.25) / step);
+    auto X = [&](double c) { return L + (W - L - R) * c / xmax; };
+    auto Y = [&](double e) { return T + (H - T - B) * (hi - std::log10(std::max(e, 1e-6))) / (hi - lo); };
+    std::string s = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"12\">\n"
+                                "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", W, H);
+    s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
+                     timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
+                                                                   xml_escape(timings.front().device)));
+    for (double c = 0; c <= xmax + 1e-9; c += step)
+        s += fmt::format("<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#ddd\"/><text x=\"{0}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
+                         X(c), T, H - B, H - B + 16, c);
+    for (int d = static_cast<int>(lo); d <= hi; ++d)
+        s += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#ddd\"/><text x=\"{3}\" y=\"{4}\" text-anchor=\"end\">1e{5}</text>\n",
+                         L, W - R, Y(std::pow(10.0, d)), L - 6, Y(std::pow(10.0, d)) + 4, d);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">GPU time per frame, as a ratio to a blit of the same display</text>\n",
+                     (L + W - R) / 2, H - 12);
+    s += fmt::format("<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" text-anchor=\"middle\">RMSE against the supersampled fp64 reference</text>\n",
+                     (T + H - B) / 2);
+    const std::vector<size_t> front = pareto_front(timings);
+    std::string path;
+    for (size_t i : front)
+        path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(scene_ratio(timings[i])), Y(timings[i].vs_supersampled->rmse));
+    if (!path.empty()) s += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
+    // The front's points last, so a point of it is never hidden under another.
+    std::vector<size_t> order;
+    for (size_t i = 0; i < timings.size(); ++i)
+        if (std::find(front.begin(), front.end(), i) == front.end()) order.push_back(i);
+    order.insert(order.end(), front.begin(), front.end());
+    for (size_t i : order) {
+        const SceneTiming& t = timings[i];
+        if (!t.vs_supersampled) continue;
+        const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
+        const double x = X(scene_ratio(t)), y = Y(t.vs_supersampled->rmse);
+        const bool right = x > W - R - 120;  // labels near the right edge go to the point's left
+        s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
+                         x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.preset));
+    }
+    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: the Pareto front (no preset is both cheaper and closer); an error of 0 shows at the bottom</text>\n", L);
+    return s + "</svg>\n";
+}
+
+}  // namespace crtforge
