@@ -20,6 +20,29 @@ std::string read_string(const std::vector<uint32_t>& words, size_t first) {
     return out;
 }
 
+// The operand words from index `first` on: none when a malformed instruction is shorter.
+std::vector<uint32_t> words_from(const std::vector<uint32_t>& w, size_t first) {
+    return first < w.size() ? std::vector<uint32_t>(w.begin() + static_cast<long>(first), w.end()) : std::vector<uint32_t>{};
+}
+
+// What makes a type declaration unusable, or "" when there is nothing. A valid module declares each
+// type once, after the types it refers to, so the emitter's recursive walks over types end; malformed
+// input could make a cycle, or a vector whose layout has no size.
+std::string type_problem(const SpirvModule& m, uint32_t id, const Type& t) {
+    if (m.types.count(id)) return fmt::format("type %{} is declared twice", id);
+    std::vector<uint32_t> refers = t.members;
+    if (t.element) refers.push_back(t.element);
+    for (uint32_t other : refers)
+        if (!m.types.count(other)) return fmt::format("type %{} refers to %{}, which is not a type declared before it", id, other);
+    const spv::Op element = m.type(t.element).op;
+    const bool scalar = element == spv::OpTypeFloat || element == spv::OpTypeInt || element == spv::OpTypeBool;
+    if (t.op == spv::OpTypeVector && (t.count < 2 || t.count > 4 || !scalar))
+        return fmt::format("type %{} is not a vector of 2 to 4 scalars", id);
+    if (t.op == spv::OpTypeMatrix && (t.count < 2 || t.count > 4 || element != spv::OpTypeVector))
+        return fmt::format("type %{} is not a matrix of 2 to 4 vectors", id);
+    return {};
+}
+
 bool is_terminator(spv::Op op) {
     switch (op) {
         case spv::OpBranch: case spv::OpBranchConditional: case spv::OpSwitch: case spv::OpReturn:
@@ -37,7 +60,7 @@ void apply_decoration(Decorations& d, spv::Decoration decoration, const std::vec
         case spv::DecorationLocation: d.location = arg(0); break;
         case spv::DecorationOffset: d.offset = arg(0); break;
         case spv::DecorationArrayStride: d.array_stride = arg(0); break;
-        case spv::DecorationBuiltIn: d.builtin = static_cast<spv::BuiltIn>(arg(0)); break;
+        case spv::DecorationBuiltIn: d.builtin = operand_enum(arg(0), spv::BuiltInMax); break;
         case spv::DecorationBlock: d.block = true; break;
         case spv::DecorationFlat: d.flat = true; break;
         case spv::DecorationNoPerspective: d.no_perspective = true; break;
@@ -106,7 +129,7 @@ Result<SpirvModule> parse_spirv(const SpirvBinary& words) {
             case spv::OpExtInstImport: m.ext_imports[w.at(0)] = read_string(w, 1); continue;
             case spv::OpEntryPoint: {
                 EntryPoint e;
-                e.model = static_cast<spv::ExecutionModel>(w.at(0));
+                e.model = operand_enum(w.at(0), spv::ExecutionModelMax);
                 e.function = w.at(1);
                 e.name = read_string(w, 2);
                 const size_t name_words = e.name.size() / 4 + 1;
@@ -114,16 +137,16 @@ Result<SpirvModule> parse_spirv(const SpirvBinary& words) {
                 m.entry_points.push_back(std::move(e));
                 continue;
             }
-            case spv::OpExecutionMode: m.execution_modes.insert(static_cast<spv::ExecutionMode>(w.at(1))); continue;
+            case spv::OpExecutionMode: m.execution_modes.insert(operand_enum(w.at(1), spv::ExecutionModeMax)); continue;
             case spv::OpDecorate: {
-                const auto decoration = static_cast<spv::Decoration>(w.at(1));
+                const auto decoration = operand_enum(w.at(1), spv::DecorationMax);
                 if (decoration == spv::DecorationRelaxedPrecision) m.relaxed_precision.insert(w.at(0));
-                apply_decoration(m.decorations[w.at(0)], decoration, {w.begin() + 2, w.end()});
+                apply_decoration(m.decorations[w.at(0)], decoration, words_from(w, 2));
                 continue;
             }
             case spv::OpMemberDecorate:
-                apply_decoration(m.member_decorations[{w.at(0), w.at(1)}], static_cast<spv::Decoration>(w.at(2)),
-                                 {w.begin() + 3, w.end()});
+                apply_decoration(m.member_decorations[{w.at(0), w.at(1)}], operand_enum(w.at(2), spv::DecorationMax),
+                                 words_from(w, 3));
                 continue;
             case spv::OpCapability: case spv::OpExtension: case spv::OpMemoryModel: case spv::OpSource:
             case spv::OpSourceExtension: case spv::OpSourceContinued: case spv::OpModuleProcessed: case spv::OpNop:
@@ -148,12 +171,12 @@ Result<SpirvModule> parse_spirv(const SpirvBinary& words) {
                     break;
                 }
                 case spv::OpTypeRuntimeArray: t.element = w.at(1); break;
-                case spv::OpTypeStruct: t.members.assign(w.begin() + 1, w.end()); break;
-                case spv::OpTypePointer: t.storage = static_cast<spv::StorageClass>(w.at(1)); t.element = w.at(2); break;
-                case spv::OpTypeFunction: t.members.assign(w.begin() + 1, w.end()); break;
+                case spv::OpTypeStruct: t.members = words_from(w, 1); break;
+                case spv::OpTypePointer: t.storage = operand_enum(w.at(1), spv::StorageClassMax); t.element = w.at(2); break;
+                case spv::OpTypeFunction: t.members = words_from(w, 1); break;
                 case spv::OpTypeImage:
                     t.element = w.at(1);
-                    t.dim = static_cast<spv::Dim>(w.at(2));
+                    t.dim = operand_enum(w.at(2), spv::DimMax);
                     t.depth = w.at(3) == 1;
                     t.arrayed = w.at(4) != 0;
                     t.multisampled = w.at(5) != 0;
@@ -161,6 +184,8 @@ Result<SpirvModule> parse_spirv(const SpirvBinary& words) {
                 case spv::OpTypeSampledImage: t.element = w.at(1); break;
                 default: break;
             }
+            if (const std::string problem = type_problem(m, w.at(0), t); !problem.empty())
+                return make_validation_error("WGSL emitter: " + problem, line.file, line.line);
             m.types[w.at(0)] = t;
             continue;
         }
@@ -168,6 +193,16 @@ Result<SpirvModule> parse_spirv(const SpirvBinary& words) {
         // Constants (OpUndef outside functions is a constant too: any value will do, we use zero).
         if (!function && (op == spv::OpConstant || op == spv::OpConstantComposite || op == spv::OpConstantTrue ||
                           op == spv::OpConstantFalse || op == spv::OpConstantNull || op == spv::OpUndef)) {
+            // As for types: a composite made of constants declared before it cannot contain itself.
+            if (m.constants.count(inst.result))
+                return make_validation_error(fmt::format("WGSL emitter: constant %{} is declared twice", inst.result),
+                                             line.file, line.line);
+            if (op == spv::OpConstantComposite)
+                for (uint32_t part : inst.operands)
+                    if (!m.constants.count(part))
+                        return make_validation_error(fmt::format(
+                            "WGSL emitter: constant %{} uses %{}, which is not a constant declared before it", inst.result, part),
+                            line.file, line.line);
             m.constants[inst.result] = {inst.type, op, inst.operands};
             continue;
         }

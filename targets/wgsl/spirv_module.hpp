@@ -103,6 +103,14 @@ struct SpirvModule {
     std::string name(uint32_t id) const;  // "" when unnamed
 };
 
+// A SPIR-V operand word as an enum of spirv.hpp or GLSL.std.450.h. A word beyond the enum's range
+// (malformed input) is undefined behaviour as that enum, so it becomes `max`, which names nothing
+// the emitter supports.
+template <typename Enum>
+Enum operand_enum(uint32_t word, Enum max) {
+    return word <= static_cast<uint32_t>(max) ? static_cast<Enum>(word) : max;
+}
+
 // Reads a module. Malformed binaries (bad magic, truncated instructions, an instruction outside
 // the places the SPIR-V layout allows) are Validation errors: the generator produced the module.
 Result<SpirvModule> parse_spirv(const SpirvBinary& words);

@@ -40,7 +40,7 @@ bool duplicates_operands(const Instruction& inst) {
         case spv::OpVectorShuffle:
             return true;
         case spv::OpExtInst: {
-            const auto e = static_cast<GLSLstd450>(inst.operand(1));
+            const auto e = operand_enum(inst.operand(1), GLSLstd450Count);
             return e == GLSLstd450SmoothStep || e == GLSLstd450FClamp;
         }
         default: return false;

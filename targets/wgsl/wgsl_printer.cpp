@@ -803,7 +803,7 @@ void FunctionPrinter::ext_instruction(const Instruction& inst) {
     auto set = m_.ext_imports.find(o[0]);
     if (set == m_.ext_imports.end() || set->second != "GLSL.std.450")
         unsupported(inst, "an extended instruction set other than GLSL.std.450");
-    const auto e = static_cast<GLSLstd450>(o[1]);
+    const auto e = operand_enum(o[1], GLSLstd450Count);
     std::vector<Expr> args;
     for (size_t i = 2; i < o.size(); ++i) args.push_back(value(o[i]));
     auto arg = [&](size_t i) -> const Expr& {

@@ -2,6 +2,7 @@
 #include "targets/wgsl/wgsl_structure.hpp"
 
 #include <algorithm>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -53,6 +54,30 @@ private:
     Statement loop_construct(uint32_t header);
 
     const Function& f_;
+    // The blocks of the region walks in progress, outermost first. Reaching one of them again is a
+    // cycle without the OpLoopMerge that would make it a loop (malformed SPIR-V): walking it would
+    // never end. A block may still be walked twice by sibling walks (a switch case falling through).
+    std::set<uint32_t> open_;
+};
+
+// The blocks one region walk added to open_, removed when the walk returns.
+class OpenBlocks {
+public:
+    explicit OpenBlocks(std::set<uint32_t>& open) : open_(open) {}
+    ~OpenBlocks() {
+        for (uint32_t b : mine_) open_.erase(b);
+    }
+    OpenBlocks(const OpenBlocks&) = delete;
+    OpenBlocks& operator=(const OpenBlocks&) = delete;
+    void add(uint32_t b) {
+        if (!open_.insert(b).second)
+            fail(fmt::format("block %{} is reached again inside its own construct without a loop merge", b));
+        mine_.push_back(b);
+    }
+
+private:
+    std::set<uint32_t>& open_;
+    std::vector<uint32_t> mine_;
 };
 
 bool Structuriser::is_exit(uint32_t target, uint32_t stop, const LoopContext* loop) const {
@@ -82,6 +107,7 @@ Body Structuriser::arm(uint32_t from, uint32_t target, uint32_t merge, const Loo
 
 Body Structuriser::region(uint32_t start, uint32_t stop, const LoopContext* loop, bool continuing_top) {
     Body out;
+    OpenBlocks opened(open_);
     uint32_t b = start;
     while (true) {
         if (b == stop) return out;
@@ -94,6 +120,7 @@ Body Structuriser::region(uint32_t start, uint32_t stop, const LoopContext* loop
             return out;
         }
         if (loop && loop->in_continuing && b == loop->header) return out;
+        opened.add(b);
         const Block& bl = block(b);
         if (bl.merge && bl.merge->op == spv::OpLoopMerge && !(loop && loop->header == b)) {
             out.push_back(loop_construct(b));
