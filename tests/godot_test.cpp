@@ -10,7 +10,6 @@
 #include "crtforge/files.hpp"
 #include "crtforge/runtime/godot3_engine.hpp"
 #include "crtforge/validate/target_render.hpp"
-#include "validate/consumers/consumer.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -332,19 +331,4 @@ margin_bottom = 235.0
     const auto corner = rgb("CORNER");
     CHECK(corner[0] + corner[1] + corner[2] == 0.0);
     CHECK_THAT(log.value(), Catch::Contains("CLICKED True"));
-}
-
-TEST_CASE("Godot 3 compile checks run in the real engine, not only the shim", "[godot][godot3]") {
-    // An exported node shader passes; the same with a hint Godot 3 does not have is refused by Godot
-    // itself (the shim reads Godot's builtins, not its hint grammar).
-    auto out = emit("classic", TargetId::Godot3, 0);
-    OutputFile shader = file(out, "shader");
-    ConsumerEngines engines(EngineOptions{});
-    CHECK(godot3_consumer().compile(shader, engines).ok());
-    const size_t at = shader.data.find(": hint_range(");
-    REQUIRE(at != std::string::npos);
-    shader.data.replace(at, 13, ": hint_nonsense(");
-    auto refused = godot3_consumer().compile(shader, engines);
-    REQUIRE_FALSE(refused.ok());
-    CHECK_THAT(refused.error().message, Catch::Contains("Godot 3 rejected the shader"));
 }
