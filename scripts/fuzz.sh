@@ -36,21 +36,9 @@ done
 # clang 16 rather than Debian 12's default 14: clang 14 lacks C++20's capture of structured bindings
 # in lambdas, which crtforge's sources use.
 CLANG_VERSION=16
-packages=(clang-$CLANG_VERSION libclang-rt-$CLANG_VERSION-dev)
-missing=()
-for pkg in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$pkg")
-  fi
-done
-if ((${#missing[@]})); then
-  echo "crtforge fuzz: installing ${missing[*]}"
-  SUDO=""
-  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+source scripts/apt-packages.sh
+mapfile -t missing < <(missing_apt_packages clang-$CLANG_VERSION libclang-rt-$CLANG_VERSION-dev)
+install_apt_packages "crtforge fuzz" "${missing[@]}"
 
 build=build-fuzz
 jobs=$(nproc 2>/dev/null || echo 2)

@@ -13,25 +13,14 @@ APT_PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev
 )
 
-missing=()
-for pkg in "${APT_PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$pkg")
-  fi
-done
+source "$(dirname "${BASH_SOURCE[0]}")/apt-packages.sh"
+mapfile -t missing < <(missing_apt_packages "${APT_PACKAGES[@]}")
 # The Dawn engine runs Node.js: Debian's nodejs and npm, unless node and npm come from elsewhere.
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   missing+=(nodejs npm)
 fi
 
-if ((${#missing[@]})); then
-  echo "crtforge setup: installing ${missing[*]}"
-  SUDO=""
-  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+install_apt_packages "crtforge setup" "${missing[@]}"
 
 # Dawn for the WGSL runner: the npm package webgpu at the version package-lock.json pins. Its
 # postinstall script only does work on macOS, so install scripts stay off.

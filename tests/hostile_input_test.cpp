@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include "crtforge/files.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "tests/test_support.hpp"
 
@@ -16,11 +17,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A file's bytes ("" when unreadable: the checks then fail on the content).
 std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    auto text = read_text_file(path.string());
+    return text.ok() ? text.value() : std::string();
+}
+
+// A command that must be refused as bad usage, naming the argument at fault.
+void check_refused(const std::string& args, const std::string& field) {
+    INFO(args);
+    auto run = test::run_crtforge(args);
+    CHECK(run.exit_code == 2);
+    CHECK_THAT(run.err, Catch::Contains(field));
 }
 
 void overwrite(const fs::path& path, const std::string& data) {
@@ -204,21 +212,13 @@ TEST_CASE("a param renamed in the templates is a reference error, not an abort",
 }
 
 TEST_CASE("sizes, frames and shards beyond 32 bits are refused, not wrapped around", "[hostile][cli]") {
-    for (const std::string& size : {"4294967297x1", "1x4294967297", "+64x48", "64x48x", " 64x48", "64 x48", "0x0", "16385x1"}) {
-        INFO(size);
-        auto run = test::run_crtforge("render --preset classic --input pixel_art --size '" + size + "' --output /tmp/never.png");
-        CHECK(run.exit_code == 2);
-        CHECK_THAT(run.err, Catch::Contains("--size"));
-    }
+    for (const std::string& size : {"4294967297x1", "1x4294967297", "+64x48", "64x48x", " 64x48", "64 x48", "0x0", "16385x1"})
+        check_refused("render --preset classic --input pixel_art --size '" + size + "' --output /tmp/never.png", "--size");
     auto budget = test::run_crtforge("render --preset classic --input pixel_art --size 16384x16384 --output /tmp/never.png");
     CHECK(budget.exit_code == 2);
     CHECK_THAT(budget.err, Catch::Contains("image memory budget"));
-    for (const std::string& shard : {"4294967297/4", "1/4294967297", "0/4", "5/4", "1/0", "-1/4"}) {
-        INFO(shard);
-        auto run = test::run_crtforge("validate --preset classic --target spirv --shard '" + shard + "'");
-        CHECK(run.exit_code == 2);
-        CHECK_THAT(run.err, Catch::Contains("--shard"));
-    }
+    for (const std::string& shard : {"4294967297/4", "1/4294967297", "0/4", "5/4", "1/0", "-1/4"})
+        check_refused("validate --preset classic --target spirv --shard '" + shard + "'", "--shard");
     auto frames = test::run_crtforge("render --preset classic --input pixel_art --frames 4294967296:4294967297 --output '/tmp/never_%d.png'");
     CHECK(frames.exit_code == 2);
 }
