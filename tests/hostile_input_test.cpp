@@ -5,6 +5,8 @@
 #include <map>
 #include <sstream>
 
+#include <sys/resource.h>
+
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
@@ -212,23 +214,20 @@ TEST_CASE("a param renamed in the templates is a reference error, not an abort",
 }
 
 TEST_CASE("sizes, frames and shards beyond 32 bits are refused, not wrapped around", "[hostile][cli]") {
-    for (const std::string& size : {"4294967297x1", "1x4294967297", "+64x48", "64x48x", " 64x48", "64 x48", "0x0", "16385x1"})
+    for (std::string size : {"4294967297x1", "1x4294967297", "+64x48", "64x48x", " 64x48", "64 x48", "0x0", "16385x1"})
         check_refused("render --preset classic --input pixel_art --size '" + size + "' --output /tmp/never.png", "--size");
     auto budget = test::run_crtforge("render --preset classic --input pixel_art --size 16384x16384 --output /tmp/never.png");
     CHECK(budget.exit_code == 2);
     CHECK_THAT(budget.err, Catch::Contains("image memory budget"));
-    for (const std::string& shard : {"4294967297/4", "1/4294967297", "0/4", "5/4", "1/0", "-1/4"})
+    for (std::string shard : {"4294967297/4", "1/4294967297", "0/4", "5/4", "1/0", "-1/4"})
         check_refused("validate --preset classic --target spirv --shard '" + shard + "'", "--shard");
     auto frames = test::run_crtforge("render --preset classic --input pixel_art --frames 4294967296:4294967297 --output '/tmp/never_%d.png'");
     CHECK(frames.exit_code == 2);
 }
 
-TEST_CASE("an image beyond the memory budget is refused from its header, before decoding", "[hostile][image]") {
-    // A PNG whose header says 9000 x 9000 (81 Mpx) followed by no pixel data: refused for its size,
-    // not decoded (decoding would report a truncated file).
+// A PNG whose header says width x height (8-bit RGB) followed by no pixel data.
+static std::string header_only_png(uint32_t width, uint32_t height) {
     auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
-    std::string png("\x89PNG\r\n\x1a\n", 8);
-    const std::string ihdr = "IHDR" + be32(9000) + be32(9000) + std::string("\x08\x02\x00\x00\x00", 5);
     auto crc32 = [](const std::string& bytes) {
         uint32_t crc = 0xFFFFFFFFu;
         for (unsigned char c : bytes) {
@@ -237,13 +236,39 @@ TEST_CASE("an image beyond the memory budget is refused from its header, before 
         }
         return crc ^ 0xFFFFFFFFu;
     };
+    std::string png("\x89PNG\r\n\x1a\n", 8);
+    const std::string ihdr = "IHDR" + be32(width) + be32(height) + std::string("\x08\x02\x00\x00\x00", 5);
     png += be32(13) + ihdr + be32(crc32(ihdr));
     png += be32(0) + "IDAT" + be32(crc32("IDAT")) + be32(0) + "IEND" + be32(crc32("IEND"));
+    return png;
+}
+
+TEST_CASE("an image beyond the memory budget is refused from its header, before decoding", "[hostile][image]") {
+    // 9000 x 9000 (81 Mpx): refused for its size, not decoded (decoding would report a truncated file).
     test::TempDir dir;
-    overwrite(dir / "huge.png", png);
+    overwrite(dir / "huge.png", header_only_png(9000, 9000));
     auto read = read_image(dir / "huge.png");
     REQUIRE_FALSE(read.ok());
     CHECK_THAT(read.error().message, Catch::Contains("image memory budget"));
+}
+
+TEST_CASE("a file claiming a large picture it does not hold fails before the picture's memory is taken", "[hostile][image]") {
+    // 8000 x 8000 is within the budget, so the header passes; the 1 GB of floats it claims must
+    // not be committed before rows really decode (the buffer grows band by band).
+    test::TempDir dir;
+    overwrite(dir / "liar.png", header_only_png(8000, 8000));
+    auto read = read_image(dir / "liar.png");
+    REQUIRE_FALSE(read.ok());
+    CHECK_THAT(read.error().message, Catch::Contains("cannot read pixels"));
+    // The same through the CLI in a child process, whose peak resident memory the kernel keeps:
+    // well under the claimed picture's 1 GB (the process itself needs ~160 MB).
+    auto run = test::run_crtforge("render --reference --preset classic --input '" + (dir / "liar.png") +
+                                  "' --output '" + (dir / "out.png") + "'");
+    CHECK(run.exit_code == 2);
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+    rusage usage{};
+    REQUIRE(getrusage(RUSAGE_CHILDREN, &usage) == 0);
+    CHECK(usage.ru_maxrss < 500 * 1024);  // KiB
 }
 
 TEST_CASE("keywords and builtins of any target are refused as param names at the spec line", "[hostile][spec]") {

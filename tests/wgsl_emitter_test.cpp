@@ -301,6 +301,29 @@ TEST_CASE("wgsl: switch, integer bits, shifts and bitcasts", "[wgsl]") {
     CHECK(px[3] == 15.0f);   // logical shift of the same bits as uint
 }
 
+TEST_CASE("wgsl: a switch case falling through into a case whose value is a phi", "[wgsl][regression]") {
+    // Case 1's block is reached from the switch and from case 0: its phi needs the switch edge's
+    // copy too, or case 1 reads the value case 0 left (found by fuzzing the emitter).
+    for (int selector : {0, 1, 2}) {
+        INFO("selector " << selector);
+        Uniforms u;
+        u.i[0] = selector;
+        u.a[0] = 0.05f;
+        auto r = check_construct(R"(void main() {
+            float v = p.a.x;
+            switch (p.i.x) {
+                case 0: v += 0.1;
+                case 1: v += 0.2; break;
+                default: v = 0.3;
+            }
+            fragColor = vec4(v, 0.0, 0.0, 1.0);
+        })", u);
+        const float expected = selector == 0 ? 0.35f : selector == 1 ? 0.25f : 0.3f;
+        CHECK(pixel(r.dawn)[0] == Approx(expected).margin(1e-3));
+        CHECK(pixel(r.vulkan)[0] == Approx(expected).margin(1e-3));
+    }
+}
+
 TEST_CASE("wgsl: derivatives, vector shuffles and composite inserts", "[wgsl]") {
     Uniforms u;
     auto r = check_construct(R"(void main() {

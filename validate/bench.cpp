@@ -85,8 +85,8 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
     scene.width = o.width;
     scene.height = o.height;
     scene.frames = {o.frame};
-    auto rendered = run_scene(scene, [&](const TargetRenderRequest& r) -> Result<Image> {
-        auto job = vulkan_job(r);
+    auto rendered = run_scene(scene, [&](TargetRenderRequest r) -> Result<Image> {
+        auto job = vulkan_job(std::move(r));
         if (!job.ok()) return job.error();
         if (current_frame == o.frame) jobs.push_back(job.value());
         return render_on_vulkan(job.value(), engines);

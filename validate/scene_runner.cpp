@@ -135,7 +135,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
                 pr.height = sizes[i].height;
                 pr.format = output_format(pass.format);
             }
-            auto image = render_pass(pr);
+            auto image = render_pass(std::move(pr));
             if (!image.ok()) return image.error();
             current[i] = std::move(image.value());
         }

@@ -11,7 +11,7 @@
 
 namespace crtforge {
 
-using PassRenderer = std::function<Result<Image>(const TargetRenderRequest& pass)>;
+using PassRenderer = std::function<Result<Image>(TargetRenderRequest pass)>;
 
 Result<std::vector<Image>> run_scene(const SceneRenderRequest& request, const PassRenderer& render_pass);
 

@@ -34,11 +34,11 @@ TargetRenderer::TargetRenderer(EngineOptions vulkan_options)
     : engines_(std::make_unique<ConsumerEngines>(std::move(vulkan_options))) {}
 TargetRenderer::~TargetRenderer() = default;
 
-Result<Image> TargetRenderer::render(const TargetRenderRequest& r) {
+Result<Image> TargetRenderer::render(TargetRenderRequest r) {
     if (!r.compiled) return make_error("render request without a compiled variant");
     auto consumer = consumer_of(r.target);
     if (!consumer.ok()) return consumer.error();
-    return consumer.value()->render(r, *engines_);
+    return consumer.value()->render(std::move(r), *engines_);
 }
 
 Result<std::vector<Image>> TargetRenderer::render_scene(const SceneRenderRequest& r) {

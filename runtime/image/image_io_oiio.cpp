@@ -237,12 +237,20 @@ static Result<Image> read_image_quietly(const std::string& path) {
 
     // Integer formats arrive normalised to 0..1 by OIIO's conversion to float; no colour transform.
     const int channels = std::min(spec.nchannels, 4);
-    Image image = Image::make(spec.width, spec.height);
+    // The pixel buffer grows band by band as rows really decode: the header's size is only a claim,
+    // and a 65-byte file claiming 8000x8000 must fail on its first band, not after committing 1 GB.
+    // reserve() takes address space only; pages are touched when a band is resized in.
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    const std::size_t row_floats = static_cast<std::size_t>(spec.width) * 4;
+    image.rgba.reserve(row_floats * static_cast<std::size_t>(spec.height));
     // Bands of rows, so OIIO's own conversion buffers stay a band's size, not the image's.
     constexpr int kBandRows = 256;
     const bool tiled = spec.tile_width > 0;
     for (int y = 0; y < spec.height; y += tiled ? spec.height : kBandRows) {
         const int end = tiled ? spec.height : std::min(spec.height, y + kBandRows);
+        image.rgba.resize(row_floats * static_cast<std::size_t>(end));
         float* band = image.at(0, y);
         const bool read = tiled ? in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, band, 4 * sizeof(float))
                                 : in->read_scanlines(0, 0, spec.y + y, spec.y + end, 0, 0, channels, OIIO::TypeDesc::FLOAT, band,

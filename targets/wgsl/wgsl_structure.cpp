@@ -98,11 +98,15 @@ Body Structuriser::exit_arm(uint32_t from, uint32_t target, uint32_t stop, const
     return out;
 }
 
-// One arm of an if or switch: the region from `target` to the construct's merge, or just the phi
-// copies when the arm goes straight to the merge.
+// One arm of an if or switch: the phi copies of the edge into it, then the region from `target`
+// to the construct's merge. The copies matter where `target` has other predecessors: a switch
+// case that the case before it falls into has a phi choosing between the two edges.
 Body Structuriser::arm(uint32_t from, uint32_t target, uint32_t merge, const LoopContext* loop) {
-    if (target == merge) return {copies(from, merge)};
-    return region(target, merge, loop);
+    Body out{copies(from, target)};
+    if (target == merge) return out;
+    Body rest = region(target, merge, loop);
+    out.insert(out.end(), std::make_move_iterator(rest.begin()), std::make_move_iterator(rest.end()));
+    return out;
 }
 
 Body Structuriser::region(uint32_t start, uint32_t stop, const LoopContext* loop, bool continuing_top) {

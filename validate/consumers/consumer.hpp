@@ -57,7 +57,9 @@ public:
     // ErrorKind::Validation; a missing tool (no driver, no Node.js) keeps its own kind.
     virtual Status compile(const OutputFile& file, ConsumerEngines& engines) const = 0;
     // Renders one pass of one frame with the target's files, as a host of that language would.
-    virtual Result<Image> render(const TargetRenderRequest& request, ConsumerEngines& engines) const = 0;
+    // The request is the consumer's own: its pictures move into the engine's job, so a large input
+    // is not held twice.
+    virtual Result<Image> render(TargetRenderRequest request, ConsumerEngines& engines) const = 0;
     // Renders a scene's frames. By default validate's pipeline host (scene_runner.hpp) drives
     // render() pass by pass; a consumer that runs whole scenes itself (Godot 3 and its exported
     // scene) overrides it.
@@ -92,11 +94,11 @@ Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, con
 Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& request);
 
 // The fields the Vulkan, GL and Dawn jobs share, from the request. `textures` are the engine's
-// texture inputs (see engine_textures()).
+// texture inputs (see engine_textures()). The request's input moves into the job.
 template <typename Job>
-Job request_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms, std::vector<TextureInput> textures = {}) {
+Job request_job(TargetRenderRequest& r, std::vector<uint8_t> uniforms, std::vector<TextureInput> textures = {}) {
     Job job;
-    job.input = r.input;
+    job.input = std::move(r.input);
     job.filter = r.filter;
     job.wrap = r.wrap;
     job.textures = std::move(textures);
@@ -110,9 +112,10 @@ Job request_job(const TargetRenderRequest& r, std::vector<uint8_t> uniforms, std
 }
 
 // The request's extra textures as engine inputs, each at the binding `binding_of(name)` gives
-// (and `sampler_binding_of` for WGSL's separate samplers); an error when a name has none.
+// (and `sampler_binding_of` for WGSL's separate samplers); an error when a name has none. The
+// request's texture pictures move into the result.
 Result<std::vector<TextureInput>> engine_textures(
-    const TargetRenderRequest& r, const std::function<Result<uint32_t>(const std::string&)>& binding_of,
+    TargetRenderRequest& r, const std::function<Result<uint32_t>(const std::string&)>& binding_of,
     const std::function<Result<uint32_t>(const std::string&)>& sampler_binding_of = {});
 
 // The binding of a texture in the compiled SPIR-V (what the Vulkan, HLSL and WGSL outputs keep).
@@ -123,7 +126,7 @@ Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines);
 
 // The Vulkan job for a pass with the compiled SPIR-V as it is (the "vulkan" consumer's; the
 // benchmark times the same jobs).
-Result<RenderJob> vulkan_job(const TargetRenderRequest& request);
+Result<RenderJob> vulkan_job(TargetRenderRequest request);
 
 // The same diagnostic as a validation failure: crtforge's output was rejected.
 Diagnostic as_validation(Diagnostic d);

@@ -73,11 +73,11 @@ Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& r) {
     return pack_uniforms(*r.compiled, frame, r.overrides);
 }
 
-Result<std::vector<TextureInput>> engine_textures(const TargetRenderRequest& r,
+Result<std::vector<TextureInput>> engine_textures(TargetRenderRequest& r,
                                                   const std::function<Result<uint32_t>(const std::string&)>& binding_of,
                                                   const std::function<Result<uint32_t>(const std::string&)>& sampler_binding_of) {
     std::vector<TextureInput> out;
-    for (const PassTexture& t : r.textures) {
+    for (PassTexture& t : r.textures) {
         TextureInput input;
         input.name = t.name;
         auto binding = binding_of(t.name);
@@ -88,7 +88,7 @@ Result<std::vector<TextureInput>> engine_textures(const TargetRenderRequest& r,
             if (!sampler.ok()) return sampler.error();
             input.sampler_binding = sampler.value();
         }
-        input.image = t.image;
+        input.image = std::move(t.image);
         input.filter = t.filter;
         input.wrap = t.wrap;
         out.push_back(std::move(input));
@@ -105,7 +105,7 @@ Result<uint32_t> spirv_texture_binding(const TargetRenderRequest& r, const std::
 Result<std::vector<Image>> Consumer::render_scene(const SceneRenderRequest& request, ConsumerEngines& engines) const {
     if (!request.host.empty())
         return make_error("host mode '" + request.host + "' is Godot's: target " + target_info(request.target).name + " has none");
-    return run_scene(request, [&](const TargetRenderRequest& pass) { return render(pass, engines); });
+    return run_scene(request, [&](TargetRenderRequest pass) { return render(std::move(pass), engines); });
 }
 
 Result<Image> render_on_vulkan(const RenderJob& job, ConsumerEngines& engines) {

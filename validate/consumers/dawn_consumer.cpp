@@ -49,7 +49,7 @@ public:
                                      "<wgsl>", m.line);
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
+    Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
         auto shader = file_with_role(r, "shader");
         if (!shader.ok()) return shader.error();
         auto bindings = wgsl_bindings(*r.output);

@@ -38,7 +38,7 @@ public:
         return status;
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
+    Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
         auto vertex = file_with_role(r, "vertex");
         if (!vertex.ok()) return vertex.error();
         auto fragment = file_with_role(r, "fragment");

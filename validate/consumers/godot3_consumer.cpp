@@ -104,7 +104,7 @@ public:
         return consumers::compile_through_shim(f.data, 3, engines);
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
+    Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
         if (!r.textures.empty() || !r.viewport.full() || r.format != OutputFormat::Rgba16Float)
             return make_error("this Godot 3 pass reads extra textures, draws into a viewport or stores an 8-bit "
                               "framebuffer: Godot 3 runs such passes in the exported scene (render the preset, not the pass)");
@@ -114,7 +114,7 @@ public:
         job.shader_code = shader.value()->data;
         if (auto s = pin_time(job.shader_code); !s.ok()) return s.error();
         if (job.shader_code != shader.value()->data) job.params[kPinnedTime] = std::fmod(r.time, consumers::kGodotTimeRollover);
-        job.input = r.input;
+        job.input = std::move(r.input);
         job.filter = r.filter;
         job.width = r.width;
         job.height = r.height;

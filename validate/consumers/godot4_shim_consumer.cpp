@@ -39,7 +39,7 @@ public:
         return consumers::compile_through_shim(f.data, 4, engines);
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
+    Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
         auto shader = file_with_role(r, "shader");
         if (!shader.ok()) return shader.error();
         auto shim = consumers::wrap_in_shim(shader.value()->data, 4);

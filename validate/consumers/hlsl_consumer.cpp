@@ -24,7 +24,7 @@ public:
         return status;
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
+    Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
         auto uniforms = variant_uniforms(r);
         if (!uniforms.ok()) return uniforms.error();
         // register(tN) of each texture is its SPIR-V binding (SPIRV-Cross keeps it, glslang maps it back).

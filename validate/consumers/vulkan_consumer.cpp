@@ -19,8 +19,8 @@ public:
         return status;
     }
 
-    Result<Image> render(const TargetRenderRequest& r, ConsumerEngines& engines) const override {
-        auto job = vulkan_job(r);
+    Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
+        auto job = vulkan_job(std::move(r));
         if (!job.ok()) return job.error();
         return render_on_vulkan(job.value(), engines);
     }
@@ -32,7 +32,7 @@ public:
 
 }  // namespace
 
-Result<RenderJob> vulkan_job(const TargetRenderRequest& r) {
+Result<RenderJob> vulkan_job(TargetRenderRequest r) {
     auto uniforms = variant_uniforms(r);
     if (!uniforms.ok()) return uniforms.error();
     auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });

@@ -89,8 +89,8 @@ class TargetRenderer {
 public:
     explicit TargetRenderer(EngineOptions vulkan_options = {});
     ~TargetRenderer();
-    // One pass.
-    Result<Image> render(const TargetRenderRequest& request);
+    // One pass. Pass the request with std::move to let its pictures move into the engine's job.
+    Result<Image> render(TargetRenderRequest request);
     // A scene: the display images of request.frames, in that order.
     Result<std::vector<Image>> render_scene(const SceneRenderRequest& request);
     // consume_output() with this renderer's engines.
