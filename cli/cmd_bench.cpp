@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/quality_tiers.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/validate/bench.hpp"
 
@@ -19,7 +20,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         std::string size = "1280x960", input = "pixel_art", device;
         int frame = 1, draws = 40, repeats = 5, supersample = 4;
         std::string out;
-        bool quick = false;
+        bool quick = false, no_tiers = false;
     };
     auto o = std::make_shared<Options>();
     cmd->add_option("--preset", o->presets, "Presets to time (repeat or comma-separate; default: all)")->delimiter(',');
@@ -30,6 +31,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the median is reported)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
+    cmd->add_flag("--no-tiers", o->no_tiers, "Time each preset as written, not each of its quality tiers (point, filtered)");
     cmd->add_flag("--quick", o->quick, "320x240, 5 draws, 3 repeats, 2x2 supersampling: every preset in well under a minute");
     cmd->add_option("--supersample", o->supersample,
                     "Error against the point-sampled fp64 reference and an N x N supersampled one (0: no error columns)")
@@ -71,18 +73,29 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         options.supersample = o->supersample;
         std::vector<SceneTiming> timings;
         for (const Preset* preset : presets) {
-            auto timing = bench_scene(*lib, *preset, options);
-            if (!timing.ok()) return report(timing.error());
-            fmt::print("{}\n", format_scene_timing(timing.value()));
-            std::fflush(stdout);
-            timings.push_back(std::move(timing.value()));
+            std::vector<PresetTier> tiers;
+            if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}});
+            else tiers = preset_tiers(*preset);
+            for (const PresetTier& tier : tiers) {
+                options.supersampled_preset = &tiers.front().preset;  // the point tier
+                auto timing = bench_scene(*lib, tier.preset, options);
+                if (!timing.ok()) return report(timing.error());
+                if (tiers.size() > 1) {
+                    timing.value().tier = quality_tier_name(tier.tier);
+                    timing.value().tier_changes = tier.changes;
+                }
+                fmt::print("{}{}\n", format_scene_timing(timing.value()),
+                           tier.changes.empty() ? std::string() : "tier: " + join_list(tier.changes) + "\n");
+                std::fflush(stdout);
+                timings.push_back(std::move(timing.value()));
+            }
         }
         if (!o->out.empty()) {
             fmt::print("{}", bench_markdown(timings));
             for (const auto& [name, text] : {std::pair<std::string, std::string>{"bench.json", bench_json(timings)},
                                              {"bench.md", bench_markdown(timings)}, {"bench.svg", bench_svg(timings)}})
                 if (auto s = write_file_atomic(o->out + "/" + name, text); !s.ok()) return report(s.error());
-            fmt::print("bench: {} presets into {}/bench.json, bench.md, bench.svg\n", timings.size(), o->out);
+            fmt::print("bench: {} scenes into {}/bench.json, bench.md, bench.svg\n", timings.size(), o->out);
         }
         return kExitOk;
     };

@@ -1,7 +1,13 @@
-// crtforge generate --preset P --target T [--out DIR]   and   crtforge assemble --preset P
+// crtforge generate --preset P --target T [--out DIR] [--resolution WxH --max-error E --max-cost C]
+// and crtforge assemble --preset P
+#include <cmath>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/quality_tiers.hpp"
+#include "crtforge/validate/bench.hpp"
 
 namespace crtforge::cli {
 
@@ -10,7 +16,71 @@ namespace {
 struct GenerateArgs {
     std::string preset, target, out;
     VariantFlags flags;
+    // Budget mode: the tier to generate is measured at this display size.
+    std::string resolution, device;
+    double max_error = -1, max_cost = -1;
+    int supersample = 4;
 };
+
+// Why a tier's masks alias or not: the width of their stripes in output pixels (masks follow
+// output pixels; the CRT-effect document warns about masks under 4 px).
+std::string mask_note(const Preset& preset) {
+    std::string note;
+    for (const Pass& pass : preset.passes) {
+        const ResolvedStage* mask = pass.find_stage("mask");
+        if (!mask || !mask->form || !mask->values.count("maskSize")) continue;
+        const std::string form = mask->form->quality_of.empty() ? mask->form->name : mask->form->quality_of;
+        if (form != "shadow" && form != "grille") continue;
+        const double* size = std::get_if<double>(&mask->values.at("maskSize"));
+        if (!size) continue;
+        const double stripe = form == "shadow" ? *size / 3.0 : *size;
+        note += fmt::format("; the {} mask's stripes are {:.2f} px wide{}", form, stripe,
+                            stripe < 4.0 ? " (under 4 px a point-sampled mask shows moire)" : "");
+    }
+    return note;
+}
+
+// Budget mode: the cheapest quality tier of `preset` whose error against the supersampled
+// reference at the given size is at most --max-error and whose measured GPU cost is at most
+// --max-cost (ratio to a blit), each tier rendered on Vulkan. Tiers are ordered by the work they
+// do (point before filtered), so the choice under --max-error alone does not depend on timing
+// noise. The reasoning goes to stderr; the chosen tier is returned.
+Result<PresetTier> choose_tier(const TemplateLibrary& lib, const Preset& preset, const GenerateArgs& a, int width, int height) {
+    std::vector<PresetTier> tiers = preset_tiers(preset);
+    BenchOptions options;
+    options.width = width;
+    options.height = height;
+    options.draws = 10;
+    options.repeats = 3;
+    options.supersample = a.max_error >= 0 ? a.supersample : 0;
+    options.point_reference = false;
+    options.supersampled_preset = &tiers.front().preset;
+    options.vulkan.device = a.device;
+    std::vector<std::string> misses;
+    for (PresetTier& tier : tiers) {
+        auto timing = bench_scene(lib, tier.preset, options);
+        if (!timing.ok()) return timing.error();
+        const SceneTiming& t = timing.value();
+        const double cost = t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0;
+        const double error = t.vs_supersampled ? t.vs_supersampled->rmse : 0.0;
+        std::string figures = fmt::format("cost {:.2f}x blit", cost);
+        if (t.vs_supersampled) figures = fmt::format("RMSE {:.5f} against the {}x{} supersampled reference, ", error, a.supersample, a.supersample) + figures;
+        const std::string what = tier.changes.empty() ? "as written" : join_list(tier.changes);
+        std::string over;
+        if (a.max_error >= 0 && error > a.max_error) over += fmt::format(" error over {}", a.max_error);
+        if (a.max_cost >= 0 && cost > a.max_cost) over += fmt::format(" cost over {}", a.max_cost);
+        if (!over.empty()) {
+            fmt::print(stderr, "budget: tier '{}' ({}) at {}x{}: {}:{}\n", quality_tier_name(tier.tier), what, width, height, figures, over);
+            misses.push_back(fmt::format("'{}' {}", quality_tier_name(tier.tier), figures));
+            continue;
+        }
+        fmt::print(stderr, "budget: chose tier '{}' ({}) at {}x{}: {}, within budget{}{}\n", quality_tier_name(tier.tier), what, width,
+                   height, figures, misses.empty() ? " and the cheapest tier" : ", the cheapest tier that is", mask_note(tier.preset));
+        return std::move(tier);
+    }
+    return make_validation_error("no quality tier of '" + preset.name + "' meets the budget at " + std::to_string(width) + "x" +
+                                 std::to_string(height) + ": " + join_list(misses, "; "));
+}
 
 }  // namespace
 
@@ -22,9 +92,35 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--out", args->out,
                     "Write the files into this directory; without it the fragment shader is printed "
                     "(SPIR-V as disassembly)");
+    cmd->add_option("--resolution", args->resolution,
+                    "Budget mode: generate the cheapest quality tier (point, filtered) that meets --max-error and/or "
+                    "--max-cost at this display size WIDTHxHEIGHT, each measured on Vulkan");
+    cmd->add_option("--max-error", args->max_error, "Budget mode: largest RMSE against the supersampled fp64 reference")
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--max-cost", args->max_cost, "Budget mode: largest GPU time per frame as a ratio to a blit")
+        ->check(CLI::Range(0.0, 1e6));
+    cmd->add_option("--supersample", args->supersample, "Budget mode: N x N samples per pixel in the reference")
+        ->check(CLI::Range(2, 16))
+        ->capture_default_str();
+    cmd->add_option("--device", args->device, "Budget mode: the Vulkan device measured (default: lavapipe)");
     args->flags.add_to(*cmd);
     return [&g, args]() {
         int code = kExitOk;
+        const bool budget = args->max_error >= 0 || args->max_cost >= 0;
+        if (budget && args->resolution.empty())
+            return report(make_error("budget mode needs the display size it is measured at", {}, 0, "--resolution"));
+        if (!budget && !args->resolution.empty())
+            return report(make_error("needs --max-error or --max-cost (budget mode)", {}, 0, "--resolution"));
+        std::pair<int, int> resolution{0, 0};
+        if (budget) {
+            auto size = parse_size(args->resolution);
+            if (!size.ok()) {
+                Diagnostic d = size.error();
+                d.field = "--resolution";
+                return report(d);
+            }
+            resolution = size.value();
+        }
         auto found = lookup_target(args->target);
         if (!found.ok()) return report(found.error());
         const TargetInfo* target = found.value();
@@ -35,6 +131,13 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
         auto preset_found = lookup_preset(*lib, args->preset);
         if (!preset_found.ok()) return report(preset_found.error());
         const Preset* preset = preset_found.value();
+        std::optional<PresetTier> chosen;
+        if (budget) {
+            auto tier = choose_tier(*lib, *preset, *args, resolution.first, resolution.second);
+            if (!tier.ok()) return report(tier.error());
+            chosen = std::move(tier.value());
+            preset = &chosen->preset;
+        }
         Cache cache = make_cache(g);
         auto compiled = compile_variant(*lib, *preset, options.value(), cache);
         if (!compiled.ok()) return report(compiled.error());

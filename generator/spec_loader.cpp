@@ -171,7 +171,7 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
 
 Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const StageSpec& stage) {
     const std::string prefix = "form";
-    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok())
+    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "quality_of", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok())
         return s.error();
     FormSpec f;
     f.where = {r.path(), r.line_of(t)};
@@ -209,6 +209,9 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
             return r.error(t.get("textures"), join_field(field, "textures"), "'" + name + "' is listed twice");
         f.textures.push_back(name);
     }
+    auto quality_of = r.string(t, "quality_of", field, false);
+    if (!quality_of.ok()) return quality_of.error();
+    f.quality_of = quality_of.value();
     bool any = false;
     for (Hook hook : kAllHooks) {
         auto fn = r.string(t, hook_name(hook), field, false);
@@ -293,6 +296,22 @@ Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& p
         if (names != sel->enum_values)
             return r.error(root.get("selector"), "selector",
                            "the values of '" + stage.selector + "' must be the form names, in the same order");
+    }
+
+    // A quality tier stands in for its point-sampled form: same params, builtins and textures.
+    for (const auto& f : stage.forms) {
+        if (f.quality_of.empty()) continue;
+        const std::string field = "form." + f.name + ".quality_of";
+        const FormSpec* base = stage.find_form(f.quality_of);
+        if (!base || base == &f)
+            return make_error("'" + f.quality_of + "' is not another form of this stage", path, f.where.line, field);
+        if (!base->quality_of.empty())
+            return make_error("'" + f.quality_of + "' is itself a quality tier (of '" + base->quality_of + "'): name the point-sampled form",
+                              path, f.where.line, field);
+        auto sorted = [](std::vector<std::string> v) { std::sort(v.begin(), v.end()); return v; };
+        if (sorted(f.params) != sorted(base->params) || f.textures != base->textures || f.builtins != base->builtins)
+            return make_error("a quality tier must read the same params, builtins and textures as '" + f.quality_of + "'",
+                              path, f.where.line, field);
     }
 
     // A speed multiplied by time belongs to forms that read time.

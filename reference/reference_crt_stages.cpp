@@ -30,7 +30,8 @@ bool warp_curvature(const std::string& form, const Params& p, const Fragment&, V
 }
 
 bool shadow_cell_uv(const std::string& form, const Params& p, const Fragment& f, Vec2& sample_uv) {
-    if (form != "shadow") return form == "grille" || form == "atari_grille" || form == "slot";
+    if (form != "shadow" && form != "shadow_filtered")
+        return form == "grille" || form == "atari_grille" || form == "slot" || form == "grille_filtered";
     if (!p.flag("maskQuantize")) return true;
     // "One sample per cell": the mask's cell in screen pixels, its centre warped as the pixel was.
     const double size = p.num("maskSize");
@@ -92,8 +93,48 @@ bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f
     return true;
 }
 
+// The filtered masks' mean multiplier over the pixel's square, per channel. The square is cut at
+// every stripe edge (and, for the shadow mask, at every cell-row edge of each column's stagger);
+// on each piece the profile 1 - border*(2t-1)^2 is one quadratic, which Simpson's rule integrates
+// exactly. `width`: the stripe width in px; `cell`: the shadow cell height in px (0 = grille).
+Vec3 filtered_mask_mean(const Params& p, const Fragment& f, double width, double cell) {
+    const double border_k = p.num("maskBorder");
+    auto profile = [&](double t) { const double u = 2.0 * t - 1.0; return 1.0 - border_k * u * u; };
+    // Calls piece(k, lo, hi) for each part [lo, hi] of [a, b] inside period k (k * period onwards).
+    auto pieces = [](double a, double b, double period, auto&& piece) {
+        for (double k = std::floor(a / period); k * period < b; k += 1.0) {
+            const double lo = std::max(a, k * period), hi = std::min(b, (k + 1.0) * period);
+            if (hi > lo) piece(k, lo, hi);
+        }
+    };
+    // The integral of the periodic profile over [a, b] in px, the period being `period` px.
+    auto integral = [&](double a, double b, double period) {
+        double sum = 0;
+        pieces(a, b, period, [&](double k, double lo, double hi) {
+            const double t0 = lo / period - k, t1 = hi / period - k;
+            sum += (hi - lo) / 6.0 * (profile(t0) + 4.0 * profile(0.5 * (t0 + t1)) + profile(t1));
+        });
+        return sum;
+    };
+    double sums[3] = {0, 0, 0};
+    pieces(f.pixel.x - 0.5, f.pixel.x + 0.5, width, [&](double stripe, double lo, double hi) {
+        double rows = 1.0;
+        if (cell > 0) {
+            const double stagger = fract(std::floor(stripe / 3.0) * 0.5) * cell;  // odd cell columns: half a cell down
+            rows = integral(f.pixel.y - 0.5 + stagger, f.pixel.y + 0.5 + stagger, cell);
+        }
+        sums[static_cast<int>(glsl_mod(stripe, 3.0))] += integral(lo, hi, width) * rows;
+    });
+    return Vec3{sums[0], sums[1], sums[2]} * 3.0;  // the square's area is 1 px^2; x3 keeps brightness
+}
+
 bool apply_mask(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
-    if (form == "shadow") {
+    if (form == "shadow_filtered" || form == "grille_filtered") {
+        const double size = p.num("maskSize");
+        const Vec3 m = form == "grille_filtered" ? filtered_mask_mean(p, f, size, 0.0) : filtered_mask_mean(p, f, size / 3.0, size);
+        const double k = p.num("maskIntensity");
+        color = color * Vec3{1.0 + (m.r - 1.0) * k, 1.0 + (m.g - 1.0) * k, 1.0 + (m.b - 1.0) * k};
+    } else if (form == "shadow") {
         const double size = p.num("maskSize"), border_k = p.num("maskBorder");
         const Vec2 coord = f.pixel * (1.0 / size);
         const Vec2 sub{coord.x * 3.0, coord.y};

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/files.hpp"
+#include "crtforge/quality_tiers.hpp"
 
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/image_compare.hpp"
@@ -102,7 +103,7 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
     auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,atari-16,super-win --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
-    REQUIRE(json.size() == 4);
+    REQUIRE(json.size() == 5);  // crt-shadow-mask's two quality tiers, and the three others as written
     size_t on_front = 0;
     for (const auto& preset : json) {
         CHECK(preset["ratio"].get<double>() > 0);
@@ -112,7 +113,107 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
     }
     CHECK(on_front >= 1);
     const std::string md = read_text_file(out / "bench.md").value();
-    CHECK_THAT(md, Catch::Contains("| crt-shadow-mask | 320x240 | 1 |"));
+    CHECK_THAT(md, Catch::Contains("| crt-shadow-mask@point | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered | 320x240 | 1 |") &&
+                       Catch::Contains("| classic | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered |"));
     const std::string svg = read_text_file(out / "bench.svg").value();
     CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">super-win</text>"));
+}
+
+TEST_CASE("a preset's quality tiers swap each stage between its point-sampled and filtered forms", "[bench][tiers]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    const Preset& shadow = *lib.find_preset("crt-shadow-mask");
+    const std::vector<PresetTier> tiers = preset_tiers(shadow);
+    REQUIRE(tiers.size() == 2);
+    CHECK(tiers[0].tier == QualityTier::Point);
+    CHECK(tiers[0].changes.empty());  // written with the point-sampled mask
+    CHECK(tiers[1].tier == QualityTier::Filtered);
+    REQUIRE(tiers[1].changes == std::vector<std::string>{"pass main: mask shadow -> shadow_filtered"});
+    const ResolvedStage* mask = tiers[1].preset.passes.front().find_stage("mask");
+    REQUIRE(mask);
+    CHECK(mask->form->name == "shadow_filtered");
+    CHECK(std::get<std::string>(mask->values.at("maskMode")) == "shadow_filtered");
+    CHECK(mask->values.at("maskSize") == shadow.passes.front().find_stage("mask")->values.at("maskSize"));
+    // A preset written with the filtered form offers the point one first, as the cheaper tier.
+    const std::vector<PresetTier> back = preset_tiers(tiers[1].preset);
+    REQUIRE(back.size() == 2);
+    CHECK(back[0].changes == std::vector<std::string>{"pass main: mask shadow_filtered -> shadow"});
+    CHECK(back[1].changes.empty());
+    // No stage with a filtered form: one tier, as written.
+    const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("atari-16"));
+    REQUIRE(one.size() == 1);
+    CHECK(one[0].changes.empty());
+}
+
+TEST_CASE("the filtered mask is the point mask averaged over each pixel", "[bench][tiers][reference]") {
+    // On flat grey the filtered tier's reference equals the point tier's reference supersampled
+    // finely (the box filter the filtered form computes exactly), and it is far from the point one.
+    const TemplateLibrary& lib = test::validation_library();
+    for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered"}) {
+        INFO(name);
+        const std::vector<PresetTier> tiers = preset_tiers(*lib.find_preset(name));
+        REQUIRE(tiers.size() == 2);
+        const Image filtered = reference_frame(tiers[1].preset, 96, 64, 1, "flat_grey");
+        const Image point = reference_frame(tiers[0].preset, 96, 64, 1, "flat_grey");
+        const Image box = reference_frame(tiers[0].preset, 96, 64, 16, "flat_grey");
+        auto vs_box = compare_images(filtered, box), point_vs_box = compare_images(point, box);
+        REQUIRE(vs_box.ok());
+        REQUIRE(point_vs_box.ok());
+        CHECK(vs_box.value().rmse < 0.01);
+        CHECK(point_vs_box.value().rmse > 5 * vs_box.value().rmse);
+    }
+}
+
+TEST_CASE("bench measures every tier against the point tier's supersampled picture", "[bench][tiers]") {
+    BenchOptions options;
+    options.width = 160;
+    options.height = 120;
+    options.draws = 1;
+    options.repeats = 1;
+    options.supersample = 4;
+    const std::vector<PresetTier> tiers = preset_tiers(*test::shipped_library().find_preset("crt-shadow-mask"));
+    options.supersampled_preset = &tiers.front().preset;
+    std::vector<double> errors;
+    for (const PresetTier& tier : tiers) {
+        auto timing = bench_scene(test::shipped_library(), tier.preset, options);
+        REQUIRE(timing.ok());
+        REQUIRE(timing.value().vs_point);
+        REQUIRE(timing.value().vs_supersampled);
+        CHECK(timing.value().vs_point->rmse < 0.002);  // each tier renders its own formula exactly
+        errors.push_back(timing.value().vs_supersampled->rmse);
+    }
+    // crt-shadow-mask's 2.67 px stripes alias when point-sampled; the filtered tier removes most of it.
+    CHECK(errors[1] < 0.5 * errors[0]);
+}
+
+TEST_CASE("budget mode generates the cheapest tier within --max-error and says why", "[bench][tiers][cli]") {
+    test::TempDir out;
+    auto loose = test::run_crtforge("generate --preset crt-shadow-mask --target glsl330 --resolution 160x120 --max-error 0.5 --out " +
+                                    (out / "loose"));
+    REQUIRE(loose.exit_code == 0);
+    CHECK_THAT(loose.err, Catch::Contains("chose tier 'point' (as written) at 160x120"));
+
+    auto tight = test::run_crtforge("generate --preset crt-shadow-mask --target glsl330 --resolution 160x120 --max-error 0.012 --out " +
+                                    (out / "tight"));
+    REQUIRE(tight.exit_code == 0);
+    CHECK_THAT(tight.err, Catch::Contains("tier 'point' (as written) at 160x120") && Catch::Contains("error over 0.012") &&
+                              Catch::Contains("chose tier 'filtered' (pass main: mask shadow -> shadow_filtered)") &&
+                              Catch::Contains("stripes are 2.67 px wide"));
+    // The filtered tier's shader, not the preset as written.
+    auto exported = test::run_crtforge("generate --preset crt-shadow-mask --target glsl330 --out " + (out / "written"));
+    REQUIRE(exported.exit_code == 0);
+    const std::string written = read_text_file(out / "written/crt-shadow-mask.frag").value();
+    CHECK(read_text_file(out / "loose/crt-shadow-mask.frag").value() == written);
+    CHECK(read_text_file(out / "tight/crt-shadow-mask.frag").value() != written);
+
+    auto none = test::run_crtforge("generate --preset crt-shadow-mask --target glsl330 --resolution 160x120 --max-error 0.00001 --out " +
+                                   (out / "none"));
+    CHECK(none.exit_code == 1);
+    CHECK_THAT(none.err, Catch::Contains("no quality tier of 'crt-shadow-mask' meets the budget at 160x120"));
+    CHECK_FALSE(std::filesystem::exists(out / "none"));
+
+    for (const char* args : {"--resolution 160x120", "--max-error 0.1", "--resolution 0x120 --max-cost 4", "--resolution 160x120 --max-error 2"}) {
+        INFO(args);
+        auto bad = test::run_crtforge(std::string("generate --preset crt-shadow-mask --target glsl330 ") + args);
+        CHECK(bad.exit_code == 2);
+    }
 }

@@ -159,6 +159,12 @@ TEST_CASE("invalid stage specs name file, line and field", "[spec][errors]") {
          "param.taps.role", "must be a float"},
         {"angular_speed read without time", mutate("unit = \"x\"", "unit = \"x\"\nrole = \"angular_speed\""), 14,
          "param.gain.role", "without the time builtin"},
+        {"quality tier of an unknown form", mutate("fetch = \"demo_two\"", "fetch = \"demo_two\"\nquality_of = \"three\""), 50,
+         "form.two.quality_of", "not another form"},
+        {"quality tier of itself", mutate("fetch = \"demo_two\"", "fetch = \"demo_two\"\nquality_of = \"two\""), 50,
+         "form.two.quality_of", "not another form"},
+        {"quality tier reading other params", mutate("fetch = \"demo_two\"", "fetch = \"demo_two\"\nquality_of = \"one\""), 50,
+         "form.two.quality_of", "same params, builtins and textures"},
         {"no forms", std::string(kValidSpec).substr(0, std::string(kValidSpec).find("[[form]]")), 1, "form", "at least one"},
     };
     for (const Case& c : cases) {

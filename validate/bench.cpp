@@ -138,7 +138,9 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
         ref.height = o.height;
         ref.frames = {o.frame};
         for (int n : {1, o.supersample}) {
+            if (n == 1 && !o.point_reference) continue;
             ref.supersample = n;
+            ref.preset = n > 1 && o.supersampled_preset ? o.supersampled_preset : &preset;
             auto reference = render_reference_scene(ref);
             if (!reference.ok()) return reference.error();
             auto metrics = compare_images(rendered.value().front(), reference.value().front());
@@ -156,7 +158,7 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
 }
 
 std::string format_scene_timing(const SceneTiming& t) {
-    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, median of the timings)\n", t.preset, t.width,
+    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, median of the timings)\n", t.label(), t.width,
                                 t.height, t.frame, t.device, t.draws);
     s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12} {:>12} {:>8} {:>7}\n", "pass", "input", "output", "format", "us/draw",
                      "blit us", "x blit", "spread");

@@ -57,6 +57,8 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
             passes.push_back({{"alias", p.alias}, {"input", {p.input_width, p.input_height}}, {"output", {p.width, p.height}},
                               {"format", p.format}, {"nsPerDraw", p.ns}, {"blitNs", p.blit_ns}, {"ratio", p.ratio()}, {"spread", p.spread}});
         out.push_back({{"preset", t.preset},
+                       {"tier", t.tier},
+                       {"tierChanges", t.tier_changes},
                        {"device", t.device},
                        {"display", {t.width, t.height}},
                        {"frame", t.frame},
@@ -83,11 +85,35 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
             if (!m) return std::string("-");
             return ssim ? fmt::format("{:.4f}", m->ssim) : fmt::format("{:.5f}", m->rmse);
         };
-        md += fmt::format("| {} | {}x{} | {} | {:.2f} | {} | {} | {} | {} |\n", t.preset, t.width, t.height, t.passes.size(), scene_ratio(t),
+        md += fmt::format("| {} | {}x{} | {} | {:.2f} | {} | {} | {} | {} |\n", t.label(), t.width, t.height, t.passes.size(), scene_ratio(t),
                           num(t.vs_point, false), num(t.vs_supersampled, false), num(t.vs_supersampled, true),
                           std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
     }
+    const std::vector<TierPick> picks = pick_tiers(timings);
+    if (!picks.empty()) {
+        md += fmt::format("\n| preset | tier to pick at {}x{} | why |\n|---|---|---|\n", timings.front().width, timings.front().height);
+        for (const TierPick& p : picks) md += fmt::format("| {} | {} | {} |\n", p.preset, p.tier, p.why);
+    }
     return md;
+}
+
+std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
+    std::vector<TierPick> picks;
+    for (const SceneTiming& point : timings) {
+        if (point.tier != "point" || !point.vs_supersampled) continue;
+        for (const SceneTiming& filtered : timings) {
+            if (filtered.preset != point.preset || filtered.tier != "filtered" || !filtered.vs_supersampled) continue;
+            const double ep = point.vs_supersampled->rmse, ef = filtered.vs_supersampled->rmse;
+            const double cp = scene_ratio(point), cf = scene_ratio(filtered);
+            const bool better = ef <= 0.9 * ep;
+            picks.push_back({point.preset, better ? "filtered" : "point",
+                             fmt::format("RMSE vs supersampled {:.5f} filtered, {:.5f} point ({}); cost {:.2f}x vs {:.2f}x blit", ef, ep,
+                                         better ? fmt::format("{:.0f}% less aliasing", 100 * (1 - ef / std::max(ep, 1e-12)))
+                                                : "filtering gains under a tenth",
+                                         cf, cp)});
+        }
+    }
+    return picks;
 }
 
 std::string bench_svg(const std::vector<SceneTiming>& timings) {
@@ -141,7 +167,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         const double x = X(scene_ratio(t)), y = Y(t.vs_supersampled->rmse);
         const bool right = x > W - R - 120;  // labels near the right edge go to the point's left
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
-                         x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.preset));
+                         x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.label()));
     }
     s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: the Pareto front (no preset is both cheaper and closer); an error of 0 shows at the bottom</text>\n", L);
     return s + "</svg>\n";

@@ -8,6 +8,7 @@
 #include "crtforge/files.hpp"
 #include "crtforge/paths.hpp"
 #include "crtforge/preset.hpp"
+#include "crtforge/quality_tiers.hpp"
 #include "crtforge/reflection.hpp"
 #include "crtforge/spec.hpp"
 #include "crtforge/spirv_compiler.hpp"

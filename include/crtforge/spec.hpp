@@ -74,6 +74,10 @@ struct FormSpec {
     // that name, bound by the preset's pass to a pass output, feedback, history or LUT.
     std::vector<std::string> textures;
     std::string functions[kHookCount];     // indexed by Hook; empty = none
+    // The point-sampled form this one is the filtered quality tier of (empty: none): the same params
+    // meaning the same picture, averaged over each output pixel's footprint so that fine patterns do
+    // not alias. Presets select it like any form; bench and budget mode offer it as the "filtered" tier.
+    std::string quality_of;
     SourceLocation where;
 };
 

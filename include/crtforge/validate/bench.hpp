@@ -25,6 +25,11 @@ struct BenchOptions {
     // Error of the timed frame against the two double-precision references: point-sampled
     // (arithmetic error) and `supersample` x `supersample` box-filtered (also aliasing). 0: none.
     int supersample = 4;
+    bool point_reference = true;  // false: only the supersampled reference (budget mode)
+    // The scene the supersampled reference renders: the picture every tier approximates, so a
+    // filtered tier is measured against its point-sampled preset supersampled, not against itself
+    // filtered twice. Null: the timed preset.
+    const Preset* supersampled_preset = nullptr;
     EngineOptions vulkan;
 };
 
@@ -41,6 +46,9 @@ struct PassTiming {
 
 struct SceneTiming {
     std::string preset, device;
+    std::string tier;                       // the quality tier timed ("point", "filtered"; empty: the preset has none)
+    std::vector<std::string> tier_changes;  // the forms the tier swapped (quality_tiers.hpp)
+    std::string label() const { return tier.empty() ? preset : preset + "@" + tier; }
     int width = 0, height = 0, frame = 0, draws = 0;
     std::vector<PassTiming> passes;
     double display_blit_ns = 0;      // a blit of the source onto the whole display
@@ -59,6 +67,12 @@ std::string format_scene_timing(const SceneTiming& timing);
 // markdown table, and an SVG plot of error (against the supersampled reference, log scale) against
 // cost (ratio to a blit), the Pareto front marked.
 std::string bench_json(const std::vector<SceneTiming>& timings);
+// Per preset with several tiers, the one to pick at the measured size: the filtered tier where it
+// lowers the error against the supersampled reference by at least a tenth, else the cheaper point tier.
+struct TierPick {
+    std::string preset, tier, why;
+};
+std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings);
 std::string bench_markdown(const std::vector<SceneTiming>& timings);
 std::string bench_svg(const std::vector<SceneTiming>& timings);
 
