@@ -68,8 +68,23 @@ bool tonemap_saturate(const std::string&, const Params&, const Fragment&, Vec3& 
     return true;
 }
 
+// The mean of g(y) over the pixel's height [y - 0.5, y + 0.5]: 8-point Gauss-Legendre, exact to
+// double precision for the smooth profiles it is used on (a sine of at most half a cycle per pixel).
+template <typename G>
+double pixel_height_mean(double y, G&& g) {
+    static constexpr double kNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static constexpr double kWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    double sum = 0;
+    for (int i = 0; i < 4; ++i) sum += kWeights[i] * (g(y - 0.5 * kNodes[i]) + g(y + 0.5 * kNodes[i]));
+    return 0.5 * sum;  // the weights sum to 2 over [-1, 1]; the pixel is 1 high
+}
+
 bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
-    if (form == "period") {
+    if (form == "quiet_frame_filtered") {
+        const double intensity = p.num("scanlineIntensity");
+        const double k = pixel_height_mean(f.pixel.y, [&](double y) { return 1.0 - intensity * 0.5 * (1.0 - std::sin(y * kArticlePi)); });
+        color = color * k;
+    } else if (form == "period") {
         // One full bright-to-bright period every scanlinePeriodPx device pixels.
         const double freq = f.output_size.y * 2.0 * kPi / p.num("scanlinePeriodPx");
         color = color * (1.0 - p.num("scanlineStrength") * (0.5 + 0.5 * std::sin(f.uv.y * freq)));

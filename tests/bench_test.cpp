@@ -144,11 +144,11 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
     CHECK(one[0].changes.empty());
 }
 
-TEST_CASE("the filtered mask is the point mask averaged over each pixel", "[bench][tiers][reference]") {
+TEST_CASE("each filtered form is its point form averaged over each pixel", "[bench][tiers][reference]") {
     // On flat grey the filtered tier's reference equals the point tier's reference supersampled
     // finely (the box filter the filtered form computes exactly), and it is far from the point one.
     const TemplateLibrary& lib = test::validation_library();
-    for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered"}) {
+    for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered", "stage-scanlines-quiet-frame-filtered"}) {
         INFO(name);
         const std::vector<PresetTier> tiers = preset_tiers(*lib.find_preset(name));
         REQUIRE(tiers.size() == 2);

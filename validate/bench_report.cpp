@@ -155,6 +155,14 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     for (size_t i : front)
         path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(scene_ratio(timings[i])), Y(timings[i].vs_supersampled->rmse));
     if (!path.empty()) s += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
+    // A preset's tiers joined, point to filtered: what filtering buys and costs.
+    for (const SceneTiming& point : timings) {
+        if (point.tier != "point" || !point.vs_supersampled) continue;
+        for (const SceneTiming& other : timings)
+            if (other.preset == point.preset && other.tier == "filtered" && other.vs_supersampled)
+                s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#36c\" stroke-dasharray=\"4 3\"/>\n",
+                                 X(scene_ratio(point)), Y(point.vs_supersampled->rmse), X(scene_ratio(other)), Y(other.vs_supersampled->rmse));
+    }
     // The front's points last, so a point of it is never hidden under another.
     std::vector<size_t> order;
     for (size_t i = 0; i < timings.size(); ++i)
@@ -169,7 +177,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
                          x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.label()));
     }
-    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: the Pareto front (no preset is both cheaper and closer); an error of 0 shows at the bottom</text>\n", L);
+    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: the Pareto front (no preset is both cheaper and closer); dashed: a preset's point and filtered tiers; an error of 0 shows at the bottom</text>\n", L);
     return s + "</svg>\n";
 }
 

@@ -37,3 +37,12 @@ vec3 scanlines_quiet_frame(vec3 color, CrtFrag frag) {
     return color * (1.0 - scanlineIntensity * 0.5 * (1.0 - s));
 }
 #endif
+
+#ifdef CRT_FORM_scanlines_quiet_frame_filtered
+// The same over the pixel's height: the mean of sin(c*y) over [y - 0.5, y + 0.5] is
+// sin(c*y) * sin(c/2) / (c/2), and the formula is linear in it.
+vec3 scanlines_quiet_frame_filtered(vec3 color, CrtFrag frag) {
+    float s = sin(frag.pixel.y * 3.14159) * (sin(1.570795) / 1.570795);
+    return color * (1.0 - scanlineIntensity * 0.5 * (1.0 - s));
+}
+#endif
