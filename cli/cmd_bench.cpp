@@ -21,6 +21,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         int frame = 1, draws = 40, repeats = 5, supersample = 4;
         std::string out;
         bool quick = false, no_tiers = false;
+        std::vector<std::string> uniforms{"default"};
     };
     auto o = std::make_shared<Options>();
     cmd->add_option("--preset", o->presets, "Presets to time (repeat or comma-separate; default: all)")->delimiter(',');
@@ -31,6 +32,10 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the median is reported)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
+    cmd->add_option("--uniforms", o->uniforms,
+                    "Which params stay uniforms, one variant per entry: default, all, none (e.g. none,default,all: what each live param costs)")
+        ->delimiter(',')
+        ->capture_default_str();
     cmd->add_flag("--no-tiers", o->no_tiers, "Time each preset as written, not each of its quality tiers (point, filtered)");
     cmd->add_flag("--quick", o->quick, "320x240, 5 draws, 3 repeats, 2x2 supersampling: every preset in well under a minute");
     cmd->add_option("--supersample", o->supersample,
@@ -71,13 +76,27 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         options.repeats = o->repeats;
         options.vulkan.device = o->device;
         options.supersample = o->supersample;
+        std::vector<std::pair<std::string, VariantOptions>> variants;
+        for (const std::string& u : o->uniforms) {
+            if (u != "default" && u != "all" && u != "none")
+                return report(make_error("'" + u + "' must be default, all or none", {}, 0, "--uniforms"));
+            VariantFlags flags;
+            flags.uniforms = u;
+            auto parsed = flags.parse();
+            if (!parsed.ok()) return report(parsed.error());
+            if (std::none_of(variants.begin(), variants.end(), [&](const auto& v) { return v.first == u; }))
+                variants.emplace_back(u, parsed.value());
+        }
         std::vector<SceneTiming> timings;
         for (const Preset* preset : presets) {
             std::vector<PresetTier> tiers;
             if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}});
             else tiers = preset_tiers(*preset);
-            for (const PresetTier& tier : tiers) {
+            for (const PresetTier& tier : tiers)
+            for (const auto& [label, variant] : variants) {
                 options.supersampled_preset = &tiers.front().preset;  // the point tier
+                options.variant = variant;
+                options.uniforms_label = label;
                 auto timing = bench_scene(*lib, tier.preset, options);
                 if (!timing.ok()) return report(timing.error());
                 if (tiers.size() > 1) {

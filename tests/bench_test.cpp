@@ -7,6 +7,7 @@
 
 #include "crtforge/files.hpp"
 #include "crtforge/quality_tiers.hpp"
+#include "crtforge/spirv_compiler.hpp"
 
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/image_compare.hpp"
@@ -216,4 +217,40 @@ TEST_CASE("budget mode generates the cheapest tier within --max-error and says w
         auto bad = test::run_crtforge(std::string("generate --preset crt-shadow-mask --target glsl330 ") + args);
         CHECK(bad.exit_code == 2);
     }
+}
+
+TEST_CASE("the static shader cost counts instructions, texture reads and transcendentals", "[bench]") {
+    CompileOptions options;
+    options.stage = ShaderStage::Fragment;
+    options.source_name = "<cost>";
+    auto spirv = compile_to_spirv(R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+void main() {
+    vec4 a = texture(source, vTexCoord);
+    vec4 b = texelFetch(source, ivec2(vTexCoord * 8.0), 0);
+    fragColor = a * sin(vTexCoord.x * 7.0) + b * pow(vTexCoord.y, 2.2) + sqrt(vTexCoord.xyxy);
+})", options);
+    REQUIRE(spirv.ok());
+    const ShaderCost cost = spirv_cost(spirv.value());
+    CHECK(cost.samples == 2);
+    CHECK(cost.transcendentals == 2);  // sin and pow; sqrt is not one
+    CHECK(cost.instructions > 10);
+    CHECK(spirv_cost({}).instructions == 0);
+    CHECK(spirv_cost({0x07230203u, 0, 0, 0, 0, 0xFFFF0000u}).instructions == 0);  // a malformed word count stops the count
+
+    // Baking params folds code away: classic with every param a constant is smaller than with its
+    // live ones, and bench reports both variants.
+    test::TempDir out;
+    auto run = test::run_crtforge("bench --quick --preset classic --uniforms none,default --supersample 0 --out " + out.path());
+    REQUIRE(run.exit_code == 0);
+    auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
+    REQUIRE(json.size() == 2);
+    CHECK(json[0]["uniforms"] == "none");
+    CHECK(json[1]["uniforms"] == "default");
+    CHECK(json[0]["shader"]["instructions"].get<int>() < json[1]["shader"]["instructions"].get<int>());
+    CHECK(json[0]["shader"]["textureSamples"] == json[1]["shader"]["textureSamples"]);
+    CHECK_THAT(read_text_file(out / "bench.md").value(), Catch::Contains("| classic uniforms=none | 320x240 | 1 |"));
+    CHECK(test::run_crtforge("bench --quick --preset classic --uniforms some").exit_code == 2);
 }

@@ -49,6 +49,16 @@ Result<std::pair<double, double>> median_time(RenderEngine& engine, const Render
 
 }  // namespace
 
+ShaderCost SceneTiming::cost() const {
+    ShaderCost sum;
+    for (const PassTiming& p : passes) {
+        sum.instructions += p.cost.instructions;
+        sum.samples += p.cost.samples;
+        sum.transcendentals += p.cost.transcendentals;
+    }
+    return sum;
+}
+
 double SceneTiming::total_ns() const {
     double sum = 0;
     for (const PassTiming& p : passes) sum += p.ns;
@@ -57,7 +67,7 @@ double SceneTiming::total_ns() const {
 
 Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& o) {
     if (o.draws < 1 || o.repeats < 1) return make_error("draws and repeats must be at least 1", {}, 0, "--draws");
-    auto compiled = compile_scene(library, preset, {}, Cache());
+    auto compiled = compile_scene(library, preset, o.variant, Cache());
     if (!compiled.ok()) return compiled.error();
     const int source_width = preset.scene.source_width ? preset.scene.source_width : 320;
     const int source_height = preset.scene.source_height ? preset.scene.source_height : 240;
@@ -95,6 +105,7 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
 
     SceneTiming out;
     out.preset = preset.name;
+    out.uniforms = o.uniforms_label;
     out.device = engine.value()->device().name;
     out.width = o.width;
     out.height = o.height;
@@ -119,6 +130,7 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
         t.input_width = job.input.width;
         t.input_height = job.input.height;
         t.format = format_name(job.format);
+        t.cost = spirv_cost(compiled.value()[i].fragment);
         auto time = median_time(*engine.value(), job, o);
         if (!time.ok()) return time.error();
         t.ns = time.value().first;
@@ -160,12 +172,13 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
 std::string format_scene_timing(const SceneTiming& t) {
     std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, median of the timings)\n", t.label(), t.width,
                                 t.height, t.frame, t.device, t.draws);
-    s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12} {:>12} {:>8} {:>7}\n", "pass", "input", "output", "format", "us/draw",
-                     "blit us", "x blit", "spread");
+    s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12} {:>12} {:>8} {:>7} {:>7} {:>7} {:>6}\n", "pass", "input", "output", "format",
+                     "us/draw", "blit us", "x blit", "spread", "instr", "samples", "transc");
     for (const PassTiming& p : t.passes)
-        s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f} {:>6.0f}%\n", p.alias,
+        s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f} {:>6.0f}% {:>7} {:>7} {:>6}\n", p.alias,
                          fmt::format("{}x{}", p.input_width, p.input_height), fmt::format("{}x{}", p.width, p.height), p.format,
-                         p.ns / 1000, p.blit_ns / 1000, p.ratio(), 100 * p.spread);
+                         p.ns / 1000, p.blit_ns / 1000, p.ratio(), 100 * p.spread, p.cost.instructions, p.cost.samples,
+                         p.cost.transcendentals);
     s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f}\n", "scene", "", fmt::format("{}x{}", t.width, t.height),
                      "", t.total_ns() / 1000, t.display_blit_ns / 1000, t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0);
     auto error_line = [](const char* label, const ImageMetrics& m) {

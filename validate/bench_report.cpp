@@ -16,6 +16,10 @@ using json = nlohmann::ordered_json;
 
 double scene_ratio(const SceneTiming& t) { return t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0; }
 
+json cost_json(const ShaderCost& c) {
+    return {{"instructions", c.instructions}, {"textureSamples", c.samples}, {"transcendentals", c.transcendentals}};
+}
+
 json metrics_json(const std::optional<ImageMetrics>& m) {
     if (!m) return nullptr;
     return {{"rmse", m->rmse}, {"psnr", m->psnr}, {"maxAbs", m->max_abs}, {"ssim", m->ssim}};
@@ -55,10 +59,13 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
         json passes = json::array();
         for (const PassTiming& p : t.passes)
             passes.push_back({{"alias", p.alias}, {"input", {p.input_width, p.input_height}}, {"output", {p.width, p.height}},
-                              {"format", p.format}, {"nsPerDraw", p.ns}, {"blitNs", p.blit_ns}, {"ratio", p.ratio()}, {"spread", p.spread}});
+                              {"format", p.format}, {"nsPerDraw", p.ns}, {"blitNs", p.blit_ns}, {"ratio", p.ratio()}, {"spread", p.spread},
+                              {"shader", cost_json(p.cost)}});
         out.push_back({{"preset", t.preset},
                        {"tier", t.tier},
                        {"tierChanges", t.tier_changes},
+                       {"uniforms", t.uniforms},
+                       {"shader", cost_json(t.cost())},
                        {"device", t.device},
                        {"display", {t.width, t.height}},
                        {"frame", t.frame},
@@ -77,15 +84,18 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
 
 std::string bench_markdown(const std::vector<SceneTiming>& timings) {
     const std::vector<size_t> front = pareto_front(timings);
-    std::string md = "| preset | display | passes | cost (x blit) | RMSE vs point fp64 | RMSE vs supersampled fp64 | SSIM vs supersampled | Pareto |\n"
-                     "|---|---|---:|---:|---:|---:|---:|:---:|\n";
+    std::string md = "| preset | display | passes | cost (x blit) | instructions / samples / transcendentals | RMSE vs point fp64 | "
+                     "RMSE vs supersampled fp64 | SSIM vs supersampled | Pareto |\n"
+                     "|---|---|---:|---:|---:|---:|---:|---:|:---:|\n";
     for (size_t i = 0; i < timings.size(); ++i) {
         const SceneTiming& t = timings[i];
         auto num = [](const std::optional<ImageMetrics>& m, bool ssim) {
             if (!m) return std::string("-");
             return ssim ? fmt::format("{:.4f}", m->ssim) : fmt::format("{:.5f}", m->rmse);
         };
-        md += fmt::format("| {} | {}x{} | {} | {:.2f} | {} | {} | {} | {} |\n", t.label(), t.width, t.height, t.passes.size(), scene_ratio(t),
+        const ShaderCost c = t.cost();
+        md += fmt::format("| {} | {}x{} | {} | {:.2f} | {} / {} / {} | {} | {} | {} | {} |\n", t.label(), t.width, t.height, t.passes.size(),
+                          scene_ratio(t), c.instructions, c.samples, c.transcendentals,
                           num(t.vs_point, false), num(t.vs_supersampled, false), num(t.vs_supersampled, true),
                           std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
     }
@@ -102,11 +112,14 @@ std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
     for (const SceneTiming& point : timings) {
         if (point.tier != "point" || !point.vs_supersampled) continue;
         for (const SceneTiming& filtered : timings) {
-            if (filtered.preset != point.preset || filtered.tier != "filtered" || !filtered.vs_supersampled) continue;
+            if (filtered.preset != point.preset || filtered.uniforms != point.uniforms || filtered.tier != "filtered" ||
+                !filtered.vs_supersampled)
+                continue;
             const double ep = point.vs_supersampled->rmse, ef = filtered.vs_supersampled->rmse;
             const double cp = scene_ratio(point), cf = scene_ratio(filtered);
             const bool better = ef <= 0.9 * ep;
-            picks.push_back({point.preset, better ? "filtered" : "point",
+            const std::string variant = point.uniforms.empty() || point.uniforms == "default" ? "" : " uniforms=" + point.uniforms;
+            picks.push_back({point.preset + variant, better ? "filtered" : "point",
                              fmt::format("RMSE vs supersampled {:.5f} filtered, {:.5f} point ({}); cost {:.2f}x vs {:.2f}x blit", ef, ep,
                                          better ? fmt::format("{:.0f}% less aliasing", 100 * (1 - ef / std::max(ep, 1e-12)))
                                                 : "filtering gains under a tenth",

@@ -87,9 +87,10 @@ float mask_profile_span(float a, float b) {
 }
 
 // Per channel, the integral over [x0, x1] (the pixel's width) of (lit stripe) x (stripe profile) x
-// rows, on stripe number `stripe` of `width` px cycling R, G, B; `cellRows` adds the shadow mask's
-// rows, averaged over the pixel's height. Zero where the stripe misses the pixel.
-vec3 mask_filtered_piece(CrtFrag frag, float width, bool cellRows, float stripe, float x0, float x1) {
+// rows, on stripe number `stripe` of `width` px cycling R, G, B; `rows` holds the shadow mask's rows
+// averaged over the pixel's height for even and odd cell columns (1, 1 for the grille). Zero where
+// the stripe misses the pixel.
+vec3 mask_filtered_piece(float width, vec2 rows, float stripe, float x0, float x1) {
     float lo = max(x0, stripe * width);
     float hi = min(x1, (stripe + 1.0) * width);
     if (hi <= lo) return vec3(0.0);
@@ -98,14 +99,8 @@ vec3 mask_filtered_piece(CrtFrag frag, float width, bool cellRows, float stripe,
     // division by reciprocal lands just below it (Mesa GLES does).
     float column = floor((stripe + 0.5) / 3.0);
     float channel = stripe - 3.0 * column;
-    float rows = 1.0;
-    if (cellRows) {
-        // Odd cell columns are staggered by half a cell.
-        float stagger = fract(column * 0.5);
-        float y0 = (frag.pixel.y - 0.5) / maskSize + stagger;
-        rows = mask_profile_span(y0, y0 + 1.0 / maskSize) * maskSize;
-    }
-    return vec3(channel == 0.0, channel == 1.0, channel == 2.0) * (across * rows);
+    float odd = column - 2.0 * floor((column + 0.5) / 2.0);
+    return vec3(channel == 0.0, channel == 1.0, channel == 2.0) * (across * mix(rows.x, rows.y, odd));
 }
 
 // The pixel's square cut into the stripes it crosses: stripes are counted from the first, not found
@@ -113,13 +108,17 @@ vec3 mask_filtered_piece(CrtFrag frag, float width, bool cellRows, float stripe,
 // first piece empty: hence four). Written out rather than looped: Godot's shading language has no
 // comma operator for the loop's update that a loop-carried sum compiles to.
 vec3 mask_filtered_sum(CrtFrag frag, float width, bool cellRows) {
+    vec2 rows = vec2(1.0);
+    if (cellRows) {
+        // The rows' profile over the pixel's height; odd cell columns are staggered by half a cell.
+        float y0 = (frag.pixel.y - 0.5) / maskSize;
+        rows = vec2(mask_profile_span(y0, y0 + 1.0 / maskSize), mask_profile_span(y0 + 0.5, y0 + 0.5 + 1.0 / maskSize)) * maskSize;
+    }
     float x0 = frag.pixel.x - 0.5;
     float x1 = frag.pixel.x + 0.5;
     float first = floor(x0 / width);
-    return mask_filtered_piece(frag, width, cellRows, first, x0, x1) +
-           mask_filtered_piece(frag, width, cellRows, first + 1.0, x0, x1) +
-           mask_filtered_piece(frag, width, cellRows, first + 2.0, x0, x1) +
-           mask_filtered_piece(frag, width, cellRows, first + 3.0, x0, x1);
+    return mask_filtered_piece(width, rows, first, x0, x1) + mask_filtered_piece(width, rows, first + 1.0, x0, x1) +
+           mask_filtered_piece(width, rows, first + 2.0, x0, x1) + mask_filtered_piece(width, rows, first + 3.0, x0, x1);
 }
 #endif
 

@@ -4,6 +4,7 @@
 // exactly what validation renders for that frame (the pass's inputs as the scene gives them).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/template_library.hpp"
+#include "crtforge/variant.hpp"
 
 namespace crtforge {
 
@@ -30,8 +32,18 @@ struct BenchOptions {
     // filtered tier is measured against its point-sampled preset supersampled, not against itself
     // filtered twice. Null: the timed preset.
     const Preset* supersampled_preset = nullptr;
+    VariantOptions variant;       // which params stay uniforms (--uniforms), precision
+    std::string uniforms_label;   // how --uniforms was written, for the report
     EngineOptions vulkan;
 };
+
+// What a fragment shader does per pixel, counted statically in its SPIR-V (after crtforge's
+// optimisation): instructions in its functions, texture reads (sample, fetch, gather) and
+// transcendental calls (GLSL.std.450 sin .. log2, pow). A read inside a loop counts once.
+struct ShaderCost {
+    int instructions = 0, samples = 0, transcendentals = 0;
+};
+ShaderCost spirv_cost(const std::vector<uint32_t>& words);
 
 struct PassTiming {
     std::string alias;
@@ -41,14 +53,19 @@ struct PassTiming {
     double ns = 0;                   // device nanoseconds per draw (median)
     double blit_ns = 0;              // a blit of the same sizes and format
     double spread = 0;               // (max - min) / median of the pass's timings
+    ShaderCost cost;                 // of the pass's fragment shader
     double ratio() const { return blit_ns > 0 ? ns / blit_ns : 0; }
 };
 
 struct SceneTiming {
     std::string preset, device;
     std::string tier;                       // the quality tier timed ("point", "filtered"; empty: the preset has none)
+    std::string uniforms;                   // the variant's --uniforms selection ("default", "all", "none")
     std::vector<std::string> tier_changes;  // the forms the tier swapped (quality_tiers.hpp)
-    std::string label() const { return tier.empty() ? preset : preset + "@" + tier; }
+    std::string label() const {
+        return (tier.empty() ? preset : preset + "@" + tier) + (uniforms.empty() || uniforms == "default" ? "" : " uniforms=" + uniforms);
+    }
+    ShaderCost cost() const;  // summed over the passes
     int width = 0, height = 0, frame = 0, draws = 0;
     std::vector<PassTiming> passes;
     double display_blit_ns = 0;      // a blit of the source onto the whole display
