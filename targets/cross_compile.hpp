@@ -10,6 +10,7 @@
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/targets.hpp"
+#include "targets/float_literals.hpp"
 
 namespace crtforge::detail {
 
@@ -26,7 +27,7 @@ Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, 
         Compiler compiler(module);
         configure(compiler);
         apply_readable_names(compiler);
-        return compiler.compile();
+        return shorten_float_literals(compiler.compile());
     } catch (const std::exception& e) {
         return make_validation_error("SPIRV-Cross cannot express the " + std::string(shader_stage_name(stage)) +
                                      " shader in " + target + ": " + e.what());

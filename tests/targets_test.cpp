@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "crtforge/validate/target_render.hpp"
+#include "targets/float_literals.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -60,4 +61,32 @@ TEST_CASE("vertex shaders for y-up APIs are flipped, SPIR-V is not", "[targets]"
     const std::string hlsl = emit_target(c, TargetId::Hlsl50, Cache()).value().files.front().data;
     CHECK_THAT(hlsl, Catch::Contains("SV_VertexID"));
     CHECK_THAT(hlsl, Catch::Contains("gl_Position.y = -gl_Position.y"));
+}
+
+TEST_CASE("float constants print at the shortest text that reads back as the same float32", "[targets][readable]") {
+    using crtforge::detail::shorten_float_literals;
+    CHECK(shorten_float_literals("x = 0.300000011920928955078125 * y;") == "x = 0.3 * y;");
+    CHECK(shorten_float_literals("sin(a * 3.141590118408203125)") == "sin(a * 3.14159)");
+    CHECK(shorten_float_literals("float h = 0.300000011920928955078125f;") == "float h = 0.3f;");  // HLSL
+    CHECK(shorten_float_literals("-0.699999988079071044921875") == "-0.7");
+    // Left as they are: doubles that no float32 equals, suffixes other than f, exponents, integers,
+    // identifiers with digits, comments and preprocessor lines, literals already short.
+    for (const char* kept : {"double d = 0.1000000000000000055511151231257827;", "0.300000011920928955078125lf",
+                             "9.9999997473787516355514526367188e-06", "int i = 12345678901;", "vec2 _342 = v;",
+                             "// 0.300000011920928955078125\n", "#define K 0.300000011920928955078125\n", "x = 2.0; y = 0.5;"})
+        CHECK(shorten_float_literals(kept) == kept);
+    // Every export of every preset through SPIRV-Cross: no literal left that could be shorter.
+    const TemplateLibrary& lib = test::shipped_library();
+    for (const Preset& p : lib.presets()) {
+        CompiledVariant c = test::compile_or_fail(lib, p.name);
+        for (TargetId t : {TargetId::Glsl450, TargetId::Glsl330, TargetId::GlslEs300, TargetId::Hlsl50, TargetId::Godot3, TargetId::Godot4}) {
+            auto out = emit_target(c, t, Cache());
+            REQUIRE(out.ok());
+            for (const OutputFile& f : out.value().files) {
+                INFO(p.name << " " << f.suffix);
+                CHECK(shorten_float_literals(f.data) == f.data);
+                CHECK(f.data.find(".300000011920928955078125") == std::string::npos);
+            }
+        }
+    }
 }

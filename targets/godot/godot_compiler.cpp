@@ -1,4 +1,5 @@
 #include "targets/godot/godot_compiler.hpp"
+#include "targets/float_literals.hpp"
 #include "crtforge/inert_text.hpp"
 
 #include <regex>
@@ -127,7 +128,7 @@ void GodotCompiler::prepare() {
 
 std::string GodotCompiler::compile_godot() {
     prepare();
-    std::string text = compile();
+    std::string text = detail::shorten_float_literals(compile());
     static const std::regex access(std::string("\\b") + kBlockMarker + "\\.(\\w+)");
     std::string out;
     auto begin = std::sregex_iterator(text.begin(), text.end(), access);

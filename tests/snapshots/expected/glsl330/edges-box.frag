@@ -20,7 +20,7 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec2 _166 = abs((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale;
-    vec4 _153 = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(_166.x, _166.y), 0.800000011920928955078125, 0.20000000298023223876953125))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.02500000037252902984619140625 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
+    vec4 _153 = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(_166.x, _166.y), 0.8, 0.2))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.025 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
     vec4 _204 = clamp(_153, vec4(-65504.0), vec4(65504.0));
     bvec4 _206 = isnan(_153);
     fragColor = vec4(_206.x ? vec4(0.0).x : _204.x, _206.y ? vec4(0.0).y : _204.y, _206.z ? vec4(0.0).z : _204.z, _206.w ? vec4(0.0).w : _204.w);

@@ -26,10 +26,10 @@ void main()
     vec2 _272 = _374.wz * 0.5;
     vec2 _274 = _272 + vec2(0.5);
     vec4 _210 = texture(source, _274);
-    vec4 _281 = texture(source, _272 + vec2(0.502499997615814208984375, 0.5));
-    vec4 _286 = texture(source, _272 + vec2(0.497500002384185791015625, 0.5));
-    vec4 _293 = texture(source, _272 + vec2(0.5, 0.502499997615814208984375));
-    vec4 _300 = texture(source, _272 + vec2(0.5, 0.497500002384185791015625));
+    vec4 _281 = texture(source, _272 + vec2(0.5025, 0.5));
+    vec4 _286 = texture(source, _272 + vec2(0.4975, 0.5));
+    vec4 _293 = texture(source, _272 + vec2(0.5, 0.5025));
+    vec4 _300 = texture(source, _272 + vec2(0.5, 0.4975));
     vec3 _381;
     do
     {

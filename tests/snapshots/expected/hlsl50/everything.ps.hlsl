@@ -73,7 +73,7 @@ void frag_main()
     for (;;)
     {
         _811 = _829;
-        _811.y = mad(_548, 0.5f, 0.00999999977648258209228515625f * float(_828));
+        _811.y = mad(_548, 0.5f, 0.01f * float(_828));
         _563 = _828 + 1;
         if (_563 >= crt_loopCount)
         {
@@ -85,7 +85,7 @@ void frag_main()
     }
     int _587 = int(_402.x) - 10;
     float _599 = _402.y;
-    float3 _618 = (_811.xyz * _829.w) * mad(0.02999999932944774627685546875f, mod(_599 - 4.0f, -5.0f), mad(-0.001000000047497451305389404296875f, float(_587 / (-3)), mad(0.00999999977648258209228515625f, float(_587 % crt_bandWidth), mad(0.0199999995529651641845703125f, float(_587 / crt_bandWidth), 1.0f))));
+    float3 _618 = (_811.xyz * _829.w) * mad(0.03f, mod(_599 - 4.0f, -5.0f), mad(-0.001f, float(_587 / (-3)), mad(0.01f, float(_587 % crt_bandWidth), mad(0.02f, float(_587 / crt_bandWidth), 1.0f))));
     float3 _832;
     switch (int(_599) & 3)
     {
@@ -150,7 +150,7 @@ void frag_main()
             _833 = crt_edgeColor.zyx;
             break;
         }
-        _833 = (mad(_618, _832, (((vTexCoord.y < 0.5f) ? 0.00999999977648258209228515625f : (-0.00999999977648258209228515625f)) * _830).xxx) * clamp(1.5f - max(_683.x, _683.y), 0.800000011920928955078125f, 0.20000000298023223876953125f)) * mad(crt_pulseDepth, sin(mad(_599, 0.02500000037252902984619140625f, crt_time * crt_pulseRate)), 1.0f);
+        _833 = (mad(_618, _832, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * _830).xxx) * clamp(1.5f - max(_683.x, _683.y), 0.8f, 0.2f)) * mad(crt_pulseDepth, sin(mad(_599, 0.025f, crt_time * crt_pulseRate)), 1.0f);
         break;
     } while(false);
     float4 _466 = float4(_833, 1.0f);

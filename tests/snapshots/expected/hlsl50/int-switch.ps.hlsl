@@ -47,7 +47,7 @@ void frag_main()
     float4 _200 = source.Sample(_source_sampler, vTexCoord);
     int _233 = int(_179.x) - 12;
     float _245 = _179.y;
-    float3 _264 = _200.xyz * mad(0.02999999932944774627685546875f, mod(_245 - 4.0f, -6.0f), mad(-0.001000000047497451305389404296875f, float(_233 / (-3)), mad(0.00999999977648258209228515625f, float(_233 % crt_bandWidth), mad(0.0199999995529651641845703125f, float(_233 / crt_bandWidth), 1.0f))));
+    float3 _264 = _200.xyz * mad(0.03f, mod(_245 - 4.0f, -6.0f), mad(-0.001f, float(_233 / (-3)), mad(0.01f, float(_233 % crt_bandWidth), mad(0.02f, float(_233 / crt_bandWidth), 1.0f))));
     float3 _362;
     switch (int(_245) & 3)
     {
@@ -78,7 +78,7 @@ void frag_main()
         float _303 = _264.y;
         _360 = _303 * _303;
     }
-    float4 _218 = float4(mad(_264, _362, (((vTexCoord.y < 0.5f) ? 0.00999999977648258209228515625f : (-0.00999999977648258209228515625f)) * _360).xxx), 1.0f);
+    float4 _218 = float4(mad(_264, _362, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * _360).xxx), 1.0f);
     float4 _325 = clamp(_218, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 _327 = isnan(_218);
     fragColor = float4(_327.x ? 0.0f.xxxx.x : _325.x, _327.y ? 0.0f.xxxx.y : _325.y, _327.z ? 0.0f.xxxx.z : _325.z, _327.w ? 0.0f.xxxx.w : _325.w);

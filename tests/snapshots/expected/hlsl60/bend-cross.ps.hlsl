@@ -35,10 +35,10 @@ void frag_main()
     float2 _272 = _374.wz * 0.5f;
     float2 _274 = _272 + 0.5f.xx;
     float4 _210 = source.Sample(_source_sampler, _274);
-    float4 _281 = source.Sample(_source_sampler, _272 + float2(0.502499997615814208984375f, 0.5f));
-    float4 _286 = source.Sample(_source_sampler, _272 + float2(0.497500002384185791015625f, 0.5f));
-    float4 _293 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.502499997615814208984375f));
-    float4 _300 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.497500002384185791015625f));
+    float4 _281 = source.Sample(_source_sampler, _272 + float2(0.5025f, 0.5f));
+    float4 _286 = source.Sample(_source_sampler, _272 + float2(0.4975f, 0.5f));
+    float4 _293 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.5025f));
+    float4 _300 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.4975f));
     float3 _381;
     do
     {

@@ -26,7 +26,7 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float2 _166 = abs((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale;
-    float4 _153 = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - clamp(1.5f - max(_166.x, _166.y), 0.800000011920928955078125f, 0.20000000298023223876953125f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.02500000037252902984619140625f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
+    float4 _153 = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - clamp(1.5f - max(_166.x, _166.y), 0.8f, 0.2f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
     float4 _204 = clamp(_153, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 _206 = isnan(_153);
     fragColor = float4(_206.x ? 0.0f.xxxx.x : _204.x, _206.y ? 0.0f.xxxx.y : _204.y, _206.z ? 0.0f.xxxx.z : _204.z, _206.w ? 0.0f.xxxx.w : _204.w);

@@ -63,7 +63,7 @@ void frag_main()
             break;
         }
     }
-    float4 _180 = float4(_213 * mad(0.100000001490116119384765625f, _268, 1.0f), 1.0f);
+    float4 _180 = float4(_213 * mad(0.1f, _268, 1.0f), 1.0f);
     float4 _255 = clamp(_180, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 _257 = isnan(_180);
     fragColor = float4(_257.x ? 0.0f.xxxx.x : _255.x, _257.y ? 0.0f.xxxx.y : _255.y, _257.z ? 0.0f.xxxx.z : _255.z, _257.w ? 0.0f.xxxx.w : _255.w);

@@ -26,10 +26,10 @@ void fragment()
     vec2 _272 = _374.wz * 0.5;
     vec2 _274 = _272 + vec2(0.5);
     vec4 _210 = textureLod(SCREEN_TEXTURE, crt_flip_y(_274), 0.0);
-    vec4 _281 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.502499997615814208984375, 0.5)), 0.0);
-    vec4 _286 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.497500002384185791015625, 0.5)), 0.0);
-    vec4 _293 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5, 0.502499997615814208984375)), 0.0);
-    vec4 _300 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5, 0.497500002384185791015625)), 0.0);
+    vec4 _281 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5025, 0.5)), 0.0);
+    vec4 _286 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.4975, 0.5)), 0.0);
+    vec4 _293 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5, 0.5025)), 0.0);
+    vec4 _300 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5, 0.4975)), 0.0);
     vec3 _381;
     do
     {

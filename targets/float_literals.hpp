@@ -1,0 +1,15 @@
+// SPIRV-Cross prints a float constant as the exact decimal of its float32 value
+// (0.300000011920928955078125): correct, but not what anyone wrote or wants to hand-tune.
+#pragma once
+
+#include <string>
+
+namespace crtforge::detail {
+
+// `source` with every float literal that is exactly a float32 value rewritten as the shortest
+// decimal that reads back as the same float32 (0.3, 3.14159), keeping any suffix (HLSL's `f`).
+// Comments, identifiers, integers, doubles (a value no float32 has) and literals whose shortest
+// form would need an exponent are left as they are, so the program means exactly what it meant.
+std::string shorten_float_literals(const std::string& source);
+
+}  // namespace crtforge::detail
