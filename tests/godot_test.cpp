@@ -160,7 +160,7 @@ TEST_CASE("Godot 3 and Godot 4 outputs differ only where the dialects differ", "
             g4.erase(std::remove_if(g4.begin(), g4.end(),
                                     [](const std::string& l) {
                                         return l.find("hint_screen_texture") != std::string::npos || l.rfind("// Node mode:", 0) == 0 ||
-                                               l.rfind("// set the node's texture_filter", 0) == 0;
+                                               l.rfind("// set the node's texture_filter", 0) == 0 || l.rfind("group_uniforms", 0) == 0;
                                     }),
                      g4.end());
             for (std::string& line : g4) {
@@ -192,6 +192,31 @@ TEST_CASE("materials carry the preset's values in each version's resource format
     const TargetOutput out = emit("webgpu-post", TargetId::Godot4);
     CHECK(file(out, "shader").path == "addons/crtforge/webgpu-post.gdshader");
     CHECK(file(out, "readme").path == "addons/crtforge/README.md");
+}
+
+TEST_CASE("Godot 4 groups each stage's params under its own inspector heading", "[godot]") {
+    const std::vector<std::string> g4 = lines_of(file(emit("classic", TargetId::Godot4), "shader").data);
+    std::vector<std::string> groups;
+    std::string current;
+    for (const std::string& line : g4) {
+        if (line.rfind("group_uniforms", 0) == 0) {
+            groups.push_back(line);
+            current = line;
+        }
+        // Each param sits in its own stage's group: its comment names the stage.
+        if (line.rfind("uniform float", 0) == 0 || line.rfind("uniform vec3", 0) == 0) CHECK(current != "group_uniforms;");
+    }
+    CHECK(groups == std::vector<std::string>{"group_uniforms curvature;", "group_uniforms aberration;", "group_uniforms scanlines;",
+                                             "group_uniforms mask;", "group_uniforms vignette;", "group_uniforms;"});
+    CHECK(consume_output(TargetId::Godot4, file(emit("classic", TargetId::Godot4), "shader")).ok());
+    // Godot 3 has no groups, and its check refuses one.
+    const OutputFile g3 = file(emit("classic", TargetId::Godot3), "shader");
+    CHECK(g3.data.find("group_uniforms") == std::string::npos);
+    OutputFile grouped = g3;
+    grouped.data.replace(grouped.data.find("uniform float curvature"), 0, "group_uniforms curvature;\n");
+    auto refused = consume_output(TargetId::Godot3, grouped);
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().message, Catch::Contains("Godot 4 syntax"));
 }
 
 TEST_CASE("the shim rejects what is not a crtforge canvas_item shader", "[godot][errors]") {

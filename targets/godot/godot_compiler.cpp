@@ -264,10 +264,17 @@ void GodotCompiler::emit_header() {
     }
     if (screen && options_.godot_version >= 4)
         statement("uniform sampler2D screen_texture : hint_screen_texture, filter_", filter_name(variant_.texture_filter("source")), ", repeat_disable;");
+    // Godot 4 folds each stage's params under its own heading in the inspector.
+    const StageSpec* group = nullptr;
     for (const VariantParam* p : variant_.uniforms()) {
+        if (options_.godot_version >= 4 && p->stage != group) {
+            group = p->stage;
+            statement("group_uniforms ", group->name, ";");
+        }
         statement("// ", p->stage->name, ": ", inert_comment(p->spec->doc), p->spec->unit.empty() ? "" : " (" + inert_comment(p->spec->unit) + ")");
         statement(uniform_declaration(*p));
     }
+    if (group) statement("group_uniforms;");
     if (uses_time && variant_.angular_speed()) {
         statement("// Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.");
         statement("uniform float ", kHostTime, " = -1.0;");

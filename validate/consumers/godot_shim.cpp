@@ -31,6 +31,13 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
             body += "// " + line + "\n";
             continue;
         }
+        // Godot 4's inspector headings: nothing for GLSL; Godot 3 has none.
+        static const std::regex group_re(R"(^group_uniforms(\s+\w+(\.\w+)?)?\s*;\s*$)");
+        if (std::regex_match(line, group_re)) {
+            if (version < 4) return make_validation_error("group_uniforms is Godot 4 syntax; Godot 3 rejects it", "<godot shader>", number);
+            body += "// " + line + "\n";
+            continue;
+        }
         std::smatch m;
         if (std::regex_match(line, m, uniform_re)) {
             if (m[1] == "sampler2D") {
