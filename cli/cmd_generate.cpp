@@ -19,6 +19,7 @@ struct GenerateArgs {
     // Budget mode: the tier to generate is measured at this display size.
     std::string resolution, device;
     double max_error = -1, max_cost = -1;
+    CLI::Option *max_error_given = nullptr, *max_cost_given = nullptr;
     int supersample = 4;
 };
 
@@ -95,10 +96,10 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--resolution", args->resolution,
                     "Budget mode: generate the cheapest quality tier (point, filtered) that meets --max-error and/or "
                     "--max-cost at this display size WIDTHxHEIGHT, each measured on Vulkan");
-    cmd->add_option("--max-error", args->max_error, "Budget mode: largest RMSE against the supersampled fp64 reference")
-        ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--max-cost", args->max_cost, "Budget mode: largest GPU time per frame as a ratio to a blit")
-        ->check(CLI::Range(0.0, 1e6));
+    args->max_error_given = cmd->add_option("--max-error", args->max_error, "Budget mode: largest RMSE against the supersampled fp64 reference")
+                                ->check(CLI::Range(0.0, 1.0));
+    args->max_cost_given = cmd->add_option("--max-cost", args->max_cost, "Budget mode: largest GPU time per frame as a ratio to a blit")
+                               ->check(CLI::Range(0.0, 1e6));
     cmd->add_option("--supersample", args->supersample, "Budget mode: N x N samples per pixel in the reference")
         ->check(CLI::Range(2, 16))
         ->capture_default_str();
@@ -106,7 +107,12 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
     args->flags.add_to(*cmd);
     return [&g, args]() {
         int code = kExitOk;
-        const bool budget = args->max_error >= 0 || args->max_cost >= 0;
+        // NaN passes CLI11's range check (every comparison with it is false): refuse it here.
+        if (args->max_error_given->count() && !(args->max_error >= 0 && args->max_error <= 1))
+            return report(make_error(fmt::format("'{}' must be a number from 0 to 1", args->max_error), {}, 0, "--max-error"));
+        if (args->max_cost_given->count() && !(args->max_cost >= 0 && args->max_cost <= 1e6))
+            return report(make_error(fmt::format("'{}' must be a number from 0 to 1000000", args->max_cost), {}, 0, "--max-cost"));
+        const bool budget = args->max_error_given->count() || args->max_cost_given->count();
         if (budget && args->resolution.empty())
             return report(make_error("budget mode needs the display size it is measured at", {}, 0, "--resolution"));
         if (!budget && !args->resolution.empty())

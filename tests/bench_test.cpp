@@ -212,7 +212,8 @@ TEST_CASE("budget mode generates the cheapest tier within --max-error and says w
     CHECK_THAT(none.err, Catch::Contains("no quality tier of 'crt-shadow-mask' meets the budget at 160x120"));
     CHECK_FALSE(std::filesystem::exists(out / "none"));
 
-    for (const char* args : {"--resolution 160x120", "--max-error 0.1", "--resolution 0x120 --max-cost 4", "--resolution 160x120 --max-error 2"}) {
+    for (const char* args : {"--resolution 160x120", "--max-error 0.1", "--resolution 0x120 --max-cost 4", "--resolution 160x120 --max-error 2",
+                             "--resolution 160x120 --max-error nan", "--resolution 160x120 --max-cost nan"}) {
         INFO(args);
         auto bad = test::run_crtforge(std::string("generate --preset crt-shadow-mask --target glsl330 ") + args);
         CHECK(bad.exit_code == 2);
