@@ -190,7 +190,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
                          x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.label()));
     }
-    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: the Pareto front (no preset is both cheaper and closer); dashed: a preset's point and filtered tiers; an error of 0 shows at the bottom</text>\n", L);
+    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: Pareto front (nothing both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
     return s + "</svg>\n";
 }
 
