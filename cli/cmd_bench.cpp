@@ -88,23 +88,19 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
                 variants.emplace_back(u, parsed.value());
         }
         std::vector<SceneTiming> timings;
+        BenchSession session(*lib, options.vulkan);
         for (const Preset* preset : presets) {
             std::vector<PresetTier> tiers;
             if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}});
             else tiers = preset_tiers(*preset);
-            for (const PresetTier& tier : tiers)
+            for (size_t t = 0; t < tiers.size(); ++t)
             for (const auto& [label, variant] : variants) {
-                options.supersampled_preset = &tiers.front().preset;  // the point tier
                 options.variant = variant;
                 options.uniforms_label = label;
-                auto timing = bench_scene(*lib, tier.preset, options);
+                auto timing = session.tier(tiers, t, options);
                 if (!timing.ok()) return report(timing.error());
-                if (tiers.size() > 1) {
-                    timing.value().tier = quality_tier_name(tier.tier);
-                    timing.value().tier_changes = tier.changes;
-                }
                 fmt::print("{}{}\n", format_scene_timing(timing.value()),
-                           tier.changes.empty() ? std::string() : "tier: " + join_list(tier.changes) + "\n");
+                           tiers[t].changes.empty() ? std::string() : "tier: " + join_list(tiers[t].changes) + "\n");
                 std::fflush(stdout);
                 timings.push_back(std::move(timing.value()));
             }

@@ -55,14 +55,16 @@ Result<PresetTier> choose_tier(const TemplateLibrary& lib, const Preset& preset,
     options.repeats = 3;
     options.supersample = a.max_error >= 0 ? a.supersample : 0;
     options.point_reference = false;
-    options.supersampled_preset = &tiers.front().preset;
-    options.vulkan.device = a.device;
+    EngineOptions vulkan;
+    vulkan.device = a.device;
+    BenchSession session(lib, vulkan);
     std::vector<std::string> misses;
-    for (PresetTier& tier : tiers) {
-        auto timing = bench_scene(lib, tier.preset, options);
+    for (size_t i = 0; i < tiers.size(); ++i) {
+        PresetTier& tier = tiers[i];
+        auto timing = session.tier(tiers, i, options);
         if (!timing.ok()) return timing.error();
         const SceneTiming& t = timing.value();
-        const double cost = t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0;
+        const double cost = t.ratio();
         const double error = t.vs_supersampled ? t.vs_supersampled->rmse : 0.0;
         std::string figures = fmt::format("cost {:.2f}x blit", cost);
         if (t.vs_supersampled) figures = fmt::format("RMSE {:.5f} against the {}x{} supersampled reference, ", error, a.supersample, a.supersample) + figures;

@@ -33,6 +33,17 @@ Image reference_frame(const Preset& preset, int width, int height, int supersamp
     return images.value().front();
 }
 
+// A small, quick measurement: 160x120, one draw per timing, 4x4 supersampled reference.
+BenchOptions small_bench() {
+    BenchOptions options;
+    options.width = 160;
+    options.height = 120;
+    options.draws = 1;
+    options.repeats = 1;
+    options.supersample = 4;
+    return options;
+}
+
 }  // namespace
 
 TEST_CASE("the supersampled reference box-filters each pixel's footprint", "[bench][reference]") {
@@ -72,12 +83,7 @@ TEST_CASE("the supersampled reference box-filters each pixel's footprint", "[ben
 }
 
 TEST_CASE("bench reports every pass and the frame's error against both references", "[bench]") {
-    BenchOptions options;
-    options.width = 160;
-    options.height = 120;
-    options.draws = 1;
-    options.repeats = 1;
-    options.supersample = 4;
+    const BenchOptions options = small_bench();
     for (const char* name : {"crt-shadow-mask", "super-win"}) {
         INFO(name);
         const Preset& preset = *test::shipped_library().find_preset(name);
@@ -165,18 +171,15 @@ TEST_CASE("each filtered form is its point form averaged over each pixel", "[ben
 }
 
 TEST_CASE("bench measures every tier against the point tier's supersampled picture", "[bench][tiers]") {
-    BenchOptions options;
-    options.width = 160;
-    options.height = 120;
-    options.draws = 1;
-    options.repeats = 1;
-    options.supersample = 4;
+    BenchOptions options = small_bench();
     const std::vector<PresetTier> tiers = preset_tiers(*test::shipped_library().find_preset("crt-shadow-mask"));
-    options.supersampled_preset = &tiers.front().preset;
+    BenchSession session(test::shipped_library());
     std::vector<double> errors;
-    for (const PresetTier& tier : tiers) {
-        auto timing = bench_scene(test::shipped_library(), tier.preset, options);
+    for (size_t i = 0; i < tiers.size(); ++i) {
+        auto timing = session.tier(tiers, i, options);
         REQUIRE(timing.ok());
+        CHECK(timing.value().tier == (i == 0 ? "point" : "filtered"));
+        CHECK(timing.value().tier_changes == tiers[i].changes);
         REQUIRE(timing.value().vs_point);
         REQUIRE(timing.value().vs_supersampled);
         CHECK(timing.value().vs_point->rmse < 0.002);  // each tier renders its own formula exactly
@@ -184,6 +187,16 @@ TEST_CASE("bench measures every tier against the point tier's supersampled pictu
     }
     // crt-shadow-mask's 2.67 px stripes alias when point-sampled; the filtered tier removes most of it.
     CHECK(errors[1] < 0.5 * errors[0]);
+    // Each tier's point reference, and the point tier's supersampled one once for both tiers; a
+    // --uniforms variant of a tier draws the same pictures and renders none again.
+    CHECK(session.reference_renders() == 3);
+    options.variant.uniforms = UniformSelection::parse("none").value();
+    options.uniforms_label = "none";
+    auto baked = session.tier(tiers, 1, options);
+    REQUIRE(baked.ok());
+    CHECK(baked.value().label() == "crt-shadow-mask@filtered uniforms=none");
+    CHECK(baked.value().vs_supersampled->rmse == Approx(errors[1]).margin(1e-4));
+    CHECK(session.reference_renders() == 3);
 }
 
 TEST_CASE("budget mode generates the cheapest tier within --max-error and says why", "[bench][tiers][cli]") {

@@ -243,23 +243,26 @@ static std::string header_only_png(uint32_t width, uint32_t height) {
     return png;
 }
 
+// Reads `dir`/name, a header-only PNG of width x height: it must fail, with `message`.
+static void check_header_only_png_fails(const test::TempDir& dir, const std::string& name, uint32_t width, uint32_t height,
+                                        const std::string& message) {
+    overwrite(dir / name, header_only_png(width, height));
+    auto read = read_image(dir / name);
+    REQUIRE_FALSE(read.ok());
+    CHECK_THAT(read.error().message, Catch::Contains(message));
+}
+
 TEST_CASE("an image beyond the memory budget is refused from its header, before decoding", "[hostile][image]") {
     // 9000 x 9000 (81 Mpx): refused for its size, not decoded (decoding would report a truncated file).
     test::TempDir dir;
-    overwrite(dir / "huge.png", header_only_png(9000, 9000));
-    auto read = read_image(dir / "huge.png");
-    REQUIRE_FALSE(read.ok());
-    CHECK_THAT(read.error().message, Catch::Contains("image memory budget"));
+    check_header_only_png_fails(dir, "huge.png", 9000, 9000, "image memory budget");
 }
 
 TEST_CASE("a file claiming a large picture it does not hold fails before the picture's memory is taken", "[hostile][image]") {
     // 8000 x 8000 is within the budget, so the header passes; the 1 GB of floats it claims must
     // not be committed before rows really decode (the buffer grows band by band).
     test::TempDir dir;
-    overwrite(dir / "liar.png", header_only_png(8000, 8000));
-    auto read = read_image(dir / "liar.png");
-    REQUIRE_FALSE(read.ok());
-    CHECK_THAT(read.error().message, Catch::Contains("cannot read pixels"));
+    check_header_only_png_fails(dir, "liar.png", 8000, 8000, "cannot read pixels");
     // The same through the CLI in a child process, whose peak resident memory the kernel keeps:
     // well under the claimed picture's 1 GB (the process itself needs ~160 MB).
     auto run = test::run_crtforge("render --reference --preset classic --input '" + (dir / "liar.png") +

@@ -2,6 +2,7 @@
 #include "crtforge/validate/bench.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -65,19 +66,82 @@ double SceneTiming::total_ns() const {
     return sum;
 }
 
-Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& o) {
-    if (o.draws < 1 || o.repeats < 1) return make_error("draws and repeats must be at least 1", {}, 0, "--draws");
-    auto compiled = compile_scene(library, preset, o.variant, Cache());
-    if (!compiled.ok()) return compiled.error();
-    const int source_width = preset.scene.source_width ? preset.scene.source_width : 320;
-    const int source_height = preset.scene.source_height ? preset.scene.source_height : 240;
-    CompileOptions blit_options;
-    blit_options.stage = ShaderStage::Fragment;
-    blit_options.source_name = "<blit>";
-    auto blit_fragment = compile_to_spirv(kBlitFragment, blit_options);
-    if (!blit_fragment.ok()) return blit_fragment.error();
+namespace {
 
-    ConsumerEngines engines(o.vulkan);
+int source_width_of(const Preset& p) { return p.scene.source_width ? p.scene.source_width : 320; }
+int source_height_of(const Preset& p) { return p.scene.source_height ? p.scene.source_height : 240; }
+
+// What makes two reference pictures the same: the preset's content (every pass's stages, forms and
+// values), and the size, frame, input and samples per pixel.
+std::string reference_key(const Preset& preset, const BenchOptions& o, int supersample) {
+    std::string key = fmt::format("{}|{}x{}|{}|{}|{}", preset.name, o.width, o.height, o.frame, o.input, supersample);
+    for (const Pass& pass : preset.passes) {
+        key += "|" + pass.alias;
+        for (const ResolvedStage& rs : pass.stages) {
+            key += ";" + (rs.stage ? rs.stage->name : std::string()) + ":" + (rs.form ? rs.form->name : std::string());
+            for (const auto& [name, value] : rs.values) key += "," + name + "=" + value_to_exact_string(value);
+        }
+    }
+    return key;
+}
+
+}  // namespace
+
+struct BenchSession::State {
+    ConsumerEngines engines;
+    SpirvBinary blit_fragment;
+    std::map<std::string, Image> references;
+    explicit State(EngineOptions vulkan) : engines(std::move(vulkan)) {}
+};
+
+BenchSession::BenchSession(const TemplateLibrary& library, EngineOptions vulkan)
+    : library_(library), state_(std::make_unique<State>(std::move(vulkan))) {}
+BenchSession::~BenchSession() = default;
+
+size_t BenchSession::reference_renders() const { return state_->references.size(); }
+
+Result<Image> BenchSession::reference(const Preset& preset, const BenchOptions& o, int supersample) {
+    const std::string key = reference_key(preset, o, supersample);
+    if (auto found = state_->references.find(key); found != state_->references.end()) return found->second;
+    ReferenceSceneJob ref;
+    ref.library = &library_;
+    ref.preset = &preset;
+    ref.source = [&](int frame) { return make_test_input(o.input, source_width_of(preset), source_height_of(preset), frame); };
+    ref.width = o.width;
+    ref.height = o.height;
+    ref.frames = {o.frame};
+    ref.supersample = supersample;
+    auto rendered = render_reference_scene(ref);
+    if (!rendered.ok()) return rendered.error();
+    return state_->references[key] = std::move(rendered.value().front());
+}
+
+Result<SceneTiming> BenchSession::scene(const Preset& preset, const BenchOptions& o) { return measure(preset, preset, o); }
+
+Result<SceneTiming> BenchSession::tier(const std::vector<PresetTier>& tiers, size_t index, const BenchOptions& o) {
+    if (index >= tiers.size()) return make_error("no tier " + std::to_string(index));
+    auto timing = measure(tiers[index].preset, tiers.front().preset, o);
+    if (timing.ok() && tiers.size() > 1) {
+        timing.value().tier = quality_tier_name(tiers[index].tier);
+        timing.value().tier_changes = tiers[index].changes;
+    }
+    return timing;
+}
+
+Result<SceneTiming> BenchSession::measure(const Preset& preset, const Preset& supersampled, const BenchOptions& o) {
+    if (o.draws < 1 || o.repeats < 1) return make_error("draws and repeats must be at least 1", {}, 0, "--draws");
+    auto compiled = compile_scene(library_, preset, o.variant, Cache());
+    if (!compiled.ok()) return compiled.error();
+    const int source_width = source_width_of(preset), source_height = source_height_of(preset);
+    if (state_->blit_fragment.empty()) {
+        CompileOptions blit_options;
+        blit_options.stage = ShaderStage::Fragment;
+        blit_options.source_name = "<blit>";
+        auto blit_fragment = compile_to_spirv(kBlitFragment, blit_options);
+        if (!blit_fragment.ok()) return blit_fragment.error();
+        state_->blit_fragment = std::move(blit_fragment.value());
+    }
+    ConsumerEngines& engines = state_->engines;
     auto engine = engines.vulkan();
     if (!engine.ok()) return engine.error();
 
@@ -114,7 +178,7 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
     auto blit = [&](const Image& input, int width, int height, OutputFormat format) -> Result<std::pair<double, double>> {
         RenderJob job;
         job.vertex_spirv = compiled.value().front().vertex;
-        job.fragment_spirv = blit_fragment.value();
+        job.fragment_spirv = state_->blit_fragment;
         job.input = input;
         job.width = width;
         job.height = height;
@@ -142,20 +206,11 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
     }
     // Speed against error: the frame just rendered on Vulkan against the two references.
     if (o.supersample > 0) {
-        ReferenceSceneJob ref;
-        ref.library = &library;
-        ref.preset = &preset;
-        ref.source = [&](int frame) { return make_test_input(o.input, source_width, source_height, frame); };
-        ref.width = o.width;
-        ref.height = o.height;
-        ref.frames = {o.frame};
         for (int n : {1, o.supersample}) {
             if (n == 1 && !o.point_reference) continue;
-            ref.supersample = n;
-            ref.preset = n > 1 && o.supersampled_preset ? o.supersampled_preset : &preset;
-            auto reference = render_reference_scene(ref);
+            auto reference = this->reference(n == 1 ? preset : supersampled, o, n);
             if (!reference.ok()) return reference.error();
-            auto metrics = compare_images(rendered.value().front(), reference.value().front());
+            auto metrics = compare_images(rendered.value().front(), reference.value());
             if (!metrics.ok()) return metrics.error();
             (n == 1 ? out.vs_point : out.vs_supersampled) = metrics.value();
         }
@@ -169,6 +224,11 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
     return out;
 }
 
+Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& options) {
+    BenchSession session(library, options.vulkan);
+    return session.scene(preset, options);
+}
+
 std::string format_scene_timing(const SceneTiming& t) {
     std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, median of the timings)\n", t.label(), t.width,
                                 t.height, t.frame, t.device, t.draws);
@@ -180,7 +240,7 @@ std::string format_scene_timing(const SceneTiming& t) {
                          p.ns / 1000, p.blit_ns / 1000, p.ratio(), 100 * p.spread, p.cost.instructions, p.cost.samples,
                          p.cost.transcendentals);
     s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12.1f} {:>12.1f} {:>8.2f}\n", "scene", "", fmt::format("{}x{}", t.width, t.height),
-                     "", t.total_ns() / 1000, t.display_blit_ns / 1000, t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0);
+                     "", t.total_ns() / 1000, t.display_blit_ns / 1000, t.ratio());
     auto error_line = [](const char* label, const ImageMetrics& m) {
         return fmt::format("error vs {:<26} RMSE {:.5f}  PSNR {:5.1f} dB  max |d| {:.4f}  SSIM {:.4f}\n", label, m.rmse, m.psnr, m.max_abs, m.ssim);
     };

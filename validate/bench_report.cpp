@@ -14,7 +14,18 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-double scene_ratio(const SceneTiming& t) { return t.display_blit_ns > 0 ? t.total_ns() / t.display_blit_ns : 0.0; }
+// Each preset's point tier with its filtered tier, measured with the same --uniforms variant.
+std::vector<std::pair<const SceneTiming*, const SceneTiming*>> tier_pairs(const std::vector<SceneTiming>& timings) {
+    std::vector<std::pair<const SceneTiming*, const SceneTiming*>> pairs;
+    for (const SceneTiming& point : timings) {
+        if (point.tier != "point" || !point.vs_supersampled) continue;
+        for (const SceneTiming& filtered : timings)
+            if (filtered.preset == point.preset && filtered.uniforms == point.uniforms && filtered.tier == "filtered" &&
+                filtered.vs_supersampled)
+                pairs.emplace_back(&point, &filtered);
+    }
+    return pairs;
+}
 
 json cost_json(const ShaderCost& c) {
     return {{"instructions", c.instructions}, {"textureSamples", c.samples}, {"transcendentals", c.transcendentals}};
@@ -33,13 +44,13 @@ std::vector<size_t> pareto_front(const std::vector<SceneTiming>& timings) {
         bool dominated = false;
         for (size_t j = 0; j < timings.size() && !dominated; ++j) {
             if (j == i || !timings[j].vs_supersampled) continue;
-            const double ci = scene_ratio(timings[i]), cj = scene_ratio(timings[j]);
+            const double ci = timings[i].ratio(), cj = timings[j].ratio();
             const double ei = timings[i].vs_supersampled->rmse, ej = timings[j].vs_supersampled->rmse;
             dominated = cj <= ci && ej <= ei && (cj < ci || ej < ei);
         }
         if (!dominated) front.push_back(i);
     }
-    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return scene_ratio(timings[a]) < scene_ratio(timings[b]); });
+    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return timings[a].ratio() < timings[b].ratio(); });
     return front;
 }
 
@@ -73,7 +84,7 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
                        {"passes", passes},
                        {"sceneNs", t.total_ns()},
                        {"displayBlitNs", t.display_blit_ns},
-                       {"ratio", scene_ratio(t)},
+                       {"ratio", t.ratio()},
                        {"errorVsPoint", metrics_json(t.vs_point)},
                        {"errorVsSupersampled", metrics_json(t.vs_supersampled)},
                        {"supersample", t.supersample},
@@ -95,7 +106,7 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
         };
         const ShaderCost c = t.cost();
         md += fmt::format("| {} | {}x{} | {} | {:.2f} | {} / {} / {} | {} | {} | {} | {} |\n", t.label(), t.width, t.height, t.passes.size(),
-                          scene_ratio(t), c.instructions, c.samples, c.transcendentals,
+                          t.ratio(), c.instructions, c.samples, c.transcendentals,
                           num(t.vs_point, false), num(t.vs_supersampled, false), num(t.vs_supersampled, true),
                           std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
     }
@@ -109,22 +120,15 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
 
 std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
     std::vector<TierPick> picks;
-    for (const SceneTiming& point : timings) {
-        if (point.tier != "point" || !point.vs_supersampled) continue;
-        for (const SceneTiming& filtered : timings) {
-            if (filtered.preset != point.preset || filtered.uniforms != point.uniforms || filtered.tier != "filtered" ||
-                !filtered.vs_supersampled)
-                continue;
-            const double ep = point.vs_supersampled->rmse, ef = filtered.vs_supersampled->rmse;
-            const double cp = scene_ratio(point), cf = scene_ratio(filtered);
-            const bool better = ef <= 0.9 * ep;
-            const std::string variant = point.uniforms.empty() || point.uniforms == "default" ? "" : " uniforms=" + point.uniforms;
-            picks.push_back({point.preset + variant, better ? "filtered" : "point",
-                             fmt::format("RMSE vs supersampled {:.5f} filtered, {:.5f} point ({}); cost {:.2f}x vs {:.2f}x blit", ef, ep,
-                                         better ? fmt::format("{:.0f}% less aliasing", 100 * (1 - ef / std::max(ep, 1e-12)))
-                                                : "filtering gains under a tenth",
-                                         cf, cp)});
-        }
+    for (const auto& [point, filtered] : tier_pairs(timings)) {
+        const double ep = point->vs_supersampled->rmse, ef = filtered->vs_supersampled->rmse;
+        const bool better = ef <= 0.9 * ep;
+        const std::string variant = point->uniforms.empty() || point->uniforms == "default" ? "" : " uniforms=" + point->uniforms;
+        picks.push_back({point->preset + variant, better ? "filtered" : "point",
+                         fmt::format("RMSE vs supersampled {:.5f} filtered, {:.5f} point ({}); cost {:.2f}x vs {:.2f}x blit", ef, ep,
+                                     better ? fmt::format("{:.0f}% less aliasing", 100 * (1 - ef / std::max(ep, 1e-12)))
+                                            : "filtering gains under a tenth",
+                                     filtered->ratio(), point->ratio())});
     }
     return picks;
 }
@@ -134,7 +138,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     constexpr double W = 760, H = 500, L = 70, R = 30, T = 50, B = 50;
     double max_cost = 1, min_err = 1e9, max_err = 0;
     for (const SceneTiming& t : timings) {
-        max_cost = std::max(max_cost, scene_ratio(t));
+        max_cost = std::max(max_cost, t.ratio());
         if (t.vs_supersampled) {
             min_err = std::min(min_err, std::max(t.vs_supersampled->rmse, 1e-6));
             max_err = std::max(max_err, t.vs_supersampled->rmse);
@@ -166,16 +170,12 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     const std::vector<size_t> front = pareto_front(timings);
     std::string path;
     for (size_t i : front)
-        path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(scene_ratio(timings[i])), Y(timings[i].vs_supersampled->rmse));
+        path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(timings[i].ratio()), Y(timings[i].vs_supersampled->rmse));
     if (!path.empty()) s += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
     // A preset's tiers joined, point to filtered: what filtering buys and costs.
-    for (const SceneTiming& point : timings) {
-        if (point.tier != "point" || !point.vs_supersampled) continue;
-        for (const SceneTiming& other : timings)
-            if (other.preset == point.preset && other.tier == "filtered" && other.vs_supersampled)
-                s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#36c\" stroke-dasharray=\"4 3\"/>\n",
-                                 X(scene_ratio(point)), Y(point.vs_supersampled->rmse), X(scene_ratio(other)), Y(other.vs_supersampled->rmse));
-    }
+    for (const auto& [point, filtered] : tier_pairs(timings))
+        s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#36c\" stroke-dasharray=\"4 3\"/>\n",
+                         X(point->ratio()), Y(point->vs_supersampled->rmse), X(filtered->ratio()), Y(filtered->vs_supersampled->rmse));
     // The front's points last, so a point of it is never hidden under another.
     std::vector<size_t> order;
     for (size_t i = 0; i < timings.size(); ++i)
@@ -185,7 +185,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         const SceneTiming& t = timings[i];
         if (!t.vs_supersampled) continue;
         const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
-        const double x = X(scene_ratio(t)), y = Y(t.vs_supersampled->rmse);
+        const double x = X(t.ratio()), y = Y(t.vs_supersampled->rmse);
         const bool right = x > W - R - 120;  // labels near the right edge go to the point's left
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
                          x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.label()));

@@ -1,38 +1,44 @@
-// Static cost of a SPIR-V module, read from its instruction stream (see crtforge/validate/bench.hpp).
+// Static cost of a SPIR-V module, read with the WGSL emitter's SPIR-V reader (see
+// crtforge/validate/bench.hpp).
 #include "crtforge/validate/bench.hpp"
 
-#include <cstring>
-#include <set>
-#include <string>
+#include <spirv_cross/GLSL.std.450.h>
+
+#include "targets/wgsl/spirv_module.hpp"
 
 namespace crtforge {
 
 namespace {
-constexpr uint32_t kOpExtInstImport = 11, kOpExtInst = 12, kOpFunction = 54;
-constexpr uint32_t kOpImageSampleFirst = 87, kOpImageGatherLast = 97;  // sample, fetch, gather, dref gather
-// GLSL.std.450: Sin .. Atanh (13-24), Atan2, Pow, Exp, Log, Exp2, Log2 (25-30).
-bool is_transcendental(uint32_t op) { return op >= 13 && op <= 30; }
+
+bool is_texture_read(spv::Op op) { return op >= spv::OpImageSampleImplicitLod && op <= spv::OpImageDrefGather; }
+
+// GLSL.std.450's trigonometric, hyperbolic, exponential and logarithmic functions and pow (not
+// sqrt, which GPUs run at the cost of a multiply or two).
+bool is_transcendental(uint32_t instruction) { return instruction >= GLSLstd450Sin && instruction <= GLSLstd450Log2; }
+
 }  // namespace
 
 ShaderCost spirv_cost(const std::vector<uint32_t>& words) {
     ShaderCost cost;
-    if (words.size() < 5) return cost;
-    std::set<uint32_t> glsl_sets;
-    bool in_code = false;
-    for (size_t at = 5; at < words.size();) {
-        const uint32_t count = words[at] >> 16, op = words[at] & 0xFFFFu;
-        if (count == 0 || at + count > words.size()) break;  // malformed: stop counting
-        if (op == kOpExtInstImport && count >= 3) {
-            const char* name = reinterpret_cast<const char*>(&words[at + 2]);
-            if (std::string(name, strnlen(name, (count - 2) * 4)) == "GLSL.std.450") glsl_sets.insert(words[at + 1]);
+    auto module = wgsl::parse_spirv(words);
+    if (!module.ok()) return cost;  // not a module crtforge made: nothing to count
+    const auto& imports = module.value().ext_imports;
+    auto count = [&](const wgsl::Instruction& i) {
+        ++cost.instructions;
+        if (is_texture_read(i.op)) ++cost.samples;
+        if (i.op == spv::OpExtInst) {
+            auto set = imports.find(i.operand(0));
+            if (set != imports.end() && set->second == "GLSL.std.450" && is_transcendental(i.operand(1))) ++cost.transcendentals;
         }
-        in_code = in_code || op == kOpFunction;
-        if (in_code) {
-            ++cost.instructions;
-            if (op >= kOpImageSampleFirst && op <= kOpImageGatherLast) ++cost.samples;
-            if (op == kOpExtInst && count >= 5 && glsl_sets.count(words[at + 3]) && is_transcendental(words[at + 4])) ++cost.transcendentals;
+    };
+    for (const wgsl::Function& f : module.value().functions) {
+        for (const wgsl::Instruction& v : f.variables) count(v);
+        for (const wgsl::Block& b : f.blocks) {
+            for (const wgsl::Instruction& i : b.phis) count(i);
+            for (const wgsl::Instruction& i : b.body) count(i);
+            if (b.merge) count(*b.merge);
+            count(b.terminator);
         }
-        at += count;
     }
     return cost;
 }

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <optional>
 
 #include "crtforge/preset.hpp"
+#include "crtforge/quality_tiers.hpp"
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/template_library.hpp"
@@ -28,18 +30,15 @@ struct BenchOptions {
     // (arithmetic error) and `supersample` x `supersample` box-filtered (also aliasing). 0: none.
     int supersample = 4;
     bool point_reference = true;  // false: only the supersampled reference (budget mode)
-    // The scene the supersampled reference renders: the picture every tier approximates, so a
-    // filtered tier is measured against its point-sampled preset supersampled, not against itself
-    // filtered twice. Null: the timed preset.
-    const Preset* supersampled_preset = nullptr;
     VariantOptions variant;       // which params stay uniforms (--uniforms), precision
     std::string uniforms_label;   // how --uniforms was written, for the report
-    EngineOptions vulkan;
+    EngineOptions vulkan;  // the device bench_scene() opens (a BenchSession is given its own)
 };
 
 // What a fragment shader does per pixel, counted statically in its SPIR-V (after crtforge's
-// optimisation): instructions in its functions, texture reads (sample, fetch, gather) and
-// transcendental calls (GLSL.std.450 sin .. log2, pow). A read inside a loop counts once.
+// optimisation): instructions in its functions' blocks, texture reads (sample, fetch, gather) and
+// transcendental calls (GLSL.std.450 sin .. log2, pow). A read inside a loop counts once; a module
+// that does not parse counts nothing.
 struct ShaderCost {
     int instructions = 0, samples = 0, transcendentals = 0;
 };
@@ -66,6 +65,7 @@ struct SceneTiming {
         return (tier.empty() ? preset : preset + "@" + tier) + (uniforms.empty() || uniforms == "default" ? "" : " uniforms=" + uniforms);
     }
     ShaderCost cost() const;  // summed over the passes
+    double ratio() const { return display_blit_ns > 0 ? total_ns() / display_blit_ns : 0.0; }  // the scene's cost in blits
     int width = 0, height = 0, frame = 0, draws = 0;
     std::vector<PassTiming> passes;
     double display_blit_ns = 0;      // a blit of the source onto the whole display
@@ -75,6 +75,35 @@ struct SceneTiming {
     int supersample = 0;
 };
 
+// One benchmark run: the Vulkan engine, the blit it compares against and the reference pictures
+// are made once and shared by every scene it measures (a reference is keyed by the preset's
+// content, size, frame, input and samples, so the point tier's supersampled picture serves every
+// tier and --uniforms variant of a preset).
+class BenchSession {
+public:
+    BenchSession(const TemplateLibrary& library, EngineOptions vulkan = {});
+    ~BenchSession();
+    BenchSession(const BenchSession&) = delete;
+    BenchSession& operator=(const BenchSession&) = delete;
+
+    // `preset`'s passes timed, and its frame's error against its own references.
+    Result<SceneTiming> scene(const Preset& preset, const BenchOptions& options);
+    // Tier `index` of `tiers` (preset_tiers()), named in the timing when there are several, its
+    // error measured against the first (point) tier supersampled: the picture every tier
+    // approximates (a filtered tier against itself supersampled would be filtered twice).
+    Result<SceneTiming> tier(const std::vector<PresetTier>& tiers, size_t index, const BenchOptions& options);
+    // How many reference pictures the session has rendered (each distinct one once).
+    size_t reference_renders() const;
+
+private:
+    Result<SceneTiming> measure(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
+    Result<Image> reference(const Preset& preset, const BenchOptions& options, int supersample);
+    struct State;
+    const TemplateLibrary& library_;
+    std::unique_ptr<State> state_;
+};
+
+// One scene in a session of its own.
 Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& options);
 
 // A fixed-width table: one row per pass (size, format, ns per draw, blit, ratio), then the scene.
