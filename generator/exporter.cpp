@@ -16,6 +16,7 @@
 #include "crtforge/luts.hpp"
 #include "crtforge/files.hpp"
 #include "generator/manifest.hpp"
+#include "generator/web_package.hpp"
 
 namespace crtforge {
 
@@ -402,6 +403,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
         result.files.merge(outputs[i].files);
         ++result.variants;
     }
+    detail::add_web_package(manifest, result.files);
     result.files["manifest.json"] = manifest.dump(2) + "\n";
     return result;
 }

@@ -2,6 +2,7 @@
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/parse_number.hpp"
 #include "crtforge/version.hpp"
+#include "generator/spirv_debug_names.hpp"
 
 #include <mutex>
 #include <regex>
@@ -125,6 +126,24 @@ std::string disassemble_spirv(const SpirvBinary& binary) {
     return text;
 }
 
+namespace {
+
+// SPIRV-Tools' performance passes.
+Result<SpirvBinary> optimize_spirv(const SpirvBinary& module, const std::string& name) {
+    spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_0);
+    std::vector<std::string> messages;
+    optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* msg) {
+        if (level <= SPV_MSG_ERROR) messages.push_back(msg);
+    });
+    optimizer.RegisterPerformancePasses();
+    SpirvBinary optimized;
+    if (!optimizer.Run(module.data(), module.size(), &optimized))
+        return make_validation_error("spirv-opt failed: " + join_messages(messages), name);
+    return optimized;
+}
+
+}  // namespace
+
 Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOptions& options) {
     const std::string name = options.source_name.empty() ? std::string("<source>") : options.source_name;
     auto parsed = parse_shader(source, options.stage, options.language, true,
@@ -137,21 +156,29 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     glslang::SpvOptions spv_options;
     spv_options.disableOptimizer = true;  // SPIRV-Tools does it below, with our pass list
     spv_options.generateDebugInfo = options.debug_lines;
+    // Readable output: the template's local names ride through the optimiser as NonSemantic debug
+    // info and become OpNames of the SSA values afterwards (spirv_debug_names.cpp).
+    const bool carry_names = options.local_names && options.optimize && !options.debug_lines &&
+                             options.language == SourceLanguage::Glsl;
+    if (carry_names) {
+        spv_options.generateDebugInfo = true;
+        spv_options.emitNonSemanticShaderDebugInfo = true;
+    }
     glslang::GlslangToSpv(*parsed.value()->program->getIntermediate(to_glslang(options.stage)), spirv,
                           &logger, &spv_options);
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
 
     if (options.optimize) {
-        spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_0);
-        std::vector<std::string> messages;
-        optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* msg) {
-            if (level <= SPV_MSG_ERROR) messages.push_back(msg);
-        });
-        optimizer.RegisterPerformancePasses();
-        SpirvBinary optimized;
-        if (!optimizer.Run(spirv.data(), spirv.size(), &optimized))
-            return make_validation_error("spirv-opt failed: " + join_messages(messages), name);
-        spirv = std::move(optimized);
+        if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
+        else return optimized.error();
+        if (carry_names) {
+            // The debug info holds back some of the optimiser's work (an emptied branch stays while
+            // its debug scope does, a value a DebugValue reads stays alive): optimising the named,
+            // stripped module again gives the module an optimisation without names gives.
+            name_values_and_strip_debug_info(spirv);
+            if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
+            else return optimized.error();
+        }
     }
     if (auto valid = validate_spirv(spirv); !valid.ok())
         return make_validation_error(valid.error().message + " (the generator produced invalid SPIR-V)", name);

@@ -14,7 +14,13 @@
 
 namespace crtforge::detail {
 
-// Names the uniform block instance "crt" so members read crt.scanlineIntensity (GLSL) or
+// Template locals keep their names (spirv_debug_names) and GLSL allowed them, but after inlining a
+// local named like a builtin (`distance`) shares main's scope with calls of it, and HLSL, Godot and
+// WGSL reserve words GLSL does not (`point`, `TIME`): any name some target language reserves gets a
+// trailing underscore, on every target alike.
+void rename_reserved_words(spirv_cross::Compiler& compiler);
+
+// Renames reserved words (above) and names the uniform block instance "crt" so members read crt.scanlineIntensity (GLSL) or
 // crt_scanlineIntensity (HLSL) instead of _19.scanlineIntensity.
 void apply_readable_names(spirv_cross::CompilerGLSL& compiler);
 

@@ -16,6 +16,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "crtforge/exporter.hpp"
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/runtime/image_compare.hpp"
@@ -56,9 +58,13 @@ Image read_raw(const std::string& path, int width, int height) {
     return image;
 }
 
+// `--export 'DIR'`: check.mjs reads an export's files; `--package 'APP'`: it imports the package.
+std::string from_export(const std::string& dir) { return "--export '" + dir + "'"; }
+std::string from_package(const std::string& app) { return "--package '" + app + "'"; }
+
 // node examples/webgpu/check.mjs ...; fails the test with check.mjs's one-line error. Several
 // inputs are the original at each frame of `frames` (written one after the other).
-void run_check(const test::TempDir& tmp, const std::string& export_dir, const std::string& preset, const std::vector<Image>& inputs,
+void run_check(const test::TempDir& tmp, const std::string& from, const std::string& preset, const std::vector<Image>& inputs,
                const std::string& output, const std::string& extra, int width = kWidth, int height = kHeight) {
     const std::string input_path = tmp / (preset + "-input.raw");
     {
@@ -70,7 +76,7 @@ void run_check(const test::TempDir& tmp, const std::string& export_dir, const st
     const Image& input = inputs.front();
     const std::string log = tmp / (preset + "-check.log"), err = tmp / (preset + "-check.err");
     const std::string cmd = "node '" + std::string(CRTFORGE_SOURCE_DIR) + "/examples/webgpu/check.mjs'" +
-                            " --export '" + export_dir + "' --preset '" + preset + "' --input '" + input_path + "'" +
+                            " " + from + " --preset '" + preset + "' --input '" + input_path + "'" +
                             " --input-width " + std::to_string(input.width) + " --input-height " + std::to_string(input.height) +
                             " --width " + std::to_string(width) + " --height " + std::to_string(height) + extra +
                             " --output '" + output + "'" + " >'" + log + "' 2>'" + err + "' </dev/null";
@@ -121,7 +127,7 @@ TEST_CASE("The WebGPU example module renders exported presets like Vulkan", "[wg
              {"quiet-frame", kTime}, {"classic", kTime}, {"crt-shadow-mask", kTime}, {"crt-pulse", 1e7 + 0.15}}) {
         SECTION(preset) {
             const std::string output = tmp / (preset + "-webgpu.raw");
-            run_check(tmp, export_dir, preset, {input.value()}, output, fmt::format(" --time {}", time));
+            run_check(tmp, from_export(export_dir), preset, {input.value()}, output, fmt::format(" --time {}", time));
             const Image webgpu = read_raw(output, kWidth, kHeight);
             const Image vulkan = vulkan_render(preset, input.value(), time);
             auto metrics = compare_images(webgpu, vulkan);
@@ -166,7 +172,7 @@ TEST_CASE("The WebGPU example runs whole scenes (passes, feedback, LUTs) like Vu
     for (const std::string& name : presets) {
         SECTION(name) {
             const std::string prefix = tmp / (name + "-frame-");
-            run_check(tmp, export_dir, name, inputs, prefix, " --frames 0,1,2,3,4 --capture 1,4", kSceneWidth, kSceneHeight);
+            run_check(tmp, from_export(export_dir), name, inputs, prefix, " --frames 0,1,2,3,4 --capture 1,4", kSceneWidth, kSceneHeight);
             const Preset* preset = test::shipped_library().find_preset(name);
             REQUIRE(preset != nullptr);
             auto compiled = compile_scene(test::shipped_library(), *preset, {}, Cache());
@@ -195,4 +201,109 @@ TEST_CASE("The WebGPU example runs whole scenes (passes, feedback, LUTs) like Vu
             }
         }
     }
+}
+
+// The export's npm/ folder is the package `crtforge-presets`: installed into an app (a symlink in
+// its node_modules, as `npm install ./out/export/npm` makes), imported by name through its
+// package.json, its loadCrtPreset() reads its own manifest, WGSL and LUT PNGs and renders exactly
+// what the export's files give createCrtScene directly (which the tests above hold against Vulkan).
+TEST_CASE("The export's npm package renders presets by name in Node, byte for byte like the export's files", "[wgsl][example][npm]") {
+    const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
+    INFO("npm packages missing: run scripts/setup.sh");
+    REQUIRE(fs::exists(runner / "webgpu/package.json"));
+
+    test::TempDir tmp;
+    const std::string export_dir = tmp / "export";
+    const auto exported = test::run_crtforge("export --target wgsl,glsl330 --preset classic,super-win,atari-ntsc --out '" + export_dir + "'");
+    INFO(exported.err);
+    REQUIRE(exported.exit_code == 0);
+
+    // The package is whole: its manifest names only WGSL files, and every file it names is inside it.
+    const fs::path package = fs::path(export_dir) / "npm";
+    const auto manifest = nlohmann::json::parse(slurp((package / "manifest.json").string()));
+    CHECK(manifest["targets"] == nlohmann::json::array({"wgsl"}));
+    size_t named = 0;
+    for (const auto& [name, preset] : manifest["presets"].items()) {
+        for (const auto& pass : preset["passes"]) {
+            CHECK(pass["targets"].size() == 1);
+            CHECK(fs::exists(package / pass["targets"]["wgsl"]["shader"].get<std::string>()));
+            ++named;
+        }
+        if (preset.contains("luts"))
+            for (const auto& [lut, entry] : preset["luts"].items()) CHECK(fs::exists(package / entry["file"].get<std::string>()));
+    }
+    CHECK(named == 1 + 6 + 1);
+    const auto package_json = nlohmann::json::parse(slurp((package / "package.json").string()));
+    CHECK(package_json["name"] == "crtforge-presets");
+    CHECK(package_json["exports"]["."]["default"] == "./index.mjs");
+
+    const std::string app = tmp / "app";
+    fs::create_directories(fs::path(app) / "node_modules");
+    fs::create_directory_symlink(package, fs::path(app) / "node_modules/crtforge-presets");
+
+    std::vector<Image> inputs;
+    for (int f : {0, 1, 2}) {
+        auto input = make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, f);
+        REQUIRE(input.ok());
+        inputs.push_back(std::move(input.value()));
+    }
+    for (const std::string preset : {"classic", "super-win", "atari-ntsc"}) {
+        SECTION(preset) {
+            const std::string direct = tmp / (preset + "-direct-"), packaged = tmp / (preset + "-package-");
+            const std::string frames = " --frames 0,1,2 --capture 2 --time 0.5";
+            run_check(tmp, from_export(export_dir), preset, inputs, direct, frames, kSceneWidth, kSceneHeight);
+            run_check(tmp, from_package(app), preset, inputs, packaged, frames, kSceneWidth, kSceneHeight);
+            const std::string a = slurp(direct + "2.raw"), b = slurp(packaged + "2.raw");
+            CHECK(a.size() == size_t(kSceneWidth) * kSceneHeight * 16);
+            CHECK(a == b);
+            // Not a blank frame that would match anything.
+            const Image picture = read_raw(packaged + "2.raw", kSceneWidth, kSceneHeight);
+            CHECK(*std::max_element(picture.rgba.begin(), picture.rgba.end()) > 0.5f);
+        }
+    }
+}
+
+// The package's TypeScript declarations: an app using the API type-checks under --strict, and one
+// that passes a param a string does not.
+TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][npm]") {
+    const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
+    INFO("npm packages missing: run scripts/setup.sh");
+    REQUIRE(fs::exists(runner / "typescript/bin/tsc"));
+
+    test::TempDir tmp;
+    const std::string export_dir = tmp / "export";
+    const auto exported = test::run_crtforge("export --target wgsl --preset classic --out '" + export_dir + "'");
+    REQUIRE(exported.exit_code == 0);
+    const fs::path app = fs::path(tmp.path()) / "app";
+    fs::create_directories(app / "node_modules");
+    fs::create_directory_symlink(fs::path(export_dir) / "npm", app / "node_modules/crtforge-presets");
+    {
+        std::ofstream config(app / "tsconfig.json");
+        config << R"({ "compilerOptions": { "strict": true, "noEmit": true, "module": "nodenext",
+  "moduleResolution": "nodenext", "target": "es2022", "lib": ["es2022", "dom"],
+  "typeRoots": [")" << runner.string() << R"("], "types": ["@webgpu/types"] }, "files": ["app.mts"] })";
+    }
+    auto write_app = [&](const std::string& set_param) {
+        std::ofstream out(app / "app.mts", std::ios::trunc);
+        out << "import { loadCrtPreset, loadManifest, type Manifest, type CrtScene } from 'crtforge-presets';\n"
+               "export async function run(device: GPUDevice, source: GPUTexture, view: GPUTextureView): Promise<number> {\n"
+               "  const manifest: Manifest = await loadManifest();\n"
+               "  const crt: CrtScene = await loadCrtPreset(device, 'classic', { format: 'rgba8unorm' });\n"
+            << "  " << set_param << "\n"
+               "  const encoder = device.createCommandEncoder();\n"
+               "  crt.encode(encoder, { source, target: view, width: 640, height: 480, time: 0.5 });\n"
+               "  device.queue.submit([encoder.finish()]);\n"
+               "  return (manifest.presets['classic'].passes[0].targets.wgsl.uniformBuffer?.members.length ?? 0) + crt.params().length;\n"
+               "}\n";
+    };
+    const std::string tsc = "node '" + (runner / "typescript/bin/tsc").string() + "' -p '" + app.string() + "' 2>&1";
+    write_app("crt.setParam('scanlineIntensity', 0.4);");
+    auto good = test::run_command(tsc);
+    INFO(good.out);
+    CHECK(good.exit_code == 0);
+    write_app("crt.setParam('scanlineIntensity', 'strong');");
+    auto bad = test::run_command(tsc);
+    INFO(bad.out);
+    CHECK(bad.exit_code != 0);
+    CHECK_THAT(bad.out, Catch::Contains("app.mts(5,") && Catch::Contains("'string'"));
 }

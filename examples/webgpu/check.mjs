@@ -3,11 +3,14 @@
 // tools/wgsl-runner) and writes the pixels, so a test can compare them with another renderer.
 // Proves that the manifest (and the LUT files) alone are enough to drive the exported WGSL.
 //
-//   node examples/webgpu/check.mjs --export DIR --preset NAME \
+//   node examples/webgpu/check.mjs (--export DIR | --package APP_DIR) --preset NAME \
 //        --input IN.raw --input-width W --input-height H \
 //        --width W --height H --output OUT [--frames 0,1,...] [--capture 1,9] [--time SECONDS]
 //        [--fit stretch|aspect|integer] [--set name=value ...]
 //
+// --package: load the preset through the npm package `crtforge-presets` (an export's npm/ folder)
+// as an app would, `import ... from 'crtforge-presets'` resolved from APP_DIR's node_modules, and
+// its loadCrtPreset(); --export: read the export's files here and call createCrtScene.
 // RAW = little-endian float32 RGBA, rows top first. IN.raw holds one picture, or one per entry of
 // --frames (the original at each frame drawn, in order). --frames defaults to 0; --capture (the
 // frames written, default: the last drawn) writes OUT<frame>.raw each, or OUT itself when one
@@ -22,8 +25,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { inflateSync } from 'node:zlib';
-import { createCrtScene } from './crt-webgpu.mjs';
+import { createCrtScene, createLutTexture } from './crt-webgpu.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -41,7 +43,7 @@ function frameList(flag, text) {
 
 function parseArgs(argv) {
   const args = { time: undefined, set: [], frames: [0], capture: null, fit: undefined };
-  const names = { '--export': 'export', '--preset': 'preset', '--input': 'input', '--input-width': 'inputWidth',
+  const names = { '--export': 'export', '--package': 'package', '--preset': 'preset', '--input': 'input', '--input-width': 'inputWidth',
     '--input-height': 'inputHeight', '--width': 'width', '--height': 'height', '--output': 'output', '--time': 'time',
     '--fit': 'fit' };
   for (let i = 0; i < argv.length; i += 2) {
@@ -53,7 +55,8 @@ function parseArgs(argv) {
     else if (names[flag]) args[names[flag]] = value;
     else fail(`unknown argument '${flag}'`);
   }
-  for (const key of ['export', 'preset', 'input', 'inputWidth', 'inputHeight', 'width', 'height', 'output'])
+  if ((args.export === undefined) === (args.package === undefined)) fail('give one of --export DIR and --package APP_DIR');
+  for (const key of ['preset', 'input', 'inputWidth', 'inputHeight', 'width', 'height', 'output'])
     if (args[key] === undefined) fail(`missing --${key.replace(/[A-Z]/g, (c) => '-' + c.toLowerCase())}`);
   for (const key of ['inputWidth', 'inputHeight', 'width', 'height']) {
     const n = Number(args[key]);
@@ -71,48 +74,6 @@ function parseArgs(argv) {
 
 // The RGBA8 texels of a PNG (8-bit RGBA or RGB, not interlaced: what crtforge writes and most
 // LUT files are), with the filters of PNG's specification undone.
-function decodePng(bytes, name) {
-  const u8 = new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.length);
-  const be32 = (at) => ((u8[at] << 24) | (u8[at + 1] << 16) | (u8[at + 2] << 8) | u8[at + 3]) >>> 0;
-  if (be32(0) !== 0x89504e47) fail(`${name} is not a PNG file`);
-  let width = 0, height = 0, channels = 0;
-  const data = [];
-  for (let at = 8; at + 8 <= u8.length;) {
-    const length = be32(at), type = String.fromCharCode(...u8.subarray(at + 4, at + 8)), body = u8.subarray(at + 8, at + 8 + length);
-    if (type === 'IHDR') {
-      width = be32(at + 8);
-      height = be32(at + 12);
-      const depth = body[8], colour = body[9], interlace = body[12];
-      channels = colour === 6 ? 4 : colour === 2 ? 3 : 0;
-      if (depth !== 8 || !channels || interlace) fail(`${name}: only 8-bit RGB/RGBA non-interlaced PNGs are read here`);
-    } else if (type === 'IDAT') data.push(body);
-    else if (type === 'IEND') break;
-    at += 12 + length;
-  }
-  const raw = inflateSync(Buffer.concat(data.map((d) => Buffer.from(d))));
-  const stride = width * channels, out = new Uint8Array(width * height * 4);
-  let prior = new Uint8Array(stride);
-  for (let y = 0; y < height; ++y) {
-    const filter = raw[y * (stride + 1)], line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1)), row = new Uint8Array(stride);
-    for (let i = 0; i < stride; ++i) {
-      const a = i >= channels ? row[i - channels] : 0, b = prior[i], c = i >= channels ? prior[i - channels] : 0;
-      let p = 0;
-      if (filter === 1) p = a;
-      else if (filter === 2) p = b;
-      else if (filter === 3) p = (a + b) >> 1;
-      else if (filter === 4) {
-        const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
-        p = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
-      }
-      row[i] = (line[i] + p) & 0xff;
-    }
-    for (let x = 0; x < width; ++x)
-      for (let k = 0; k < 4; ++k) out[(y * width + x) * 4 + k] = k < channels ? row[x * channels + k] : 255;
-    prior = row;
-  }
-  return { width, height, data: out };
-}
-
 // float32 -> IEEE half bits, round to nearest even (what a GPU upload of the same values would do).
 function toHalf(f32, u32, x) {
   f32[0] = x;
@@ -144,17 +105,27 @@ function fromHalf(h) {
 
 const args = parseArgs(process.argv.slice(2));
 
-// ---- the export: manifest, each pass's WGSL, the LUTs ----
-let manifest, preset;
-const wgsl = {}, lutImages = {};
-try {
-  manifest = JSON.parse(readFileSync(path.join(args.export, 'manifest.json'), 'utf8'));
-} catch (e) {
-  fail(`cannot read ${path.join(args.export, 'manifest.json')}: ${e.message}`);
+// ---- the export: manifest, each pass's WGSL, the LUTs (or the package that holds them) ----
+let manifest, preset, pkg;
+const wgsl = {}, lutBytes = {};
+if (args.package !== undefined) {
+  try {
+    const require = createRequire(path.join(path.resolve(args.package), 'package.json'));
+    pkg = await import(pathToFileURL(require.resolve('crtforge-presets')).href);
+    manifest = await pkg.loadManifest();
+  } catch (e) {
+    fail(`cannot load the package 'crtforge-presets' from ${args.package}: ${e.message}`);
+  }
+} else {
+  try {
+    manifest = JSON.parse(readFileSync(path.join(args.export, 'manifest.json'), 'utf8'));
+  } catch (e) {
+    fail(`cannot read ${path.join(args.export, 'manifest.json')}: ${e.message}`);
+  }
 }
 preset = manifest.presets?.[args.preset];
 if (!preset) fail(`preset '${args.preset}' is not in the manifest (${Object.keys(manifest.presets ?? {}).join(', ')})`);
-for (const pass of preset.passes ?? []) {
+for (const pass of args.export === undefined ? [] : preset.passes ?? []) {
   if (!pass.targets?.wgsl) fail(`preset '${args.preset}' has no wgsl target in the manifest (export with --target wgsl)`);
   try {
     wgsl[pass.alias] = readFileSync(path.join(args.export, pass.targets.wgsl.shader), 'utf8');
@@ -162,14 +133,12 @@ for (const pass of preset.passes ?? []) {
     fail(`cannot read the WGSL of pass ${pass.alias}: ${e.message}`);
   }
 }
-for (const [name, lut] of Object.entries(preset.luts ?? {})) {
-  let bytes;
+for (const [name, lut] of Object.entries(args.export === undefined ? {} : preset.luts ?? {})) {
   try {
-    bytes = readFileSync(path.join(args.export, lut.file));
+    lutBytes[name] = readFileSync(path.join(args.export, lut.file));
   } catch (e) {
     fail(`cannot read LUT ${name}: ${e.message}`);
   }
-  lutImages[name] = decodePng(bytes, lut.file);
 }
 
 // ---- the input pictures: one, or one per frame drawn ----
@@ -245,17 +214,18 @@ async function render() {
     const data = linear ? Uint16Array.from(pixels, (x) => toHalf(f32, u32, x)) : pixels;
     device.queue.writeTexture({ texture: source }, data, { bytesPerRow: args.inputWidth * (linear ? 8 : 16) }, [args.inputWidth, args.inputHeight]);
   };
-  const luts = {};
-  for (const [name, image] of Object.entries(lutImages)) {
-    luts[name] = device.createTexture({ size: [image.width, image.height], format: 'rgba8unorm', usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
-    device.queue.writeTexture({ texture: luts[name] }, image.data, { bytesPerRow: image.width * 4 }, [image.width, image.height]);
-  }
-
   const target = device.createTexture({
     size: [args.width, args.height], format: 'rgba16float',
     usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC,
   });
-  const crt = createCrtScene(device, { preset, wgsl, luts, format: 'rgba16float' });
+  let crt;
+  if (pkg) {
+    crt = await pkg.loadCrtPreset(device, args.preset, { format: 'rgba16float' });
+  } else {
+    const luts = {};
+    for (const [name, bytes] of Object.entries(lutBytes)) luts[name] = await createLutTexture(device, bytes, preset.luts[name].file);
+    crt = createCrtScene(device, { preset, wgsl, luts, format: 'rgba16float' });
+  }
   for (const pass of crt.passes) {
     const compileError = (await pass.compilationInfo()).find((m) => m.type === 'error');
     if (compileError) throw new Error(`WGSL of pass ${pass.alias} ${compileError.lineNum}:${compileError.linePos}: ${compileError.message}`);

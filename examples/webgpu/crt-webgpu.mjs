@@ -483,3 +483,66 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
     },
   };
 }
+
+// ---- LUTs: the PNGs of luts/ as textures, in a browser and in Node alike ----
+
+// An 8-bit RGB or RGBA, non-interlaced PNG (what crtforge writes for LUTs) as RGBA8 texels, read
+// with the platform's own DecompressionStream: no canvas, no colour management, bytes as stored.
+export async function decodePng(bytes, name = 'PNG') {
+  const u8 = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+  const be32 = (at) => ((u8[at] << 24) | (u8[at + 1] << 16) | (u8[at + 2] << 8) | u8[at + 3]) >>> 0;
+  if (u8.length < 8 || be32(0) !== 0x89504e47) throw new Error(`crt-webgpu: ${name} is not a PNG file`);
+  let width = 0, height = 0, channels = 0;
+  const chunks = [];
+  for (let at = 8; at + 8 <= u8.length;) {
+    const length = be32(at), type = String.fromCharCode(...u8.subarray(at + 4, at + 8));
+    const body = u8.subarray(at + 8, at + 8 + length);
+    if (type === 'IHDR') {
+      width = be32(at + 8);
+      height = be32(at + 12);
+      const depth = body[8], colour = body[9], interlace = body[12];
+      channels = colour === 6 ? 4 : colour === 2 ? 3 : 0;
+      if (depth !== 8 || !channels || interlace) throw new Error(`crt-webgpu: ${name}: only 8-bit RGB/RGBA non-interlaced PNGs are read`);
+    } else if (type === 'IDAT') chunks.push(body);
+    else if (type === 'IEND') break;
+    at += 12 + length;
+  }
+  if (!width || !height) throw new Error(`crt-webgpu: ${name} has no IHDR chunk`);
+  const inflated = new Blob(chunks).stream().pipeThrough(new DecompressionStream('deflate'));
+  const raw = new Uint8Array(await new Response(inflated).arrayBuffer());
+  const stride = width * channels;
+  if (raw.length < height * (stride + 1)) throw new Error(`crt-webgpu: ${name} holds fewer rows than its header says`);
+  const out = new Uint8Array(width * height * 4);
+  let prior = new Uint8Array(stride);
+  for (let y = 0; y < height; ++y) {
+    const filter = raw[y * (stride + 1)], line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    const row = new Uint8Array(stride);
+    for (let i = 0; i < stride; ++i) {
+      const a = i >= channels ? row[i - channels] : 0, b = prior[i], c = i >= channels ? prior[i - channels] : 0;
+      let p = 0;
+      if (filter === 1) p = a;
+      else if (filter === 2) p = b;
+      else if (filter === 3) p = (a + b) >> 1;
+      else if (filter === 4) {
+        const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
+        p = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+      }
+      row[i] = (line[i] + p) & 0xff;
+    }
+    for (let x = 0; x < width; ++x)
+      for (let k = 0; k < 4; ++k) out[(y * width + x) * 4 + k] = k < channels ? row[x * channels + k] : 255;
+    prior = row;
+  }
+  return { width, height, data: out };
+}
+
+// A LUT's PNG bytes as an rgba8unorm texture (texel bytes exactly as in the file).
+export async function createLutTexture(device, bytes, name = 'LUT') {
+  const image = await decodePng(bytes, name);
+  const texture = device.createTexture({
+    size: [image.width, image.height], format: 'rgba8unorm',
+    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+  });
+  device.queue.writeTexture({ texture }, image.data, { bytesPerRow: image.width * 4 }, [image.width, image.height]);
+  return texture;
+}

@@ -23,6 +23,7 @@ struct CompileOptions {
     std::string entry_point = "main";
     std::string source_name;         // used in diagnostics when the source has no #line
     bool debug_lines = false;        // keep OpLine (template file:line) on instructions, for diagnostics
+    bool local_names = true;         // SSA values keep their template local's name (spirv_debug_names)
 };
 
 // Compiles one shader. Errors carry the template file:line recovered from #line directives.

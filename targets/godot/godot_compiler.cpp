@@ -8,6 +8,7 @@
 
 #include "crtforge/assembler.hpp"
 #include "crtforge/version.hpp"
+#include "targets/cross_compile.hpp"
 
 namespace crtforge::godot {
 
@@ -87,6 +88,9 @@ void GodotCompiler::prepare() {
     o.vulkan_semantics = false;
     o.fragment.default_float_precision = Options::Highp;
     set_common_options(o);
+
+    // Before the builtins below take Godot's names (UV, COLOR) on purpose.
+    detail::rename_reserved_words(*this);
 
     const bool screen = options_.mode == Mode::Screen;
     auto resources = get_shader_resources();

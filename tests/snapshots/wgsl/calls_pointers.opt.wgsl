@@ -17,10 +17,10 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
@@ -28,21 +28,21 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
   var c: vec3<f32>;
-  var _97: i32;
-  let _38 = textureSample(source, source_sampler, vTexCoord);
-  c = _38.xyz * (p.a.x * 0.33333334);
-  _97 = 0i;
+  var k: i32;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  c = texel.xyz * (p.a.x * 0.33333334);
+  k = 0i;
   loop {
-    if (!(_97 < 3i)) {
+    if (!(k < 3i)) {
       break;
     }
     continuing {
-      let _74 = c[_97];
-      c[_97] = _74 + 0.125;
-      _97 = _97 + 1i;
+      let _170 = c[k];
+      c[k] = _170 + 0.125;
+      k = k + 1i;
     }
   }
-  let _83 = c;
-  fragColor = vec4<f32>(_83.x, _83.y, _83.z, 1.0);
+  let _186 = c;
+  fragColor = vec4<f32>(_186.x, _186.y, _186.z, 1.0);
   return fragColor;
 }

@@ -21,17 +21,17 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _83: vec4<f32>;
+  var _214: vec4<f32>;
   switch (0u) {
     default: {
       if (vTexCoord.x < 0.25) {
@@ -42,14 +42,14 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
         discard;
         return fragColor;
       }
-      let _48 = vTexCoord < p.a.xy;
-      let _53 = vTexCoord > p.a.zw;
-      if (any(vec4<bool>(_48.x, _48.y, _53.x, _53.y))) {
-        _83 = p.b;
+      let _113 = vTexCoord < p.a.xy;
+      let _119 = vTexCoord > p.a.zw;
+      if (any(vec4<bool>(_113.x, _113.y, _119.x, _119.y))) {
+        _214 = p.b;
       } else {
-        _83 = textureSample(source, source_sampler, vTexCoord);
+        _214 = textureSample(source, source_sampler, vTexCoord);
       }
-      fragColor = _83;
+      fragColor = _214;
     }
   }
   return fragColor;

@@ -15,56 +15,56 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _99: i32;
-  var _93: f32;
-  var _92: i32;
-  var _102: i32;
-  var _101: f32;
-  var _94: i32;
-  var _74: i32;
-  _99 = (-1i);
-  _93 = 0.0;
-  _92 = 0i;
+  var last: i32;
+  var sum: f32;
+  var k: i32;
+  var last_1: i32;
+  var sum_1: f32;
+  var w: i32;
+  var w_1: i32;
+  last = (-1i);
+  sum = 0.0;
+  k = 0i;
   loop {
-    if (!(_92 < p.i.x)) {
+    if (!(k < p.i.x)) {
       break;
     }
-    if (_92 == p.i.y) {
-      _102 = _99;
-      _101 = _93;
+    if (k == p.i.y) {
+      last_1 = last;
+      sum_1 = sum;
       continue;
     }
-    if (_93 > p.a.x) {
+    if (sum > p.a.x) {
       break;
     }
-    let _63 = fma(f32(_92) * vTexCoord.x, 2.0, _93);
-    _102 = _92;
-    _101 = _63;
+    let sum_2 = fma(f32(k) * vTexCoord.x, 2.0, sum);
+    last_1 = k;
+    sum_1 = sum_2;
     continuing {
-      let _67 = _92 + 1i;
-      _99 = _102;
-      _93 = _101;
-      _92 = _67;
+      let k_1 = k + 1i;
+      last = last_1;
+      sum = sum_1;
+      k = k_1;
     }
   }
-  _94 = 0i;
+  w = 0i;
   loop {
-    _74 = _94 + 2i;
-    if (!(_74 < p.i.y)) {
+    w_1 = w + 2i;
+    if (!(w_1 < p.i.y)) {
       break;
     }
-    _94 = _74;
+    w = w_1;
   }
-  fragColor = vec4<f32>(_93, f32(_99), f32(_74), 1.0);
+  fragColor = vec4<f32>(sum, f32(last), f32(w_1), 1.0);
   return fragColor;
 }

@@ -15,34 +15,34 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main() -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _63: vec4<f32>;
-  var _62: i32;
-  var _61: vec4<f32>;
-  var _40: i32;
-  _63 = vec4<f32>(0.0);
-  _62 = 0i;
+  var s: vec4<f32>;
+  var k: i32;
+  var s_1: vec4<f32>;
+  var k_1: i32;
+  s = vec4<f32>(0.0);
+  k = 0i;
   loop {
-    _61 = _63;
-    _61.y = f32(_62) * p.a.x;
-    _40 = _62 + 1i;
-    if (_40 > p.i.x) {
+    s_1 = s;
+    s_1.y = f32(k) * p.a.x;
+    k_1 = k + 1i;
+    if (k_1 > p.i.x) {
       break;
     }
     continuing {
-      _63 = _61;
-      _62 = _40;
+      s = s_1;
+      k = k_1;
     }
   }
-  fragColor = _61;
+  fragColor = s_1;
   return fragColor;
 }

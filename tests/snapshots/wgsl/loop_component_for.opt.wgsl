@@ -17,35 +17,35 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _73: vec4<f32>;
-  var _72: i32;
-  let _19 = textureSample(source, source_sampler, vTexCoord);
-  _73 = _19;
-  _72 = 0i;
+  var s: vec4<f32>;
+  var k: i32;
+  let s_1 = textureSample(source, source_sampler, vTexCoord);
+  s = s_1;
+  k = 0i;
   loop {
-    if (!(_72 < p.i.x)) {
+    if (!(k < p.i.x)) {
       break;
     }
     continuing {
-      var _68 = _73;
-      _68.y = fma(_73.y, p.a.x, f32(_72));
-      var _71 = _68;
-      _71.w = _73.w + 0.5;
-      let _62 = _72 + 1i;
-      _73 = _71;
-      _72 = _62;
+      var s_2 = s;
+      s_2.y = fma(s.y, p.a.x, f32(k));
+      var s_3 = s_2;
+      s_3.w = s.w + 0.5;
+      let k_1 = k + 1i;
+      s = s_3;
+      k = k_1;
     }
   }
-  fragColor = _73;
+  fragColor = s;
   return fragColor;
 }

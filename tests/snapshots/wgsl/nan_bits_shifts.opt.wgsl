@@ -15,32 +15,32 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _84: f32;
-  var _85: f32;
-  let _31 = bitcast<u32>(bitcast<u32>(vTexCoord.x)) >> 16u;
-  let _39 = bitcast<i32>(p.i.y) >> 2u;
-  let _47 = select(0.0, 1.0, (bitcast<u32>(p.a.x) & 0x7fffffffu) > 0x7f800000u);
+  var _219: f32;
+  var _220: f32;
+  let bits = bitcast<u32>(bitcast<u32>(vTexCoord.x)) >> 16u;
+  let shifted = bitcast<i32>(p.i.y) >> 2u;
+  let _113 = select(0.0, 1.0, (bitcast<u32>(p.a.x) & 0x7fffffffu) > 0x7f800000u);
   if (p.a.x != p.a.x) {
-    _84 = f32(_39);
+    _219 = f32(shifted);
   } else {
-    _84 = 0.0;
+    _219 = 0.0;
   }
-  let _63 = f32(_31 & 255u) * 0.003921569;
+  let _134 = f32(bits & 255u) * 0.003921569;
   if ((bitcast<u32>(p.a.z) & 0x7fffffffu) == 0x7f800000u) {
-    _85 = f32(bitcast<u32>(bitcast<u32>(p.i.y)) >> 28u);
+    _220 = f32(bitcast<u32>(bitcast<u32>(p.i.y)) >> 28u);
   } else {
-    _85 = 0.0;
+    _220 = 0.0;
   }
-  fragColor = vec4<f32>(_47, _84, _63, _85);
+  fragColor = vec4<f32>(_113, _219, _134, _220);
   return fragColor;
 }

@@ -15,31 +15,31 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _52: f32;
+  var v: f32;
   switch (p.i.x) {
     case 0i: {
-      _52 = 0.1;
+      v = 0.1;
     }
     case 1i, 2i: {
-      _52 = 0.2;
+      v = 0.2;
     }
     case (-3i): {
-      _52 = vTexCoord.x;
+      v = vTexCoord.x;
     }
     default: {
-      _52 = 0.3;
+      v = 0.3;
     }
   }
-  fragColor = vec4<f32>(_52, vTexCoord.x, vTexCoord.y, 1.0);
+  fragColor = vec4<f32>(v, vTexCoord.x, vTexCoord.y, 1.0);
   return fragColor;
 }

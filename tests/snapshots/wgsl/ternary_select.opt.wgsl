@@ -21,31 +21,31 @@ struct Params {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _93: vec3<f32>;
-  var _94: f32;
-  let _39 = vTexCoord.x > p.a.x;
-  let _44 = select(0.0, 1.0, _39);
-  if (_39) {
-    _93 = vec3<f32>(0.25);
+  var c: vec3<f32>;
+  var g: f32;
+  let right = vTexCoord.x > p.a.x;
+  let f = select(0.0, 1.0, right);
+  if (right) {
+    c = vec3<f32>(0.25);
   } else {
-    let _61 = textureSample(source, source_sampler, vTexCoord);
-    _93 = _61.xyz;
+    let texel = textureSample(source, source_sampler, vTexCoord);
+    c = texel.xyz;
   }
   if (vTexCoord.y > 0.5) {
-    _94 = sin(vTexCoord.x) * 0.5;
+    g = sin(vTexCoord.x) * 0.5;
   } else {
-    _94 = 0.0;
+    g = 0.0;
   }
-  fragColor = vec4<f32>(_44, _93.y, _94, select(0.5, 1.0, _39));
+  fragColor = vec4<f32>(f, c.y, g, select(0.5, 1.0, right));
   return fragColor;
 }

@@ -16,29 +16,29 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec4 _123 = texture(source, vTexCoord);
-    float _146 = _123.y;
-    vec4 _193;
-    _193 = vec4(_123.x, _146, _123.z, 1.0);
-    int _161;
-    vec4 _190;
-    int _192 = 0;
+    vec4 texel = texture(source, vTexCoord);
+    float _379 = texel.y;
+    vec4 s;
+    s = vec4(texel.x, _379, texel.z, 1.0);
+    int k_1;
+    vec4 s_1;
+    int k = 0;
     for (;;)
     {
-        _190 = _193;
-        _190.y = _146 * 0.9 + (0.01 * float(_192));
-        _161 = _192 + 1;
-        if (_161 >= crt.loopCount)
+        s_1 = s;
+        s_1.y = _379 * 0.9 + (0.01 * float(k));
+        k_1 = k + 1;
+        if (k_1 >= crt.loopCount)
         {
             break;
         }
-        _193 = _190;
-        _192 = _161;
+        s = s_1;
+        k = k_1;
         continue;
     }
-    vec4 _136 = vec4(_190.xyz * _193.w, 1.0);
-    vec4 _180 = clamp(_136, vec4(-65504.0), vec4(65504.0));
-    bvec4 _182 = isnan(_136);
-    fragColor = vec4(_182.x ? vec4(0.0).x : _180.x, _182.y ? vec4(0.0).y : _180.y, _182.z ? vec4(0.0).z : _180.z, _182.w ? vec4(0.0).w : _180.w);
+    vec4 c = vec4(s_1.xyz * s.w, 1.0);
+    vec4 _456 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _458 = isnan(c);
+    fragColor = vec4(_458.x ? vec4(0.0).x : _456.x, _458.y ? vec4(0.0).y : _456.y, _458.z ? vec4(0.0).z : _456.z, _458.w ? vec4(0.0).w : _456.w);
 }
 

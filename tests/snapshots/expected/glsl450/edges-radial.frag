@@ -16,7 +16,7 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec4 _145 = vec4((texture(source, vTexCoord).xyz * (1.0 - smoothstep(0.3, 0.9, length((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale))) * fma(crt.pulseDepth, sin(fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate)), 1.0), 1.0);
-    fragColor = mix(clamp(_145, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(_145));
+    vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - smoothstep(0.3, 0.9, length((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale))) * fma(crt.pulseDepth, sin(fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate)), 1.0), 1.0);
+    fragColor = mix(clamp(c, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(c));
 }
 

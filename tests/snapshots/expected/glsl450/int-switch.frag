@@ -14,42 +14,42 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec2 _179 = vTexCoord * crt.outputSize;
-    vec4 _200 = texture(source, vTexCoord);
-    int _233 = int(_179.x) - 12;
-    float _245 = _179.y;
-    vec3 _264 = _200.xyz * fma(0.03, mod(_245 - 4.0, -6.0), fma(-0.001, float(_233 / (-3)), fma(0.01, float(_233 % crt.bandWidth), fma(0.02, float(_233 / crt.bandWidth), 1.0))));
-    vec3 _362;
-    switch (int(_245) & 3)
+    vec2 _322 = vTexCoord * crt.outputSize;
+    vec4 texel = texture(source, vTexCoord);
+    int x = int(_322.x) - 12;
+    float _592 = _322.y;
+    vec3 color = texel.xyz * fma(0.03, mod(_592 - 4.0, -6.0), fma(-0.001, float(x / (-3)), fma(0.01, float(x % crt.bandWidth), fma(0.02, float(x / crt.bandWidth), 1.0))));
+    vec3 tint;
+    switch (int(_592) & 3)
     {
         case 0:
         {
-            _362 = vec3(1.0, crt.pickDim, crt.pickDim);
+            tint = vec3(1.0, crt.pickDim, crt.pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _362 = vec3(crt.pickDim, 1.0, crt.pickDim);
+            tint = vec3(crt.pickDim, 1.0, crt.pickDim);
             break;
         }
         default:
         {
-            _362 = vec3(crt.pickDim, crt.pickDim, 1.0);
+            tint = vec3(crt.pickDim, crt.pickDim, 1.0);
             break;
         }
     }
-    float _360;
+    float lift;
     if (vTexCoord.x > 0.5)
     {
-        _360 = sqrt(max(_264.y, 0.0));
+        lift = sqrt(max(color.y, 0.0));
     }
     else
     {
-        float _303 = _264.y;
-        _360 = _303 * _303;
+        float _705 = color.y;
+        lift = _705 * _705;
     }
-    vec4 _218 = vec4(fma(_264, _362, vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * _360)), 1.0);
-    fragColor = mix(clamp(_218, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(_218));
+    vec4 c = vec4(fma(color, tint, vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)), 1.0);
+    fragColor = mix(clamp(c, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(c));
 }
 

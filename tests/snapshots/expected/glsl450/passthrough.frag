@@ -7,7 +7,7 @@ layout(location = 0) in vec2 vTexCoord;
 
 void main()
 {
-    vec4 _39 = texture(source, vTexCoord);
-    fragColor = mix(clamp(_39, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(_39));
+    vec4 c = texture(source, vTexCoord);
+    fragColor = mix(clamp(c, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(c));
 }
 

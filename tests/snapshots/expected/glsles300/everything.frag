@@ -2,7 +2,7 @@
 precision highp float;
 precision highp int;
 
-vec4 _842;
+vec4 _2430;
 
 layout(std140) uniform CrtParams
 {
@@ -26,109 +26,109 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec2 _402 = vTexCoord * crt.outputSize;
-    vec4 _490 = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _494 = _490.xy;
-    vec2 _502 = _490.zw * (crt.bendAmount * dot(_494, _494) + 1.0);
-    vec4 _804;
-    _804.z = _502.x;
-    _804.w = _502.y;
-    vec2 _511 = (_804.wz * 0.5) + vec2(0.5);
-    float _517 = _511.x;
-    float _520 = _511.y;
-    vec3 _541 = mix(texture(source, _511).xyz, texture(source, _511 + (vec2(dFdx(_517), dFdy(_520)) * 4.0)).xyz, vec3(crt.tapMix * clamp(length(fwidth(_511)) * 100.0, 0.0, 1.0)));
-    float _548 = _541.y;
-    vec4 _829;
-    _829 = vec4(_541.x, _548, _541.z, 1.0);
-    int _563;
-    vec4 _811;
-    int _828 = 0;
+    vec2 _705 = vTexCoord * crt.outputSize;
+    vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
+    vec2 _1228 = q.xy;
+    vec2 _1236 = q.zw * (crt.bendAmount * dot(_1228, _1228) + 1.0);
+    vec4 q_1;
+    q_1.z = _1236.x;
+    q_1.w = _1236.y;
+    vec2 sampleUv = (q_1.wz * 0.5) + vec2(0.5);
+    float _1295 = sampleUv.x;
+    float _1298 = sampleUv.y;
+    vec3 color_1 = mix(texture(source, sampleUv).xyz, texture(source, sampleUv + (vec2(dFdx(_1295), dFdy(_1298)) * 4.0)).xyz, vec3(crt.tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float _1366 = color_1.y;
+    vec4 s;
+    s = vec4(color_1.x, _1366, color_1.z, 1.0);
+    int k_1;
+    vec4 s_1;
+    int k = 0;
     for (;;)
     {
-        _811 = _829;
-        _811.y = _548 * 0.5 + (0.01 * float(_828));
-        _563 = _828 + 1;
-        if (_563 >= crt.loopCount)
+        s_1 = s;
+        s_1.y = _1366 * 0.5 + (0.01 * float(k));
+        k_1 = k + 1;
+        if (k_1 >= crt.loopCount)
         {
             break;
         }
-        _829 = _811;
-        _828 = _563;
+        s = s_1;
+        k = k_1;
         continue;
     }
-    int _587 = int(_402.x) - 10;
-    float _599 = _402.y;
-    vec3 _618 = (_811.xyz * _829.w) * (0.03 * mod(_599 - 4.0, -5.0) + ((-0.001) * float(_587 / (-3)) + (0.01 * float(_587 % crt.bandWidth) + (0.02 * float(_587 / crt.bandWidth) + 1.0))));
-    vec3 _832;
-    switch (int(_599) & 3)
+    int x = int(_705.x) - 10;
+    float _1467 = _705.y;
+    vec3 color_2 = (s_1.xyz * s.w) * (0.03 * mod(_1467 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
+    vec3 tint;
+    switch (int(_1467) & 3)
     {
         case 0:
         {
-            _832 = vec3(1.0, crt.pickDim, crt.pickDim);
+            tint = vec3(1.0, crt.pickDim, crt.pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _832 = vec3(crt.pickDim, 1.0, crt.pickDim);
+            tint = vec3(crt.pickDim, 1.0, crt.pickDim);
             break;
         }
         default:
         {
-            _832 = vec3(crt.pickDim, crt.pickDim, 1.0);
+            tint = vec3(crt.pickDim, crt.pickDim, 1.0);
             break;
         }
     }
-    float _830;
-    if (_517 > 0.5)
+    float lift;
+    if (_1295 > 0.5)
     {
-        _830 = sqrt(max(_618.y, 0.0));
+        lift = sqrt(max(color_2.y, 0.0));
     }
     else
     {
-        float _652 = _618.y;
-        _830 = _652 * _652;
+        float _1575 = color_2.y;
+        lift = _1575 * _1575;
     }
-    vec2 _683 = abs((_511 * 2.0) - vec2(1.0)) * crt.shapeScale;
-    vec3 _833;
+    vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * crt.shapeScale;
+    vec3 color;
     do
     {
-        bool _720 = _517 < 0.0;
-        bool _727;
-        if (!_720)
+        bool _1763 = _1295 < 0.0;
+        bool _1770;
+        if (!_1763)
         {
-            _727 = _517 > 1.0;
+            _1770 = _1295 > 1.0;
         }
         else
         {
-            _727 = _720;
+            _1770 = _1763;
         }
-        if (_727)
+        if (_1770)
         {
-            _833 = crt.edgeColor;
+            color = crt.edgeColor;
             break;
         }
-        bool _734 = _520 < 0.0;
-        bool _741;
-        if (!_734)
+        bool _1777 = _1298 < 0.0;
+        bool _1784;
+        if (!_1777)
         {
-            _741 = _520 > 1.0;
+            _1784 = _1298 > 1.0;
         }
         else
         {
-            _741 = _734;
+            _1784 = _1777;
         }
-        if (_741)
+        if (_1784)
         {
-            _833 = crt.edgeColor.zyx;
+            color = crt.edgeColor.zyx;
             break;
         }
-        _833 = ((_618 * _832 + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * _830)) * clamp(1.5 - max(_683.x, _683.y), 0.8, 0.2)) * (crt.pulseDepth * sin(_599 * 0.025 + (crt.time * crt.pulseRate)) + 1.0);
+        color = ((color_2 * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (crt.pulseDepth * sin(_1467 * 0.025 + (crt.time * crt.pulseRate)) + 1.0);
         break;
     } while(false);
-    vec4 _466 = vec4(_833, 1.0);
-    vec4 _755 = clamp(_466, vec4(-65504.0), vec4(65504.0));
-    bvec4 _757 = isnan(_466);
-    fragColor = vec4(_757.x ? vec4(0.0).x : _755.x, _757.y ? vec4(0.0).y : _755.y, _757.z ? vec4(0.0).z : _755.z, _757.w ? vec4(0.0).w : _755.w);
+    vec4 c = vec4(color, 1.0);
+    vec4 _1832 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _1834 = isnan(c);
+    fragColor = vec4(_1834.x ? vec4(0.0).x : _1832.x, _1834.y ? vec4(0.0).y : _1832.y, _1834.z ? vec4(0.0).z : _1832.z, _1834.w ? vec4(0.0).w : _1832.w);
 }
 

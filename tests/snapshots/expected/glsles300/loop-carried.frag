@@ -16,49 +16,49 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec4 _162 = texture(source, vTexCoord);
-    float _190 = dFdx(vTexCoord.x);
-    float _193 = dFdy(vTexCoord.y);
-    vec2 _197 = fwidth(vTexCoord);
-    vec4 _206 = texture(source, vTexCoord + (vec2(_190, _193) * 4.0));
-    vec3 _213 = mix(_162.xyz, _206.xyz, vec3(crt.tapMix * clamp(length(_197) * 100.0, 0.0, 1.0)));
-    float _268;
-    float _270;
-    int _266 = 0;
-    float _267 = 0.0;
+    vec4 texel = texture(source, vTexCoord);
+    float _498 = dFdx(vTexCoord.x);
+    float _501 = dFdy(vTexCoord.y);
+    vec2 _506 = fwidth(vTexCoord);
+    vec4 texel_1 = texture(source, vTexCoord + (vec2(_498, _501) * 4.0));
+    vec3 color = mix(texel.xyz, texel_1.xyz, vec3(crt.tapMix * clamp(length(_506) * 100.0, 0.0, 1.0)));
+    float sum_2;
+    float sum_1;
+    int k = 0;
+    float sum = 0.0;
     for (;;)
     {
-        if (_266 < crt.loopCount)
+        if (k < crt.loopCount)
         {
-            if (_266 == 1)
+            if (k == 1)
             {
-                _270 = _267;
-                int _243 = _266 + 1;
-                _267 = _270;
-                _266 = _243;
+                sum_1 = sum;
+                int k_1 = k + 1;
+                sum = sum_1;
+                k = k_1;
                 continue;
             }
-            float _236 = (_213.x * float(_266)) * 0.25 + _267;
-            if (_236 > 2.0)
+            float sum_3 = (color.x * float(k)) * 0.25 + sum;
+            if (sum_3 > 2.0)
             {
-                _268 = _236;
+                sum_2 = sum_3;
                 break;
             }
-            _270 = _236;
-            int _243 = _266 + 1;
-            _267 = _270;
-            _266 = _243;
+            sum_1 = sum_3;
+            int k_1_1 = k + 1;
+            sum = sum_1;
+            k = k_1_1;
             continue;
         }
         else
         {
-            _268 = _267;
+            sum_2 = sum;
             break;
         }
     }
-    vec4 _180 = vec4(_213 * (0.1 * _268 + 1.0), 1.0);
-    vec4 _255 = clamp(_180, vec4(-65504.0), vec4(65504.0));
-    bvec4 _257 = isnan(_180);
-    fragColor = vec4(_257.x ? vec4(0.0).x : _255.x, _257.y ? vec4(0.0).y : _255.y, _257.z ? vec4(0.0).z : _255.z, _257.w ? vec4(0.0).w : _255.w);
+    vec4 c = vec4(color * (0.1 * sum_2 + 1.0), 1.0);
+    vec4 _650 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _652 = isnan(c);
+    fragColor = vec4(_652.x ? vec4(0.0).x : _650.x, _652.y ? vec4(0.0).y : _650.y, _652.z ? vec4(0.0).z : _650.z, _652.w ? vec4(0.0).w : _650.w);
 }
 

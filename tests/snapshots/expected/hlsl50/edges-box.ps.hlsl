@@ -25,11 +25,11 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float2 _166 = abs((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale;
-    float4 _153 = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - clamp(1.5f - max(_166.x, _166.y), 0.8f, 0.2f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
-    float4 _204 = clamp(_153, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _206 = isnan(_153);
-    fragColor = float4(_206.x ? 0.0f.xxxx.x : _204.x, _206.y ? 0.0f.xxxx.y : _204.y, _206.z ? 0.0f.xxxx.z : _204.z, _206.w ? 0.0f.xxxx.w : _204.w);
+    float2 d = abs((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale;
+    float4 c = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - clamp(1.5f - max(d.x, d.y), 0.8f, 0.2f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
+    float4 _516 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _518 = isnan(c);
+    fragColor = float4(_518.x ? 0.0f.xxxx.x : _516.x, _518.y ? 0.0f.xxxx.y : _516.y, _518.z ? 0.0f.xxxx.z : _516.z, _518.w ? 0.0f.xxxx.w : _516.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

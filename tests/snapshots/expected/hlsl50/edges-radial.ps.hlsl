@@ -25,10 +25,10 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _145 = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - smoothstep(0.3f, 0.9f, length((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
-    float4 _187 = clamp(_145, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _189 = isnan(_145);
-    fragColor = float4(_189.x ? 0.0f.xxxx.x : _187.x, _189.y ? 0.0f.xxxx.y : _187.y, _189.z ? 0.0f.xxxx.z : _187.z, _189.w ? 0.0f.xxxx.w : _187.w);
+    float4 c = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - smoothstep(0.3f, 0.9f, length((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
+    float4 _475 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _477 = isnan(c);
+    fragColor = float4(_477.x ? 0.0f.xxxx.x : _475.x, _477.y ? 0.0f.xxxx.y : _475.y, _477.z ? 0.0f.xxxx.z : _475.z, _477.w ? 0.0f.xxxx.w : _475.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

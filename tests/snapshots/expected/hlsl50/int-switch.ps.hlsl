@@ -43,45 +43,45 @@ float4 mod(float4 x, float4 y)
 
 void frag_main()
 {
-    float2 _179 = vTexCoord * crt_outputSize;
-    float4 _200 = source.Sample(_source_sampler, vTexCoord);
-    int _233 = int(_179.x) - 12;
-    float _245 = _179.y;
-    float3 _264 = _200.xyz * mad(0.03f, mod(_245 - 4.0f, -6.0f), mad(-0.001f, float(_233 / (-3)), mad(0.01f, float(_233 % crt_bandWidth), mad(0.02f, float(_233 / crt_bandWidth), 1.0f))));
-    float3 _362;
-    switch (int(_245) & 3)
+    float2 _322 = vTexCoord * crt_outputSize;
+    float4 texel = source.Sample(_source_sampler, vTexCoord);
+    int x = int(_322.x) - 12;
+    float _592 = _322.y;
+    float3 color = texel.xyz * mad(0.03f, mod(_592 - 4.0f, -6.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
+    float3 tint;
+    switch (int(_592) & 3)
     {
         case 0:
         {
-            _362 = float3(1.0f, crt_pickDim, crt_pickDim);
+            tint = float3(1.0f, crt_pickDim, crt_pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _362 = float3(crt_pickDim, 1.0f, crt_pickDim);
+            tint = float3(crt_pickDim, 1.0f, crt_pickDim);
             break;
         }
         default:
         {
-            _362 = float3(crt_pickDim, crt_pickDim, 1.0f);
+            tint = float3(crt_pickDim, crt_pickDim, 1.0f);
             break;
         }
     }
-    float _360;
+    float lift;
     if (vTexCoord.x > 0.5f)
     {
-        _360 = sqrt(max(_264.y, 0.0f));
+        lift = sqrt(max(color.y, 0.0f));
     }
     else
     {
-        float _303 = _264.y;
-        _360 = _303 * _303;
+        float _705 = color.y;
+        lift = _705 * _705;
     }
-    float4 _218 = float4(mad(_264, _362, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * _360).xxx), 1.0f);
-    float4 _325 = clamp(_218, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _327 = isnan(_218);
-    fragColor = float4(_327.x ? 0.0f.xxxx.x : _325.x, _327.y ? 0.0f.xxxx.y : _325.y, _327.z ? 0.0f.xxxx.z : _325.z, _327.w ? 0.0f.xxxx.w : _325.w);
+    float4 c = float4(mad(color, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx), 1.0f);
+    float4 _791 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _793 = isnan(c);
+    fragColor = float4(_793.x ? 0.0f.xxxx.x : _791.x, _793.y ? 0.0f.xxxx.y : _791.y, _793.z ? 0.0f.xxxx.z : _791.z, _793.w ? 0.0f.xxxx.w : _791.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

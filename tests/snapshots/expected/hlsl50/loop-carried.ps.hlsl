@@ -23,50 +23,50 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _162 = source.Sample(_source_sampler, vTexCoord);
-    float _190 = ddx(vTexCoord.x);
-    float _193 = ddy(vTexCoord.y);
-    float2 _197 = fwidth(vTexCoord);
-    float4 _206 = source.Sample(_source_sampler, vTexCoord + (float2(_190, _193) * 4.0f));
-    float3 _213 = lerp(_162.xyz, _206.xyz, (crt_tapMix * clamp(length(_197) * 100.0f, 0.0f, 1.0f)).xxx);
-    float _268;
-    float _270;
-    int _266 = 0;
-    float _267 = 0.0f;
+    float4 texel = source.Sample(_source_sampler, vTexCoord);
+    float _498 = ddx(vTexCoord.x);
+    float _501 = ddy(vTexCoord.y);
+    float2 _506 = fwidth(vTexCoord);
+    float4 texel_1 = source.Sample(_source_sampler, vTexCoord + (float2(_498, _501) * 4.0f));
+    float3 color = lerp(texel.xyz, texel_1.xyz, (crt_tapMix * clamp(length(_506) * 100.0f, 0.0f, 1.0f)).xxx);
+    float sum_2;
+    float sum_1;
+    int k = 0;
+    float sum = 0.0f;
     for (;;)
     {
-        if (_266 < crt_loopCount)
+        if (k < crt_loopCount)
         {
-            if (_266 == 1)
+            if (k == 1)
             {
-                _270 = _267;
-                int _243 = _266 + 1;
-                _267 = _270;
-                _266 = _243;
+                sum_1 = sum;
+                int k_1 = k + 1;
+                sum = sum_1;
+                k = k_1;
                 continue;
             }
-            float _236 = mad(_213.x * float(_266), 0.25f, _267);
-            if (_236 > 2.0f)
+            float sum_3 = mad(color.x * float(k), 0.25f, sum);
+            if (sum_3 > 2.0f)
             {
-                _268 = _236;
+                sum_2 = sum_3;
                 break;
             }
-            _270 = _236;
-            int _243 = _266 + 1;
-            _267 = _270;
-            _266 = _243;
+            sum_1 = sum_3;
+            int k_1_1 = k + 1;
+            sum = sum_1;
+            k = k_1_1;
             continue;
         }
         else
         {
-            _268 = _267;
+            sum_2 = sum;
             break;
         }
     }
-    float4 _180 = float4(_213 * mad(0.1f, _268, 1.0f), 1.0f);
-    float4 _255 = clamp(_180, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _257 = isnan(_180);
-    fragColor = float4(_257.x ? 0.0f.xxxx.x : _255.x, _257.y ? 0.0f.xxxx.y : _255.y, _257.z ? 0.0f.xxxx.z : _255.z, _257.w ? 0.0f.xxxx.w : _255.w);
+    float4 c = float4(color * mad(0.1f, sum_2, 1.0f), 1.0f);
+    float4 _650 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _652 = isnan(c);
+    fragColor = float4(_652.x ? 0.0f.xxxx.x : _650.x, _652.y ? 0.0f.xxxx.y : _650.y, _652.z ? 0.0f.xxxx.z : _650.z, _652.w ? 0.0f.xxxx.w : _650.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -22,30 +22,30 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _123 = source.Sample(_source_sampler, vTexCoord);
-    float _146 = _123.y;
-    float4 _193;
-    _193 = float4(_123.x, _146, _123.z, 1.0f);
-    int _161;
-    float4 _190;
-    int _192 = 0;
+    float4 texel = source.Sample(_source_sampler, vTexCoord);
+    float _379 = texel.y;
+    float4 s;
+    s = float4(texel.x, _379, texel.z, 1.0f);
+    int k_1;
+    float4 s_1;
+    int k = 0;
     for (;;)
     {
-        _190 = _193;
-        _190.y = mad(_146, 0.9f, 0.01f * float(_192));
-        _161 = _192 + 1;
-        if (_161 >= crt_loopCount)
+        s_1 = s;
+        s_1.y = mad(_379, 0.9f, 0.01f * float(k));
+        k_1 = k + 1;
+        if (k_1 >= crt_loopCount)
         {
             break;
         }
-        _193 = _190;
-        _192 = _161;
+        s = s_1;
+        k = k_1;
         continue;
     }
-    float4 _136 = float4(_190.xyz * _193.w, 1.0f);
-    float4 _180 = clamp(_136, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _182 = isnan(_136);
-    fragColor = float4(_182.x ? 0.0f.xxxx.x : _180.x, _182.y ? 0.0f.xxxx.y : _180.y, _182.z ? 0.0f.xxxx.z : _180.z, _182.w ? 0.0f.xxxx.w : _180.w);
+    float4 c = float4(s_1.xyz * s.w, 1.0f);
+    float4 _456 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _458 = isnan(c);
+    fragColor = float4(_458.x ? 0.0f.xxxx.x : _456.x, _458.y ? 0.0f.xxxx.y : _456.y, _458.z ? 0.0f.xxxx.z : _456.z, _458.w ? 0.0f.xxxx.w : _456.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

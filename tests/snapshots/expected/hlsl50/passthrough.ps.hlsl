@@ -16,10 +16,10 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _39 = source.Sample(_source_sampler, vTexCoord);
-    float4 _47 = clamp(_39, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _49 = isnan(_39);
-    fragColor = float4(_49.x ? 0.0f.xxxx.x : _47.x, _49.y ? 0.0f.xxxx.y : _47.y, _49.z ? 0.0f.xxxx.z : _47.z, _49.w ? 0.0f.xxxx.w : _47.w);
+    float4 c = source.Sample(_source_sampler, vTexCoord);
+    float4 _122 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _124 = isnan(c);
+    fragColor = float4(_124.x ? 0.0f.xxxx.x : _122.x, _124.y ? 0.0f.xxxx.y : _122.y, _124.z ? 0.0f.xxxx.z : _122.z, _124.w ? 0.0f.xxxx.w : _122.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

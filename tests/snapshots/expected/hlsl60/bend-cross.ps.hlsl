@@ -1,4 +1,4 @@
-static float4 _393;
+static float4 _1032;
 
 cbuffer CrtParams : register(b0, space0)
 {
@@ -26,61 +26,61 @@ struct SPIRV_Cross_Output
 
 void frag_main()
 {
-    float4 _253 = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _257 = _253.xy;
-    float2 _265 = _253.zw * mad(crt_bendAmount, dot(_257, _257), 1.0f);
-    float4 _374;
-    _374.z = _265.x;
-    _374.w = _265.y;
-    float2 _272 = _374.wz * 0.5f;
-    float2 _274 = _272 + 0.5f.xx;
-    float4 _210 = source.Sample(_source_sampler, _274);
-    float4 _281 = source.Sample(_source_sampler, _272 + float2(0.5025f, 0.5f));
-    float4 _286 = source.Sample(_source_sampler, _272 + float2(0.4975f, 0.5f));
-    float4 _293 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.5025f));
-    float4 _300 = source.Sample(_source_sampler, _272 + float2(0.5f, 0.4975f));
-    float3 _381;
+    float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
+    float2 _605 = q.xy;
+    float2 _613 = q.zw * mad(crt_bendAmount, dot(_605, _605), 1.0f);
+    float4 q_1;
+    q_1.z = _613.x;
+    q_1.w = _613.y;
+    float2 _620 = q_1.wz * 0.5f;
+    float2 sampleUv = _620 + 0.5f.xx;
+    float4 texel = source.Sample(_source_sampler, sampleUv);
+    float4 texel_1 = source.Sample(_source_sampler, _620 + float2(0.5025f, 0.5f));
+    float4 texel_2 = source.Sample(_source_sampler, _620 + float2(0.4975f, 0.5f));
+    float4 texel_3 = source.Sample(_source_sampler, _620 + float2(0.5f, 0.5025f));
+    float4 texel_4 = source.Sample(_source_sampler, _620 + float2(0.5f, 0.4975f));
+    float3 color;
     do
     {
-        float _317 = _274.x;
-        bool _318 = _317 < 0.0f;
-        bool _325;
-        if (!_318)
+        float _755 = sampleUv.x;
+        bool _756 = _755 < 0.0f;
+        bool _763;
+        if (!_756)
         {
-            _325 = _317 > 1.0f;
+            _763 = _755 > 1.0f;
         }
         else
         {
-            _325 = _318;
+            _763 = _756;
         }
-        if (_325)
+        if (_763)
         {
-            _381 = crt_edgeColor;
+            color = crt_edgeColor;
             break;
         }
-        float _331 = _274.y;
-        bool _332 = _331 < 0.0f;
-        bool _339;
-        if (!_332)
+        float _769 = sampleUv.y;
+        bool _770 = _769 < 0.0f;
+        bool _777;
+        if (!_770)
         {
-            _339 = _331 > 1.0f;
+            _777 = _769 > 1.0f;
         }
         else
         {
-            _339 = _332;
+            _777 = _770;
         }
-        if (_339)
+        if (_777)
         {
-            _381 = crt_edgeColor.zyx;
+            color = crt_edgeColor.zyx;
             break;
         }
-        _381 = lerp(_210.xyz, (((_281.xyz + _286.xyz) + _293.xyz) + _300.xyz) * 0.25f, crt_tapMix.xxx);
+        color = lerp(texel.xyz, (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25f, crt_tapMix.xxx);
         break;
     } while(false);
-    float4 _228 = float4(_381, 1.0f);
-    float4 _353 = clamp(_228, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _355 = isnan(_228);
-    fragColor = float4(_355.x ? 0.0f.xxxx.x : _353.x, _355.y ? 0.0f.xxxx.y : _353.y, _355.z ? 0.0f.xxxx.z : _353.z, _355.w ? 0.0f.xxxx.w : _353.w);
+    float4 c = float4(color, 1.0f);
+    float4 _825 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _827 = isnan(c);
+    fragColor = float4(_827.x ? 0.0f.xxxx.x : _825.x, _827.y ? 0.0f.xxxx.y : _825.y, _827.z ? 0.0f.xxxx.z : _825.z, _827.w ? 0.0f.xxxx.w : _825.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -15,9 +15,9 @@ struct SPIRV_Cross_Output
 
 void vert_main()
 {
-    float2 _22 = float2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));
-    vTexCoord = _22;
-    gl_Position = float4((_22 * 2.0f) - 1.0f.xx, 0.0f, 1.0f);
+    float2 uv = float2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));
+    vTexCoord = uv;
+    gl_Position = float4((uv * 2.0f) - 1.0f.xx, 0.0f, 1.0f);
     gl_Position.y = -gl_Position.y;
 }
 

@@ -1,4 +1,4 @@
-static float4 _842;
+static float4 _2430;
 
 cbuffer CrtParams : register(b0, space0)
 {
@@ -53,110 +53,110 @@ float4 mod(float4 x, float4 y)
 
 void frag_main()
 {
-    float2 _402 = vTexCoord * crt_outputSize;
-    float4 _490 = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _494 = _490.xy;
-    float2 _502 = _490.zw * mad(crt_bendAmount, dot(_494, _494), 1.0f);
-    float4 _804;
-    _804.z = _502.x;
-    _804.w = _502.y;
-    float2 _511 = (_804.wz * 0.5f) + 0.5f.xx;
-    float _517 = _511.x;
-    float _520 = _511.y;
-    float3 _541 = lerp(source.Sample(_source_sampler, _511).xyz, source.Sample(_source_sampler, _511 + (float2(ddx(_517), ddy(_520)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(_511)) * 100.0f, 0.0f, 1.0f)).xxx);
-    float _548 = _541.y;
-    float4 _829;
-    _829 = float4(_541.x, _548, _541.z, 1.0f);
-    int _563;
-    float4 _811;
-    int _828 = 0;
+    float2 _705 = vTexCoord * crt_outputSize;
+    float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
+    float2 _1228 = q.xy;
+    float2 _1236 = q.zw * mad(crt_bendAmount, dot(_1228, _1228), 1.0f);
+    float4 q_1;
+    q_1.z = _1236.x;
+    q_1.w = _1236.y;
+    float2 sampleUv = (q_1.wz * 0.5f) + 0.5f.xx;
+    float _1295 = sampleUv.x;
+    float _1298 = sampleUv.y;
+    float3 color_1 = lerp(source.Sample(_source_sampler, sampleUv).xyz, source.Sample(_source_sampler, sampleUv + (float2(ddx(_1295), ddy(_1298)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(sampleUv)) * 100.0f, 0.0f, 1.0f)).xxx);
+    float _1366 = color_1.y;
+    float4 s;
+    s = float4(color_1.x, _1366, color_1.z, 1.0f);
+    int k_1;
+    float4 s_1;
+    int k = 0;
     for (;;)
     {
-        _811 = _829;
-        _811.y = mad(_548, 0.5f, 0.01f * float(_828));
-        _563 = _828 + 1;
-        if (_563 >= crt_loopCount)
+        s_1 = s;
+        s_1.y = mad(_1366, 0.5f, 0.01f * float(k));
+        k_1 = k + 1;
+        if (k_1 >= crt_loopCount)
         {
             break;
         }
-        _829 = _811;
-        _828 = _563;
+        s = s_1;
+        k = k_1;
         continue;
     }
-    int _587 = int(_402.x) - 10;
-    float _599 = _402.y;
-    float3 _618 = (_811.xyz * _829.w) * mad(0.03f, mod(_599 - 4.0f, -5.0f), mad(-0.001f, float(_587 / (-3)), mad(0.01f, float(_587 % crt_bandWidth), mad(0.02f, float(_587 / crt_bandWidth), 1.0f))));
-    float3 _832;
-    switch (int(_599) & 3)
+    int x = int(_705.x) - 10;
+    float _1467 = _705.y;
+    float3 color_2 = (s_1.xyz * s.w) * mad(0.03f, mod(_1467 - 4.0f, -5.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
+    float3 tint;
+    switch (int(_1467) & 3)
     {
         case 0:
         {
-            _832 = float3(1.0f, crt_pickDim, crt_pickDim);
+            tint = float3(1.0f, crt_pickDim, crt_pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _832 = float3(crt_pickDim, 1.0f, crt_pickDim);
+            tint = float3(crt_pickDim, 1.0f, crt_pickDim);
             break;
         }
         default:
         {
-            _832 = float3(crt_pickDim, crt_pickDim, 1.0f);
+            tint = float3(crt_pickDim, crt_pickDim, 1.0f);
             break;
         }
     }
-    float _830;
-    if (_517 > 0.5f)
+    float lift;
+    if (_1295 > 0.5f)
     {
-        _830 = sqrt(max(_618.y, 0.0f));
+        lift = sqrt(max(color_2.y, 0.0f));
     }
     else
     {
-        float _652 = _618.y;
-        _830 = _652 * _652;
+        float _1575 = color_2.y;
+        lift = _1575 * _1575;
     }
-    float2 _683 = abs((_511 * 2.0f) - 1.0f.xx) * crt_shapeScale;
-    float3 _833;
+    float2 d = abs((sampleUv * 2.0f) - 1.0f.xx) * crt_shapeScale;
+    float3 color;
     do
     {
-        bool _720 = _517 < 0.0f;
-        bool _727;
-        if (!_720)
+        bool _1763 = _1295 < 0.0f;
+        bool _1770;
+        if (!_1763)
         {
-            _727 = _517 > 1.0f;
+            _1770 = _1295 > 1.0f;
         }
         else
         {
-            _727 = _720;
+            _1770 = _1763;
         }
-        if (_727)
+        if (_1770)
         {
-            _833 = crt_edgeColor;
+            color = crt_edgeColor;
             break;
         }
-        bool _734 = _520 < 0.0f;
-        bool _741;
-        if (!_734)
+        bool _1777 = _1298 < 0.0f;
+        bool _1784;
+        if (!_1777)
         {
-            _741 = _520 > 1.0f;
+            _1784 = _1298 > 1.0f;
         }
         else
         {
-            _741 = _734;
+            _1784 = _1777;
         }
-        if (_741)
+        if (_1784)
         {
-            _833 = crt_edgeColor.zyx;
+            color = crt_edgeColor.zyx;
             break;
         }
-        _833 = (mad(_618, _832, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * _830).xxx) * clamp(1.5f - max(_683.x, _683.y), 0.8f, 0.2f)) * mad(crt_pulseDepth, sin(mad(_599, 0.025f, crt_time * crt_pulseRate)), 1.0f);
+        color = (mad(color_2, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx) * clamp(1.5f - max(d.x, d.y), 0.8f, 0.2f)) * mad(crt_pulseDepth, sin(mad(_1467, 0.025f, crt_time * crt_pulseRate)), 1.0f);
         break;
     } while(false);
-    float4 _466 = float4(_833, 1.0f);
-    float4 _755 = clamp(_466, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _757 = isnan(_466);
-    fragColor = float4(_757.x ? 0.0f.xxxx.x : _755.x, _757.y ? 0.0f.xxxx.y : _755.y, _757.z ? 0.0f.xxxx.z : _755.z, _757.w ? 0.0f.xxxx.w : _755.w);
+    float4 c = float4(color, 1.0f);
+    float4 _1832 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _1834 = isnan(c);
+    fragColor = float4(_1834.x ? 0.0f.xxxx.x : _1832.x, _1834.y ? 0.0f.xxxx.y : _1832.y, _1834.z ? 0.0f.xxxx.z : _1832.z, _1834.w ? 0.0f.xxxx.w : _1832.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -23,71 +23,72 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _325: bool;
-  var _339: bool;
-  var _381: vec3<f32>;
-  let _251 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let _253 = _251 - vec4<f32>(1.0);
-  let _257 = _253.xy;
-  let _265 = _253.zw * fma(crt.bendAmount, dot(_257, _257), 1.0);
-  var _374 = vec4<f32>();
-  _374.z = _265.x;
-  var _376 = _374;
-  _376.w = _265.y;
-  let _272 = _376.wz * 0.5;
-  let _274 = _272 + vec2<f32>(0.5);
-  let _210 = textureSample(source, source_sampler, _274);
-  let _281 = textureSample(source, source_sampler, _272 + vec2<f32>(0.5025, 0.5));
-  let _286 = textureSample(source, source_sampler, _272 + vec2<f32>(0.4975, 0.5));
-  let _293 = textureSample(source, source_sampler, _272 + vec2<f32>(0.5, 0.5025));
-  let _300 = textureSample(source, source_sampler, _272 + vec2<f32>(0.5, 0.4975));
-  let _310 = mix(_210.xyz, (((_281.xyz + _286.xyz) + _293.xyz) + _300.xyz) * 0.25, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
+  var _763: bool;
+  var _777: bool;
+  var color: vec3<f32>;
+  let _599 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = _599 - vec4<f32>(1.0);
+  let _605 = q.xy;
+  let _613 = q.zw * fma(crt.bendAmount, dot(_605, _605), 1.0);
+  var q_1 = vec4<f32>();
+  q_1.z = _613.x;
+  var q_2 = q_1;
+  q_2.w = _613.y;
+  let _620 = q_2.wz * 0.5;
+  let sampleUv = _620 + vec2<f32>(0.5);
+  let texel = textureSample(source, source_sampler, sampleUv);
+  let texel_1 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5025, 0.5));
+  let texel_2 = textureSample(source, source_sampler, _620 + vec2<f32>(0.4975, 0.5));
+  let texel_3 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5, 0.5025));
+  let texel_4 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5, 0.4975));
+  let _698 = (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25;
+  let color_1 = mix(texel.xyz, _698, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
   switch (0u) {
     default: {
-      let _318 = _274.x < 0.0;
-      if (!_318) {
-        _325 = _274.x > 1.0;
+      let _756 = sampleUv.x < 0.0;
+      if (!_756) {
+        _763 = sampleUv.x > 1.0;
       } else {
-        _325 = _318;
+        _763 = _756;
       }
-      if (_325) {
-        _381 = crt.edgeColor;
-        let _228 = vec4<f32>(_381.x, _381.y, _381.z, 1.0);
-        let _355 = (bitcast<vec4<u32>>(_228) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _356 = select(clamp(_228, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _355);
-        fragColor = _356;
+      if (_763) {
+        color = crt.edgeColor;
+        let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+        let _827 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _828 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827);
+        fragColor = _828;
         return fragColor;
       }
-      let _332 = _274.y < 0.0;
-      if (!_332) {
-        _339 = _274.y > 1.0;
+      let _770 = sampleUv.y < 0.0;
+      if (!_770) {
+        _777 = sampleUv.y > 1.0;
       } else {
-        _339 = _332;
+        _777 = _770;
       }
-      if (_339) {
-        _381 = crt.edgeColor.zyx;
-        let _228_1 = vec4<f32>(_381.x, _381.y, _381.z, 1.0);
-        let _355_1 = (bitcast<vec4<u32>>(_228_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _356_1 = select(clamp(_228_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _355_1);
-        fragColor = _356_1;
+      if (_777) {
+        color = crt.edgeColor.zyx;
+        let c_1 = vec4<f32>(color.x, color.y, color.z, 1.0);
+        let _827_1 = (bitcast<vec4<u32>>(c_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _828_1 = select(clamp(c_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827_1);
+        fragColor = _828_1;
         return fragColor;
       }
-      _381 = _310;
+      color = color_1;
     }
   }
-  let _228_2 = vec4<f32>(_381.x, _381.y, _381.z, 1.0);
-  let _355_2 = (bitcast<vec4<u32>>(_228_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _356_2 = select(clamp(_228_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _355_2);
-  fragColor = _356_2;
+  let c_2 = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _827_2 = (bitcast<vec4<u32>>(c_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _828_2 = select(clamp(c_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827_2);
+  fragColor = _828_2;
   return fragColor;
 }

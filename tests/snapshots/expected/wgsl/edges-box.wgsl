@@ -24,24 +24,24 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  let _135 = textureSample(source, source_sampler, vTexCoord);
-  let _166 = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _172 = 1.5 - max(_166.x, _166.y);
-  let _194 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let _198 = (_135.xyz * (1.0 - min(max(_172, 0.8), 0.2))) * fma(crt.pulseDepth, sin(_194), 1.0);
-  let _153 = vec4<f32>(_198.x, _198.y, _198.z, 1.0);
-  let _206 = (bitcast<vec4<u32>>(_153) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _207 = select(clamp(_153, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _206);
-  fragColor = _207;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let d = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _430 = 1.5 - max(d.x, d.y);
+  let _483 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - min(max(_430, 0.8), 0.2))) * fma(crt.pulseDepth, sin(_483), 1.0);
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _518 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _519 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _518);
+  fragColor = _519;
   return fragColor;
 }

@@ -24,23 +24,23 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  let _127 = textureSample(source, source_sampler, vTexCoord);
-  let _157 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _177 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let _181 = (_127.xyz * (1.0 - smoothstep(0.3, 0.9, _157))) * fma(crt.pulseDepth, sin(_177), 1.0);
-  let _145 = vec4<f32>(_181.x, _181.y, _181.z, 1.0);
-  let _189 = (bitcast<vec4<u32>>(_145) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _190 = select(clamp(_145, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _189);
-  fragColor = _190;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let _402 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _442 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - smoothstep(0.3, 0.9, _402))) * fma(crt.pulseDepth, sin(_442), 1.0);
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _477 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _478 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _477);
+  fragColor = _478;
   return fragColor;
 }

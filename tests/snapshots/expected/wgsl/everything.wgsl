@@ -30,121 +30,120 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _829: vec4<f32>;
-  var _828: i32;
-  var _832: vec3<f32>;
-  var _830: f32;
-  var _727: bool;
-  var _741: bool;
-  var _833: vec3<f32>;
-  var _811: vec4<f32>;
-  var _563: i32;
-  let _402 = vTexCoord * crt.outputSize;
-  let _488 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let _490 = _488 - vec4<f32>(1.0);
-  let _494 = _490.xy;
-  let _502 = _490.zw * fma(crt.bendAmount, dot(_494, _494), 1.0);
-  var _804 = vec4<f32>();
-  _804.z = _502.x;
-  var _806 = _804;
-  _806.w = _502.y;
-  let _511 = (_806.wz * 0.5) + vec2<f32>(0.5);
-  let _415 = (_511 * 2.0) - vec2<f32>(1.0);
-  let _423 = textureSample(source, source_sampler, _511);
-  let _527 = length(fwidth(_511)) * 100.0;
-  let _534 = textureSample(source, source_sampler, _511 + (vec2<f32>(dpdx(_511.x), dpdy(_511.y)) * 4.0));
-  let _539 = crt.tapMix * clamp(_527, 0.0, 1.0);
-  let _541 = mix(_423.xyz, _534.xyz, vec3<f32>(_539, _539, _539));
-  let _550 = vec4<f32>(_541.x, _541.y, _541.z, 1.0);
-  _829 = _550;
-  _828 = 0i;
+  var s: vec4<f32>;
+  var k: i32;
+  var tint: vec3<f32>;
+  var lift: f32;
+  var _1770: bool;
+  var _1784: bool;
+  var color: vec3<f32>;
+  var s_1: vec4<f32>;
+  var k_1: i32;
+  let _705 = vTexCoord * crt.outputSize;
+  let _1222 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = _1222 - vec4<f32>(1.0);
+  let _1228 = q.xy;
+  let _1236 = q.zw * fma(crt.bendAmount, dot(_1228, _1228), 1.0);
+  var q_1 = vec4<f32>();
+  q_1.z = _1236.x;
+  var q_2 = q_1;
+  q_2.w = _1236.y;
+  let sampleUv = (q_2.wz * 0.5) + vec2<f32>(0.5);
+  let _721 = (sampleUv * 2.0) - vec2<f32>(1.0);
+  let texel = textureSample(source, source_sampler, sampleUv);
+  let _1306 = length(fwidth(sampleUv)) * 100.0;
+  let texel_1 = textureSample(source, source_sampler, sampleUv + (vec2<f32>(dpdx(sampleUv.x), dpdy(sampleUv.y)) * 4.0));
+  let _1318 = crt.tapMix * clamp(_1306, 0.0, 1.0);
+  let color_1 = mix(texel.xyz, texel_1.xyz, vec3<f32>(_1318, _1318, _1318));
+  let s_2 = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
+  s = s_2;
+  k = 0i;
   loop {
-    _811 = _829;
-    _811.y = fma(_541.y, 0.5, 0.01 * f32(_828));
-    _563 = _828 + 1i;
-    if (_563 >= crt.loopCount) {
+    s_1 = s;
+    s_1.y = fma(color_1.y, 0.5, 0.01 * f32(k));
+    k_1 = k + 1i;
+    if (k_1 >= crt.loopCount) {
       break;
     }
     continuing {
-      _829 = _811;
-      _828 = _563;
+      s = s_1;
+      k = k_1;
     }
   }
-  let _587 = i32(_402.x) - 10i;
-  let _595_rem = _587 % crt.bandWidth;
-  let _595_1 = select(_595_rem, _595_rem + crt.bandWidth, (_595_rem != i32()) & ((_595_rem < i32()) != (crt.bandWidth < i32())));
-  let _600 = _402.y - 4.0;
-  let _610 = fma(0.01, f32(_595_1), fma(0.02, f32(_587 / crt.bandWidth), 1.0));
-  let _617 = fma(0.03, _600 - (-5.0) * floor(_600 / (-5.0)), fma((-0.001), f32(_587 / (-3i)), _610));
-  let _618 = (_811.xyz * _829.w) * _617;
-  switch (i32(_402.y) & 3i) {
+  let x = i32(_705.x) - 10i;
+  let r_rem = x % crt.bandWidth;
+  let r_1 = select(r_rem, r_rem + crt.bandWidth, (r_rem != i32()) & ((r_rem < i32()) != (crt.bandWidth < i32())));
+  let _1468 = _705.y - 4.0;
+  let _1482 = fma((-0.001), f32(x / (-3i)), fma(0.01, f32(r_1), fma(0.02, f32(x / crt.bandWidth), 1.0)));
+  let color_2 = (s_1.xyz * s.w) * fma(0.03, _1468 - (-5.0) * floor(_1468 / (-5.0)), _1482);
+  switch (i32(_705.y) & 3i) {
     case 0i: {
-      _832 = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
+      tint = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
     }
     case 1i, 2i: {
-      _832 = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
+      tint = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
     }
     default: {
-      _832 = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
+      tint = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
     }
   }
-  if (_511.x > 0.5) {
-    _830 = sqrt(max(_618.y, 0.0));
+  if (sampleUv.x > 0.5) {
+    lift = sqrt(max(color_2.y, 0.0));
   } else {
-    _830 = _618.y * _618.y;
+    lift = color_2.y * color_2.y;
   }
-  let _671 = select((-0.01), 0.01, vTexCoord.y < 0.5) * _830;
-  let _683 = abs(_415) * crt.shapeScale;
-  let _689 = 1.5 - max(_683.x, _683.y);
-  let _694 = fma(_618, _832, vec3<f32>(_671, _671, _671)) * min(max(_689, 0.8), 0.2);
-  let _711 = fma(crt.pulseDepth, sin(fma(_402.y, 0.025, crt.time * crt.pulseRate)), 1.0);
-  let _712 = _694 * _711;
+  let _1594 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
+  let d = abs(_721) * crt.shapeScale;
+  let _1680 = 1.5 - max(d.x, d.y);
+  let color_3 = fma(color_2, tint, vec3<f32>(_1594, _1594, _1594)) * min(max(_1680, 0.8), 0.2);
+  let _1729 = fma(crt.pulseDepth, sin(fma(_705.y, 0.025, crt.time * crt.pulseRate)), 1.0);
+  let color_4 = color_3 * _1729;
   switch (0u) {
     default: {
-      let _720 = _511.x < 0.0;
-      if (!_720) {
-        _727 = _511.x > 1.0;
+      let _1763 = sampleUv.x < 0.0;
+      if (!_1763) {
+        _1770 = sampleUv.x > 1.0;
       } else {
-        _727 = _720;
+        _1770 = _1763;
       }
-      if (_727) {
-        _833 = crt.edgeColor;
-        let _466 = vec4<f32>(_833.x, _833.y, _833.z, 1.0);
-        let _757 = (bitcast<vec4<u32>>(_466) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _758 = select(clamp(_466, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _757);
-        fragColor = _758;
+      if (_1770) {
+        color = crt.edgeColor;
+        let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+        let _1834 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _1835 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834);
+        fragColor = _1835;
         return fragColor;
       }
-      let _734 = _511.y < 0.0;
-      if (!_734) {
-        _741 = _511.y > 1.0;
+      let _1777 = sampleUv.y < 0.0;
+      if (!_1777) {
+        _1784 = sampleUv.y > 1.0;
       } else {
-        _741 = _734;
+        _1784 = _1777;
       }
-      if (_741) {
-        _833 = crt.edgeColor.zyx;
-        let _466_1 = vec4<f32>(_833.x, _833.y, _833.z, 1.0);
-        let _757_1 = (bitcast<vec4<u32>>(_466_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _758_1 = select(clamp(_466_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _757_1);
-        fragColor = _758_1;
+      if (_1784) {
+        color = crt.edgeColor.zyx;
+        let c_1 = vec4<f32>(color.x, color.y, color.z, 1.0);
+        let _1834_1 = (bitcast<vec4<u32>>(c_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _1835_1 = select(clamp(c_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834_1);
+        fragColor = _1835_1;
         return fragColor;
       }
-      _833 = _712;
+      color = color_4;
     }
   }
-  let _466_2 = vec4<f32>(_833.x, _833.y, _833.z, 1.0);
-  let _757_2 = (bitcast<vec4<u32>>(_466_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _758_2 = select(clamp(_466_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _757_2);
-  fragColor = _758_2;
+  let c_2 = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _1834_2 = (bitcast<vec4<u32>>(c_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _1835_2 = select(clamp(c_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834_2);
+  fragColor = _1835_2;
   return fragColor;
 }

@@ -22,48 +22,47 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _362: vec3<f32>;
-  var _360: f32;
-  let _179 = vTexCoord * crt.outputSize;
-  let _200 = textureSample(source, source_sampler, vTexCoord);
-  let _233 = i32(_179.x) - 12i;
-  let _241_rem = _233 % crt.bandWidth;
-  let _241_1 = select(_241_rem, _241_rem + crt.bandWidth, (_241_rem != i32()) & ((_241_rem < i32()) != (crt.bandWidth < i32())));
-  let _246 = _179.y - 4.0;
-  let _256 = fma(0.01, f32(_241_1), fma(0.02, f32(_233 / crt.bandWidth), 1.0));
-  let _263 = fma(0.03, _246 - (-6.0) * floor(_246 / (-6.0)), fma((-0.001), f32(_233 / (-3i)), _256));
-  let _264 = _200.xyz * _263;
-  switch (i32(_179.y) & 3i) {
+  var tint: vec3<f32>;
+  var lift: f32;
+  let _322 = vTexCoord * crt.outputSize;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let x = i32(_322.x) - 12i;
+  let r_rem = x % crt.bandWidth;
+  let r_1 = select(r_rem, r_rem + crt.bandWidth, (r_rem != i32()) & ((r_rem < i32()) != (crt.bandWidth < i32())));
+  let _593 = _322.y - 4.0;
+  let _607 = fma((-0.001), f32(x / (-3i)), fma(0.01, f32(r_1), fma(0.02, f32(x / crt.bandWidth), 1.0)));
+  let color = texel.xyz * fma(0.03, _593 - (-6.0) * floor(_593 / (-6.0)), _607);
+  switch (i32(_322.y) & 3i) {
     case 0i: {
-      _362 = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
+      tint = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
     }
     case 1i, 2i: {
-      _362 = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
+      tint = vec3<f32>(crt.pickDim, 1.0, crt.pickDim);
     }
     default: {
-      _362 = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
+      tint = vec3<f32>(crt.pickDim, crt.pickDim, 1.0);
     }
   }
   if (vTexCoord.x > 0.5) {
-    _360 = sqrt(max(_264.y, 0.0));
+    lift = sqrt(max(color.y, 0.0));
   } else {
-    _360 = _264.y * _264.y;
+    lift = color.y * color.y;
   }
-  let _317 = select((-0.01), 0.01, vTexCoord.y < 0.5) * _360;
-  let _319 = fma(_264, _362, vec3<f32>(_317, _317, _317));
-  let _218 = vec4<f32>(_319.x, _319.y, _319.z, 1.0);
-  let _327 = (bitcast<vec4<u32>>(_218) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _328 = select(clamp(_218, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _327);
-  fragColor = _328;
+  let _719 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
+  let color_1 = fma(color, tint, vec3<f32>(_719, _719, _719));
+  let c = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
+  let _793 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _794 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _793);
+  fragColor = _794;
   return fragColor;
 }

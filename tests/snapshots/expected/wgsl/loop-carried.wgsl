@@ -22,53 +22,53 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _267: f32;
-  var _266: i32;
-  var _270: f32;
-  var _268: f32;
-  let _162 = textureSample(source, source_sampler, vTexCoord);
-  let _199 = length(fwidth(vTexCoord)) * 100.0;
-  let _205 = vTexCoord + (vec2<f32>(dpdx(vTexCoord.x), dpdy(vTexCoord.y)) * 4.0);
-  let _206 = textureSample(source, source_sampler, _205);
-  let _211 = crt.tapMix * clamp(_199, 0.0, 1.0);
-  let _213 = mix(_162.xyz, _206.xyz, vec3<f32>(_211, _211, _211));
-  _267 = 0.0;
-  _266 = 0i;
+  var sum: f32;
+  var k: i32;
+  var sum_1: f32;
+  var sum_2: f32;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let _508 = length(fwidth(vTexCoord)) * 100.0;
+  let _514 = vTexCoord + (vec2<f32>(dpdx(vTexCoord.x), dpdy(vTexCoord.y)) * 4.0);
+  let texel_1 = textureSample(source, source_sampler, _514);
+  let _520 = crt.tapMix * clamp(_508, 0.0, 1.0);
+  let color = mix(texel.xyz, texel_1.xyz, vec3<f32>(_520, _520, _520));
+  sum = 0.0;
+  k = 0i;
   loop {
-    if (!(_266 < crt.loopCount)) {
-      _268 = _267;
+    if (!(k < crt.loopCount)) {
+      sum_2 = sum;
       break;
     }
-    if (_266 == 1i) {
-      _270 = _267;
+    if (k == 1i) {
+      sum_1 = sum;
       continue;
     }
-    let _236 = fma(_213.x * f32(_266), 0.25, _267);
-    if (_236 > 2.0) {
-      _268 = _236;
+    let sum_3 = fma(color.x * f32(k), 0.25, sum);
+    if (sum_3 > 2.0) {
+      sum_2 = sum_3;
       break;
     }
-    _270 = _236;
+    sum_1 = sum_3;
     continuing {
-      let _243 = _266 + 1i;
-      _267 = _270;
-      _266 = _243;
+      let k_1 = k + 1i;
+      sum = sum_1;
+      k = k_1;
     }
   }
-  let _249 = _213 * fma(0.1, _268, 1.0);
-  let _180 = vec4<f32>(_249.x, _249.y, _249.z, 1.0);
-  let _257 = (bitcast<vec4<u32>>(_180) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _258 = select(clamp(_180, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _257);
-  fragColor = _258;
+  let color_1 = color * fma(0.1, sum_2, 1.0);
+  let c = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
+  let _652 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _653 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _652);
+  fragColor = _653;
   return fragColor;
 }

@@ -21,40 +21,40 @@ struct CrtParams {
 fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var vTexCoord: vec2<f32>;
   var gl_Position: vec4<f32>;
-  let _22 = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
-  vTexCoord = _22;
-  let _39 = (_22 * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_39.x, _39.y, 0.0, 1.0);
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _193: vec4<f32>;
-  var _192: i32;
-  var _190: vec4<f32>;
-  var _161: i32;
-  let _123 = textureSample(source, source_sampler, vTexCoord);
-  let _148 = vec4<f32>(_123.x, _123.y, _123.z, 1.0);
-  _193 = _148;
-  _192 = 0i;
+  var s: vec4<f32>;
+  var k: i32;
+  var s_1: vec4<f32>;
+  var k_1: i32;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let s_2 = vec4<f32>(texel.x, texel.y, texel.z, 1.0);
+  s = s_2;
+  k = 0i;
   loop {
-    _190 = _193;
-    _190.y = fma(_123.y, 0.9, 0.01 * f32(_192));
-    _161 = _192 + 1i;
-    if (_161 >= crt.loopCount) {
+    s_1 = s;
+    s_1.y = fma(texel.y, 0.9, 0.01 * f32(k));
+    k_1 = k + 1i;
+    if (k_1 >= crt.loopCount) {
       break;
     }
     continuing {
-      _193 = _190;
-      _192 = _161;
+      s = s_1;
+      k = k_1;
     }
   }
-  let _174 = _190.xyz * _193.w;
-  let _136 = vec4<f32>(_174.x, _174.y, _174.z, 1.0);
-  let _182 = (bitcast<vec4<u32>>(_136) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _183 = select(clamp(_136, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _182);
-  fragColor = _183;
+  let color = s_1.xyz * s.w;
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _458 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _459 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _458);
+  fragColor = _459;
   return fragColor;
 }

@@ -13,64 +13,64 @@ uniform vec4 edgeColor : hint_color = vec4(0.12549019607843137, 0.18823529411764
 // taps: How much of the extra taps replaces the centre sample
 uniform float tapMix : hint_range(0.0, 1.0, 0.01) = 0.4;
 
-vec4 _393;
+vec4 _1032;
 
 void fragment()
 {
-    vec4 _253 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
-    vec2 _257 = _253.xy;
-    vec2 _265 = _253.zw * (bendAmount * dot(_257, _257) + 1.0);
-    vec4 _374;
-    _374.z = _265.x;
-    _374.w = _265.y;
-    vec2 _272 = _374.wz * 0.5;
-    vec2 _274 = _272 + vec2(0.5);
-    vec4 _210 = textureLod(SCREEN_TEXTURE, crt_flip_y(_274), 0.0);
-    vec4 _281 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5025, 0.5)), 0.0);
-    vec4 _286 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.4975, 0.5)), 0.0);
-    vec4 _293 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5, 0.5025)), 0.0);
-    vec4 _300 = textureLod(SCREEN_TEXTURE, crt_flip_y(_272 + vec2(0.5, 0.4975)), 0.0);
-    vec3 _381;
+    vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
+    vec2 _605 = q_1.xy;
+    vec2 _613 = q_1.zw * (bendAmount * dot(_605, _605) + 1.0);
+    vec4 q_2;
+    q_2.z = _613.x;
+    q_2.w = _613.y;
+    vec2 _620 = q_2.wz * 0.5;
+    vec2 sampleUv = _620 + vec2(0.5);
+    vec4 texel = textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv), 0.0);
+    vec4 texel_1 = textureLod(SCREEN_TEXTURE, crt_flip_y(_620 + vec2(0.5025, 0.5)), 0.0);
+    vec4 texel_2 = textureLod(SCREEN_TEXTURE, crt_flip_y(_620 + vec2(0.4975, 0.5)), 0.0);
+    vec4 texel_3 = textureLod(SCREEN_TEXTURE, crt_flip_y(_620 + vec2(0.5, 0.5025)), 0.0);
+    vec4 texel_4 = textureLod(SCREEN_TEXTURE, crt_flip_y(_620 + vec2(0.5, 0.4975)), 0.0);
+    vec3 color_1;
     do
     {
-        float _317 = _274.x;
-        bool _318 = _317 < 0.0;
-        bool _325;
-        if (!_318)
+        float _755 = sampleUv.x;
+        bool _756 = _755 < 0.0;
+        bool _763;
+        if (!_756)
         {
-            _325 = _317 > 1.0;
+            _763 = _755 > 1.0;
         }
         else
         {
-            _325 = _318;
+            _763 = _756;
         }
-        if (_325)
+        if (_763)
         {
-            _381 = edgeColor.rgb;
+            color_1 = edgeColor.rgb;
             break;
         }
-        float _331 = _274.y;
-        bool _332 = _331 < 0.0;
-        bool _339;
-        if (!_332)
+        float _769 = sampleUv.y;
+        bool _770 = _769 < 0.0;
+        bool _777;
+        if (!_770)
         {
-            _339 = _331 > 1.0;
+            _777 = _769 > 1.0;
         }
         else
         {
-            _339 = _332;
+            _777 = _770;
         }
-        if (_339)
+        if (_777)
         {
-            _381 = edgeColor.rgb.zyx;
+            color_1 = edgeColor.rgb.zyx;
             break;
         }
-        _381 = mix(_210.xyz, (((_281.xyz + _286.xyz) + _293.xyz) + _300.xyz) * 0.25, vec3(tapMix));
+        color_1 = mix(texel.xyz, (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25, vec3(tapMix));
         break;
     } while(false);
-    vec4 _228 = vec4(_381, 1.0);
-    vec4 _353 = clamp(_228, vec4(-65504.0), vec4(65504.0));
-    bvec4 _355 = isnan(_228);
-    COLOR = vec4(_355.x ? vec4(0.0).x : _353.x, _355.y ? vec4(0.0).y : _353.y, _355.z ? vec4(0.0).z : _353.z, _355.w ? vec4(0.0).w : _353.w);
+    vec4 c = vec4(color_1, 1.0);
+    vec4 _825 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _827 = isnan(c);
+    COLOR = vec4(_827.x ? vec4(0.0).x : _825.x, _827.y ? vec4(0.0).y : _825.y, _827.z ? vec4(0.0).z : _825.z, _827.w ? vec4(0.0).w : _825.w);
 }
 

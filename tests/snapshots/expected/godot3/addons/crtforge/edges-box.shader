@@ -21,10 +21,10 @@ uniform float hostTime = -1.0;
 
 void fragment()
 {
-    vec2 _166 = abs((UV * 2.0) - vec2(1.0)) * shapeScale;
-    vec4 _153 = vec4((texture(TEXTURE, UV).xyz * (1.0 - clamp(1.5 - max(_166.x, _166.y), 0.8, 0.2))) * (pulseDepth * sin((UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))).y * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
-    vec4 _204 = clamp(_153, vec4(-65504.0), vec4(65504.0));
-    bvec4 _206 = isnan(_153);
-    COLOR = vec4(_206.x ? vec4(0.0).x : _204.x, _206.y ? vec4(0.0).y : _204.y, _206.z ? vec4(0.0).z : _204.z, _206.w ? vec4(0.0).w : _204.w);
+    vec2 d = abs((UV * 2.0) - vec2(1.0)) * shapeScale;
+    vec4 c = vec4((texture(TEXTURE, UV).xyz * (1.0 - clamp(1.5 - max(d.x, d.y), 0.8, 0.2))) * (pulseDepth * sin((UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))).y * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
+    vec4 _516 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _518 = isnan(c);
+    COLOR = vec4(_518.x ? vec4(0.0).x : _516.x, _518.y ? vec4(0.0).y : _516.y, _518.z ? vec4(0.0).z : _516.z, _518.w ? vec4(0.0).w : _516.w);
 }
 

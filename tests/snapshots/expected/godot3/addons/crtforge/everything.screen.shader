@@ -32,113 +32,113 @@ uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 6.0;
 // Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.
 uniform float hostTime = -1.0;
 
-vec4 _842;
+vec4 _2430;
 
 void fragment()
 {
-    vec2 _402 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
-    vec4 _490 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
-    vec2 _494 = _490.xy;
-    vec2 _502 = _490.zw * (bendAmount * dot(_494, _494) + 1.0);
-    vec4 _804;
-    _804.z = _502.x;
-    _804.w = _502.y;
-    vec2 _511 = (_804.wz * 0.5) + vec2(0.5);
-    float _517 = _511.x;
-    float _520 = _511.y;
-    vec3 _541 = mix(textureLod(SCREEN_TEXTURE, crt_flip_y(_511), 0.0).xyz, textureLod(SCREEN_TEXTURE, crt_flip_y(_511 + (vec2(dFdx(_517), dFdy(_520)) * 4.0)), 0.0).xyz, vec3(tapMix * clamp(length(fwidth(_511)) * 100.0, 0.0, 1.0)));
-    float _548 = _541.y;
-    vec4 _829;
-    _829 = vec4(_541.x, _548, _541.z, 1.0);
-    int _563;
-    vec4 _811;
-    int _828 = 0;
+    vec2 _705 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
+    vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
+    vec2 _1228 = q_1.xy;
+    vec2 _1236 = q_1.zw * (bendAmount * dot(_1228, _1228) + 1.0);
+    vec4 q_2;
+    q_2.z = _1236.x;
+    q_2.w = _1236.y;
+    vec2 sampleUv = (q_2.wz * 0.5) + vec2(0.5);
+    float _1295 = sampleUv.x;
+    float _1298 = sampleUv.y;
+    vec3 color_2 = mix(textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv), 0.0).xyz, textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv + (vec2(dFdx(_1295), dFdy(_1298)) * 4.0)), 0.0).xyz, vec3(tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float _1366 = color_2.y;
+    vec4 s_2;
+    s_2 = vec4(color_2.x, _1366, color_2.z, 1.0);
+    int k_1_1;
+    vec4 s_1_1;
+    int k_2 = 0;
     for (;;)
     {
-        _811 = _829;
-        _811.y = _548 * 0.5 + (0.01 * float(_828));
-        _563 = _828 + 1;
-        if (_563 >= loopCount)
+        s_1_1 = s_2;
+        s_1_1.y = _1366 * 0.5 + (0.01 * float(k_2));
+        k_1_1 = k_2 + 1;
+        if (k_1_1 >= loopCount)
         {
             break;
         }
-        _829 = _811;
-        _828 = _563;
+        s_2 = s_1_1;
+        k_2 = k_1_1;
         continue;
     }
-    int _587 = int(_402.x) - 10;
-    float _599 = _402.y;
-    vec3 _618 = (_811.xyz * _829.w) * (0.03 * mod(_599 - 4.0, -5.0) + ((-0.001) * float(_587 / (-3)) + (0.01 * float(_587 % bandWidth) + (0.02 * float(_587 / bandWidth) + 1.0))));
-    vec3 _832;
-    switch (int(_599) & 3)
+    int x = int(_705.x) - 10;
+    float _1467 = _705.y;
+    vec3 color_3 = (s_1_1.xyz * s_2.w) * (0.03 * mod(_1467 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
+    vec3 tint_1;
+    switch (int(_1467) & 3)
     {
         case 0:
         {
-            _832 = vec3(1.0, pickDim, pickDim);
+            tint_1 = vec3(1.0, pickDim, pickDim);
             break;
         }
         case 1:
         case 2:
         {
-            _832 = vec3(pickDim, 1.0, pickDim);
+            tint_1 = vec3(pickDim, 1.0, pickDim);
             break;
         }
         default:
         {
-            _832 = vec3(pickDim, pickDim, 1.0);
+            tint_1 = vec3(pickDim, pickDim, 1.0);
             break;
         }
     }
-    float _830;
-    if (_517 > 0.5)
+    float lift_1;
+    if (_1295 > 0.5)
     {
-        _830 = sqrt(max(_618.y, 0.0));
+        lift_1 = sqrt(max(color_3.y, 0.0));
     }
     else
     {
-        float _652 = _618.y;
-        _830 = _652 * _652;
+        float _1575 = color_3.y;
+        lift_1 = _1575 * _1575;
     }
-    vec2 _683 = abs((_511 * 2.0) - vec2(1.0)) * shapeScale;
-    vec3 _833;
+    vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * shapeScale;
+    vec3 color_1;
     do
     {
-        bool _720 = _517 < 0.0;
-        bool _727;
-        if (!_720)
+        bool _1763 = _1295 < 0.0;
+        bool _1770;
+        if (!_1763)
         {
-            _727 = _517 > 1.0;
+            _1770 = _1295 > 1.0;
         }
         else
         {
-            _727 = _720;
+            _1770 = _1763;
         }
-        if (_727)
+        if (_1770)
         {
-            _833 = edgeColor.rgb;
+            color_1 = edgeColor.rgb;
             break;
         }
-        bool _734 = _520 < 0.0;
-        bool _741;
-        if (!_734)
+        bool _1777 = _1298 < 0.0;
+        bool _1784;
+        if (!_1777)
         {
-            _741 = _520 > 1.0;
+            _1784 = _1298 > 1.0;
         }
         else
         {
-            _741 = _734;
+            _1784 = _1777;
         }
-        if (_741)
+        if (_1784)
         {
-            _833 = edgeColor.rgb.zyx;
+            color_1 = edgeColor.rgb.zyx;
             break;
         }
-        _833 = ((_618 * _832 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * _830)) * clamp(1.5 - max(_683.x, _683.y), 0.8, 0.2)) * (pulseDepth * sin(_599 * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
+        color_1 = ((color_3 * tint_1 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (pulseDepth * sin(_1467 * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
         break;
     } while(false);
-    vec4 _466 = vec4(_833, 1.0);
-    vec4 _755 = clamp(_466, vec4(-65504.0), vec4(65504.0));
-    bvec4 _757 = isnan(_466);
-    COLOR = vec4(_757.x ? vec4(0.0).x : _755.x, _757.y ? vec4(0.0).y : _755.y, _757.z ? vec4(0.0).z : _755.z, _757.w ? vec4(0.0).w : _755.w);
+    vec4 c = vec4(color_1, 1.0);
+    vec4 _1832 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _1834 = isnan(c);
+    COLOR = vec4(_1834.x ? vec4(0.0).x : _1832.x, _1834.y ? vec4(0.0).y : _1832.y, _1834.z ? vec4(0.0).z : _1832.z, _1834.w ? vec4(0.0).w : _1832.w);
 }
 

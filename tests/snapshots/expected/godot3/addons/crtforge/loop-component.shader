@@ -10,29 +10,29 @@ uniform int loopCount : hint_range(0, 16, 1) = 3;
 
 void fragment()
 {
-    vec4 _123 = texture(TEXTURE, UV);
-    float _146 = _123.y;
-    vec4 _193;
-    _193 = vec4(_123.x, _146, _123.z, 1.0);
-    int _161;
-    vec4 _190;
-    int _192 = 0;
+    vec4 texel = texture(TEXTURE, UV);
+    float _379 = texel.y;
+    vec4 s_2;
+    s_2 = vec4(texel.x, _379, texel.z, 1.0);
+    int k_1_1;
+    vec4 s_1_1;
+    int k_2 = 0;
     for (;;)
     {
-        _190 = _193;
-        _190.y = _146 * 0.9 + (0.01 * float(_192));
-        _161 = _192 + 1;
-        if (_161 >= loopCount)
+        s_1_1 = s_2;
+        s_1_1.y = _379 * 0.9 + (0.01 * float(k_2));
+        k_1_1 = k_2 + 1;
+        if (k_1_1 >= loopCount)
         {
             break;
         }
-        _193 = _190;
-        _192 = _161;
+        s_2 = s_1_1;
+        k_2 = k_1_1;
         continue;
     }
-    vec4 _136 = vec4(_190.xyz * _193.w, 1.0);
-    vec4 _180 = clamp(_136, vec4(-65504.0), vec4(65504.0));
-    bvec4 _182 = isnan(_136);
-    COLOR = vec4(_182.x ? vec4(0.0).x : _180.x, _182.y ? vec4(0.0).y : _180.y, _182.z ? vec4(0.0).z : _180.z, _182.w ? vec4(0.0).w : _180.w);
+    vec4 c = vec4(s_1_1.xyz * s_2.w, 1.0);
+    vec4 _456 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _458 = isnan(c);
+    COLOR = vec4(_458.x ? vec4(0.0).x : _456.x, _458.y ? vec4(0.0).y : _456.y, _458.z ? vec4(0.0).z : _456.z, _458.w ? vec4(0.0).w : _456.w);
 }
 

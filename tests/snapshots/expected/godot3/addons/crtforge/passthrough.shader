@@ -8,9 +8,9 @@ shader_type canvas_item;
 
 void fragment()
 {
-    vec4 _39 = texture(TEXTURE, UV);
-    vec4 _47 = clamp(_39, vec4(-65504.0), vec4(65504.0));
-    bvec4 _49 = isnan(_39);
-    COLOR = vec4(_49.x ? vec4(0.0).x : _47.x, _49.y ? vec4(0.0).y : _47.y, _49.z ? vec4(0.0).z : _47.z, _49.w ? vec4(0.0).w : _47.w);
+    vec4 c = texture(TEXTURE, UV);
+    vec4 _122 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _124 = isnan(c);
+    COLOR = vec4(_124.x ? vec4(0.0).x : _122.x, _124.y ? vec4(0.0).y : _122.y, _124.z ? vec4(0.0).z : _122.z, _124.w ? vec4(0.0).w : _122.w);
 }
 

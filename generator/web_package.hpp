@@ -1,0 +1,25 @@
+// The npm package an export with WGSL carries: npm/ (see web_package.cpp).
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace crtforge::detail {
+
+// Adds npm/ to an export's files (path -> contents) when the manifest has WGSL: package.json,
+// index.mjs, index.d.ts, crt-webgpu.mjs, README.md, a manifest.json with the WGSL entries only, and
+// copies of the WGSL modules and LUT PNGs that manifest names, so the folder is the whole package.
+void add_web_package(const nlohmann::ordered_json& manifest, std::map<std::string, std::string>& files);
+
+// The package's fixed files, embedded at build time from examples/webgpu/ (web_package_files.cpp.in).
+struct WebPackageSources {
+    const char* module;        // crt-webgpu.mjs
+    const char* index;         // package/index.mjs
+    const char* declarations;  // package/index.d.ts
+    const char* readme;        // package/README.md
+};
+const WebPackageSources& web_package_sources();
+
+}  // namespace crtforge::detail
