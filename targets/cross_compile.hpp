@@ -17,7 +17,8 @@ namespace crtforge::detail {
 // Template locals keep their names (spirv_debug_names) and GLSL allowed them, but after inlining a
 // local named like a builtin (`distance`) shares main's scope with calls of it, and HLSL, Godot and
 // WGSL reserve words GLSL does not (`point`, `TIME`): any name some target language reserves gets a
-// trailing underscore, on every target alike.
+// trailing underscore, on every target alike; so does a local named like a uniform block member
+// (a param of another stage), which Godot's plain uniforms would otherwise meet in one scope.
 void rename_reserved_words(spirv_cross::Compiler& compiler);
 
 // Renames reserved words (above) and names the uniform block instance "crt" so members read crt.scanlineIntensity (GLSL) or

@@ -120,12 +120,13 @@ TEST_CASE("carrying the names adds or removes no instruction and leaves no debug
     CHECK(modules > 20);
 }
 
-TEST_CASE("a template local named like a word of a target language is renamed there", "[targets][readable]") {
-    // Legal GLSL locals that are Godot's (light, TIME), HLSL's (point, line) and WGSL's (loop) words.
+TEST_CASE("a template local named like a word of a target language or a param is renamed", "[targets][readable]") {
+    // Legal GLSL locals that are Godot's (light, TIME), HLSL's (point, line) and WGSL's (loop) words,
+    // and one named like a param of another stage.
     test::ScratchTemplates templates;
     templates.write("stages/user_words.toml", R"(name = "user_words"
 doc = "Locals named like other languages' words"
-order = 45
+order = 27
 
 [[param]]
 name = "wordsGain"
@@ -146,11 +147,12 @@ color = "user_words"
     float line = point * point + frag.uv.y;
     float loop = sin(line) * line + point;
     float TIME = loop * point + line * loop;
-    vec3 light = color * TIME + vec3(point, line, loop);
+    float scanlineIntensity = TIME * 0.5 + point;  // the scanlines stage's param, which runs after this
+    vec3 light = color * TIME * scanlineIntensity + vec3(point, line, loop) * scanlineIntensity;
     return light * light * TIME + color * 0.5;
 }
 )");
-    templates.write("presets/words.toml", "name = \"words\"\ndoc = \"awkward names\"\n\n[stages.user_words]\nwordsGain = 0.7\n");
+    templates.write("presets/words.toml", "name = \"words\"\ndoc = \"awkward names\"\n\n[stages.user_words]\nwordsGain = 0.7\n\n[stages.scanlines]\nscanlineIntensity = 0.3\n");
     auto loaded = templates.load();
     REQUIRE(loaded.ok());
     const CompiledVariant c = test::compile_or_fail(*loaded.value(), "words");
@@ -166,4 +168,7 @@ color = "user_words"
     CHECK_THAT(godot, Catch::Contains("vec3 light_ = "));
     CHECK_THAT(godot, Catch::Contains("float TIME_ = "));
     CHECK_THAT(godot, !Catch::Contains(" TIME = "));
+    // The local named like the scanlines' param does not hide the uniform Godot declares for it.
+    CHECK_THAT(godot, Catch::Contains("uniform float scanlineIntensity"));
+    CHECK_THAT(godot, Catch::Contains("float scanlineIntensity_ = "));
 }
