@@ -22,10 +22,10 @@ void rename_reserved_words(spirv_cross::Compiler& compiler) {
     }
 }
 
-void apply_readable_names(spirv_cross::CompilerGLSL& compiler) {
+void apply_readable_names(spirv_cross::CompilerGLSL& compiler, const char* instance_name) {
     rename_reserved_words(compiler);
     auto resources = compiler.get_shader_resources();
-    for (const auto& ub : resources.uniform_buffers) compiler.set_name(ub.id, kUniformInstanceName);
+    for (const auto& ub : resources.uniform_buffers) compiler.set_name(ub.id, instance_name ? instance_name : kUniformInstanceName);
 }
 
 }  // namespace crtforge::detail

@@ -21,19 +21,19 @@ namespace crtforge::detail {
 // (a param of another stage), which Godot's plain uniforms would otherwise meet in one scope.
 void rename_reserved_words(spirv_cross::Compiler& compiler);
 
-// Renames reserved words (above) and names the uniform block instance "crt" so members read crt.scanlineIntensity (GLSL) or
+// Renames reserved words (above) and names the uniform block instance "crt" (or `instance_name`) so members read crt.scanlineIntensity (GLSL) or
 // crt_scanlineIntensity (HLSL) instead of _19.scanlineIntensity.
-void apply_readable_names(spirv_cross::CompilerGLSL& compiler);
+void apply_readable_names(spirv_cross::CompilerGLSL& compiler, const char* instance_name = nullptr);
 
 // Compiles `module` with a Compiler (CompilerGLSL or a subclass) after `configure(compiler)` set
 // its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0").
 template <typename Compiler, typename Configure>
 Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, const std::string& target,
-                                  Configure&& configure) {
+                                  Configure&& configure, const char* instance_name = nullptr) {
     try {
         Compiler compiler(module);
         configure(compiler);
-        apply_readable_names(compiler);
+        apply_readable_names(compiler, instance_name);
         return shorten_float_literals(compiler.compile());
     } catch (const std::exception& e) {
         return make_validation_error("SPIRV-Cross cannot express the " + std::string(shader_stage_name(stage)) +

@@ -33,7 +33,7 @@ TEST_CASE("list prints one name per line for scripts", "[cli]") {
     CHECK(line_count(presets.out) == test::shipped_library().presets().size());
     CHECK_THAT(presets.out, Catch::Contains("quiet-frame\n"));
     auto targets = test::run_crtforge("list targets");
-    CHECK(targets.out == "spirv\nglsl450\nglsl330\nglsles300\nhlsl50\nhlsl60\ngodot4\ngodot3\nwgsl\n");
+    CHECK(targets.out == "spirv\nglsl450\nglsl330\nglsles300\nwebgl2\nhlsl50\nhlsl60\ngodot4\ngodot3\nwgsl\n");
     auto all = test::run_crtforge("list");
     CHECK(all.exit_code == 0);
     CHECK_THAT(all.out, Catch::Contains("scanlinePeriodPx"));

@@ -749,3 +749,28 @@ TEST_CASE("bad GL textures, viewports and clear colours are input errors", "[gl]
     const Image out = render_ok(GlApi::DesktopCore, good);  // the engine carries on
     CHECK(out.pixel(0, 0)[0] == 0.75f);
 }
+
+TEST_CASE("plain uniforms are set by name, and one the job leaves unset is an error", "[gl][webgl2]") {
+    const std::string fragment = R"(#version 300 es
+precision highp float;
+uniform float gain;
+uniform vec3 tint;
+uniform int steps;
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+void main() { fragColor = vec4(tint * gain, float(steps)); }
+)";
+    GlRenderJob job = make_job(kVertexEs300, fragment, Image(), 3, 2, OutputFormat::Rgba16Float);
+    job.uniform_data.clear();
+    PlainUniform gain{PlainUniform::Kind::Float, "gain", 1, {0.5f}, {}};
+    PlainUniform tint{PlainUniform::Kind::Float, "tint", 3, {1.0f, -2.0f, 0.25f}, {}};
+    PlainUniform steps{PlainUniform::Kind::Int, "steps", 1, {}, {3}};
+    PlainUniform unused{PlainUniform::Kind::Float, "notInTheShader", 2, {9.0f, 9.0f}, {}};  // skipped
+    job.plain_uniforms = {gain, tint, steps, unused};
+    const Image out = render_ok(GlApi::Es, job);
+    CHECK(out.pixel(2, 1) == std::array<float, 4>{0.5f, -1.0f, 0.125f, 3.0f});
+
+    job.plain_uniforms = {gain, steps};
+    const Diagnostic missing = render_error(GlApi::Es, job);
+    CHECK_THAT(missing.str(), Contains("the shader's uniform 'tint' is not among the job's plain uniforms"));
+}

@@ -6,6 +6,7 @@
 
 #include "crtforge/validate/target_render.hpp"
 #include "targets/float_literals.hpp"
+#include "targets/glsl/glsl_writer.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -89,4 +90,31 @@ TEST_CASE("float constants print at the shortest text that reads back as the sam
             }
         }
     }
+}
+
+TEST_CASE("the webgl2 target declares params and builtins as plain uniforms set by name", "[targets][webgl2]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    const CompiledVariant classic = test::compile_or_fail(lib, "classic");
+    auto out = emit_target(classic, TargetId::WebGl2, Cache());
+    REQUIRE(out.ok());
+    const std::string fragment = out.value().files.back().data;
+    INFO(fragment);
+    CHECK_THAT(fragment, Catch::StartsWith("#version 300 es\n"));
+    for (const char* line : {"uniform vec2 outputSize;", "uniform float scanlineIntensity;", "uniform vec3 bezelColor;",
+                             "uniform highp sampler2D source;"})
+        CHECK_THAT(fragment, Catch::Contains(line));
+    CHECK_THAT(fragment, !Catch::Contains("CrtParams"));
+    CHECK_THAT(fragment, !Catch::Contains("crtforge_plain_block"));
+    CHECK_THAT(fragment, Catch::Contains("(curvature * r2 + 1.0)"));  // members read by their own name
+    // The manifest tells a host how to set each one.
+    bool names_param = false;
+    for (const auto& b : out.value().bindings) names_param = names_param || b.first == "scanlineIntensity";
+    CHECK(names_param);
+
+    // Medium precision: members keep their qualifiers as top-level uniforms.
+    using crtforge::glsl::flatten_plain_uniform_block;
+    const std::string text = "#version 300 es\nstruct CrtParams\n{\n    mediump float gain;\n    highp vec2 outputSize;\n};\n\n"
+                             "uniform CrtParams blk;\n\nvoid main() { x = blk.gain * blk.outputSize.x; }\n";
+    CHECK(flatten_plain_uniform_block(text, "blk") ==
+          "#version 300 es\nuniform mediump float gain;\nuniform highp vec2 outputSize;\n\nvoid main() { x = gain * outputSize.x; }\n");
 }

@@ -12,7 +12,7 @@
 
 namespace crtforge {
 
-enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, Hlsl50, Hlsl60, Godot4, Godot3, Wgsl };
+enum class TargetId { Spirv, Glsl450, Glsl330, GlslEs300, WebGl2, Hlsl50, Hlsl60, Godot4, Godot3, Wgsl };
 
 struct TargetInput;
 struct TargetOutput;

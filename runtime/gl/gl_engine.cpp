@@ -213,6 +213,7 @@ private:
         }
         auto bindings = bind_program_interface(gl, program.value().get(), job.uniform_block, samplers);
         if (!bindings) return bindings.error();
+        if (auto plain = set_plain_uniforms(gl, program.value().get(), job.plain_uniforms); !plain.ok()) return plain.error();
         // std140 rounds a block's GL_UNIFORM_BLOCK_DATA_SIZE up to 16 bytes, where SPIR-V
         // reflection (and so the Vulkan engine) ends it at its last member: data that covers every
         // member is accepted, and the tail padding is zero-filled.

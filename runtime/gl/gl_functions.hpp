@@ -45,6 +45,16 @@ namespace crtforge::gl {
     X(PFNGLUNIFORMBLOCKBINDINGPROC, UniformBlockBinding, "glUniformBlockBinding")  \
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation, "glGetUniformLocation")     \
     X(PFNGLUNIFORM1IPROC, Uniform1i, "glUniform1i")                                \
+    X(PFNGLUNIFORM1FVPROC, Uniform1fv, "glUniform1fv")                             \
+    X(PFNGLUNIFORM2FVPROC, Uniform2fv, "glUniform2fv")                             \
+    X(PFNGLUNIFORM3FVPROC, Uniform3fv, "glUniform3fv")                             \
+    X(PFNGLUNIFORM4FVPROC, Uniform4fv, "glUniform4fv")                             \
+    X(PFNGLUNIFORM1IVPROC, Uniform1iv, "glUniform1iv")                             \
+    X(PFNGLUNIFORM2IVPROC, Uniform2iv, "glUniform2iv")                             \
+    X(PFNGLUNIFORM3IVPROC, Uniform3iv, "glUniform3iv")                             \
+    X(PFNGLUNIFORM4IVPROC, Uniform4iv, "glUniform4iv")                             \
+    X(PFNGLUNIFORM1UIVPROC, Uniform1uiv, "glUniform1uiv")                          \
+    X(PFNGLGETACTIVEUNIFORMPROC, GetActiveUniform, "glGetActiveUniform")           \
     X(PFNGLGENBUFFERSPROC, GenBuffers, "glGenBuffers")                             \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers, "glDeleteBuffers")                    \
     X(PFNGLBINDBUFFERPROC, BindBuffer, "glBindBuffer")                             \

@@ -1,3 +1,6 @@
+#include <array>
+#include <set>
+
 #include "runtime/gl/gl_program.hpp"
 
 #include <algorithm>
@@ -194,6 +197,45 @@ Result<ProgramBindings> bind_program_interface(const GlFunctions& gl, GLuint pro
         if (i == 0) out.samples_texture = location != -1;
     }
     return out;
+}
+
+Status set_plain_uniforms(const GlFunctions& gl, GLuint program, const std::vector<PlainUniform>& uniforms) {
+    std::set<std::string> given;
+    for (const PlainUniform& u : uniforms) {
+        given.insert(u.name);
+        if (u.components < 1 || u.components > 4)
+            return make_error(fmt::format("plain uniform '{}' has {} components", u.name, u.components), {}, 0, "job.plain_uniforms");
+        const GLint location = gl.GetUniformLocation(program, u.name.c_str());
+        if (location == -1) continue;
+        using Kind = PlainUniform::Kind;
+        if (u.kind == Kind::Float) {
+            auto* set = std::array{gl.Uniform1fv, gl.Uniform2fv, gl.Uniform3fv, gl.Uniform4fv}[static_cast<size_t>(u.components - 1)];
+            set(location, 1, u.values.data());
+        } else if (u.kind == Kind::Int || u.components == 1) {
+            if (u.kind == Kind::Uint) gl.Uniform1uiv(location, 1, reinterpret_cast<const GLuint*>(u.ints.data()));
+            else std::array{gl.Uniform1iv, gl.Uniform2iv, gl.Uniform3iv, gl.Uniform4iv}[static_cast<size_t>(u.components - 1)](location, 1, u.ints.data());
+        } else {
+            return make_error(fmt::format("plain uniform '{}': uint vectors are not supported", u.name), {}, 0, "job.plain_uniforms");
+        }
+    }
+    GLint count = 0;
+    gl.GetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const auto index = static_cast<GLuint>(i);
+        GLint block = -1;
+        gl.GetActiveUniformsiv(program, 1, &index, GL_UNIFORM_BLOCK_INDEX, &block);
+        if (block != -1) continue;
+        char name[256] = {};
+        GLsizei length = 0;
+        GLint size = 0;
+        GLenum type = 0;
+        gl.GetActiveUniform(program, index, sizeof name, &length, &size, &type, name);
+        const bool sampler = type == GL_SAMPLER_2D || type == GL_INT_SAMPLER_2D || type == GL_UNSIGNED_INT_SAMPLER_2D;
+        if (!sampler && !given.count(name))
+            return make_error(fmt::format("the shader's uniform '{}' is not among the job's plain uniforms", name), {}, 0,
+                              "job.plain_uniforms");
+    }
+    return Ok{};
 }
 
 }  // namespace crtforge::gl

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/runtime/gl_engine.hpp"
 #include "runtime/gl/gl_functions.hpp"
 #include "runtime/gl/gl_objects.hpp"
 
@@ -46,5 +47,9 @@ struct SamplerUnit {
 // Input error: the job cannot feed it.
 Result<ProgramBindings> bind_program_interface(const GlFunctions& gl, GLuint program, const std::string& uniform_block,
                                                const std::vector<SamplerUnit>& samplers);
+
+// Sets each of `uniforms` on the program in use; an active plain uniform of the program that is
+// neither among them nor a sampler is an Input error (it would silently read 0).
+Status set_plain_uniforms(const GlFunctions& gl, GLuint program, const std::vector<PlainUniform>& uniforms);
 
 }  // namespace crtforge::gl

@@ -1,11 +1,41 @@
 #include "targets/glsl/glsl_writer.hpp"
 
+#include <regex>
+
 #include <fmt/format.h>
 
 #include "crtforge/assembler.hpp"
+#include <sstream>
+
+#include "crtforge/uniforms.hpp"
 #include "targets/cross_compile.hpp"
 
 namespace crtforge::glsl {
+
+namespace {
+
+// The instance name SPIRV-Cross gives the block while flattening: no template name can take it.
+constexpr const char* kPlainBlockMarker = "crtforge_plain_block";
+
+}  // namespace
+
+std::string flatten_plain_uniform_block(const std::string& text, const std::string& instance) {
+    const std::regex declaration(R"((^|\n)uniform (\w+) )" + instance + ";\n");
+    std::smatch use;
+    if (!std::regex_search(text, use, declaration)) return text;
+    const std::string type = use[2].str();
+    const std::regex definition(R"((^|\n)struct )" + type + R"(\n\{\n((?:    [^\n]*\n)*)\};\n\n?)");
+    std::smatch def;
+    if (!std::regex_search(text, def, definition)) return text;
+    std::string uniforms;
+    std::istringstream members(def[2].str());
+    for (std::string line; std::getline(members, line);) uniforms += "uniform " + line.substr(4) + "\n";
+    std::string out = text;
+    // Replace the later declaration first, so the definition's position stays valid.
+    out.replace(static_cast<size_t>(use.position(0)) + use[1].length(), use.length(0) - use[1].length(), uniforms);
+    out.replace(static_cast<size_t>(def.position(0)) + def[1].length(), def.length(0) - def[1].length(), "");
+    return std::regex_replace(out, std::regex("\\b" + instance + "\\."), "");
+}
 
 Result<TargetOutput> generate(const TargetInput& input, const Options& options) {
     const std::string language = options.es ? fmt::format("GLSL ES {}", options.version) : fmt::format("GLSL {}", options.version);
@@ -21,10 +51,24 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
             // RelaxedPrecision decorations, which SPIRV-Cross prints as mediump.
             o.fragment.default_float_precision = precision == Precision::High
                 ? spirv_cross::CompilerGLSL::Options::Highp : spirv_cross::CompilerGLSL::Options::Mediump;
+            o.emit_uniform_buffer_as_plain_uniforms = options.plain_uniforms;
             c.set_common_options(o);
-        });
+        }, options.plain_uniforms ? kPlainBlockMarker : nullptr);
     });
     if (!out.ok()) return out;
+    if (options.plain_uniforms) {
+        for (OutputFile& f : out.value().files) {
+            f.data = flatten_plain_uniform_block(f.data, kPlainBlockMarker);
+            if (f.data.find(kPlainBlockMarker) != std::string::npos)
+                return make_validation_error("SPIRV-Cross's plain uniform block did not have the expected shape (" + language + ", WebGL 2)");
+        }
+        for (const VariantParam* p : input.variant->uniforms())
+            out.value().bindings.push_back({p->spec->name, "plain uniform: set by name, e.g. glUniform*(glGetUniformLocation(program, \"" + p->spec->name + "\"), ...)"});
+        for (Builtin b : input.variant->builtins)
+            out.value().bindings.push_back({builtin_name(b), "plain uniform, set by the host each frame"});
+        out.value().bindings.push_back({kSourceTextureName, "sampler2D: set with glUniform1i(glGetUniformLocation(program, \"source\"), unit)"});
+        return out;
+    }
     const bool explicit_bindings = options.version >= 420 && !options.es;
     if (input.variant->has_uniform_block())
         out.value().bindings.push_back({kUniformBlockName, explicit_bindings
@@ -45,6 +89,8 @@ std::vector<TargetInfo> records() {
          [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v2"},
         {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)", {"vertex", "fragment"}, "gl-es",
          [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v2"},
+        {TargetId::WebGl2, "webgl2", "WebGL 2 (GLSL ES 3.00, params as plain uniforms set by name)", {"vertex", "fragment"},
+         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v1"},
     };
 }
 

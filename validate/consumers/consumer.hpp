@@ -80,6 +80,7 @@ const Consumer* find_consumer(const std::string& key);
 const Consumer& vulkan_consumer();
 const Consumer& gl_consumer();
 const Consumer& gl_es_consumer();
+const Consumer& gl_es_plain_consumer();
 const Consumer& hlsl_consumer();
 const Consumer& godot4_shim_consumer();
 const Consumer& godot3_consumer();

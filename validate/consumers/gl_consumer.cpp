@@ -1,6 +1,7 @@
-// "gl" and "gl-es": GLSL as an OpenGL / OpenGL ES host uses it — glslang re-parses each file in the
+// "gl", "gl-es" and "gl-es-plain" (WebGL 2's plain uniforms, set by name): GLSL as an OpenGL / OpenGL ES host uses it — glslang re-parses each file in the
 // profile its #version line names, then Mesa's driver (EGL surfaceless: a 4.5 core context for "gl",
 // an ES 3 context for "gl-es") compiles, links and renders the pair.
+#include <cstring>
 #include <regex>
 #include <sstream>
 
@@ -26,9 +27,36 @@ Result<GlslVersion> declared_version(const std::string& source) {
     return make_validation_error("the GLSL file has no #version line");
 }
 
+// The std140 bytes of the pass's uniform block as plain uniforms, one per reflected member: what a
+// WebGL 2 framework sets by name from the same values.
+Result<std::vector<PlainUniform>> plain_uniforms(const TargetRenderRequest& r, const std::vector<uint8_t>& bytes) {
+    std::vector<PlainUniform> out;
+    for (const ReflectedBlock& block : r.compiled->reflection.uniform_blocks)
+        for (const ReflectedMember& m : block.members) {
+            static const std::regex type(R"(^(float|int|uint|bool|vec|ivec|uvec|bvec)([234])?$)");
+            std::smatch t;
+            if (!std::regex_match(m.type, t, type))
+                return make_validation_error("uniform member '" + m.name + "' has type " + m.type + ", which no plain uniform takes");
+            PlainUniform u;
+            u.name = m.name;
+            u.components = t[2].matched ? std::stoi(t[2]) : 1;
+            const std::string kind = t[1];
+            u.kind = kind == "float" || kind == "vec" ? PlainUniform::Kind::Float
+                   : kind == "uint" || kind == "uvec" ? PlainUniform::Kind::Uint : PlainUniform::Kind::Int;
+            if (m.offset + 4u * static_cast<uint32_t>(u.components) > bytes.size())
+                return make_validation_error("uniform member '" + m.name + "' lies past the packed uniform data");
+            for (int c = 0; c < u.components; ++c) {
+                std::memcpy(&u.values[static_cast<size_t>(c)], bytes.data() + m.offset + 4 * c, 4);
+                std::memcpy(&u.ints[static_cast<size_t>(c)], bytes.data() + m.offset + 4 * c, 4);
+            }
+            out.push_back(u);
+        }
+    return out;
+}
+
 class GlConsumer final : public Consumer {
 public:
-    explicit GlConsumer(bool es) : es_(es) {}
+    GlConsumer(bool es, bool plain) : es_(es), plain_(plain) {}
 
     Status compile(const OutputFile& f, ConsumerEngines&) const override {
         auto version = declared_version(f.data);
@@ -50,7 +78,15 @@ public:
         // GL binds samplers by name; the binding numbers are unused.
         auto textures = engine_textures(r, [](const std::string&) -> Result<uint32_t> { return 0u; });
         if (!textures.ok()) return textures.error();
+        std::vector<PlainUniform> plain;
+        if (plain_) {
+            auto flat = plain_uniforms(r, uniforms.value());
+            if (!flat.ok()) return flat.error();
+            plain = std::move(flat.value());
+            uniforms.value().clear();
+        }
         auto job = request_job<GlRenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
+        job.plain_uniforms = std::move(plain);
         job.vertex_source = vertex.value()->data;
         job.fragment_source = fragment.value()->data;
         return engine.value()->render(job);
@@ -63,17 +99,23 @@ public:
 
 private:
     bool es_;
+    bool plain_;  // the webgl2 target: params and builtins as plain uniforms, set by name
 };
 
 }  // namespace
 
 const Consumer& gl_consumer() {
-    static const GlConsumer consumer(false);
+    static const GlConsumer consumer(false, false);
     return consumer;
 }
 
 const Consumer& gl_es_consumer() {
-    static const GlConsumer consumer(true);
+    static const GlConsumer consumer(true, false);
+    return consumer;
+}
+
+const Consumer& gl_es_plain_consumer() {
+    static const GlConsumer consumer(true, true);
     return consumer;
 }
 

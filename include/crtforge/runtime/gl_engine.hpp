@@ -44,6 +44,16 @@ enum class GlApi {
 //  - the target is cleared to clear_color and the triangle drawn only inside `viewport` (rows
 //    counted from the top, as in render_engine.hpp); gl_FragCoord stays in target pixels with
 //    GL's bottom-left origin, so coordinates come from vTexCoord.
+// A top-level uniform set by name (glUniform*), as WebGL 2 frameworks set them: `components`
+// values of `kind`, read from `values` (floats) or `ints` (int and uint, bool as int).
+struct PlainUniform {
+    enum class Kind { Float, Int, Uint } kind = Kind::Float;
+    std::string name;
+    int components = 1;  // 1..4
+    std::array<float, 4> values{};
+    std::array<int32_t, 4> ints{};
+};
+
 struct GlRenderJob {
     // Complete GLSL, #version line included.
     std::string vertex_source, fragment_source;
@@ -69,6 +79,10 @@ struct GlRenderJob {
     // GL_UNIFORM_BLOCK_DATA_SIZE is zero-filled by the engine.
     std::vector<uint8_t> uniform_data;
     std::string uniform_block = "CrtParams";
+    // Uniforms outside any block, set by name after linking. Every active plain uniform of the
+    // program (samplers aside) must be here; one the program lacks (the compiler may drop an
+    // unused one) is skipped.
+    std::vector<PlainUniform> plain_uniforms;
     // The sampler2D uniform bound to texture unit 0 (it may be absent from the shader).
     std::string sampler = "source";
 };
