@@ -29,13 +29,15 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     CHECK(first.value().files == cold.value().files);
     CHECK(first.value().files == warm.value().files);
     CHECK(cache.hits() > 0);
-    // Per pass: 6 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module;
-    // per preset: its LUTs, and per Godot target its scene and a copy of the LUTs, and for a
-    // single-pass preset the screen material and the overlay scene; one README and one pipeline
-    // script per Godot addon, the manifest.
-    size_t expected = 2 + 2 + 1;
+    // Per pass: 7 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module
+    // (and its copy in the npm package); per preset: its LUTs, per Godot target its scene and a
+    // copy of the LUTs, a copy in the npm package, and for a single-pass preset the screen material
+    // and the overlay scene; one README and one pipeline script per Godot addon, the manifest, and
+    // the npm package's package.json, manifest, index.mjs, index.d.ts, crt-webgpu.mjs and README.
+    size_t expected = 2 + 2 + 1 + 6;
     for (const Preset& p : lib.presets())
-        expected += p.passes.size() * (6 * 2 + 2 * 3 + 1) + p.luts.size() + 2 * (1 + p.luts.size()) + (p.single_pass() ? 2 * 2 : 0);
+        expected += p.passes.size() * (7 * 2 + 2 * 3 + 1 + 1) + p.luts.size() + 2 * (1 + p.luts.size()) + p.luts.size() +
+                    (p.single_pass() ? 2 * 2 : 0);
     CHECK(first.value().files.size() == expected);
 }
 

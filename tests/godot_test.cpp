@@ -1,11 +1,14 @@
 // The Godot targets: dialect rules, inspector hints, both modes, materials, and that the Godot 3 and
 // Godot 4 outputs differ only where the dialects differ.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <sstream>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "crtforge/files.hpp"
 #include "crtforge/runtime/godot3_engine.hpp"
@@ -356,4 +359,106 @@ margin_bottom = 235.0
     const auto corner = rgb("CORNER");
     CHECK(corner[0] + corner[1] + corner[2] == 0.0);
     CHECK_THAT(log.value(), Catch::Contains("CLICKED True"));
+}
+
+TEST_CASE("under viewport stretch the scene runs the effect after a x3 upscale, at device pixels like Vulkan", "[godot][godot3][stretch]") {
+    // The addon README's setup for the usual pixel-art project: the game draws into a 256x224
+    // Viewport (V Flip on), the window is x3 (768x672), and <preset>.tscn shows its texture filling
+    // the window. The scanlines must then be shaped per device pixel (the shader at 768x672), not
+    // per game pixel in blocks of 3, and match crtforge's Vulkan render of the same picture.
+    constexpr int kGameW = 256, kGameH = 224, kScale = 3, kColumn = 385;  // the middle of game column 128
+    test::TempDir project;
+    auto exported = test::run_crtforge("--no-cache export -q --preset classic --target godot3 --out " + (project / "export"));
+    REQUIRE(exported.exit_code == 0);
+    std::filesystem::rename(project / "export/godot3/addons", project / "addons");
+    REQUIRE(write_file_atomic(project / "project.godot",
+                              fmt::format("config_version=4\n\n[application]\nrun/main_scene=\"res://main.tscn\"\n\n[display]\n"
+                                          "window/size/width={}\nwindow/size/height={}\nwindow/stretch/mode=\"disabled\"\n",
+                                          kGameW * kScale, kGameH * kScale)).ok());
+    REQUIRE(write_file_atomic(project / "main.gd", fmt::format(R"(extends Control
+func _ready():
+	var crt = load("res://addons/crtforge/classic.tscn").instance()
+	add_child(crt)
+	crt.source = $Game.get_texture()
+	for i in range(4):
+		yield(VisualServer, "frame_post_draw")
+	var img = get_viewport().get_texture().get_data()
+	img.flip_y()
+	img.lock()
+	print("SIZE %d %d" % [img.get_width(), img.get_height()])
+	for y in range(img.get_height()):
+		var c = img.get_pixel({}, y)
+		print("ROW %d %f %f %f" % [y, c.r, c.g, c.b])
+	get_tree().quit()
+)", kColumn)).ok());
+    REQUIRE(write_file_atomic(project / "main.tscn", fmt::format(R"([gd_scene load_steps=2 format=2]
+
+[ext_resource path="res://main.gd" type="Script" id=1]
+
+[node name="Main" type="Control"]
+anchor_right = 1.0
+anchor_bottom = 1.0
+script = ExtResource( 1 )
+
+[node name="Game" type="Viewport" parent="."]
+size = Vector2( {0}, {1} )
+usage = 0
+render_target_update_mode = 3
+render_target_v_flip = true
+
+[node name="White" type="ColorRect" parent="Game"]
+margin_right = {0}.0
+margin_bottom = {2}.0
+color = Color( 1, 1, 1, 1 )
+
+[node name="Grey" type="ColorRect" parent="Game"]
+margin_top = {2}.0
+margin_right = {0}.0
+margin_bottom = {1}.0
+color = Color( 0.5, 0.5, 0.5, 1 )
+)", kGameW, kGameH, kGameH / 2)).ok());
+    auto log = run_godot3_project(project.path());
+    REQUIRE(log.ok());
+    REQUIRE_THAT(log.value(), Catch::Contains(fmt::format("SIZE {} {}", kGameW * kScale, kGameH * kScale)));
+    std::vector<std::array<float, 3>> godot(kGameH * kScale);
+    static const std::regex row(R"(ROW (\d+) ([0-9.]+) ([0-9.]+) ([0-9.]+))");
+    size_t rows = 0;
+    for (auto it = std::sregex_iterator(log.value().begin(), log.value().end(), row); it != std::sregex_iterator(); ++it, ++rows)
+        godot.at(std::stoul((*it)[1])) = {std::stof((*it)[2]), std::stof((*it)[3]), std::stof((*it)[4])};
+    REQUIRE(rows == godot.size());
+
+    // The same preset on Vulkan at the window's size, from the same game picture: the top half
+    // white, the bottom half grey (so a picture upside down shows too).
+    Image white = Image::make(kGameW, kGameH);
+    for (int y = 0; y < kGameH; ++y)
+        for (int x = 0; x < kGameW; ++x) {
+            const float v = y < kGameH / 2 ? 1.0f : 0.5f;
+            white.set_pixel(x, y, {v, v, v, 1.0f});
+        }
+    const CompiledVariant compiled = test::compile_or_fail(test::shipped_library(), "classic");
+    TargetRenderRequest r;
+    r.compiled = &compiled;
+    r.target = TargetId::Spirv;
+    r.input = white;
+    r.width = kGameW * kScale;
+    r.height = kGameH * kScale;
+    static TargetRenderer renderer;
+    auto vulkan = renderer.render(r);
+    REQUIRE(vulkan.ok());
+
+    double worst = 0.0;
+    int varying_groups = 0;
+    for (int y = 0; y < kGameH * kScale; ++y) {
+        const auto v = vulkan.value().pixel(kColumn, y);
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(double(godot[size_t(y)][size_t(c)]) - v[size_t(c)]));
+    }
+    // Within the 3 device rows of one game row the brightness changes (a shader run at 256x224
+    // and scaled up would give 3 equal rows).
+    for (int g = 0; g < kGameH; ++g) {
+        const float a = godot[size_t(g * kScale)][0], b = godot[size_t(g * kScale + 1)][0], c = godot[size_t(g * kScale + 2)][0];
+        varying_groups += std::max({a, b, c}) - std::min({a, b, c}) > 0.02f;  // 8-bit steps are 0.004
+    }
+    INFO("max |Godot - Vulkan| over column " << kColumn << ": " << worst << "; game rows whose 3 device rows differ: " << varying_groups);
+    CHECK(worst < 0.02);
+    CHECK(varying_groups > kGameH * 9 / 10);
 }

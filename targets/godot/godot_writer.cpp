@@ -80,9 +80,11 @@ std::string readme(int version) {
            "  tall and text shreds. Use the scene instead: set the stretch mode to `disabled` (or\n"
            "  `" + std::string(version >= 4 ? "canvas_items" : "2d") + "`), draw the game into a " + std::string(version >= 4 ? "SubViewport" : "Viewport") +
            " of the low resolution (filter off on its\n"
-           "  texture), and show that texture through `<preset>.tscn` filling the window: the effect then runs\n"
+           "  texture" + std::string(version >= 4 ? "" : "; Render Target > V Flip on, as Godot 3 stores viewport pictures\n"
+           "  bottom-up") + "), and show that texture through `<preset>.tscn` filling the window: the effect then runs\n"
            "  after the upscale, at the window's resolution, and the scene keeps the picture's aspect\n"
-           "  (its display fit).\n\n";
+           "  (its display fit). Checked in a real Godot 3 at 256x224 x3: the scanlines are shaped per\n"
+           "  device pixel and match crtforge's Vulkan render of the same picture.\n\n";
     out += "Every runtime parameter shows in the inspector with its range; baked parameters are constants.\n";
     if (version < 4)
         out += "\nGodot 3 sets filtering per texture, not per read: where two passes read one texture with\n"

@@ -1,0 +1,94 @@
+// crtforge preset 'bend-cross': WGSL for WebGPU, generated from SPIR-V by crtforge's WGSL emitter.
+// bend (swizzle warp, edge colour) with the four-tap cross
+// Draw 3 vertices with no vertex buffers: vs_main makes a full-screen triangle, fs_main shades it.
+// Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.
+
+struct VertexOutput {
+  @location(0) vTexCoord: vec2<f32>,
+  @builtin(position) gl_Position: vec4<f32>,
+}
+
+struct CrtParams {
+  outputSize: vec2<f32>,  // offset 0
+  bendAmount: f32,  // offset 8
+  edgeColor: vec3<f32>,  // offset 16
+  tapMix: f32,  // offset 28
+}
+
+@group(0) @binding(0) var<uniform> crt: CrtParams;
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
+  var vTexCoord: vec2<f32>;
+  var gl_Position: vec4<f32>;
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
+}
+
+@fragment
+fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
+  var fragColor: vec4<f32>;
+  var _763: bool;
+  var _777: bool;
+  var color: vec3<f32>;
+  let _599 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = _599 - vec4<f32>(1.0);
+  let _605 = q.xy;
+  let _613 = q.zw * fma(crt.bendAmount, dot(_605, _605), 1.0);
+  var q_1 = vec4<f32>();
+  q_1.z = _613.x;
+  var q_2 = q_1;
+  q_2.w = _613.y;
+  let _620 = q_2.wz * 0.5;
+  let sampleUv = _620 + vec2<f32>(0.5);
+  let texel = textureSample(source, source_sampler, sampleUv);
+  let texel_1 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5025, 0.5));
+  let texel_2 = textureSample(source, source_sampler, _620 + vec2<f32>(0.4975, 0.5));
+  let texel_3 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5, 0.5025));
+  let texel_4 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5, 0.4975));
+  let _698 = (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25;
+  let color_1 = mix(texel.xyz, _698, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
+  switch (0u) {
+    default: {
+      let _756 = sampleUv.x < 0.0;
+      if (!_756) {
+        _763 = sampleUv.x > 1.0;
+      } else {
+        _763 = _756;
+      }
+      if (_763) {
+        color = crt.edgeColor;
+        let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+        let _827 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _828 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827);
+        fragColor = _828;
+        return fragColor;
+      }
+      let _770 = sampleUv.y < 0.0;
+      if (!_770) {
+        _777 = sampleUv.y > 1.0;
+      } else {
+        _777 = _770;
+      }
+      if (_777) {
+        color = crt.edgeColor.zyx;
+        let c_1 = vec4<f32>(color.x, color.y, color.z, 1.0);
+        let _827_1 = (bitcast<vec4<u32>>(c_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+        let _828_1 = select(clamp(c_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827_1);
+        fragColor = _828_1;
+        return fragColor;
+      }
+      color = color_1;
+    }
+  }
+  let c_2 = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _827_2 = (bitcast<vec4<u32>>(c_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _828_2 = select(clamp(c_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827_2);
+  fragColor = _828_2;
+  return fragColor;
+}

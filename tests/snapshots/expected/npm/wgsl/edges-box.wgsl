@@ -1,0 +1,47 @@
+// crtforge preset 'edges-box': WGSL for WebGPU, generated from SPIR-V by crtforge's WGSL emitter.
+// edges-radial with the box form, inverted
+// Draw 3 vertices with no vertex buffers: vs_main makes a full-screen triangle, fs_main shades it.
+// Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.
+
+struct VertexOutput {
+  @location(0) vTexCoord: vec2<f32>,
+  @builtin(position) gl_Position: vec4<f32>,
+}
+
+struct CrtParams {
+  outputSize: vec2<f32>,  // offset 0
+  time: f32,  // offset 8
+  shapeScale: f32,  // offset 12
+  pulseDepth: f32,  // offset 16
+  pulseRate: f32,  // offset 20
+}
+
+@group(0) @binding(0) var<uniform> crt: CrtParams;
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
+  var vTexCoord: vec2<f32>;
+  var gl_Position: vec4<f32>;
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
+}
+
+@fragment
+fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
+  var fragColor: vec4<f32>;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let d = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _430 = 1.5 - max(d.x, d.y);
+  let _483 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - min(max(_430, 0.8), 0.2))) * fma(crt.pulseDepth, sin(_483), 1.0);
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _518 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _519 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _518);
+  fragColor = _519;
+  return fragColor;
+}

@@ -1,0 +1,46 @@
+// crtforge preset 'edges-radial': WGSL for WebGPU, generated from SPIR-V by crtforge's WGSL emitter.
+// shape (radial, not inverted) and the scrolling pulse
+// Draw 3 vertices with no vertex buffers: vs_main makes a full-screen triangle, fs_main shades it.
+// Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.
+
+struct VertexOutput {
+  @location(0) vTexCoord: vec2<f32>,
+  @builtin(position) gl_Position: vec4<f32>,
+}
+
+struct CrtParams {
+  outputSize: vec2<f32>,  // offset 0
+  time: f32,  // offset 8
+  shapeScale: f32,  // offset 12
+  pulseDepth: f32,  // offset 16
+  pulseRate: f32,  // offset 20
+}
+
+@group(0) @binding(0) var<uniform> crt: CrtParams;
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
+  var vTexCoord: vec2<f32>;
+  var gl_Position: vec4<f32>;
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
+}
+
+@fragment
+fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
+  var fragColor: vec4<f32>;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let _402 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _442 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - smoothstep(0.3, 0.9, _402))) * fma(crt.pulseDepth, sin(_442), 1.0);
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _477 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _478 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _477);
+  fragColor = _478;
+  return fragColor;
+}

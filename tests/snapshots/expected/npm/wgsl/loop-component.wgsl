@@ -1,0 +1,60 @@
+// crtforge preset 'loop-component': WGSL for WebGPU, generated from SPIR-V by crtforge's WGSL emitter.
+// loops (component) alone
+// Draw 3 vertices with no vertex buffers: vs_main makes a full-screen triangle, fs_main shades it.
+// Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.
+
+struct VertexOutput {
+  @location(0) vTexCoord: vec2<f32>,
+  @builtin(position) gl_Position: vec4<f32>,
+}
+
+struct CrtParams {
+  outputSize: vec2<f32>,  // offset 0
+  loopCount: i32,  // offset 8
+}
+
+@group(0) @binding(0) var<uniform> crt: CrtParams;
+@group(0) @binding(1) var source: texture_2d<f32>;
+@group(0) @binding(2) var source_sampler: sampler;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
+  var vTexCoord: vec2<f32>;
+  var gl_Position: vec4<f32>;
+  let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
+  vTexCoord = uv;
+  let _92 = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
+}
+
+@fragment
+fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
+  var fragColor: vec4<f32>;
+  var s: vec4<f32>;
+  var k: i32;
+  var s_1: vec4<f32>;
+  var k_1: i32;
+  let texel = textureSample(source, source_sampler, vTexCoord);
+  let s_2 = vec4<f32>(texel.x, texel.y, texel.z, 1.0);
+  s = s_2;
+  k = 0i;
+  loop {
+    s_1 = s;
+    s_1.y = fma(texel.y, 0.9, 0.01 * f32(k));
+    k_1 = k + 1i;
+    if (k_1 >= crt.loopCount) {
+      break;
+    }
+    continuing {
+      s = s_1;
+      k = k_1;
+    }
+  }
+  let color = s_1.xyz * s.w;
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _458 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _459 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _458);
+  fragColor = _459;
+  return fragColor;
+}

@@ -1,0 +1,24 @@
+#version 300 es
+precision highp float;
+precision highp int;
+
+uniform vec2 outputSize;
+uniform float time;
+uniform float shapeScale;
+uniform float pulseDepth;
+uniform float pulseRate;
+
+uniform highp sampler2D source;
+
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    vec2 d = abs((vTexCoord * 2.0) - vec2(1.0)) * shapeScale;
+    vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(d.x, d.y), 0.8, 0.2))) * (pulseDepth * sin((vTexCoord * outputSize).y * 0.025 + (time * pulseRate)) + 1.0), 1.0);
+    vec4 _516 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _518 = isnan(c);
+    fragColor = vec4(_518.x ? vec4(0.0).x : _516.x, _518.y ? vec4(0.0).y : _516.y, _518.z ? vec4(0.0).z : _516.z, _518.w ? vec4(0.0).w : _516.w);
+}
+

@@ -1,0 +1,23 @@
+#version 300 es
+precision highp float;
+precision highp int;
+
+uniform vec2 outputSize;
+uniform float time;
+uniform float shapeScale;
+uniform float pulseDepth;
+uniform float pulseRate;
+
+uniform highp sampler2D source;
+
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - smoothstep(0.3, 0.9, length((vTexCoord * 2.0) - vec2(1.0)) * shapeScale))) * (pulseDepth * sin((vTexCoord * outputSize).y * 0.025 + (time * pulseRate)) + 1.0), 1.0);
+    vec4 _475 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _477 = isnan(c);
+    fragColor = vec4(_477.x ? vec4(0.0).x : _475.x, _477.y ? vec4(0.0).y : _475.y, _477.z ? vec4(0.0).z : _475.z, _477.w ? vec4(0.0).w : _475.w);
+}
+

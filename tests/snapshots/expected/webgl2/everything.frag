@@ -1,0 +1,131 @@
+#version 300 es
+precision highp float;
+precision highp int;
+
+vec4 _2430;
+
+uniform vec2 outputSize;
+uniform float time;
+uniform float bendAmount;
+uniform vec3 edgeColor;
+uniform float tapMix;
+uniform int loopCount;
+uniform int bandWidth;
+uniform float pickDim;
+uniform float shapeScale;
+uniform float pulseDepth;
+uniform float pulseRate;
+
+uniform highp sampler2D source;
+
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    vec2 _705 = vTexCoord * outputSize;
+    vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
+    vec2 _1228 = q.xy;
+    vec2 _1236 = q.zw * (bendAmount * dot(_1228, _1228) + 1.0);
+    vec4 q_1;
+    q_1.z = _1236.x;
+    q_1.w = _1236.y;
+    vec2 sampleUv = (q_1.wz * 0.5) + vec2(0.5);
+    float _1295 = sampleUv.x;
+    float _1298 = sampleUv.y;
+    vec3 color_1 = mix(texture(source, sampleUv).xyz, texture(source, sampleUv + (vec2(dFdx(_1295), dFdy(_1298)) * 4.0)).xyz, vec3(tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float _1366 = color_1.y;
+    vec4 s;
+    s = vec4(color_1.x, _1366, color_1.z, 1.0);
+    int k_1;
+    vec4 s_1;
+    int k = 0;
+    for (;;)
+    {
+        s_1 = s;
+        s_1.y = _1366 * 0.5 + (0.01 * float(k));
+        k_1 = k + 1;
+        if (k_1 >= loopCount)
+        {
+            break;
+        }
+        s = s_1;
+        k = k_1;
+        continue;
+    }
+    int x = int(_705.x) - 10;
+    float _1467 = _705.y;
+    vec3 color_2 = (s_1.xyz * s.w) * (0.03 * mod(_1467 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
+    vec3 tint;
+    switch (int(_1467) & 3)
+    {
+        case 0:
+        {
+            tint = vec3(1.0, pickDim, pickDim);
+            break;
+        }
+        case 1:
+        case 2:
+        {
+            tint = vec3(pickDim, 1.0, pickDim);
+            break;
+        }
+        default:
+        {
+            tint = vec3(pickDim, pickDim, 1.0);
+            break;
+        }
+    }
+    float lift;
+    if (_1295 > 0.5)
+    {
+        lift = sqrt(max(color_2.y, 0.0));
+    }
+    else
+    {
+        float _1575 = color_2.y;
+        lift = _1575 * _1575;
+    }
+    vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * shapeScale;
+    vec3 color;
+    do
+    {
+        bool _1763 = _1295 < 0.0;
+        bool _1770;
+        if (!_1763)
+        {
+            _1770 = _1295 > 1.0;
+        }
+        else
+        {
+            _1770 = _1763;
+        }
+        if (_1770)
+        {
+            color = edgeColor;
+            break;
+        }
+        bool _1777 = _1298 < 0.0;
+        bool _1784;
+        if (!_1777)
+        {
+            _1784 = _1298 > 1.0;
+        }
+        else
+        {
+            _1784 = _1777;
+        }
+        if (_1784)
+        {
+            color = edgeColor.zyx;
+            break;
+        }
+        color = ((color_2 * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (pulseDepth * sin(_1467 * 0.025 + (time * pulseRate)) + 1.0);
+        break;
+    } while(false);
+    vec4 c = vec4(color, 1.0);
+    vec4 _1832 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _1834 = isnan(c);
+    fragColor = vec4(_1834.x ? vec4(0.0).x : _1832.x, _1834.y ? vec4(0.0).y : _1832.y, _1834.z ? vec4(0.0).z : _1832.z, _1834.w ? vec4(0.0).w : _1832.w);
+}
+

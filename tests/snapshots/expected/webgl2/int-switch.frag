@@ -1,0 +1,56 @@
+#version 300 es
+precision highp float;
+precision highp int;
+
+uniform vec2 outputSize;
+uniform int bandWidth;
+uniform float pickDim;
+
+uniform highp sampler2D source;
+
+in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+
+void main()
+{
+    vec2 _322 = vTexCoord * outputSize;
+    vec4 texel = texture(source, vTexCoord);
+    int x = int(_322.x) - 12;
+    float _592 = _322.y;
+    vec3 color = texel.xyz * (0.03 * mod(_592 - 4.0, -6.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
+    vec3 tint;
+    switch (int(_592) & 3)
+    {
+        case 0:
+        {
+            tint = vec3(1.0, pickDim, pickDim);
+            break;
+        }
+        case 1:
+        case 2:
+        {
+            tint = vec3(pickDim, 1.0, pickDim);
+            break;
+        }
+        default:
+        {
+            tint = vec3(pickDim, pickDim, 1.0);
+            break;
+        }
+    }
+    float lift;
+    if (vTexCoord.x > 0.5)
+    {
+        lift = sqrt(max(color.y, 0.0));
+    }
+    else
+    {
+        float _705 = color.y;
+        lift = _705 * _705;
+    }
+    vec4 c = vec4(color * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift), 1.0);
+    vec4 _791 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _793 = isnan(c);
+    fragColor = vec4(_793.x ? vec4(0.0).x : _791.x, _793.y ? vec4(0.0).y : _791.y, _793.z ? vec4(0.0).z : _791.z, _793.w ? vec4(0.0).w : _791.w);
+}
+
