@@ -13,6 +13,7 @@
 #include "crtforge/files.hpp"
 #include "crtforge/runtime/godot3_engine.hpp"
 #include "crtforge/validate/target_render.hpp"
+#include "validate/consumers/consumer.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -461,4 +462,19 @@ color = Color( 0.5, 0.5, 0.5, 1 )
     INFO("max |Godot - Vulkan| over column " << kColumn << ": " << worst << "; game rows whose 3 device rows differ: " << varying_groups);
     CHECK(worst < 0.02);
     CHECK(varying_groups > kGameH * 9 / 10);
+}
+
+TEST_CASE("Godot 3 compile checks run in the real engine, not only the shim", "[godot][godot3]") {
+    // An exported node shader passes; the same with a hint Godot 3 does not have is refused by Godot
+    // itself (the shim reads Godot's builtins, not its hint grammar).
+    auto out = emit("classic", TargetId::Godot3, 0);
+    OutputFile shader = file(out, "shader");
+    ConsumerEngines engines(EngineOptions{});
+    CHECK(godot3_consumer().compile(shader, engines).ok());
+    const size_t at = shader.data.find(": hint_range(");
+    REQUIRE(at != std::string::npos);
+    shader.data.replace(at, 13, ": hint_nonsense(");
+    auto refused = godot3_consumer().compile(shader, engines);
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().message, Catch::Contains("Godot 3 rejected the shader"));
 }

@@ -26,11 +26,16 @@ namespace crtforge {
 class ConsumerEngines {
 public:
     explicit ConsumerEngines(EngineOptions vulkan_options) : vulkan_options_(std::move(vulkan_options)) {}
+    ~ConsumerEngines();  // hands a started Godot 3 back to the process's pool
+    ConsumerEngines(const ConsumerEngines&) = delete;
+    ConsumerEngines& operator=(const ConsumerEngines&) = delete;
 
     Result<RenderEngine*> vulkan();
     Result<GlEngine*> gl(bool es);
     Result<DawnEngine*> dawn() { return shared_dawn_engine(); }
-    // This thread's Godot 3, started on its first render and kept for the next ones.
+    // This thread's Godot 3, started on its first use and kept for the next ones; when the engines
+    // go, it returns to a process-wide pool, so the next engines in the process (the next validate
+    // run of a test, of the mutation catalogue) take it started instead of starting Godot again.
     Godot3Server& godot3();
     // "llvmpipe (LLVM 15.0.6, 256 bits)", or "unavailable".
     std::string vulkan_device_name();

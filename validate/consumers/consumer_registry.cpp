@@ -1,5 +1,7 @@
 // Consumer keys (as TargetInfo::consumer names them) -> consumers, and what the consumers share.
 #include <map>
+#include <mutex>
+#include <vector>
 
 #include "crtforge/cache.hpp"
 #include "crtforge/uniforms.hpp"
@@ -38,8 +40,41 @@ Result<GlEngine*> ConsumerEngines::gl(bool es) {
     return slot.get();
 }
 
+namespace {
+
+// Started Godot 3 servers no ConsumerEngines holds; destroyed (Godot stopped) at exit.
+class Godot3Pool {
+public:
+    std::unique_ptr<Godot3Server> take() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (idle_.empty()) return std::make_unique<Godot3Server>();
+        auto server = std::move(idle_.back());
+        idle_.pop_back();
+        return server;
+    }
+    void give(std::unique_ptr<Godot3Server> server) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        idle_.push_back(std::move(server));
+    }
+
+private:
+    std::mutex mutex_;
+    std::vector<std::unique_ptr<Godot3Server>> idle_;
+};
+
+Godot3Pool& godot3_pool() {
+    static Godot3Pool pool;
+    return pool;
+}
+
+}  // namespace
+
+ConsumerEngines::~ConsumerEngines() {
+    if (godot3_) godot3_pool().give(std::move(godot3_));
+}
+
 Godot3Server& ConsumerEngines::godot3() {
-    if (!godot3_) godot3_ = std::make_unique<Godot3Server>();
+    if (!godot3_) godot3_ = godot3_pool().take();
     return *godot3_;
 }
 

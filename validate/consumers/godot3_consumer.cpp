@@ -100,8 +100,19 @@ Result<std::string> host_scene(const std::string& mode, const TargetOutput& file
 
 class Godot3Consumer final : public Consumer {
 public:
+    // The shim first (its errors name GLSL lines precisely), then the real Godot 3: its own shader
+    // language parser is stricter than GLSL in places the shim cannot know (a user's stage once
+    // passed the shim and was rejected by Godot). The persistent server keeps this cheap.
     Status compile(const OutputFile& f, ConsumerEngines& engines) const override {
-        return consumers::compile_through_shim(f.data, 3, engines);
+        if (auto shim = consumers::compile_through_shim(f.data, 3, engines); !shim.ok()) return shim;
+        if (f.manifest_role() != "shader") return Ok{};  // screen shaders: the matrix's host modes render them
+        Godot3Job job;
+        job.shader_code = f.data;
+        job.width = job.height = 2;
+        job.frames = 1;
+        auto drawn = engines.godot3().render(job);
+        if (!drawn.ok()) return drawn.error();
+        return Ok{};
     }
 
     Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
@@ -199,7 +210,8 @@ public:
 
     std::string describe(ConsumerEngines&) const override {
         const std::string version = godot3_version();
-        return version.empty() ? std::string("Godot 3 unavailable") : "Godot " + version + " (GLES3 on Mesa, Xvfb; the exported scene)";
+        return version.empty() ? std::string("Godot 3 unavailable")
+                               : "Godot " + version + " (GLES3 on Mesa, Xvfb): compiles every node shader, renders the exported scene";
     }
 };
 
