@@ -478,3 +478,78 @@ TEST_CASE("Godot 3 compile checks run in the real engine, not only the shim", "[
     REQUIRE_FALSE(refused.ok());
     CHECK_THAT(refused.error().message, Catch::Contains("Godot 3 rejected the shader"));
 }
+
+namespace {
+std::string read_or_empty(const std::string& path) {
+    auto text = read_text_file(path);
+    return text.ok() ? text.value() : std::string();
+}
+}  // namespace
+
+TEST_CASE("the editor plugin's CrtOverlay node shades the screen in a real Godot 3 and lists the presets", "[godot][godot3][plugin]") {
+    // The editor itself crashes under Xvfb here (Godot 3.2.3, with or without the plugin), so the
+    // plugin script is checked by loading it in the running game (a parse error makes it unusable),
+    // and the node it registers is made from its script, as a game without the plugin would.
+    test::TempDir project;
+    auto exported = test::run_crtforge("--no-cache export -q --preset classic,crt-pulse --target godot3,godot4 --out " + (project / "export"));
+    REQUIRE(exported.exit_code == 0);
+    const std::string plugin4 = read_or_empty(project / "export/godot4/addons/crtforge/crtforge_plugin.gd");
+    CHECK_THAT(plugin4, Catch::StartsWith("@tool\nextends EditorPlugin"));
+    CHECK_THAT(plugin4, Catch::Contains("add_custom_type(\"CrtOverlay\", \"CanvasLayer\""));
+    CHECK_THAT(read_or_empty(project / "export/godot4/addons/crtforge/crtforge_overlay.gd"), Catch::Contains("func _validate_property("));
+    std::filesystem::rename(project / "export/godot3/addons", project / "addons");
+    CHECK_THAT(read_or_empty(project / "addons/crtforge/plugin.cfg"), Catch::Contains("script=\"crtforge_plugin.gd\""));
+    REQUIRE(write_file_atomic(project / "project.godot",
+                              "config_version=4\n\n[application]\nrun/main_scene=\"res://main.tscn\"\n\n[display]\n"
+                              "window/size/width=320\nwindow/size/height=240\n").ok());
+    REQUIRE(write_file_atomic(project / "main.gd", R"(extends Control
+func _ready():
+	var overlay = preload("res://addons/crtforge/crtforge_overlay.gd").new()
+	overlay.preset = "classic"
+	add_child(overlay)
+	for i in range(3):
+		yield(VisualServer, "frame_post_draw")
+	var img = get_viewport().get_texture().get_data()
+	img.flip_y()
+	img.lock()
+	var c = img.get_pixel(80, 120)
+	print("WHITE %f %f %f" % [c.r, c.g, c.b])
+	var e = img.get_pixel(1, 1)
+	print("CORNER %f %f %f" % [e.r, e.g, e.b])
+	print("PRESETS %s" % PoolStringArray(overlay.presets()).join(","))
+	print("LAYER %d" % overlay.layer)
+	var plugin = load("res://addons/crtforge/crtforge_plugin.gd")
+	print("PLUGIN %s" % str(plugin != null and plugin.can_instance()))
+	overlay.preset = "no-such-preset"
+	print("HIDDEN %s" % str(not overlay.get_node("Screen").visible))
+	get_tree().quit()
+)").ok());
+    REQUIRE(write_file_atomic(project / "main.tscn", R"([gd_scene load_steps=2 format=2]
+
+[ext_resource path="res://main.gd" type="Script" id=1]
+
+[node name="Main" type="Control"]
+anchor_right = 1.0
+anchor_bottom = 1.0
+script = ExtResource( 1 )
+
+[node name="White" type="ColorRect" parent="."]
+margin_right = 320.0
+margin_bottom = 240.0
+color = Color( 1, 1, 1, 1 )
+)").ok());
+    auto log = run_godot3_project(project.path());
+    REQUIRE(log.ok());
+    INFO(log.value());
+    std::smatch m;
+    REQUIRE(std::regex_search(log.value(), m, std::regex(R"(WHITE ([0-9.]+) ([0-9.]+) ([0-9.]+))")));
+    CHECK(std::stod(m[1]) < 0.99);  // shaded by classic: scanline, mask, vignette
+    CHECK(std::stod(m[1]) > 0.5);
+    CHECK(std::stod(m[2]) < std::stod(m[1]));
+    CHECK_THAT(log.value(), Catch::Contains("CORNER 0.000000 0.000000 0.000000"));
+    CHECK_THAT(log.value(), Catch::Contains("PRESETS classic,crt-pulse"));
+    CHECK_THAT(log.value(), Catch::Contains("LAYER 100"));
+    CHECK_THAT(log.value(), Catch::Contains("PLUGIN True"));
+    CHECK_THAT(log.value(), Catch::Contains("crtforge: no preset 'no-such-preset' here"));
+    CHECK_THAT(log.value(), Catch::Contains("HIDDEN True"));
+}

@@ -16,6 +16,9 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& input, in
 
 // The text of crtforge_pipeline.gd for a Godot major version (embedded at build time).
 const char* pipeline_script(int godot_version);
+// The editor plugin (adds the CrtOverlay node type) and the CrtOverlay node's script.
+const char* plugin_script(int godot_version);
+const char* overlay_script(int godot_version);
 
 // The scene file's path under the target's folder: "addons/crtforge/<preset>.tscn".
 std::string scene_path(const Preset& preset);
