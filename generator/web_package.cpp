@@ -23,10 +23,12 @@ json package_json() {
     p["types"] = "./index.d.ts";
     p["exports"] = json{{".", json{{"types", "./index.d.ts"}, {"default", "./index.mjs"}}},
                         {"./crt-webgpu.mjs", json{{"types", "./index.d.ts"}, {"default", "./crt-webgpu.mjs"}}},
+                        {"./three", json{{"types", "./three.d.ts"}, {"default", "./three.mjs"}}},
                         {"./manifest.json", "./manifest.json"},
                         {"./wgsl/*", "./wgsl/*"},
                         {"./luts/*", "./luts/*"}};
-    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "manifest.json", "wgsl/", "luts/", "README.md"});
+    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "manifest.json", "wgsl/",
+                              "luts/", "README.md"});
     p["sideEffects"] = false;
     p["peerDependencies"] = json{{"@webgpu/types", ">=0.1.40"}};
     p["peerDependenciesMeta"] = json{{"@webgpu/types", json{{"optional", true}}}};
@@ -71,6 +73,8 @@ void add_web_package(const json& manifest, std::map<std::string, std::string>& f
     package[dir + "index.d.ts"] = sources.declarations;
     package[dir + "crt-webgpu.mjs"] = sources.module;
     package[dir + "README.md"] = sources.readme;
+    package[dir + "three.mjs"] = sources.three;
+    package[dir + "three.d.ts"] = sources.three_declarations;
     for (const std::string& path : kept) package[dir + path] = files.at(path);
     files.merge(package);
 }

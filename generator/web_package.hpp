@@ -19,6 +19,8 @@ struct WebPackageSources {
     const char* index;         // package/index.mjs
     const char* declarations;  // package/index.d.ts
     const char* readme;        // package/README.md
+    const char* three;               // package/three.mjs: the three.js WebGPURenderer pass
+    const char* three_declarations;  // package/three.d.ts
 };
 const WebPackageSources& web_package_sources();
 

@@ -22,9 +22,9 @@ fi
 
 install_apt_packages "crtforge setup" "${missing[@]}"
 
-# Dawn for the WGSL runner: the npm package webgpu at the version package-lock.json pins, and
-# TypeScript with @webgpu/types to check the exported package's .d.ts. webgpu's postinstall
-# script only does work on macOS, so install scripts stay off.
+# Dawn for the WGSL runner: the npm package webgpu at the version package-lock.json pins; and for
+# the exported npm package's tests TypeScript with @webgpu/types (its .d.ts) and three.js (its
+# adapter). webgpu's postinstall script only does work on macOS, so install scripts stay off.
 WGSL_RUNNER="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/wgsl-runner"
 WEBGPU_VERSION=0.6.2
 webgpu_manifest="$WGSL_RUNNER/node_modules/webgpu/package.json"
@@ -33,7 +33,7 @@ if [[ -f "$webgpu_manifest" ]]; then
   installed=$(node -p 'require(process.argv[1]).version' "$webgpu_manifest" 2>/dev/null || true)
 fi
 if [[ "$installed" != "$WEBGPU_VERSION" || ! -f "$WGSL_RUNNER/node_modules/typescript/package.json" ||
-      ! -f "$WGSL_RUNNER/node_modules/@webgpu/types/package.json" ]]; then
+      ! -f "$WGSL_RUNNER/node_modules/@webgpu/types/package.json" || ! -f "$WGSL_RUNNER/node_modules/three/package.json" ]]; then
   echo "crtforge setup: installing npm packages for the WGSL runner"
   npm ci --prefix "$WGSL_RUNNER" --no-audit --no-fund --ignore-scripts --loglevel=error >/dev/null
 fi

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -286,6 +287,11 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
     auto write_app = [&](const std::string& set_param) {
         std::ofstream out(app / "app.mts", std::ios::trunc);
         out << "import { loadCrtPreset, loadManifest, type Manifest, type CrtScene } from 'crtforge-presets';\n"
+               "import { createThreeCrtPass, type ThreeWebGPURendererLike } from 'crtforge-presets/three';\n"
+               "export async function three(renderer: ThreeWebGPURendererLike, game: { texture: object }, screen: { texture: object }) {\n"
+               "  const pass = await createThreeCrtPass(renderer, 'classic', { format: 'rgba8unorm' });\n"
+               "  await pass.render(game, screen, { time: 1.5 });\n"
+               "}\n"
                "export async function run(device: GPUDevice, source: GPUTexture, view: GPUTextureView): Promise<number> {\n"
                "  const manifest: Manifest = await loadManifest();\n"
                "  const crt: CrtScene = await loadCrtPreset(device, 'classic', { format: 'rgba8unorm' });\n"
@@ -305,5 +311,67 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
     auto bad = test::run_command(tsc);
     INFO(bad.out);
     CHECK(bad.exit_code != 0);
-    CHECK_THAT(bad.out, Catch::Contains("app.mts(5,") && Catch::Contains("'string'"));
+    CHECK_THAT(bad.out, Catch::Contains("app.mts(10,") && Catch::Contains("'string'"));
+}
+
+// The package's three.js adapter (crtforge-presets/three): three.js's WebGPURenderer (npm three,
+// pinned in tools/wgsl-runner) on Dawn draws the picture into a RenderTarget and the crtforge pass
+// renders it into another; the frames must match crtforge's Vulkan render of the same 8-bit picture.
+TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wgsl][example][npm][three]") {
+    const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
+    INFO("npm packages missing: run scripts/setup.sh");
+    REQUIRE(fs::exists(runner / "three/package.json"));
+
+    test::TempDir tmp;
+    const std::string export_dir = tmp / "export";
+    const std::vector<std::string> presets = {"classic", "super-win"};
+    const auto exported = test::run_crtforge("export --target wgsl --preset classic,super-win --out '" + export_dir + "'");
+    INFO(exported.err);
+    REQUIRE(exported.exit_code == 0);
+    const std::string app = tmp / "app";
+    fs::create_directories(fs::path(app) / "node_modules");
+    fs::create_directory_symlink(fs::path(export_dir) / "npm", fs::path(app) / "node_modules/crtforge-presets");
+
+    // three uploads 8-bit pictures: both renderers get the same 8-bit values.
+    std::vector<Image> inputs;
+    for (int f : {0, 1, 2}) {
+        auto input = make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, f);
+        REQUIRE(input.ok());
+        for (float& v : input.value().rgba) v = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
+        inputs.push_back(std::move(input.value()));
+    }
+    Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
+    tolerance.max_rmse *= 2;
+    tolerance.max_tile_rmse *= 2;
+    tolerance.outlier_threshold *= 2;
+    TargetRenderer renderer;
+    for (const std::string& name : presets) {
+        SECTION(name) {
+            const std::string prefix = tmp / (name + "-three-");
+            run_check(tmp, from_package(app) + " --three on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
+                      kSceneWidth, kSceneHeight);
+            const Preset* preset = test::shipped_library().find_preset(name);
+            REQUIRE(preset != nullptr);
+            auto compiled = compile_scene(test::shipped_library(), *preset, {}, Cache());
+            REQUIRE(compiled.ok());
+            SceneRenderRequest r;
+            r.preset = preset;
+            r.passes = &compiled.value();
+            r.source = [&inputs](int frame) -> Result<Image> { return inputs.at(static_cast<size_t>(frame)); };
+            r.width = kSceneWidth;
+            r.height = kSceneHeight;
+            r.frames = {2};
+            auto vulkan = renderer.render_scene(r);
+            INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
+            REQUIRE(vulkan.ok());
+            const Image three = read_raw(prefix + "2.raw", kSceneWidth, kSceneHeight);
+            auto metrics = compare_images(three, vulkan.value()[0]);
+            REQUIRE(metrics.ok());
+            WARN(name << " through three.js: RMSE " << metrics.value().rmse << ", max |diff| " << metrics.value().max_abs);
+            auto verdict = judge(three, vulkan.value()[0], tolerance);
+            REQUIRE(verdict.ok());
+            INFO(verdict.value().reason);
+            CHECK(verdict.value().passed);
+        }
+    }
 }

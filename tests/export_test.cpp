@@ -32,9 +32,10 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     // Per pass: 7 targets x 2 shaders, 2 Godot targets x (2 shaders + material) and one WGSL module
     // (and its copy in the npm package); per preset: its LUTs, per Godot target its scene and a
     // copy of the LUTs, a copy in the npm package, and for a single-pass preset the screen material
-    // and the overlay scene; one README and one pipeline script per Godot addon, the manifest, and
-    // the npm package's package.json, manifest, index.mjs, index.d.ts, crt-webgpu.mjs and README.
-    size_t expected = 2 + 2 + 1 + 6;
+    // and the overlay scene; per Godot addon a README, the pipeline script and the editor plugin
+    // (plugin.cfg, its script, the overlay node's script); the manifest; and the npm package's
+    // package.json, manifest, index.mjs, index.d.ts, crt-webgpu.mjs, three.mjs, three.d.ts and README.
+    size_t expected = 2 * 5 + 1 + 8;
     for (const Preset& p : lib.presets())
         expected += p.passes.size() * (7 * 2 + 2 * 3 + 1 + 1) + p.luts.size() + 2 * (1 + p.luts.size()) + p.luts.size() +
                     (p.single_pass() ? 2 * 2 : 0);

@@ -6,11 +6,14 @@
 //   node examples/webgpu/check.mjs (--export DIR | --package APP_DIR) --preset NAME \
 //        --input IN.raw --input-width W --input-height H \
 //        --width W --height H --output OUT [--frames 0,1,...] [--capture 1,9] [--time SECONDS]
-//        [--fit stretch|aspect|integer] [--set name=value ...]
+//        [--fit stretch|aspect|integer] [--set name=value ...] [--three on]
 //
 // --package: load the preset through the npm package `crtforge-presets` (an export's npm/ folder)
 // as an app would, `import ... from 'crtforge-presets'` resolved from APP_DIR's node_modules, and
 // its loadCrtPreset(); --export: read the export's files here and call createCrtScene.
+// --three (with --package): through the package's three.js adapter instead (crtforge-presets/three
+// on a three.js WebGPURenderer on the same Dawn device): the input, quantised to 8 bits, is drawn
+// by three into a RenderTarget, the pass renders it into another (half float), read back.
 // RAW = little-endian float32 RGBA, rows top first. IN.raw holds one picture, or one per entry of
 // --frames (the original at each frame drawn, in order). --frames defaults to 0; --capture (the
 // frames written, default: the last drawn) writes OUT<frame>.raw each, or OUT itself when one
@@ -52,10 +55,12 @@ function parseArgs(argv) {
     if (flag === '--set') args.set.push(value);
     else if (flag === '--frames') args.frames = frameList(flag, value);
     else if (flag === '--capture') args.capture = frameList(flag, value);
+    else if (flag === '--three') args.three = value === 'on' ? true : fail(`--three takes 'on', got '${value}'`);
     else if (names[flag]) args[names[flag]] = value;
     else fail(`unknown argument '${flag}'`);
   }
   if ((args.export === undefined) === (args.package === undefined)) fail('give one of --export DIR and --package APP_DIR');
+  if (args.three && args.package === undefined) fail('--three needs --package APP_DIR');
   for (const key of ['preset', 'input', 'inputWidth', 'inputHeight', 'width', 'height', 'output'])
     if (args[key] === undefined) fail(`missing --${key.replace(/[A-Z]/g, (c) => '-' + c.toLowerCase())}`);
   for (const key of ['inputWidth', 'inputHeight', 'width', 'height']) {
@@ -202,7 +207,62 @@ try {
 device.destroy();
 process.exit(exitCode);  // dawn.node keeps the event loop alive on its own
 
+// The package's three.js adapter: three draws the picture (8-bit, rows bottom-up as three's
+// DataTexture takes them) into a RenderTarget, the crtforge pass draws that into a half-float one.
+async function renderThree() {
+  // three picks its WebGPU backend when navigator.gpu exists (Node 20 has no navigator), and its
+  // animation loop reads `self` and requestAnimationFrame (unused here: frames are drawn by hand).
+  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
+  globalThis.self ??= globalThis;
+  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
+  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
+  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
+  const THREE = await import(pathToFileURL(require.resolve('three/webgpu')).href);
+  const { createThreeCrtPass } = await import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve('crtforge-presets/three')).href);
+  // No window here: a canvas stand-in (nothing is presented; everything goes through RenderTargets).
+  const context = { configure() {}, unconfigure() {}, getCurrentTexture() { throw new Error('no canvas in Node'); } };
+  const canvas = { width: args.width, height: args.height, style: {}, getContext: () => context, addEventListener() {}, removeEventListener() {} };
+  const renderer = new THREE.WebGPURenderer({ canvas, device, antialias: false });
+  await renderer.init();
+  const w = args.inputWidth, h = args.inputHeight;
+  const bytes = new Uint8Array(w * h * 4);
+  const input = new THREE.RenderTarget(w, h, { depthBuffer: false });
+  const output = new THREE.RenderTarget(args.width, args.height, { depthBuffer: false, type: THREE.HalfFloatType });
+  const texture = new THREE.DataTexture(bytes, w, h, THREE.RGBAFormat, THREE.UnsignedByteType);
+  Object.assign(texture, { colorSpace: THREE.NoColorSpace, magFilter: THREE.NearestFilter, minFilter: THREE.NearestFilter, generateMipmaps: false });
+  const scene = new THREE.Scene();
+  scene.add(new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ map: texture })));
+  const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+  const crt = await createThreeCrtPass(renderer, args.preset, { format: 'rgba16float' });
+  for (const assignment of args.set) {
+    const [name, text] = assignment.split('=');
+    crt.setParam(name, text.includes(',') ? text.split(',').map(Number) : Number(text));
+  }
+  const capture = args.capture ?? [args.frames[args.frames.length - 1]];
+  const bytesPerRow = Math.ceil((args.width * 8) / 256) * 256;
+  const out = [];
+  for (let i = 0; i < args.frames.length; ++i) {
+    const frame = args.frames[i], picture = pictures[Math.min(i, pictures.length - 1)];
+    for (let y = 0; y < h; ++y)
+      for (let x = 0; x < w * 4; ++x) bytes[(h - 1 - y) * w * 4 + x] = Math.round(Math.min(1, Math.max(0, picture[y * w * 4 + x])) * 255);
+    texture.needsUpdate = true;
+    renderer.setRenderTarget(input);
+    await renderer.renderAsync(scene, camera);
+    renderer.setRenderTarget(null);
+    await crt.render(input, output, { frame, time: args.time, fit: args.fit });
+    if (capture.includes(frame)) {
+      const readback = device.createBuffer({ size: bytesPerRow * args.height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+      const encoder = device.createCommandEncoder();
+      encoder.copyTextureToBuffer({ texture: crt.textureOf(output) }, { buffer: readback, bytesPerRow, rowsPerImage: args.height }, [args.width, args.height]);
+      device.queue.submit([encoder.finish()]);
+      out.push({ frame, buffer: await readBack({ readback, bytesPerRow }) });
+    }
+  }
+  return out;
+}
+
 async function render() {
+  if (args.three) return renderThree();
   const linear = preset.passes.some((p) => p.textures.some((t) => /^original(@\d+)?$/.test(t.from) && t.filter !== 'nearest'));
   const inputFormat = linear ? 'rgba16float' : 'rgba32float';
   const source = device.createTexture({
