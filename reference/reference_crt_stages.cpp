@@ -99,6 +99,17 @@ bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f
         const double bright = 0.299 * color.r + 0.587 * color.g + 0.114 * color.b;
         const double intensity = p.num("scanlineIntensity");
         color = color * mix(1.0 - intensity, 1.0, s * mix(1.0, bright, p.num("scanlineBrightBoost")));
+    } else if (form == "crt_effect_filtered") {
+        // The point form's factor averaged over the pixel's height (8-point Gauss-Legendre here,
+        // not the shader's 4-point rule): linear in the sine term, so the mean of the factor.
+        const double spacing = p.num("scanlineSpacing"), sharpness = p.num("scanlineSharpness");
+        const double bright = 0.299 * color.r + 0.587 * color.g + 0.114 * color.b;
+        const double intensity = p.num("scanlineIntensity"), boost = mix(1.0, bright, p.num("scanlineBrightBoost"));
+        const double k = pixel_height_mean(f.pixel.y, [&](double y) {
+            const double s = std::pow(std::sin(y * kPi / spacing) * 0.5 + 0.5, sharpness);
+            return mix(1.0 - intensity, 1.0, s * boost);
+        });
+        color = color * k;
     } else if (form == "quiet_frame") {
         const double s = std::sin(f.pixel.y * kArticlePi);
         color = color * (1.0 - p.num("scanlineIntensity") * 0.5 * (1.0 - s));

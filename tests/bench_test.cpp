@@ -134,7 +134,8 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
     CHECK(tiers[0].tier == QualityTier::Point);
     CHECK(tiers[0].changes.empty());  // written with the point-sampled mask
     CHECK(tiers[1].tier == QualityTier::Filtered);
-    REQUIRE(tiers[1].changes == std::vector<std::string>{"pass main: mask shadow -> shadow_filtered"});
+    REQUIRE(tiers[1].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered",
+                                                         "pass main: mask shadow -> shadow_filtered"});
     const ResolvedStage* mask = tiers[1].preset.passes.front().find_stage("mask");
     REQUIRE(mask);
     CHECK(mask->form->name == "shadow_filtered");
@@ -143,7 +144,8 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
     // A preset written with the filtered form offers the point one first, as the cheaper tier.
     const std::vector<PresetTier> back = preset_tiers(tiers[1].preset);
     REQUIRE(back.size() == 2);
-    CHECK(back[0].changes == std::vector<std::string>{"pass main: mask shadow_filtered -> shadow"});
+    CHECK(back[0].changes == std::vector<std::string>{"pass main: scanlines crt_effect_filtered -> crt_effect",
+                                                      "pass main: mask shadow_filtered -> shadow"});
     CHECK(back[1].changes.empty());
     // No stage with a filtered form: one tier, as written.
     const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("atari-16"));
@@ -155,7 +157,8 @@ TEST_CASE("each filtered form is its point form averaged over each pixel", "[ben
     // On flat grey the filtered tier's reference equals the point tier's reference supersampled
     // finely (the box filter the filtered form computes exactly), and it is far from the point one.
     const TemplateLibrary& lib = test::validation_library();
-    for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered", "stage-scanlines-quiet-frame-filtered"}) {
+    for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered", "stage-scanlines-quiet-frame-filtered",
+                             "stage-scanlines-crt-effect-filtered"}) {
         INFO(name);
         const std::vector<PresetTier> tiers = preset_tiers(*lib.find_preset(name));
         REQUIRE(tiers.size() == 2);
@@ -210,7 +213,8 @@ TEST_CASE("budget mode generates the cheapest tier within --max-error and says w
                                     (out / "tight"));
     REQUIRE(tight.exit_code == 0);
     CHECK_THAT(tight.err, Catch::Contains("tier 'point' (as written) at 160x120") && Catch::Contains("error over 0.012") &&
-                              Catch::Contains("chose tier 'filtered' (pass main: mask shadow -> shadow_filtered)") &&
+                              Catch::Contains("chose tier 'filtered' (pass main: scanlines crt_effect -> crt_effect_filtered, "
+                                              "pass main: mask shadow -> shadow_filtered)") &&
                               Catch::Contains("stripes are 2.67 px wide"));
     // The filtered tier's shader, not the preset as written.
     auto exported = test::run_crtforge("generate --preset crt-shadow-mask --target glsl330 --out " + (out / "written"));

@@ -46,3 +46,20 @@ vec3 scanlines_quiet_frame_filtered(vec3 color, CrtFrag frag) {
     return color * (1.0 - scanlineIntensity * 0.5 * (1.0 - s));
 }
 #endif
+
+#ifdef CRT_FORM_scanlines_crt_effect_filtered
+// The same over the pixel's height: the mean of pow(sin(y*PI/spacing)*0.5+0.5, sharpness) over
+// [y - 0.5, y + 0.5] by 4-point Gauss-Legendre (nodes +-0.5*0.33998, +-0.5*0.86114; weights
+// halved to sum to 1). Written out: Godot 3's language has no comma operator for a loop.
+float scanlines_crt_effect_at(float y) {
+    return pow(sin(y * PI / scanlineSpacing) * 0.5 + 0.5, scanlineSharpness);
+}
+
+vec3 scanlines_crt_effect_filtered(vec3 color, CrtFrag frag) {
+    float y = frag.pixel.y;
+    float scanline = 0.32607257743127305 * (scanlines_crt_effect_at(y - 0.16999052179242813) + scanlines_crt_effect_at(y + 0.16999052179242813))
+                   + 0.17392742256872690 * (scanlines_crt_effect_at(y - 0.43056815579702629) + scanlines_crt_effect_at(y + 0.43056815579702629));
+    float bright = dot(color, vec3(0.299, 0.587, 0.114));
+    return color * mix(1.0 - scanlineIntensity, 1.0, scanline * mix(1.0, bright, scanlineBrightBoost));
+}
+#endif
