@@ -106,6 +106,49 @@ Image vulkan_render(const std::string& preset, const Image& input, double time =
     return std::move(image).value();
 }
 
+// Two GPU renders each within a golden's tolerance of the reference are within twice it of each
+// other.
+Tolerance doubled_golden_tolerance() {
+    Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
+    tolerance.max_rmse *= 2;
+    tolerance.max_tile_rmse *= 2;
+    tolerance.outlier_threshold *= 2;
+    return tolerance;
+}
+
+// Compares the frames check.mjs wrote (`prefix`<frame>.raw) with the Vulkan render of the preset's
+// scene from the same inputs (one per frame, from frame 0).
+void check_scene_frames_like_vulkan(TargetRenderer& renderer, const std::string& name, const std::vector<Image>& inputs,
+                                    const std::string& prefix, const std::vector<int>& frames, const std::string& label) {
+    const Preset* preset = test::shipped_library().find_preset(name);
+    REQUIRE(preset != nullptr);
+    auto compiled = compile_scene(test::shipped_library(), *preset, {}, Cache());
+    REQUIRE(compiled.ok());
+    SceneRenderRequest r;
+    r.preset = preset;
+    r.passes = &compiled.value();
+    r.source = [&inputs](int frame) -> Result<Image> { return inputs.at(static_cast<size_t>(frame)); };
+    r.width = kSceneWidth;
+    r.height = kSceneHeight;
+    r.frames = frames;
+    auto vulkan = renderer.render_scene(r);
+    INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
+    REQUIRE(vulkan.ok());
+    const Tolerance tolerance = doubled_golden_tolerance();
+    for (size_t i = 0; i < r.frames.size(); ++i) {
+        const Image other = read_raw(prefix + std::to_string(r.frames[i]) + ".raw", kSceneWidth, kSceneHeight);
+        auto metrics = compare_images(other, vulkan.value()[i]);
+        REQUIRE(metrics.ok());
+        const ImageMetrics& m = metrics.value();
+        WARN(name << " " << label << " frame " << r.frames[i] << ": RMSE " << m.rmse << ", max |diff| " << m.max_abs << " at ("
+                  << m.worst_x << ", " << m.worst_y << ")");
+        auto verdict = judge(other, vulkan.value()[i], tolerance);  // HDR values included
+        REQUIRE(verdict.ok());
+        INFO(verdict.value().reason);
+        CHECK(verdict.value().passed);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("The WebGPU example module renders exported presets like Vulkan", "[wgsl][example]") {
@@ -164,42 +207,11 @@ TEST_CASE("The WebGPU example runs whole scenes (passes, feedback, LUTs) like Vu
         inputs.push_back(std::move(input.value()));
     }
     TargetRenderer renderer;
-    // Two GPU renders each within a golden's tolerance of the reference are within twice it of
-    // each other.
-    Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
-    tolerance.max_rmse *= 2;
-    tolerance.max_tile_rmse *= 2;
-    tolerance.outlier_threshold *= 2;
     for (const std::string& name : presets) {
         SECTION(name) {
             const std::string prefix = tmp / (name + "-frame-");
             run_check(tmp, from_export(export_dir), name, inputs, prefix, " --frames 0,1,2,3,4 --capture 1,4", kSceneWidth, kSceneHeight);
-            const Preset* preset = test::shipped_library().find_preset(name);
-            REQUIRE(preset != nullptr);
-            auto compiled = compile_scene(test::shipped_library(), *preset, {}, Cache());
-            REQUIRE(compiled.ok());
-            SceneRenderRequest r;
-            r.preset = preset;
-            r.passes = &compiled.value();
-            r.source = [&inputs](int frame) -> Result<Image> { return inputs.at(static_cast<size_t>(frame)); };
-            r.width = kSceneWidth;
-            r.height = kSceneHeight;
-            r.frames = {1, 4};
-            auto vulkan = renderer.render_scene(r);
-            INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
-            REQUIRE(vulkan.ok());
-            for (size_t i = 0; i < r.frames.size(); ++i) {
-                const Image webgpu = read_raw(prefix + std::to_string(r.frames[i]) + ".raw", kSceneWidth, kSceneHeight);
-                auto metrics = compare_images(webgpu, vulkan.value()[i]);
-                REQUIRE(metrics.ok());
-                const ImageMetrics& m = metrics.value();
-                WARN(name << " frame " << r.frames[i] << ": RMSE " << m.rmse << ", max |diff| " << m.max_abs << " at (" << m.worst_x
-                          << ", " << m.worst_y << ")");
-                auto verdict = judge(webgpu, vulkan.value()[i], tolerance);  // HDR values included
-                REQUIRE(verdict.ok());
-                INFO(verdict.value().reason);
-                CHECK(verdict.value().passed);
-            }
+            check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {1, 4}, "WebGPU");
         }
     }
 }
@@ -340,38 +352,13 @@ TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wg
         for (float& v : input.value().rgba) v = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
         inputs.push_back(std::move(input.value()));
     }
-    Tolerance tolerance = test::golden_plan_or_fail(test::shipped_library(), std::string(CRTFORGE_SOURCE_DIR) + "/golden").front().tolerance;
-    tolerance.max_rmse *= 2;
-    tolerance.max_tile_rmse *= 2;
-    tolerance.outlier_threshold *= 2;
     TargetRenderer renderer;
     for (const std::string& name : presets) {
         SECTION(name) {
             const std::string prefix = tmp / (name + "-three-");
             run_check(tmp, from_package(app) + " --three on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
                       kSceneWidth, kSceneHeight);
-            const Preset* preset = test::shipped_library().find_preset(name);
-            REQUIRE(preset != nullptr);
-            auto compiled = compile_scene(test::shipped_library(), *preset, {}, Cache());
-            REQUIRE(compiled.ok());
-            SceneRenderRequest r;
-            r.preset = preset;
-            r.passes = &compiled.value();
-            r.source = [&inputs](int frame) -> Result<Image> { return inputs.at(static_cast<size_t>(frame)); };
-            r.width = kSceneWidth;
-            r.height = kSceneHeight;
-            r.frames = {2};
-            auto vulkan = renderer.render_scene(r);
-            INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
-            REQUIRE(vulkan.ok());
-            const Image three = read_raw(prefix + "2.raw", kSceneWidth, kSceneHeight);
-            auto metrics = compare_images(three, vulkan.value()[0]);
-            REQUIRE(metrics.ok());
-            WARN(name << " through three.js: RMSE " << metrics.value().rmse << ", max |diff| " << metrics.value().max_abs);
-            auto verdict = judge(three, vulkan.value()[0], tolerance);
-            REQUIRE(verdict.ok());
-            INFO(verdict.value().reason);
-            CHECK(verdict.value().passed);
+            check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {2}, "through three.js");
         }
     }
 }

@@ -207,6 +207,14 @@ try {
 device.destroy();
 process.exit(exitCode);  // dawn.node keeps the event loop alive on its own
 
+// --set name=value (a colour as r,g,b) on a scene or a three.js pass.
+function applySets(crt) {
+  for (const assignment of args.set) {
+    const [name, text] = assignment.split('=');
+    crt.setParam(name, text.includes(',') ? text.split(',').map(Number) : Number(text));
+  }
+}
+
 // The package's three.js adapter: three draws the picture (8-bit, rows bottom-up as three's
 // DataTexture takes them) into a RenderTarget, the crtforge pass draws that into a half-float one.
 async function renderThree() {
@@ -234,10 +242,7 @@ async function renderThree() {
   scene.add(new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ map: texture })));
   const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
   const crt = await createThreeCrtPass(renderer, args.preset, { format: 'rgba16float' });
-  for (const assignment of args.set) {
-    const [name, text] = assignment.split('=');
-    crt.setParam(name, text.includes(',') ? text.split(',').map(Number) : Number(text));
-  }
+  applySets(crt);
   const capture = args.capture ?? [args.frames[args.frames.length - 1]];
   const bytesPerRow = Math.ceil((args.width * 8) / 256) * 256;
   const out = [];
@@ -290,10 +295,7 @@ async function render() {
     const compileError = (await pass.compilationInfo()).find((m) => m.type === 'error');
     if (compileError) throw new Error(`WGSL of pass ${pass.alias} ${compileError.lineNum}:${compileError.linePos}: ${compileError.message}`);
   }
-  for (const assignment of args.set) {
-    const [name, text] = assignment.split('=');
-    crt.setParam(name, text.includes(',') ? text.split(',').map(Number) : Number(text));
-  }
+  applySets(crt);
 
   const capture = args.capture ?? [args.frames[args.frames.length - 1]];
   const bytesPerRow = Math.ceil((args.width * 8) / 256) * 256;
