@@ -181,14 +181,24 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     for (size_t i = 0; i < timings.size(); ++i)
         if (std::find(front.begin(), front.end(), i) == front.end()) order.push_back(i);
     order.insert(order.end(), front.begin(), front.end());
+    // Labels that would overlap an earlier one (two tiers at one error, say) move down a line.
+    struct Box { double x0, x1, y0, y1; };
+    std::vector<Box> placed;
     for (size_t i : order) {
         const SceneTiming& t = timings[i];
         if (!t.vs_supersampled) continue;
         const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
         const double x = X(t.ratio()), y = Y(t.vs_supersampled->rmse);
         const bool right = x > W - R - 120;  // labels near the right edge go to the point's left
+        const double width = 6.5 * static_cast<double>(t.label().size()), tx = right ? x - 6 : x + 6;
+        Box box{right ? tx - width : tx, right ? tx : tx + width, y - 15, y - 3};
+        auto overlaps = [&](const Box& b) {
+            return std::any_of(placed.begin(), placed.end(), [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
+        };
+        for (int tries = 0; tries < 8 && overlaps(box); ++tries) box.y0 += 13, box.y1 += 13;
+        placed.push_back(box);
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
-                         x, y, on_front ? "#d33" : "#36c", right ? x - 6 : x + 6, y - 4, right ? "end" : "start", xml_escape(t.label()));
+                         x, y, on_front ? "#d33" : "#36c", tx, box.y1 - 1, right ? "end" : "start", xml_escape(t.label()));
     }
     s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: Pareto front (nothing both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
     return s + "</svg>\n";
