@@ -552,4 +552,48 @@ color = Color( 1, 1, 1, 1 )
     CHECK_THAT(log.value(), Catch::Contains("PLUGIN True"));
     CHECK_THAT(log.value(), Catch::Contains("crtforge: no preset 'no-such-preset' here"));
     CHECK_THAT(log.value(), Catch::Contains("HIDDEN True"));
+
+    // Over a 3D scene: a Camera looking at an unshaded white wall is shaded like the white 2D picture.
+    REQUIRE(write_file_atomic(project / "main.gd", R"(extends Spatial
+func _ready():
+	var overlay = preload("res://addons/crtforge/crtforge_overlay.gd").new()
+	overlay.preset = "classic"
+	add_child(overlay)
+	for i in range(3):
+		yield(VisualServer, "frame_post_draw")
+	var img = get_viewport().get_texture().get_data()
+	img.flip_y()
+	img.lock()
+	var c = img.get_pixel(80, 120)
+	print("WHITE3D %f %f %f" % [c.r, c.g, c.b])
+	get_tree().quit()
+)").ok());
+    REQUIRE(write_file_atomic(project / "main.tscn", R"([gd_scene load_steps=4 format=2]
+
+[ext_resource path="res://main.gd" type="Script" id=1]
+
+[sub_resource type="SpatialMaterial" id=1]
+flags_unshaded = true
+albedo_color = Color( 1, 1, 1, 1 )
+
+[sub_resource type="QuadMesh" id=2]
+material = SubResource( 1 )
+size = Vector2( 40, 40 )
+
+[node name="Main" type="Spatial"]
+script = ExtResource( 1 )
+
+[node name="Camera" type="Camera" parent="."]
+transform = Transform( 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 5 )
+current = true
+
+[node name="Wall" type="MeshInstance" parent="."]
+mesh = SubResource( 2 )
+)").ok());
+    auto log3d = run_godot3_project(project.path());
+    REQUIRE(log3d.ok());
+    INFO(log3d.value());
+    std::smatch w;
+    REQUIRE(std::regex_search(log3d.value(), w, std::regex(R"(WHITE3D ([0-9.]+) ([0-9.]+) ([0-9.]+))")));
+    for (int c = 1; c <= 3; ++c) CHECK(std::fabs(std::stod(w[c]) - std::stod(m[c])) < 0.01);
 }

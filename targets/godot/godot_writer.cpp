@@ -86,6 +86,14 @@ std::string readme(int version) {
            "a CanvasLayer that post-processes everything below it with the preset its inspector's `preset`\n"
            "list picks (every `<preset>.screen.tres` here). It is the overlay scene as a node; without the\n"
            "plugin, `preload(\"res://addons/crtforge/crtforge_overlay.gd\").new()` makes one from a script.\n\n";
+    out += "## 3D scenes" + std::string(version >= 4 ? " (Godot 4.3)" : "") + "\n\n"
+           "The overlay (node or scene) works over 3D as over 2D: its screen shader reads what the cameras\n"
+           "drew (" + std::string(version >= 4 ? "`hint_screen_texture`" : "`SCREEN_TEXTURE`") + "), so everything below its CanvasLayer gets the effect. To keep\n"
+           "a HUD sharp, put the HUD on a CanvasLayer above the overlay's (layer > 100). For the 3D view alone,\n"
+           "at its own resolution, render it in a " + std::string(version >= 4 ? "SubViewport" : "Viewport") + " and show that texture through `<preset>.tscn`" +
+           std::string(version >= 4 ? ";\nGodot 4.3's CompositorEffect route (a compute pass inside the 3D pipeline) is not generated." : ".") + "\n"
+           "Checked in a real Godot 3: the overlay over a lit-free white wall seen by a Camera shades it as it\n"
+           "shades a white 2D picture.\n\n";
     out += "## Stretch modes\n\n"
            "- `display/window/stretch/mode` = `disabled` or `" + std::string(version >= 4 ? "canvas_items" : "2d") + "`: the overlay works as is;\n"
            "  the shader runs at the window's resolution.\n"
