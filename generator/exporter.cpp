@@ -403,7 +403,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
         result.files.merge(outputs[i].files);
         ++result.variants;
     }
-    detail::add_web_package(manifest, result.files);
+    if (auto package = detail::add_web_package(manifest, result.files); !package.ok()) return package.error();
     result.files["manifest.json"] = manifest.dump(2) + "\n";
     return result;
 }

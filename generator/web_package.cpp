@@ -60,8 +60,8 @@ bool has_wgsl(const json& manifest) {
 
 }  // namespace
 
-void add_web_package(const json& manifest, std::map<std::string, std::string>& files) {
-    if (!has_wgsl(manifest)) return;
+Status add_web_package(const json& manifest, std::map<std::string, std::string>& files) {
+    if (!has_wgsl(manifest)) return Ok{};
     std::vector<std::string> kept;
     const json web = web_manifest(manifest, kept);
     const WebPackageSources& sources = web_package_sources();
@@ -75,8 +75,14 @@ void add_web_package(const json& manifest, std::map<std::string, std::string>& f
     package[dir + "README.md"] = sources.readme;
     package[dir + "three.mjs"] = sources.three;
     package[dir + "three.d.ts"] = sources.three_declarations;
-    for (const std::string& path : kept) package[dir + path] = files.at(path);
+    for (const std::string& path : kept) {
+        auto file = files.find(path);
+        if (file == files.end())  // the manifest names only files the export wrote
+            return make_error("the export's manifest names '" + path + "', which the export did not write", "npm/manifest.json");
+        package[dir + path] = file->second;
+    }
     files.merge(package);
+    return Ok{};
 }
 
 }  // namespace crtforge::detail

@@ -6,12 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "crtforge/diagnostic.hpp"
+
 namespace crtforge::detail {
 
 // Adds npm/ to an export's files (path -> contents) when the manifest has WGSL: package.json,
 // index.mjs, index.d.ts, crt-webgpu.mjs, README.md, a manifest.json with the WGSL entries only, and
 // copies of the WGSL modules and LUT PNGs that manifest names, so the folder is the whole package.
-void add_web_package(const nlohmann::ordered_json& manifest, std::map<std::string, std::string>& files);
+// An error (no files added) if the manifest names a file the export does not hold.
+Status add_web_package(const nlohmann::ordered_json& manifest, std::map<std::string, std::string>& files);
 
 // The package's fixed files, embedded at build time from examples/webgpu/ (web_package_files.cpp.in).
 struct WebPackageSources {
