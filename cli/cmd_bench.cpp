@@ -36,7 +36,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
                     "Which params stay uniforms, one variant per entry: default, all, none (e.g. none,default,all: what each live param costs)")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_flag("--no-tiers", o->no_tiers, "Time each preset as written, not each of its quality tiers (point, filtered)");
+    cmd->add_flag("--no-tiers", o->no_tiers, "Time each preset as written, not each of its quality tiers (point, each filtered stage alone, filtered)");
     cmd->add_flag("--quick", o->quick, "320x240, 5 draws, 3 repeats, 2x2 supersampling: every preset in well under a minute");
     cmd->add_option("--supersample", o->supersample,
                     "Error against the point-sampled fp64 reference and an N x N supersampled one (0: no error columns)")

@@ -44,8 +44,8 @@ std::string mask_note(const Preset& preset) {
 // Budget mode: the cheapest quality tier of `preset` whose error against the supersampled
 // reference at the given size is at most --max-error and whose measured GPU cost is at most
 // --max-cost (ratio to a blit), each tier rendered on Vulkan. Tiers are ordered by the work they
-// do (point before filtered), so the choice under --max-error alone does not depend on timing
-// noise. The reasoning goes to stderr; the chosen tier is returned.
+// do (point, each filtered stage alone, all filtered), so the choice under --max-error alone does
+// not depend on timing noise. The reasoning goes to stderr; the chosen tier is returned.
 Result<PresetTier> choose_tier(const TemplateLibrary& lib, const Preset& preset, const GenerateArgs& a, int width, int height) {
     std::vector<PresetTier> tiers = preset_tiers(preset);
     BenchOptions options;
@@ -73,11 +73,11 @@ Result<PresetTier> choose_tier(const TemplateLibrary& lib, const Preset& preset,
         if (a.max_error >= 0 && error > a.max_error) over += fmt::format(" error over {}", a.max_error);
         if (a.max_cost >= 0 && cost > a.max_cost) over += fmt::format(" cost over {}", a.max_cost);
         if (!over.empty()) {
-            fmt::print(stderr, "budget: tier '{}' ({}) at {}x{}: {}:{}\n", quality_tier_name(tier.tier), what, width, height, figures, over);
-            misses.push_back(fmt::format("'{}' {}", quality_tier_name(tier.tier), figures));
+            fmt::print(stderr, "budget: tier '{}' ({}) at {}x{}: {}:{}\n", tier.name, what, width, height, figures, over);
+            misses.push_back(fmt::format("'{}' {}", tier.name, figures));
             continue;
         }
-        fmt::print(stderr, "budget: chose tier '{}' ({}) at {}x{}: {}, within budget{}{}\n", quality_tier_name(tier.tier), what, width,
+        fmt::print(stderr, "budget: chose tier '{}' ({}) at {}x{}: {}, within budget{}{}\n", tier.name, what, width,
                    height, figures, misses.empty() ? " and the cheapest tier" : ", the cheapest tier that is", mask_note(tier.preset));
         return std::move(tier);
     }
@@ -96,7 +96,7 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
                     "Write the files into this directory; without it the fragment shader is printed "
                     "(SPIR-V as disassembly)");
     cmd->add_option("--resolution", args->resolution,
-                    "Budget mode: generate the cheapest quality tier (point, filtered) that meets --max-error and/or "
+                    "Budget mode: generate the cheapest quality tier (point, each filtered stage alone, all filtered) that meets --max-error and/or "
                     "--max-cost at this display size WIDTHxHEIGHT, each measured on Vulkan");
     args->max_error_given = cmd->add_option("--max-error", args->max_error, "Budget mode: largest RMSE against the supersampled fp64 reference")
                                 ->check(CLI::Range(0.0, 1.0));

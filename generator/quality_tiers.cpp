@@ -1,6 +1,8 @@
 // Quality tiers: a preset's stages swapped between their point-sampled and filtered forms.
 #include "crtforge/quality_tiers.hpp"
 
+#include <algorithm>
+
 namespace crtforge {
 
 const char* quality_tier_name(QualityTier tier) { return tier == QualityTier::Point ? "point" : "filtered"; }
@@ -17,12 +19,15 @@ const FormSpec* form_in_tier(const StageSpec& stage, const FormSpec& form, Quali
     return &form;
 }
 
-PresetTier with_tier(const Preset& preset, QualityTier tier) {
-    PresetTier out{tier, preset, {}};
+// The preset with each stage in its `tier` form; `only`: the stage filtered alone (the others
+// point-sampled), empty for every stage.
+PresetTier with_tier(const Preset& preset, QualityTier tier, const std::string& only = {}) {
+    PresetTier out{tier, preset, {}, only.empty() ? quality_tier_name(tier) : std::string("filtered:") + only};
     for (Pass& pass : out.preset.passes) {
         for (ResolvedStage& rs : pass.stages) {
             if (!rs.stage || !rs.form) continue;
-            const FormSpec* to = form_in_tier(*rs.stage, *rs.form, tier);
+            const QualityTier here = only.empty() || rs.stage->name == only ? tier : QualityTier::Point;
+            const FormSpec* to = form_in_tier(*rs.stage, *rs.form, here);
             if (!to || to == rs.form) continue;
             out.changes.push_back("pass " + pass.alias + ": " + rs.stage->name + " " + rs.form->name + " -> " + to->name);
             rs.form = to;
@@ -32,13 +37,30 @@ PresetTier with_tier(const Preset& preset, QualityTier tier) {
     return out;
 }
 
+// The stages of the preset that have a filtered counterpart (or are a filtered form), in pass order.
+std::vector<std::string> filterable_stages(const Preset& preset) {
+    std::vector<std::string> names;
+    for (const Pass& pass : preset.passes)
+        for (const ResolvedStage& rs : pass.stages) {
+            if (!rs.stage || !rs.form) continue;
+            const bool has = form_in_tier(*rs.stage, *rs.form, QualityTier::Filtered) != form_in_tier(*rs.stage, *rs.form, QualityTier::Point);
+            if (has && std::find(names.begin(), names.end(), rs.stage->name) == names.end()) names.push_back(rs.stage->name);
+        }
+    return names;
+}
+
 }  // namespace
 
 std::vector<PresetTier> preset_tiers(const Preset& preset) {
     PresetTier point = with_tier(preset, QualityTier::Point);
     PresetTier filtered = with_tier(preset, QualityTier::Filtered);
     if (point.changes.empty() && filtered.changes.empty()) return {std::move(point)};
-    return {std::move(point), std::move(filtered)};
+    std::vector<PresetTier> tiers{std::move(point)};
+    const std::vector<std::string> stages = filterable_stages(preset);
+    if (stages.size() > 1)
+        for (const std::string& stage : stages) tiers.push_back(with_tier(preset, QualityTier::Filtered, stage));
+    tiers.push_back(std::move(filtered));
+    return tiers;
 }
 
 }  // namespace crtforge

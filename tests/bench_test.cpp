@@ -110,7 +110,7 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
     auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,atari-16,super-win --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
-    REQUIRE(json.size() == 5);  // crt-shadow-mask's two quality tiers, and the three others as written
+    REQUIRE(json.size() == 7);  // crt-shadow-mask's four quality tiers, and the three others as written
     size_t on_front = 0;
     for (const auto& preset : json) {
         CHECK(preset["ratio"].get<double>() > 0);
@@ -121,7 +121,7 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
     CHECK(on_front >= 1);
     const std::string md = read_text_file(out / "bench.md").value();
     CHECK_THAT(md, Catch::Contains("| crt-shadow-mask@point | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered | 320x240 | 1 |") &&
-                       Catch::Contains("| classic | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered |"));
+                       Catch::Contains("| classic | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered"));
     const std::string svg = read_text_file(out / "bench.svg").value();
     CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">super-win</text>"));
 }
@@ -130,23 +130,32 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
     const TemplateLibrary& lib = test::shipped_library();
     const Preset& shadow = *lib.find_preset("crt-shadow-mask");
     const std::vector<PresetTier> tiers = preset_tiers(shadow);
-    REQUIRE(tiers.size() == 2);
+    // Two stages have filtered forms: point, each alone (pass order), both.
+    REQUIRE(tiers.size() == 4);
     CHECK(tiers[0].tier == QualityTier::Point);
-    CHECK(tiers[0].changes.empty());  // written with the point-sampled mask
-    CHECK(tiers[1].tier == QualityTier::Filtered);
-    REQUIRE(tiers[1].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered",
+    CHECK(tiers[0].name == "point");
+    CHECK(tiers[0].changes.empty());  // written with the point-sampled forms
+    CHECK(tiers[1].name == "filtered:scanlines");
+    CHECK(tiers[1].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered"});
+    CHECK(tiers[2].name == "filtered:mask");
+    CHECK(tiers[2].changes == std::vector<std::string>{"pass main: mask shadow -> shadow_filtered"});
+    CHECK(tiers[3].tier == QualityTier::Filtered);
+    CHECK(tiers[3].name == "filtered");
+    REQUIRE(tiers[3].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered",
                                                          "pass main: mask shadow -> shadow_filtered"});
-    const ResolvedStage* mask = tiers[1].preset.passes.front().find_stage("mask");
+    const ResolvedStage* mask = tiers[3].preset.passes.front().find_stage("mask");
     REQUIRE(mask);
     CHECK(mask->form->name == "shadow_filtered");
     CHECK(std::get<std::string>(mask->values.at("maskMode")) == "shadow_filtered");
     CHECK(mask->values.at("maskSize") == shadow.passes.front().find_stage("mask")->values.at("maskSize"));
-    // A preset written with the filtered form offers the point one first, as the cheaper tier.
-    const std::vector<PresetTier> back = preset_tiers(tiers[1].preset);
-    REQUIRE(back.size() == 2);
+    CHECK(tiers[1].preset.passes.front().find_stage("mask")->form->name == "shadow");  // the other stage stays point-sampled
+    // A preset written with the filtered forms offers the point ones first, as the cheaper tier.
+    const std::vector<PresetTier> back = preset_tiers(tiers[3].preset);
+    REQUIRE(back.size() == 4);
     CHECK(back[0].changes == std::vector<std::string>{"pass main: scanlines crt_effect_filtered -> crt_effect",
                                                       "pass main: mask shadow_filtered -> shadow"});
-    CHECK(back[1].changes.empty());
+    CHECK(back[2].changes == std::vector<std::string>{"pass main: scanlines crt_effect_filtered -> crt_effect"});
+    CHECK(back[3].changes.empty());
     // No stage with a filtered form: one tier, as written.
     const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("atari-16"));
     REQUIRE(one.size() == 1);
@@ -181,25 +190,29 @@ TEST_CASE("bench measures every tier against the point tier's supersampled pictu
     for (size_t i = 0; i < tiers.size(); ++i) {
         auto timing = session.tier(tiers, i, options);
         REQUIRE(timing.ok());
-        CHECK(timing.value().tier == (i == 0 ? "point" : "filtered"));
+        CHECK(timing.value().tier == tiers[i].name);
         CHECK(timing.value().tier_changes == tiers[i].changes);
         REQUIRE(timing.value().vs_point);
         REQUIRE(timing.value().vs_supersampled);
         CHECK(timing.value().vs_point->rmse < 0.002);  // each tier renders its own formula exactly
         errors.push_back(timing.value().vs_supersampled->rmse);
     }
-    // crt-shadow-mask's 2.67 px stripes alias when point-sampled; the filtered tier removes most of it.
-    CHECK(errors[1] < 0.5 * errors[0]);
-    // Each tier's point reference, and the point tier's supersampled one once for both tiers; a
+    // crt-shadow-mask's 2.67 px stripes alias when point-sampled; the filtered tiers with the mask
+    // in them remove most of it, the scanlines alone little.
+    REQUIRE(errors.size() == 4);
+    CHECK(errors[3] < 0.5 * errors[0]);
+    CHECK(errors[2] < 0.5 * errors[0]);
+    CHECK(errors[1] > 0.8 * errors[0]);
+    // Each tier's point reference, and the point tier's supersampled one once for all tiers; a
     // --uniforms variant of a tier draws the same pictures and renders none again.
-    CHECK(session.reference_renders() == 3);
+    CHECK(session.reference_renders() == 5);
     options.variant.uniforms = UniformSelection::parse("none").value();
     options.uniforms_label = "none";
-    auto baked = session.tier(tiers, 1, options);
+    auto baked = session.tier(tiers, 3, options);
     REQUIRE(baked.ok());
     CHECK(baked.value().label() == "crt-shadow-mask@filtered uniforms=none");
-    CHECK(baked.value().vs_supersampled->rmse == Approx(errors[1]).margin(1e-4));
-    CHECK(session.reference_renders() == 3);
+    CHECK(baked.value().vs_supersampled->rmse == Approx(errors[3]).margin(1e-4));
+    CHECK(session.reference_renders() == 5);
 }
 
 TEST_CASE("budget mode generates the cheapest tier within --max-error and says why", "[bench][tiers][cli]") {
@@ -213,8 +226,8 @@ TEST_CASE("budget mode generates the cheapest tier within --max-error and says w
                                     (out / "tight"));
     REQUIRE(tight.exit_code == 0);
     CHECK_THAT(tight.err, Catch::Contains("tier 'point' (as written) at 160x120") && Catch::Contains("error over 0.012") &&
-                              Catch::Contains("chose tier 'filtered' (pass main: scanlines crt_effect -> crt_effect_filtered, "
-                                              "pass main: mask shadow -> shadow_filtered)") &&
+                              Catch::Contains("tier 'filtered:scanlines' (pass main: scanlines crt_effect -> crt_effect_filtered)") &&
+                              Catch::Contains("chose tier 'filtered:mask' (pass main: mask shadow -> shadow_filtered)") &&
                               Catch::Contains("stripes are 2.67 px wide"));
     // The filtered tier's shader, not the preset as written.
     auto exported = test::run_crtforge("generate --preset crt-shadow-mask --target glsl330 --out " + (out / "written"));

@@ -122,7 +122,7 @@ Result<SceneTiming> BenchSession::tier(const std::vector<PresetTier>& tiers, siz
     if (index >= tiers.size()) return make_error("no tier " + std::to_string(index));
     auto timing = measure(tiers[index].preset, tiers.front().preset, o);
     if (timing.ok() && tiers.size() > 1) {
-        timing.value().tier = quality_tier_name(tiers[index].tier);
+        timing.value().tier = tiers[index].name;
         timing.value().tier_changes = tiers[index].changes;
     }
     return timing;

@@ -14,13 +14,14 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-// Each preset's point tier with its filtered tier, measured with the same --uniforms variant.
+// Each preset's point tier with each of its other tiers ("filtered", "filtered:<stage>"), measured
+// with the same --uniforms variant.
 std::vector<std::pair<const SceneTiming*, const SceneTiming*>> tier_pairs(const std::vector<SceneTiming>& timings) {
     std::vector<std::pair<const SceneTiming*, const SceneTiming*>> pairs;
     for (const SceneTiming& point : timings) {
         if (point.tier != "point" || !point.vs_supersampled) continue;
         for (const SceneTiming& filtered : timings)
-            if (filtered.preset == point.preset && filtered.uniforms == point.uniforms && filtered.tier == "filtered" &&
+            if (filtered.preset == point.preset && filtered.uniforms == point.uniforms && filtered.tier.rfind("filtered", 0) == 0 &&
                 filtered.vs_supersampled)
                 pairs.emplace_back(&point, &filtered);
     }
@@ -119,16 +120,32 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
 }
 
 std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
+    // Per preset: the point tier unless another lowers the aliasing error by at least a tenth; of
+    // those, the one doing the least work (the partial tiers come before "filtered") whose error is
+    // within a tenth of the best tier's.
     std::vector<TierPick> picks;
-    for (const auto& [point, filtered] : tier_pairs(timings)) {
-        const double ep = point->vs_supersampled->rmse, ef = filtered->vs_supersampled->rmse;
-        const bool better = ef <= 0.9 * ep;
+    const auto pairs = tier_pairs(timings);
+    for (size_t i = 0; i < pairs.size(); ++i) {
+        const SceneTiming* point = pairs[i].first;
+        if (i > 0 && pairs[i - 1].first == point) continue;  // one pick per preset and variant
+        double best = point->vs_supersampled->rmse;
+        for (const auto& [p, t] : pairs)
+            if (p == point) best = std::min(best, t->vs_supersampled->rmse);
+        const SceneTiming* chosen = nullptr;
+        for (const auto& [p, t] : pairs)
+            if (p == point && !chosen && t->vs_supersampled->rmse <= 0.9 * point->vs_supersampled->rmse &&
+                t->vs_supersampled->rmse <= 1.1 * best)
+                chosen = t;
+        const double ep = point->vs_supersampled->rmse;
         const std::string variant = point->uniforms.empty() || point->uniforms == "default" ? "" : " uniforms=" + point->uniforms;
-        picks.push_back({point->preset + variant, better ? "filtered" : "point",
-                         fmt::format("RMSE vs supersampled {:.5f} filtered, {:.5f} point ({}); cost {:.2f}x vs {:.2f}x blit", ef, ep,
-                                     better ? fmt::format("{:.0f}% less aliasing", 100 * (1 - ef / std::max(ep, 1e-12)))
-                                            : "filtering gains under a tenth",
-                                     filtered->ratio(), point->ratio())});
+        if (!chosen) {
+            picks.push_back({point->preset + variant, "point", fmt::format("RMSE vs supersampled {:.5f} point; filtering gains under a tenth; cost {:.2f}x blit", ep, point->ratio())});
+            continue;
+        }
+        const double ef = chosen->vs_supersampled->rmse;
+        picks.push_back({point->preset + variant, chosen->tier,
+                         fmt::format("RMSE vs supersampled {:.5f} {}, {:.5f} point ({:.0f}% less aliasing); cost {:.2f}x vs {:.2f}x blit", ef,
+                                     chosen->tier, ep, 100 * (1 - ef / std::max(ep, 1e-12)), chosen->ratio(), point->ratio())});
     }
     return picks;
 }

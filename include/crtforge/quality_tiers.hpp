@@ -15,13 +15,16 @@ const char* quality_tier_name(QualityTier tier);  // "point", "filtered"
 
 struct PresetTier {
     QualityTier tier = QualityTier::Point;
-    Preset preset;                     // the preset with every stage that has the tier in it
+    Preset preset;                     // the preset with its stages in the tier's forms
     std::vector<std::string> changes;  // e.g. "pass main: mask shadow -> shadow_filtered" (empty: as written)
+    // "point", "filtered", or "filtered:<stage>" for a tier that filters that stage alone.
+    std::string name = "point";
 };
 
-// The tiers a preset offers, cheapest first: "point" (every stage with a filtered form back to its
-// point-sampled one) then "filtered" (every stage with a filtered form in it). One entry when no
-// stage of the preset has a filtered form.
+// The tiers a preset offers, by the work they do: "point" (every stage with a filtered form back to
+// its point-sampled one); when two or more stages have filtered forms, "filtered:<stage>" for each
+// of them alone, in pass order (the others point-sampled); then "filtered" (all of them). One entry
+// when no stage of the preset has a filtered form.
 std::vector<PresetTier> preset_tiers(const Preset& preset);
 
 }  // namespace crtforge
