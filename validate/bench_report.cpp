@@ -198,7 +198,8 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     for (size_t i = 0; i < timings.size(); ++i)
         if (std::find(front.begin(), front.end(), i) == front.end()) order.push_back(i);
     order.insert(order.end(), front.begin(), front.end());
-    // Labels that would overlap an earlier one (two tiers at one error, say) move down a line.
+    // Labels that would overlap an earlier one (two tiers at one error, say) move to the nearest
+    // free line above or below.
     struct Box { double x0, x1, y0, y1; };
     std::vector<Box> placed;
     for (size_t i : order) {
@@ -207,12 +208,18 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
         const double x = X(t.ratio()), y = Y(t.vs_supersampled->rmse);
         const bool right = x > W - R - 120;  // labels near the right edge go to the point's left
-        const double width = 6.5 * static_cast<double>(t.label().size()), tx = right ? x - 6 : x + 6;
+        const double width = 7.2 * static_cast<double>(t.label().size()), tx = right ? x - 6 : x + 6;
         Box box{right ? tx - width : tx, right ? tx : tx + width, y - 15, y - 3};
         auto overlaps = [&](const Box& b) {
             return std::any_of(placed.begin(), placed.end(), [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
         };
-        for (int tries = 0; tries < 8 && overlaps(box); ++tries) box.y0 += 13, box.y1 += 13;
+        // Nearest free line: 0, up 1, down 1, up 2, ... (13 px each); as it was when none is free.
+        const Box home = box;
+        for (int k = 1; k <= 12 && overlaps(box); ++k) {
+            const double shift = 13.0 * ((k + 1) / 2) * (k % 2 ? -1 : 1);
+            box = Box{home.x0, home.x1, home.y0 + shift, home.y1 + shift};
+        }
+        if (overlaps(box)) box = home;
         placed.push_back(box);
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
                          x, y, on_front ? "#d33" : "#36c", tx, box.y1 - 1, right ? "end" : "start", xml_escape(t.label()));
