@@ -149,6 +149,23 @@ void check_scene_frames_like_vulkan(TargetRenderer& renderer, const std::string&
     }
 }
 
+// `crtforge export` of `presets` (comma list) to tmp/export, and an app folder tmp/app whose
+// node_modules holds the export's npm/ package as `npm install ./export/npm` would (a symlink).
+// Returns the app folder; `runner_file`: the npm file (under tools/wgsl-runner) the test needs.
+std::string export_with_app(const test::TempDir& tmp, const std::string& targets, const std::string& presets, const char* runner_file) {
+    const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
+    INFO("npm packages missing: run scripts/setup.sh");
+    REQUIRE(fs::exists(runner / runner_file));
+    const std::string export_dir = tmp / "export";
+    const auto exported = test::run_crtforge("export --target " + targets + " --preset " + presets + " --out '" + export_dir + "'");
+    INFO(exported.err);
+    REQUIRE(exported.exit_code == 0);
+    const std::string app = tmp / "app";
+    fs::create_directories(fs::path(app) / "node_modules");
+    fs::create_directory_symlink(fs::path(export_dir) / "npm", fs::path(app) / "node_modules/crtforge-presets");
+    return app;
+}
+
 }  // namespace
 
 TEST_CASE("The WebGPU example module renders exported presets like Vulkan", "[wgsl][example]") {
@@ -221,15 +238,9 @@ TEST_CASE("The WebGPU example runs whole scenes (passes, feedback, LUTs) like Vu
 // package.json, its loadCrtPreset() reads its own manifest, WGSL and LUT PNGs and renders exactly
 // what the export's files give createCrtScene directly (which the tests above hold against Vulkan).
 TEST_CASE("The export's npm package renders presets by name in Node, byte for byte like the export's files", "[wgsl][example][npm]") {
-    const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
-    INFO("npm packages missing: run scripts/setup.sh");
-    REQUIRE(fs::exists(runner / "webgpu/package.json"));
-
     test::TempDir tmp;
+    const std::string app = export_with_app(tmp, "wgsl,glsl330", "classic,super-win,atari-ntsc", "webgpu/package.json");
     const std::string export_dir = tmp / "export";
-    const auto exported = test::run_crtforge("export --target wgsl,glsl330 --preset classic,super-win,atari-ntsc --out '" + export_dir + "'");
-    INFO(exported.err);
-    REQUIRE(exported.exit_code == 0);
 
     // The package is whole: its manifest names only WGSL files, and every file it names is inside it.
     const fs::path package = fs::path(export_dir) / "npm";
@@ -250,9 +261,6 @@ TEST_CASE("The export's npm package renders presets by name in Node, byte for by
     CHECK(package_json["name"] == "crtforge-presets");
     CHECK(package_json["exports"]["."]["default"] == "./index.mjs");
 
-    const std::string app = tmp / "app";
-    fs::create_directories(fs::path(app) / "node_modules");
-    fs::create_directory_symlink(package, fs::path(app) / "node_modules/crtforge-presets");
 
     std::vector<Image> inputs;
     for (int f : {0, 1, 2}) {
@@ -280,16 +288,8 @@ TEST_CASE("The export's npm package renders presets by name in Node, byte for by
 // that passes a param a string does not.
 TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][npm]") {
     const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
-    INFO("npm packages missing: run scripts/setup.sh");
-    REQUIRE(fs::exists(runner / "typescript/bin/tsc"));
-
     test::TempDir tmp;
-    const std::string export_dir = tmp / "export";
-    const auto exported = test::run_crtforge("export --target wgsl --preset classic --out '" + export_dir + "'");
-    REQUIRE(exported.exit_code == 0);
-    const fs::path app = fs::path(tmp.path()) / "app";
-    fs::create_directories(app / "node_modules");
-    fs::create_directory_symlink(fs::path(export_dir) / "npm", app / "node_modules/crtforge-presets");
+    const fs::path app = export_with_app(tmp, "wgsl", "classic", "typescript/bin/tsc");
     {
         std::ofstream config(app / "tsconfig.json");
         config << R"({ "compilerOptions": { "strict": true, "noEmit": true, "module": "nodenext",
@@ -330,19 +330,9 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
 // pinned in tools/wgsl-runner) on Dawn draws the picture into a RenderTarget and the crtforge pass
 // renders it into another; the frames must match crtforge's Vulkan render of the same 8-bit picture.
 TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wgsl][example][npm][three]") {
-    const fs::path runner = fs::path(CRTFORGE_SOURCE_DIR) / "tools/wgsl-runner/node_modules";
-    INFO("npm packages missing: run scripts/setup.sh");
-    REQUIRE(fs::exists(runner / "three/package.json"));
-
     test::TempDir tmp;
-    const std::string export_dir = tmp / "export";
     const std::vector<std::string> presets = {"classic", "super-win"};
-    const auto exported = test::run_crtforge("export --target wgsl --preset classic,super-win --out '" + export_dir + "'");
-    INFO(exported.err);
-    REQUIRE(exported.exit_code == 0);
-    const std::string app = tmp / "app";
-    fs::create_directories(fs::path(app) / "node_modules");
-    fs::create_directory_symlink(fs::path(export_dir) / "npm", fs::path(app) / "node_modules/crtforge-presets");
+    const std::string app = export_with_app(tmp, "wgsl", "classic,super-win", "three/package.json");
 
     // three uploads 8-bit pictures: both renderers get the same 8-bit values.
     std::vector<Image> inputs;

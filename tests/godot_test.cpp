@@ -502,7 +502,10 @@ TEST_CASE("the editor plugin's CrtOverlay node shades the screen in a real Godot
     REQUIRE(write_file_atomic(project / "project.godot",
                               "config_version=4\n\n[application]\nrun/main_scene=\"res://main.tscn\"\n\n[display]\n"
                               "window/size/width=320\nwindow/size/height=240\n").ok());
-    REQUIRE(write_file_atomic(project / "main.gd", R"(extends Control
+    // The script's start, for the 2D and the 3D scene: a CrtOverlay node made from its script, three
+    // frames drawn, the window's pixel at (80, 120) printed after `label`.
+    auto overlay_script = [](const char* extends, const char* label) {
+        return fmt::format(R"(extends {}
 func _ready():
 	var overlay = preload("res://addons/crtforge/crtforge_overlay.gd").new()
 	overlay.preset = "classic"
@@ -513,8 +516,10 @@ func _ready():
 	img.flip_y()
 	img.lock()
 	var c = img.get_pixel(80, 120)
-	print("WHITE %f %f %f" % [c.r, c.g, c.b])
-	var e = img.get_pixel(1, 1)
+	print("{} %f %f %f" % [c.r, c.g, c.b])
+)", extends, label);
+    };
+    REQUIRE(write_file_atomic(project / "main.gd", overlay_script("Control", "WHITE") + R"(	var e = img.get_pixel(1, 1)
 	print("CORNER %f %f %f" % [e.r, e.g, e.b])
 	print("PRESETS %s" % PoolStringArray(overlay.presets()).join(","))
 	print("LAYER %d" % overlay.layer)
@@ -554,20 +559,7 @@ color = Color( 1, 1, 1, 1 )
     CHECK_THAT(log.value(), Catch::Contains("HIDDEN True"));
 
     // Over a 3D scene: a Camera looking at an unshaded white wall is shaded like the white 2D picture.
-    REQUIRE(write_file_atomic(project / "main.gd", R"(extends Spatial
-func _ready():
-	var overlay = preload("res://addons/crtforge/crtforge_overlay.gd").new()
-	overlay.preset = "classic"
-	add_child(overlay)
-	for i in range(3):
-		yield(VisualServer, "frame_post_draw")
-	var img = get_viewport().get_texture().get_data()
-	img.flip_y()
-	img.lock()
-	var c = img.get_pixel(80, 120)
-	print("WHITE3D %f %f %f" % [c.r, c.g, c.b])
-	get_tree().quit()
-)").ok());
+    REQUIRE(write_file_atomic(project / "main.gd", overlay_script("Spatial", "WHITE3D") + "\tget_tree().quit()\n").ok());
     REQUIRE(write_file_atomic(project / "main.tscn", R"([gd_scene load_steps=4 format=2]
 
 [ext_resource path="res://main.gd" type="Script" id=1]
