@@ -4,6 +4,8 @@
 
 #include <spirv_cross/spirv_cross.hpp>
 
+#include "generator/spirv_words.hpp"
+
 namespace crtforge {
 
 namespace {
@@ -21,19 +23,6 @@ std::string type_name(const spirv_cross::SPIRType& t) {
     if (t.vecsize == 1) return scalar;
     const char* prefix = scalar == "float" ? "vec" : scalar == "int" ? "ivec" : scalar == "uint" ? "uvec" : "bvec";
     return prefix + std::to_string(t.vecsize);
-}
-
-// Literal string operand starting at word `w` (nul-terminated, packed little-endian).
-std::string literal_string(const SpirvBinary& words, size_t w, size_t end) {
-    std::string out;
-    for (; w < end; ++w) {
-        for (int b = 0; b < 4; ++b) {
-            char c = static_cast<char>((words[w] >> (8 * b)) & 0xff);
-            if (c == 0) return out;
-            out += c;
-        }
-    }
-    return out;
 }
 
 }  // namespace
@@ -73,13 +62,13 @@ Result<Reflection> reflect(const SpirvBinary& binary) {
     }
 
     // Walk instructions: OpName (5), OpMemberName (6), image sampling/fetch/gather (87..96).
-    for (size_t w = 5; w < binary.size();) {
-        const uint32_t count = binary[w] >> 16, opcode = binary[w] & 0xffff;
-        if (count == 0 || w + count > binary.size()) return make_error("malformed SPIR-V instruction stream");
-        if (opcode == 5) out.names.push_back(literal_string(binary, w + 2, w + count));
-        if (opcode == 6) out.names.push_back(literal_string(binary, w + 3, w + count));
-        if (opcode >= 87 && opcode <= 96) ++out.texture_samples;
-        w += count;
+    const auto instructions = detail::spirv_instructions(binary);
+    if (!instructions) return make_error("malformed SPIR-V instruction stream");
+    for (const detail::SpirvInstruction& in : *instructions) {
+        const size_t w = in.offset, end = in.offset + in.count;
+        if (in.opcode == 5) out.names.push_back(detail::spirv_literal_string(binary, w + 2, end));
+        if (in.opcode == 6) out.names.push_back(detail::spirv_literal_string(binary, w + 3, end));
+        if (in.opcode >= 87 && in.opcode <= 96) ++out.texture_samples;
     }
     return out;
 }

@@ -7,6 +7,7 @@
 // value gets the local's name as an OpName (the first name wins), and then every trace of the debug
 // info is removed, so the module that leaves the generator is the one the optimiser made, plus names.
 #include "generator/spirv_debug_names.hpp"
+#include "generator/spirv_words.hpp"
 
 #include <map>
 #include <set>
@@ -19,36 +20,8 @@
 namespace crtforge {
 namespace {
 
-constexpr size_t kHeaderWords = 5;
-
-struct Instruction {
-    size_t offset;   // first word
-    uint16_t count;  // words, opcode word included
-    spv::Op opcode;
-};
-
-// The instructions of a module in order; empty if a word count runs past the end (not our module).
-std::vector<Instruction> instructions(const SpirvBinary& words) {
-    std::vector<Instruction> out;
-    for (size_t at = kHeaderWords; at < words.size();) {
-        const uint16_t count = static_cast<uint16_t>(words[at] >> 16);
-        if (count == 0 || at + count > words.size()) return {};
-        out.push_back({at, count, static_cast<spv::Op>(words[at] & 0xffffu)});
-        at += count;
-    }
-    return out;
-}
-
-std::string literal_string(const SpirvBinary& words, size_t first, size_t end) {
-    std::string text;
-    for (size_t i = first; i < end; ++i)
-        for (int byte = 0; byte < 4; ++byte) {
-            const char c = static_cast<char>((words[i] >> (8 * byte)) & 0xffu);
-            if (c == '\0') return text;
-            text += c;
-        }
-    return text;
-}
+using detail::spirv_literal_string;
+using Instruction = detail::SpirvInstruction;
 
 void append_string(SpirvBinary& out, const std::string& text) {
     const size_t words = text.size() / 4 + 1;  // always room for the terminating zero
@@ -77,7 +50,7 @@ struct DebugFacts {
     std::set<uint32_t> module_values;
 };
 
-bool is_module_value(spv::Op op) {
+bool is_module_value(uint16_t op) {
     switch (op) {
         case spv::OpConstant: case spv::OpConstantTrue: case spv::OpConstantFalse:
         case spv::OpConstantComposite: case spv::OpConstantNull: case spv::OpConstantSampler:
@@ -98,11 +71,11 @@ DebugFacts gather(const SpirvBinary& words, const std::vector<Instruction>& list
         const size_t a = in.offset;
         switch (in.opcode) {
             case spv::OpExtInstImport:
-                if (in.count >= 3 && is_debug_info_set(literal_string(words, a + 2, a + in.count)))
+                if (in.count >= 3 && is_debug_info_set(spirv_literal_string(words, a + 2, a + in.count)))
                     facts.debug_set = words[a + 1];
                 break;
             case spv::OpString:
-                if (in.count >= 3) facts.strings[words[a + 1]] = literal_string(words, a + 2, a + in.count);
+                if (in.count >= 3) facts.strings[words[a + 1]] = spirv_literal_string(words, a + 2, a + in.count);
                 break;
             case spv::OpName:
                 if (in.count >= 2) facts.named.insert(words[a + 1]);
@@ -123,7 +96,7 @@ DebugFacts gather(const SpirvBinary& words, const std::vector<Instruction>& list
     return facts;
 }
 
-bool is_texture_read(spv::Op op) {
+bool is_texture_read(uint16_t op) {
     switch (op) {
         case spv::OpImageSampleImplicitLod: case spv::OpImageSampleExplicitLod:
         case spv::OpImageSampleDrefImplicitLod: case spv::OpImageSampleDrefExplicitLod:
@@ -159,7 +132,7 @@ std::map<uint32_t, std::string> value_names(const SpirvBinary& words, const std:
 }
 
 // The module's sections before its OpNames (SPIR-V 2.4, logical layout).
-bool precedes_names(spv::Op op) {
+bool precedes_names(uint16_t op) {
     switch (op) {
         case spv::OpCapability: case spv::OpExtension: case spv::OpExtInstImport: case spv::OpMemoryModel:
         case spv::OpEntryPoint: case spv::OpExecutionMode: case spv::OpExecutionModeId: case spv::OpString:
@@ -182,7 +155,7 @@ bool is_debug_instruction(const SpirvBinary& words, const Instruction& in, uint3
         case spv::OpNoLine:
             return true;
         case spv::OpExtension:
-            return literal_string(words, a + 1, a + in.count) == "SPV_KHR_non_semantic_info";
+            return spirv_literal_string(words, a + 1, a + in.count) == "SPV_KHR_non_semantic_info";
         case spv::OpExtInstImport:
             return debug_set != 0 && words[a + 1] == debug_set;
         case spv::OpExtInst:
@@ -195,14 +168,15 @@ bool is_debug_instruction(const SpirvBinary& words, const Instruction& in, uint3
 }  // namespace
 
 void name_values_and_strip_debug_info(SpirvBinary& words) {
-    if (words.size() < kHeaderWords || words[0] != spv::MagicNumber) return;
-    const std::vector<Instruction> list = instructions(words);
-    if (list.empty()) return;
+    if (words.size() < detail::kSpirvHeaderWords || words[0] != spv::MagicNumber) return;
+    const auto parsed = detail::spirv_instructions(words);
+    if (!parsed || parsed->empty()) return;
+    const std::vector<Instruction>& list = *parsed;
     const DebugFacts facts = gather(words, list);
     const std::map<uint32_t, std::string> names = facts.debug_set ? value_names(words, list, facts)
                                                                   : std::map<uint32_t, std::string>{};
 
-    SpirvBinary out(words.begin(), words.begin() + kHeaderWords);
+    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
     out.reserve(words.size());
     bool names_written = names.empty();
     for (const Instruction& in : list) {

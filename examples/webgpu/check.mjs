@@ -243,11 +243,8 @@ async function renderThree() {
   const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
   const crt = await createThreeCrtPass(renderer, args.preset, { format: 'rgba16float' });
   applySets(crt);
-  const capture = args.capture ?? [args.frames[args.frames.length - 1]];
-  const bytesPerRow = Math.ceil((args.width * 8) / 256) * 256;
-  const out = [];
-  for (let i = 0; i < args.frames.length; ++i) {
-    const frame = args.frames[i], picture = pictures[Math.min(i, pictures.length - 1)];
+  return drawFrames(async (i, frame) => {
+    const picture = pictures[Math.min(i, pictures.length - 1)];
     for (let y = 0; y < h; ++y)
       for (let x = 0; x < w * 4; ++x) bytes[(h - 1 - y) * w * 4 + x] = Math.round(Math.min(1, Math.max(0, picture[y * w * 4 + x])) * 255);
     texture.needsUpdate = true;
@@ -255,15 +252,8 @@ async function renderThree() {
     await renderer.renderAsync(scene, camera);
     renderer.setRenderTarget(null);
     await crt.render(input, output, { frame, time: args.time, fit: args.fit });
-    if (capture.includes(frame)) {
-      const readback = device.createBuffer({ size: bytesPerRow * args.height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
-      const encoder = device.createCommandEncoder();
-      encoder.copyTextureToBuffer({ texture: crt.textureOf(output) }, { buffer: readback, bytesPerRow, rowsPerImage: args.height }, [args.width, args.height]);
-      device.queue.submit([encoder.finish()]);
-      out.push({ frame, buffer: await readBack({ readback, bytesPerRow }) });
-    }
-  }
-  return out;
+    return crt.textureOf(output);
+  });
 }
 
 async function render() {
@@ -297,18 +287,28 @@ async function render() {
   }
   applySets(crt);
 
+  return drawFrames((i, frame, encoder) => {
+    upload(pictures[Math.min(i, pictures.length - 1)]);
+    crt.encode(encoder, { source, target: target.createView(), width: args.width, height: args.height, frame, time: args.time, fit: args.fit });
+    return target;
+  });
+}
+
+// Draws each frame of --frames: `draw(index, frame, encoder)` records or submits the frame and
+// returns the rgba16float texture it drew; the frames --capture names are copied out of it in the
+// same encoder and read back.
+async function drawFrames(draw) {
   const capture = args.capture ?? [args.frames[args.frames.length - 1]];
   const bytesPerRow = Math.ceil((args.width * 8) / 256) * 256;
   const out = [];
   for (let i = 0; i < args.frames.length; ++i) {
     const frame = args.frames[i];
-    upload(pictures[Math.min(i, pictures.length - 1)]);
     const encoder = device.createCommandEncoder();
-    crt.encode(encoder, { source, target: target.createView(), width: args.width, height: args.height, frame, time: args.time, fit: args.fit });
+    const texture = await draw(i, frame, encoder);
     let readback = null;
     if (capture.includes(frame)) {
       readback = device.createBuffer({ size: bytesPerRow * args.height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
-      encoder.copyTextureToBuffer({ texture: target }, { buffer: readback, bytesPerRow, rowsPerImage: args.height }, [args.width, args.height]);
+      encoder.copyTextureToBuffer({ texture }, { buffer: readback, bytesPerRow, rowsPerImage: args.height }, [args.width, args.height]);
     }
     device.queue.submit([encoder.finish()]);
     await device.queue.onSubmittedWorkDone();

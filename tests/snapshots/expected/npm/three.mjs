@@ -16,9 +16,17 @@ import { loadCrtPreset } from './index.mjs';
 export async function createThreeCrtPass(renderer, name, { format = 'rgba8unorm' } = {}) {
   const device = renderer?.backend?.device;
   if (!device) throw new Error('crtforge-presets/three: needs a WebGPURenderer after `await renderer.init()` (the WebGPU backend)');
-  const scenes = new Map();  // target format -> scene (a pipeline is made for one format)
-  const sceneFor = async (targetFormat) => {
-    if (!scenes.has(targetFormat)) scenes.set(targetFormat, loadCrtPreset(device, name, { format: targetFormat }));
+  // One scene per target format (a pipeline is made for one format); the params set so far are
+  // replayed on a scene made later, so every format draws with the same values.
+  const scenes = new Map();  // format -> Promise of its scene
+  const values = new Map();  // param -> value
+  const sceneFor = (targetFormat) => {
+    if (!scenes.has(targetFormat)) {
+      scenes.set(targetFormat, loadCrtPreset(device, name, { format: targetFormat }).then((scene) => {
+        for (const [param, value] of values) scene.setParam(param, value);
+        return scene;
+      }));
+    }
     return scenes.get(targetFormat);
   };
   const first = await sceneFor(format);
@@ -38,12 +46,13 @@ export async function createThreeCrtPass(renderer, name, { format = 'rgba8unorm'
   };
 
   const pass = {
-    // The scene of the first format (params set here apply to it; see setParam for all).
+    // The scene made for `format` (setParam below reaches every format's scene).
     scene: first,
     params: () => first.params(),
     setParam(param, value) {
+      first.setParam(param, value);  // throws, naming the problem, for a bad name or value
+      values.set(param, value);
       for (const scene of scenes.values()) scene.then((s) => s.setParam(param, value));
-      first.setParam(param, value);
     },
     // Draws `input` (RenderTarget) through the preset into `output` (RenderTarget), at output's size.
     async render(input, output, { frame, time, fit } = {}) {

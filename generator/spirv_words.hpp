@@ -1,0 +1,47 @@
+// A SPIR-V module as words: its instructions in order and its literal strings. Shared by the
+// reflection's name walk and the debug-name pass (spirv_debug_names), which must rewrite words
+// rather than read a model of the module.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "crtforge/spirv_compiler.hpp"
+
+namespace crtforge::detail {
+
+inline constexpr size_t kSpirvHeaderWords = 5;
+
+struct SpirvInstruction {
+    size_t offset = 0;    // its first word
+    uint16_t count = 0;   // its words, the opcode word included
+    uint16_t opcode = 0;
+};
+
+// The instructions after the header, in order; nothing when a word count is 0 or runs past the end.
+inline std::optional<std::vector<SpirvInstruction>> spirv_instructions(const SpirvBinary& words) {
+    std::vector<SpirvInstruction> out;
+    for (size_t at = kSpirvHeaderWords; at < words.size();) {
+        const auto count = static_cast<uint16_t>(words[at] >> 16);
+        if (count == 0 || at + count > words.size()) return std::nullopt;
+        out.push_back({at, count, static_cast<uint16_t>(words[at] & 0xffffu)});
+        at += count;
+    }
+    return out;
+}
+
+// The literal string operand in words [first, end): nul-terminated, packed little-endian.
+inline std::string spirv_literal_string(const SpirvBinary& words, size_t first, size_t end) {
+    std::string out;
+    for (size_t w = first; w < end; ++w)
+        for (int b = 0; b < 4; ++b) {
+            const char c = static_cast<char>((words[w] >> (8 * b)) & 0xffu);
+            if (c == '\0') return out;
+            out += c;
+        }
+    return out;
+}
+
+}  // namespace crtforge::detail
