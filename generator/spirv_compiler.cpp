@@ -128,25 +128,14 @@ std::string disassemble_spirv(const SpirvBinary& binary) {
 
 namespace {
 
-enum class OptimizerPasses {
-    Performance,  // SPIRV-Tools' performance passes
-    Cleanup,      // what is left once debug info is gone: dead code, empty branches, dead constants
-};
-
-Result<SpirvBinary> optimize_spirv(const SpirvBinary& module, const std::string& name, OptimizerPasses passes) {
+// SPIRV-Tools' performance passes.
+Result<SpirvBinary> optimize_spirv(const SpirvBinary& module, const std::string& name) {
     spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_0);
     std::vector<std::string> messages;
     optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* msg) {
         if (level <= SPV_MSG_ERROR) messages.push_back(msg);
     });
-    if (passes == OptimizerPasses::Performance) {
-        optimizer.RegisterPerformancePasses();
-    } else {
-        optimizer.RegisterPass(spvtools::CreateAggressiveDCEPass())
-            .RegisterPass(spvtools::CreateCFGCleanupPass())
-            .RegisterPass(spvtools::CreateBlockMergePass())
-            .RegisterPass(spvtools::CreateEliminateDeadConstantPass());
-    }
+    optimizer.RegisterPerformancePasses();
     SpirvBinary optimized;
     if (!optimizer.Run(module.data(), module.size(), &optimized))
         return make_validation_error("spirv-opt failed: " + join_messages(messages), name);
@@ -180,15 +169,16 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
 
     if (options.optimize) {
-        if (auto optimized = optimize_spirv(spirv, name, OptimizerPasses::Performance); optimized.ok()) spirv = std::move(optimized.value());
+        if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
         else return optimized.error();
         if (carry_names) {
             // The debug info holds back some of the optimiser's work (an emptied branch stays while
-            // its debug scope does, a value a DebugValue reads stays alive): a cleanup of the named,
-            // stripped module gives the instructions an optimisation without names gives (test
-            // "carrying the names adds or removes no instruction"), at a fraction of a full run.
+            // its debug scope does, a value a DebugValue reads stays alive): optimising the named,
+            // stripped module again gives the module an optimisation without names gives. (A cleanup
+            // list alone — ADCE, CFG cleanup, block merge, dead constants — left a dead store in
+            // one WGSL snapshot shader: the whole performance list it is.)
             name_values_and_strip_debug_info(spirv);
-            if (auto optimized = optimize_spirv(spirv, name, OptimizerPasses::Cleanup); optimized.ok()) spirv = std::move(optimized.value());
+            if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
             else return optimized.error();
         }
     }
