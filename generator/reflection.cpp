@@ -43,7 +43,15 @@ Result<Reflection> reflect(const SpirvBinary& binary) {
             for (uint32_t i = 0; i < type.member_types.size(); ++i) {
                 ReflectedMember m;
                 m.name = compiler.get_member_name(ub.base_type_id, i);
-                m.type = type_name(compiler.get_type(type.member_types[i]));
+                const spirv_cross::SPIRType& member_type = compiler.get_type(type.member_types[i]);
+                m.type = type_name(member_type);
+                using Base = spirv_cross::SPIRType::BaseType;
+                m.scalar = member_type.basetype == Base::Float ? ReflectedMember::Scalar::Float
+                         : member_type.basetype == Base::Int ? ReflectedMember::Scalar::Int
+                         : member_type.basetype == Base::UInt ? ReflectedMember::Scalar::Uint
+                         : member_type.basetype == Base::Boolean ? ReflectedMember::Scalar::Bool : ReflectedMember::Scalar::Other;
+                m.components = member_type.vecsize;
+                m.columns = member_type.columns;
                 m.offset = compiler.type_struct_member_offset(type, i);
                 m.size = static_cast<uint32_t>(compiler.get_declared_struct_member_size(type, i));
                 block.members.push_back(m);

@@ -1,6 +1,7 @@
 #include "targets/cross_compile.hpp"
 #include "generator/reserved_words.hpp"
 
+#include <regex>
 #include <set>
 
 #include "crtforge/assembler.hpp"
@@ -20,6 +21,20 @@ void rename_reserved_words(spirv_cross::Compiler& compiler) {
         if (name.empty()) continue;
         if (!reserving_language(name).empty() || members.count(name)) compiler.set_name(id, name + "_");
     }
+}
+
+std::string replace_block_access(const std::string& text, const std::string& instance,
+                                 const std::function<std::string(const std::string& member)>& replace) {
+    const std::regex access("\\b" + instance + "\\.(\\w+)");
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), access); it != std::sregex_iterator(); ++it) {
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        out += replace((*it)[1].str());
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    return out;
 }
 
 void apply_readable_names(spirv_cross::CompilerGLSL& compiler, const char* instance_name) {

@@ -3,6 +3,7 @@
 // exceptions into Diagnostics.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include <spirv_cross/spirv_glsl.hpp>
@@ -24,6 +25,11 @@ void rename_reserved_words(spirv_cross::Compiler& compiler);
 // Renames reserved words (above) and names the uniform block instance "crt" (or `instance_name`) so members read crt.scanlineIntensity (GLSL) or
 // crt_scanlineIntensity (HLSL) instead of _19.scanlineIntensity.
 void apply_readable_names(spirv_cross::CompilerGLSL& compiler, const char* instance_name = nullptr);
+
+// `<instance>.member` -> `replace(member)` everywhere in `text`: a uniform block flattened into
+// plain uniforms (Godot's, WebGL 2's), its instance named `instance` so no template name matches.
+std::string replace_block_access(const std::string& text, const std::string& instance,
+                                 const std::function<std::string(const std::string& member)>& replace);
 
 // Compiles `module` with a Compiler (CompilerGLSL or a subclass) after `configure(compiler)` set
 // its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0").

@@ -11,8 +11,12 @@
 namespace crtforge {
 
 struct ReflectedMember {
+    enum class Scalar { Float, Int, Uint, Bool, Other };
     std::string name;
     std::string type;   // GLSL spelling: float, int, uint, vec2, vec3, ...
+    Scalar scalar = Scalar::Float;  // the same, taken apart: component type,
+    uint32_t components = 1;        // components per column (1..4),
+    uint32_t columns = 1;           // and columns (over 1: a matrix)
     uint32_t offset = 0;
     uint32_t size = 0;
 };

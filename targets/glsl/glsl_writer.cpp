@@ -34,7 +34,7 @@ std::string flatten_plain_uniform_block(const std::string& text, const std::stri
     // Replace the later declaration first, so the definition's position stays valid.
     out.replace(static_cast<size_t>(use.position(0)) + use[1].length(), use.length(0) - use[1].length(), uniforms);
     out.replace(static_cast<size_t>(def.position(0)) + def[1].length(), def.length(0) - def[1].length(), "");
-    return std::regex_replace(out, std::regex("\\b" + instance + "\\."), "");
+    return detail::replace_block_access(out, instance, [](const std::string& member) { return member; });
 }
 
 Result<TargetOutput> generate(const TargetInput& input, const Options& options) {

@@ -133,19 +133,11 @@ void GodotCompiler::prepare() {
 std::string GodotCompiler::compile_godot() {
     prepare();
     std::string text = detail::shorten_float_literals(compile());
-    static const std::regex access(std::string("\\b") + kBlockMarker + "\\.(\\w+)");
-    std::string out;
-    auto begin = std::sregex_iterator(text.begin(), text.end(), access);
-    size_t last = 0;
-    for (auto it = begin; it != std::sregex_iterator(); ++it) {
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        auto found = member_expressions_.find((*it)[1].str());
-        if (found == member_expressions_.end())
-            throw spirv_cross::CompilerError("unknown uniform member " + (*it)[1].str());
-        out += found->second;
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    out.append(text, last, std::string::npos);
+    std::string out = detail::replace_block_access(text, kBlockMarker, [&](const std::string& member) {
+        auto found = member_expressions_.find(member);
+        if (found == member_expressions_.end()) throw spirv_cross::CompilerError("unknown uniform member " + member);
+        return found->second;
+    });
     if (out.find(kBlockMarker) != std::string::npos) throw spirv_cross::CompilerError("unresolved uniform block access");
     if (screen_mode() && variant_.writes_alpha()) {
         // The screen shader replaces what is on screen: a transparent bezel would show the

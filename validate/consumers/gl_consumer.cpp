@@ -33,16 +33,14 @@ Result<std::vector<PlainUniform>> plain_uniforms(const TargetRenderRequest& r, c
     std::vector<PlainUniform> out;
     for (const ReflectedBlock& block : r.compiled->reflection.uniform_blocks)
         for (const ReflectedMember& m : block.members) {
-            static const std::regex type(R"(^(float|int|uint|bool|vec|ivec|uvec|bvec)([234])?$)");
-            std::smatch t;
-            if (!std::regex_match(m.type, t, type))
+            using Scalar = ReflectedMember::Scalar;
+            if (m.columns != 1 || m.components < 1 || m.components > 4 || m.scalar == Scalar::Other)
                 return make_validation_error("uniform member '" + m.name + "' has type " + m.type + ", which no plain uniform takes");
             PlainUniform u;
             u.name = m.name;
-            u.components = t[2].matched ? std::stoi(t[2]) : 1;
-            const std::string kind = t[1];
-            u.kind = kind == "float" || kind == "vec" ? PlainUniform::Kind::Float
-                   : kind == "uint" || kind == "uvec" ? PlainUniform::Kind::Uint : PlainUniform::Kind::Int;
+            u.components = static_cast<int>(m.components);
+            u.kind = m.scalar == Scalar::Float ? PlainUniform::Kind::Float
+                   : m.scalar == Scalar::Uint ? PlainUniform::Kind::Uint : PlainUniform::Kind::Int;  // bool as int
             if (m.offset + 4u * static_cast<uint32_t>(u.components) > bytes.size())
                 return make_validation_error("uniform member '" + m.name + "' lies past the packed uniform data");
             for (int c = 0; c < u.components; ++c) {
