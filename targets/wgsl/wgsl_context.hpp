@@ -10,6 +10,7 @@
 
 #include "targets/wgsl/spirv_module.hpp"
 #include "targets/wgsl/wgsl_emitter.hpp"
+#include "targets/wgsl/wgsl_names.hpp"
 
 namespace crtforge::wgsl {
 
@@ -63,7 +64,7 @@ struct StageInterface {
 
 class ModuleEmitter {
 public:
-    ModuleEmitter(const SpirvModule& module, const EmitOptions& options, std::set<std::string>& global_names,
+    ModuleEmitter(const SpirvModule& module, const EmitOptions& options, NameScope& global_names,
                   const std::string& stage_name, const std::string& entry_name);
 
     const SpirvModule& m;
@@ -98,8 +99,8 @@ public:
     std::map<uint32_t, std::string> sampler_names;       // combined image sampler id -> sampler name
     StageInterface interface;
     std::map<uint32_t, const Instruction*> private_globals;  // Private-storage variables
-    std::set<std::string>& global_names;  // module-scope names of the whole WGSL module
-    std::set<std::string> stage_names;    // those plus this stage's entry parameters and locals
+    NameScope& global_names;  // module-scope names of the whole WGSL module
+    NameScope stage_names;    // those plus this stage's entry parameters and locals
     std::map<uint32_t, std::string> function_names;  // non-entry functions
     // A module-scope identifier: unique in the whole module, and reserved for this stage's locals.
     std::string module_scope_name(const std::string& wanted);
@@ -118,6 +119,6 @@ private:
 // inside the WGSL entry point, and every return becomes `return <entry_return>;` (bare `return;`
 // when it is empty). Other functions come out whole, signature included.
 std::string emit_function_body(ModuleEmitter& module, const Function& function, bool is_entry,
-                               const std::string& entry_return, std::set<std::string>& local_names);
+                               const std::string& entry_return, NameScope& local_names);
 
 }  // namespace crtforge::wgsl

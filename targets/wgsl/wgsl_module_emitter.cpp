@@ -41,13 +41,13 @@ const char* storage_class_name(spv::StorageClass s) {
 
 }  // namespace
 
-ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, std::set<std::string>& names,
+ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, NameScope& names,
                              const std::string& stage, const std::string& entry)
     : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names) {}
 
 std::string ModuleEmitter::module_scope_name(const std::string& wanted) {
-    std::set<std::string> both = global_names;
-    both.insert(stage_names.begin(), stage_names.end());
+    NameScope both = global_names;
+    both.insert(stage_names);
     const std::string name = unique_identifier(wanted, both);
     global_names.insert(name);
     stage_names.insert(name);
@@ -159,7 +159,7 @@ std::string ModuleEmitter::declare_struct(uint32_t id) {
         std::optional<uint32_t> offset;
         uint32_t size_attribute = 0;  // @size(n) when the next member starts later than WGSL would put it
     };
-    std::set<std::string> member_names;
+    NameScope member_names;
     std::vector<Member> members;
     uint32_t end = 0;
     for (size_t i = 0; i < t.members.size(); ++i) {
@@ -459,7 +459,7 @@ void ModuleEmitter::emit_entry(const EntryPoint& entry) {
         return_expr += ")";
     }
 
-    std::set<std::string> locals = stage_names;
+    NameScope locals = stage_names;
     std::string text = vertex ? "@vertex\n" : "@fragment\n";
     text += "fn " + entry_name + "(";
     for (size_t i = 0; i < interface.inputs.size(); ++i) {
@@ -495,14 +495,14 @@ void ModuleEmitter::emit() {
     // Helper functions other than the entry, in module order.
     for (const Function& f : m.functions) {
         if (f.id == e.function) continue;
-        std::set<std::string> locals = stage_names;
+        NameScope locals = stage_names;
         functions.push_back(emit_function_body(*this, f, false, "", locals));
     }
     emit_entry(e);
 }
 
 Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOptions& options) {
-    std::set<std::string> global_names;
+    NameScope global_names;
     std::vector<SpirvModule> modules;
     std::vector<std::unique_ptr<ModuleEmitter>> emitters;
     try {

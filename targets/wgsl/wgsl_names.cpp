@@ -53,7 +53,7 @@ bool ident_char(char c) { return ident_start(c) || (c >= '0' && c <= '9'); }
 
 }  // namespace
 
-std::string unique_identifier(const std::string& wanted, std::set<std::string>& taken) {
+std::string unique_identifier(const std::string& wanted, NameScope& scope) {
     std::string base;
     for (char c : wanted) base += ident_char(c) ? c : '_';
     while (base.size() >= 2 && base[0] == '_' && base[1] == '_') base.erase(0, 1);
@@ -61,8 +61,12 @@ std::string unique_identifier(const std::string& wanted, std::set<std::string>& 
     if (!ident_start(base[0])) base.insert(0, 1, 'v');
     if (reserved_words().count(base)) base += "_";
     std::string name = base;
-    for (int n = 1; taken.count(name); ++n) name = fmt::format("{}_{}", base, n);
-    taken.insert(name);
+    if (scope.count(name)) {
+        int& n = scope.next_.try_emplace(base, 1).first->second;
+        do name = fmt::format("{}_{}", base, n++);
+        while (scope.count(name));
+    }
+    scope.insert(name);
     return name;
 }
 

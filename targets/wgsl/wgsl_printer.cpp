@@ -33,7 +33,7 @@ const char* swizzle_letter(uint32_t i) {
 class FunctionPrinter {
 public:
     FunctionPrinter(ModuleEmitter& module, const Function& function, bool is_entry, std::string entry_return,
-                    std::set<std::string>& names)
+                    NameScope& names)
         : mod_(module), m_(module.m), f_(function), is_entry_(is_entry), entry_return_(std::move(entry_return)),
           names_(names) {}
 
@@ -83,7 +83,7 @@ private:
     const Function& f_;
     bool is_entry_;
     std::string entry_return_;
-    std::set<std::string>& names_;
+    NameScope& names_;
     FunctionAnalysis analysis_;
 
     std::map<uint32_t, Expr> values_;
@@ -984,7 +984,7 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
 }  // namespace
 
 std::string emit_function_body(ModuleEmitter& module, const Function& function, bool is_entry,
-                               const std::string& entry_return, std::set<std::string>& local_names) {
+                               const std::string& entry_return, NameScope& local_names) {
     FunctionPrinter printer(module, function, is_entry, entry_return, local_names);
     return printer.run();
 }

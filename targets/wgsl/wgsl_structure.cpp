@@ -52,8 +52,19 @@ private:
     // or 0 when the branch ended the region.
     uint32_t conditional_exit(const Block& b, uint32_t stop, const LoopContext* loop, bool continuing_top, Body& out);
     Statement loop_construct(uint32_t header);
+    // Whether reaching `target` leaves the innermost switch (the inliner wraps a function with
+    // early returns in a one-case switch; each return becomes a branch to its merge: `break`).
+    // Only from the switch's own loop level: a loop inside the case cannot break out of both.
+    bool breaks_switch(uint32_t target, const LoopContext* loop) const {
+        return !switches_.empty() && switches_.back().merge == target && switches_.back().loop == loop;
+    }
 
     const Function& f_;
+    struct SwitchContext {
+        uint32_t merge = 0;
+        const LoopContext* loop = nullptr;  // the loop the switch is in (nullptr: none)
+    };
+    std::vector<SwitchContext> switches_;  // the switches being walked, innermost last
     // The blocks of the region walks in progress, outermost first. Reaching one of them again is a
     // cycle without the OpLoopMerge that would make it a loop (malformed SPIR-V): walking it would
     // never end. A block may still be walked twice by sibling walks (a switch case falling through).
@@ -82,6 +93,7 @@ private:
 
 bool Structuriser::is_exit(uint32_t target, uint32_t stop, const LoopContext* loop) const {
     if (target == stop) return true;
+    if (breaks_switch(target, loop)) return true;
     if (!loop) return false;
     if (target == loop->merge) return true;
     if (!loop->in_continuing && target == loop->cont) return true;
@@ -95,6 +107,7 @@ Body Structuriser::exit_arm(uint32_t from, uint32_t target, uint32_t stop, const
     Body out{copies(from, target)};
     if (loop && target == loop->merge && target != stop) out.push_back(simple(StatementKind::Break));
     else if (loop && !loop->in_continuing && target == loop->cont && target != stop) out.push_back(simple(StatementKind::Continue));
+    else if (breaks_switch(target, loop) && target != stop) out.push_back(simple(StatementKind::Break));
     return out;
 }
 
@@ -115,6 +128,10 @@ Body Structuriser::region(uint32_t start, uint32_t stop, const LoopContext* loop
     uint32_t b = start;
     while (true) {
         if (b == stop) return out;
+        if (breaks_switch(b, loop)) {
+            out.push_back(simple(StatementKind::Break));
+            return out;
+        }
         if (loop && b == loop->merge) {
             out.push_back(simple(StatementKind::Break));
             return out;
@@ -185,12 +202,14 @@ Body Structuriser::region(uint32_t start, uint32_t stop, const LoopContext* loop
                     }
                 }
                 bool default_done = false;
+                switches_.push_back({merge, loop});
                 for (size_t i = 0; i < s.cases.size(); ++i) {
                     s.cases[i].is_default = targets[i] == default_target;
                     default_done = default_done || s.cases[i].is_default;
                     s.cases[i].body = arm(b, targets[i], merge, loop);
                 }
                 if (!default_done) s.cases.push_back({{}, true, arm(b, default_target, merge, loop)});
+                switches_.pop_back();
                 out.push_back(std::move(s));
                 b = merge;
                 continue;

@@ -36,7 +36,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
     default: {
       if (vTexCoord.x < 0.25) {
         fragColor = vec4<f32>(1.0, 0.0, 0.0, 1.0);
-        return fragColor;
+        break;
       }
       if (vTexCoord.x > 0.75) {
         discard;

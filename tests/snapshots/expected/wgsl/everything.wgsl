@@ -118,11 +118,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       }
       if (_1770) {
         color = crt.edgeColor;
-        let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-        let _1834 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _1835 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834);
-        fragColor = _1835;
-        return fragColor;
+        break;
       }
       let _1777 = sampleUv.y < 0.0;
       if (!_1777) {
@@ -132,18 +128,14 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       }
       if (_1784) {
         color = crt.edgeColor.zyx;
-        let c_1 = vec4<f32>(color.x, color.y, color.z, 1.0);
-        let _1834_1 = (bitcast<vec4<u32>>(c_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _1835_1 = select(clamp(c_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834_1);
-        fragColor = _1835_1;
-        return fragColor;
+        break;
       }
       color = color_4;
     }
   }
-  let c_2 = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _1834_2 = (bitcast<vec4<u32>>(c_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _1835_2 = select(clamp(c_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834_2);
-  fragColor = _1835_2;
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _1834 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _1835 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834);
+  fragColor = _1835;
   return fragColor;
 }

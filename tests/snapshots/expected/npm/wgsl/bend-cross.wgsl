@@ -63,11 +63,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       }
       if (_763) {
         color = crt.edgeColor;
-        let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-        let _827 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _828 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827);
-        fragColor = _828;
-        return fragColor;
+        break;
       }
       let _770 = sampleUv.y < 0.0;
       if (!_770) {
@@ -77,18 +73,14 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       }
       if (_777) {
         color = crt.edgeColor.zyx;
-        let c_1 = vec4<f32>(color.x, color.y, color.z, 1.0);
-        let _827_1 = (bitcast<vec4<u32>>(c_1) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-        let _828_1 = select(clamp(c_1, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827_1);
-        fragColor = _828_1;
-        return fragColor;
+        break;
       }
       color = color_1;
     }
   }
-  let c_2 = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _827_2 = (bitcast<vec4<u32>>(c_2) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _828_2 = select(clamp(c_2, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827_2);
-  fragColor = _828_2;
+  let c = vec4<f32>(color.x, color.y, color.z, 1.0);
+  let _827 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _828 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827);
+  fragColor = _828;
   return fragColor;
 }
