@@ -33,7 +33,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
     cmd->add_option("--uniforms", o->uniforms,
-                    "Which params stay uniforms, one variant per entry: default, all, none (e.g. none,default,all: what each live param costs)")
+                    "Which params stay uniforms, one variant per entry: default, all, none, or uber (one shader for every preset: every stage behind a runtime switch; e.g. none,default,all,uber: what each live param costs, and what specialising saves)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_flag("--no-tiers", o->no_tiers, "Time each preset as written, not each of its quality tiers (point, each filtered stage alone, filtered)");
@@ -78,8 +78,8 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         options.supersample = o->supersample;
         std::vector<std::pair<std::string, VariantOptions>> variants;
         for (const std::string& u : o->uniforms) {
-            if (u != "default" && u != "all" && u != "none")
-                return report(make_error("'" + u + "' must be default, all or none", {}, 0, "--uniforms"));
+            if (u != "default" && u != "all" && u != "none" && u != "uber")
+                return report(make_error("'" + u + "' must be default, all, none or uber", {}, 0, "--uniforms"));
             VariantFlags flags;
             flags.uniforms = u;
             auto parsed = flags.parse();

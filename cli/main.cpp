@@ -34,7 +34,7 @@ Cache make_cache(const GlobalOptions& g) {
 
 void VariantFlags::add_to(CLI::App& cmd) {
     cmd.add_option("--uniforms", uniforms,
-                   "Which params stay runtime uniforms: default (the spec's runtime params), all, none, or NAME,NAME,...")
+                   "Which params stay runtime uniforms: default (the spec's runtime params), all, none, NAME,NAME,..., or uber (the all-stages uber-shader: every stage behind an int switch uniform crtStage_<stage>, every param a uniform)")
         ->capture_default_str();
     cmd.add_option("--precision", precision, "Float precision of the variant: high or medium")
         ->check(CLI::IsMember({"high", "medium"}))

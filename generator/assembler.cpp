@@ -2,6 +2,7 @@
 #include "crtforge/assembler.hpp"
 #include "crtforge/inert_text.hpp"
 
+#include <algorithm>
 #include <array>
 
 #include <fmt/format.h>
@@ -82,19 +83,44 @@ std::string source_mapping(const Variant& variant) {
 // like crt_source_uv, only where a snippet calls it; declared before the snippets, defined after.
 constexpr const char* kWarpFunction = "crt_warp";
 
-bool calls_warp(const Pass& pass) {
-    for (const ResolvedStage& rs : pass.stages)
-        if (rs.stage->glsl_source.find(kWarpFunction) != std::string::npos) return true;
+bool calls_warp(const Variant& variant) {
+    for (const VariantStage& ss : variant.stages)
+        if (ss.stage->glsl_source.find(kWarpFunction) != std::string::npos) return true;
     return false;
 }
 
-std::string warp_function(const Pass& pass) {
-    std::string out = fmt::format("// The warp stages in pass order, for stages that warp a point of their own.\nvec2 {}(vec2 uv) {{\n", kWarpFunction);
-    for (const ResolvedStage& rs : pass.stages) {
-        const std::string& fn = rs.form->functions[static_cast<int>(Hook::Warp)];
-        if (!fn.empty()) out += fmt::format("    uv = {}(uv);  // {} ({})\n", fn, rs.stage->name, rs.form->name);
+// The calls of one hook in pass order, one statement each made from `pattern` ({} = the function).
+// In the uber-shader each call runs only where its stage's switch selects a form that has it.
+std::string hook_calls(const Variant& variant, Hook hook, const std::string& pattern) {
+    std::string text;
+    for (const VariantStage& ss : variant.stages) {
+        // Forms that share a function share its call.
+        std::vector<std::pair<std::string, std::vector<const FormSpec*>>> calls;
+        for (const FormSpec* form : ss.forms) {
+            const std::string& fn = form->functions[static_cast<int>(hook)];
+            if (fn.empty()) continue;
+            auto same = std::find_if(calls.begin(), calls.end(), [&](const auto& c) { return c.first == fn; });
+            if (same == calls.end()) calls.push_back({fn, {form}});
+            else same->second.push_back(form);
+        }
+        for (const auto& [fn, forms] : calls) {
+            std::string names, condition;
+            for (const FormSpec* form : forms) {
+                names += (names.empty() ? "" : ", ") + form->name;
+                condition += fmt::format("{}{} == {}", condition.empty() ? "" : " || ", ss.stage->stage_switch.name,
+                                         ss.switch_value(form));
+            }
+            const std::string call = fmt::format(fmt::runtime(pattern), fn);
+            if (ss.switched) text += fmt::format("    if ({}) {}  // {} ({})\n", condition, call, ss.stage->name, names);
+            else text += fmt::format("    {}  // {} ({})\n", call, ss.stage->name, names);
+        }
     }
-    return out + "    return uv;\n}\n";
+    return text;
+}
+
+std::string warp_function(const Variant& variant) {
+    return fmt::format("// The warp stages in pass order, for stages that warp a point of their own.\nvec2 {}(vec2 uv) {{\n", kWarpFunction) +
+           hook_calls(variant, Hook::Warp, "uv = {}(uv);") + "    return uv;\n}\n";
 }
 
 bool maps_source(const Variant& variant) {
@@ -103,28 +129,18 @@ bool maps_source(const Variant& variant) {
 
 // The fixed pass order: warp, sample position, fetch, colour stages, finish.
 std::string main_body(const Variant& variant) {
-    const Pass& pass = *variant.pass;
     // Every output is finite, whatever the input holds (docs/hard-cases.md): NaN becomes 0 and
     // anything beyond half's range its largest value, so no consumer's framebuffer, and no later
     // pass, sees a NaN or an infinity. isnan() selects rather than clamp(), whose NaN result GLSL,
     // HLSL and WGSL leave undefined.
     std::string out = "vec4 crt_finite(vec4 c) { return mix(clamp(c, -65504.0, 65504.0), vec4(0.0), isnan(c)); }\n\n";
     out += "void main() {\n";
-    if (pass.stages.empty()) {
+    if (variant.stages.empty()) {
         out += fmt::format("    fragColor = crt_finite(texture({}, {}));  // CRT off: plain passthrough blit\n",
                            kSourceTextureName, kTexCoordName);
         return out + "}\n";
     }
-    auto calls = [&](Hook hook, const std::string& pattern) {
-        std::string text;
-        for (const ResolvedStage& rs : pass.stages) {
-            const std::string& fn = rs.form->functions[static_cast<int>(hook)];
-            if (fn.empty()) continue;
-            text += "    " + fmt::format(fmt::runtime(pattern), fn) +
-                    fmt::format("  // {} ({})\n", rs.stage->name, rs.form->name);
-        }
-        return text;
-    };
+    auto calls = [&](Hook hook, const std::string& pattern) { return hook_calls(variant, hook, pattern); };
     out += "    CrtFrag frag;\n";
     out += fmt::format("    frag.screenUv = {};\n", kTexCoordName);
     out += fmt::format("    frag.pixel = {} * outputSize;\n", kTexCoordName);
@@ -164,8 +180,8 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
         src += fmt::format("// pass {} of {}: {}\n", variant.pass_index + 1, preset.passes.size(), variant.pass->alias);
     const Pass& pass = *variant.pass;
     if (variant.options.precision == Precision::Medium) src += "precision mediump float;\n";
-    for (const ResolvedStage& rs : pass.stages)
-        src += fmt::format("#define CRT_FORM_{}_{} 1\n", rs.stage->name, rs.form->name);
+    for (const VariantStage& ss : variant.stages)
+        for (const FormSpec* form : ss.forms) src += fmt::format("#define CRT_FORM_{}_{} 1\n", ss.stage->name, form->name);
     src += declarations(variant);
 
     // Each included file starts on its own line with a #line directive naming it, so glslang
@@ -175,15 +191,15 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
         src += line_directive(1, file);
         src += text;
     };
-    if (!pass.stages.empty()) {
+    if (!variant.stages.empty()) {
         include(library.prelude_path(), library.prelude_source());
         bool used = maps_source(variant);
-        for (const ResolvedStage& rs : pass.stages) used = used || rs.stage->glsl_source.find("crt_source_uv") != std::string::npos;
+        for (const VariantStage& ss : variant.stages) used = used || ss.stage->glsl_source.find("crt_source_uv") != std::string::npos;
         if (used) src += source_mapping(variant);
-        const bool warp = calls_warp(pass);
+        const bool warp = calls_warp(variant);
         if (warp) src += fmt::format("\nvec2 {}(vec2 uv);  // the warp stages, defined after the snippets\n", kWarpFunction);
-        for (const ResolvedStage& rs : pass.stages) include(rs.stage->glsl_path, rs.stage->glsl_source);
-        if (warp) include("<generated " + std::string(kWarpFunction) + " for preset " + preset.name + ">", warp_function(pass));
+        for (const VariantStage& ss : variant.stages) include(ss.stage->glsl_path, ss.stage->glsl_source);
+        if (warp) include("<generated " + std::string(kWarpFunction) + " for preset " + preset.name + ">", warp_function(variant));
     }
     include("<generated main for preset " + preset.name + (preset.single_pass() ? "" : " pass " + pass.alias) + ">",
             main_body(variant));

@@ -88,6 +88,8 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
         return r.error(t.get("name"), "param." + p.name,
                        "'" + p.name + "' is a keyword or builtin of " + language +
                            " (a param becomes a uniform of its name in every target): choose another name");
+    if (p.name.rfind("crtStage_", 0) == 0)
+        return r.error(t.get("name"), "param." + p.name, "names starting with crtStage_ are the uber-shader's stage switches: choose another name");
     const std::string field = "param." + p.name;
 
     auto type = r.string(t, "type", field, true);
@@ -335,6 +337,17 @@ Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& p
             return make_error("is not read by any form (list it in a form's params or in common)", path,
                               p.where.line, "param." + p.name);
     }
+    ParamSpec& sw = stage.stage_switch;
+    sw.name = "crtStage_" + stage.name;
+    sw.type = ParamType::Int;
+    sw.min = 0.0;
+    sw.max = static_cast<double>(stage.forms.size());
+    sw.step = 1.0;
+    sw.default_value = int64_t{0};
+    sw.doc = "uber-shader switch: 0 off";
+    for (size_t i = 0; i < stage.forms.size(); ++i) sw.doc += fmt::format(", {} {}", i + 1, stage.forms[i].name);
+    sw.runtime = true;
+    sw.where = stage.where;
     return stage;
 }
 

@@ -15,12 +15,14 @@ std::map<std::string, Value> effective_values(const Variant& variant, const std:
 Result<MemberData> member_data(const Value& value, const std::string& type) {
     if (auto d = std::get_if<double>(&value)) return MemberData{std::vector<float>{static_cast<float>(*d)}};
     if (auto i = std::get_if<int64_t>(&value)) return MemberData{static_cast<int32_t>(*i)};
+    // A bool uniform (the uber-shader's) is 4 bytes in std140: 0 or 1.
+    if (auto b = std::get_if<bool>(&value)) return MemberData{static_cast<int32_t>(*b ? 1 : 0)};
     if (auto c = std::get_if<Color>(&value)) {
         std::vector<float> rgb{static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])};
         if (type == "vec4") rgb.push_back(1.0f);
         return MemberData{std::move(rgb)};
     }
-    return make_error("a " + type + " uniform cannot hold this value (bools and enums are never uniforms)");
+    return make_error("a " + type + " uniform cannot hold this value (enums are never uniforms)");
 }
 
 Result<std::vector<uint8_t>> pack_block(const ReflectedBlock& block,

@@ -16,6 +16,7 @@ Result<UniformSelection> UniformSelection::parse(const std::string& text) {
     if (text.empty() || text == "default") return sel;
     if (text == "all") { sel.mode = Mode::All; return sel; }
     if (text == "none") { sel.mode = Mode::None; return sel; }
+    if (text == "uber") { sel.mode = Mode::Uber; return sel; }
     sel.mode = Mode::Names;
     std::stringstream ss(text);
     std::string name;
@@ -31,6 +32,7 @@ std::string UniformSelection::str() const {
         case Mode::Default: return "default";
         case Mode::All: return "all";
         case Mode::None: return "none";
+        case Mode::Uber: return "uber";
         case Mode::Names: {
             std::string out;
             for (const auto& n : names) out += (out.empty() ? "" : ",") + n;
@@ -38,6 +40,12 @@ std::string UniformSelection::str() const {
         }
     }
     return "default";
+}
+
+int VariantStage::switch_value(const FormSpec* form) const {
+    for (size_t i = 0; i < stage->forms.size(); ++i)
+        if (stage->forms[i].name == form->name) return static_cast<int>(i) + 1;
+    return 0;
 }
 
 std::string Variant::file_stem() const {
@@ -59,8 +67,9 @@ std::vector<const VariantParam*> Variant::uniforms() const {
 }
 
 bool Variant::writes_alpha() const {
-    for (const ResolvedStage& rs : pass->stages)
-        if (!rs.form->functions[static_cast<int>(Hook::Alpha)].empty()) return true;
+    for (const VariantStage& ss : stages)
+        for (const FormSpec* form : ss.forms)
+            if (!form->functions[static_cast<int>(Hook::Alpha)].empty()) return true;
     return false;
 }
 
@@ -77,6 +86,51 @@ std::vector<const VariantParam*> Variant::baked() const {
     return out;
 }
 
+namespace {
+
+bool contains(const std::vector<std::string>& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+// The uber-shader's stages: every stage of the library with a form whose textures the pass binds,
+// each with those forms, its switch set to the form the pass runs (0: the pass does not run it),
+// and every param one of those forms reads as a uniform holding the pass's value (or the default).
+// Selectors are left out: the switch does their work.
+void add_uber_stages(const TemplateLibrary& library, Variant& variant) {
+    for (const StageSpec& stage : library.stages()) {
+        VariantStage ss{&stage, {}, true};
+        for (const FormSpec& form : stage.forms) {
+            bool bound = true;
+            for (const std::string& t : form.textures) bound = bound && contains(variant.textures, t);
+            if (bound) ss.forms.push_back(&form);
+        }
+        if (ss.forms.empty()) continue;
+        const ResolvedStage* running = variant.pass->find_stage(stage.name);
+        VariantParam sw;
+        sw.spec = &stage.stage_switch;
+        sw.stage = &stage;
+        sw.value = int64_t{running ? ss.switch_value(running->form) : 0};
+        sw.uniform = true;
+        variant.params.push_back(std::move(sw));
+        for (const ParamSpec& spec : stage.params) {
+            bool read = contains(stage.common_params, spec.name);
+            for (const FormSpec* form : ss.forms) read = read || contains(form->params, spec.name);
+            if (!read || spec.name == stage.selector) continue;
+            VariantParam vp;
+            vp.spec = &spec;
+            vp.stage = &stage;
+            vp.value = spec.default_value;
+            if (running)
+                if (auto v = running->values.find(spec.name); v != running->values.end()) vp.value = v->second;
+            vp.uniform = true;
+            variant.params.push_back(std::move(vp));
+        }
+        variant.stages.push_back(std::move(ss));
+    }
+}
+
+}  // namespace
+
 Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
                              const VariantOptions& options, size_t pass_index) {
     if (pass_index >= preset.passes.size())
@@ -90,7 +144,20 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
 
     std::set<std::string> used;
     bool needs_time = false, needs_source_size = false, needs_frame_count = false;
-    for (const ResolvedStage& rs : variant.pass->stages) {
+    auto note_builtins = [&](const FormSpec& form) {
+        for (Builtin b : form.builtins) {
+            needs_time = needs_time || b == Builtin::Time;
+            needs_source_size = needs_source_size || b == Builtin::SourceSize;
+            needs_frame_count = needs_frame_count || b == Builtin::FrameCount;
+        }
+    };
+    if (variant.uber()) {
+        add_uber_stages(library, variant);
+        for (const VariantStage& ss : variant.stages)
+            for (const FormSpec* form : ss.forms) note_builtins(*form);
+    }
+    for (const ResolvedStage& rs : variant.uber() ? std::vector<ResolvedStage>{} : variant.pass->stages) {
+        variant.stages.push_back(VariantStage{rs.stage, {rs.form}, false});
         // Params in declaration order of the spec, so layouts are stable and readable.
         for (const ParamSpec& spec : rs.stage->params) {
             auto v = rs.values.find(spec.name);
@@ -104,6 +171,7 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
                 case Mode::Default: vp.uniform = spec.runtime; break;
                 case Mode::All: vp.uniform = spec.runtime; break;
                 case Mode::None: vp.uniform = false; break;
+                case Mode::Uber: vp.uniform = true; break;
                 case Mode::Names:
                     vp.uniform = std::find(options.uniforms.names.begin(), options.uniforms.names.end(),
                                            spec.name) != options.uniforms.names.end();
@@ -112,11 +180,7 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
             used.insert(spec.name);
             variant.params.push_back(std::move(vp));
         }
-        for (Builtin b : rs.form->builtins) {
-            needs_time = needs_time || b == Builtin::Time;
-            needs_source_size = needs_source_size || b == Builtin::SourceSize;
-            needs_frame_count = needs_frame_count || b == Builtin::FrameCount;
-        }
+        note_builtins(*rs.form);
     }
 
     if (options.uniforms.mode == UniformSelection::Mode::Names) {
@@ -149,7 +213,7 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
     }
 
     // outputSize is always present when any stage runs: the pixel grid every stage works on.
-    if (!variant.pass->stages.empty()) variant.builtins.push_back(Builtin::OutputSize);
+    if (!variant.stages.empty()) variant.builtins.push_back(Builtin::OutputSize);
     if (needs_source_size) variant.builtins.push_back(Builtin::SourceSize);
     if (needs_time) variant.builtins.push_back(Builtin::Time);
     if (needs_frame_count) variant.builtins.push_back(Builtin::FrameCount);

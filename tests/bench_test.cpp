@@ -213,6 +213,17 @@ TEST_CASE("bench measures every tier against the point tier's supersampled pictu
     CHECK(baked.value().label() == "crt-shadow-mask@filtered uniforms=none");
     CHECK(baked.value().vs_supersampled->rmse == Approx(errors[3]).margin(1e-4));
     CHECK(session.reference_renders() == 5);
+    // The uber-shader runs the same forms behind its switches: the same picture, at its own cost.
+    options.variant.uniforms = UniformSelection::parse("uber").value();
+    options.uniforms_label = "uber";
+    auto uber = session.tier(tiers, 3, options);
+    REQUIRE(uber.ok());
+    CHECK(uber.value().label() == "crt-shadow-mask@filtered uniforms=uber");
+    CHECK(uber.value().vs_supersampled->rmse == Approx(errors[3]).margin(1e-4));
+    CHECK(uber.value().vs_point->rmse == Approx(baked.value().vs_point->rmse).margin(1e-4));
+    CHECK(uber.value().cost().instructions > 2 * baked.value().cost().instructions);
+    CHECK(uber.value().cost().samples > baked.value().cost().samples);
+    CHECK(session.reference_renders() == 5);
 }
 
 TEST_CASE("budget mode generates the cheapest tier within --max-error and says why", "[bench][tiers][cli]") {
@@ -274,14 +285,19 @@ void main() {
     // Baking params folds code away: classic with every param a constant is smaller than with its
     // live ones, and bench reports both variants.
     test::TempDir out;
-    auto run = test::run_crtforge("bench --quick --preset classic --uniforms none,default --supersample 0 --out " + out.path());
+    auto run = test::run_crtforge("bench --quick --preset classic --uniforms none,default,uber --supersample 0 --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
-    REQUIRE(json.size() == 2);
+    REQUIRE(json.size() == 3);
     CHECK(json[0]["uniforms"] == "none");
     CHECK(json[1]["uniforms"] == "default");
+    CHECK(json[2]["uniforms"] == "uber");
     CHECK(json[0]["shader"]["instructions"].get<int>() < json[1]["shader"]["instructions"].get<int>());
     CHECK(json[0]["shader"]["textureSamples"] == json[1]["shader"]["textureSamples"]);
-    CHECK_THAT(read_text_file(out / "bench.md").value(), Catch::Contains("| classic uniforms=none | 320x240 | 1 |"));
+    // The all-stages uber-shader holds every stage's code: many times the instructions and reads.
+    CHECK(json[2]["shader"]["instructions"].get<int>() > 4 * json[1]["shader"]["instructions"].get<int>());
+    CHECK(json[2]["shader"]["textureSamples"].get<int>() > json[1]["shader"]["textureSamples"].get<int>());
+    CHECK_THAT(read_text_file(out / "bench.md").value(), Catch::Contains("| classic uniforms=none | 320x240 | 1 |") &&
+                                                          Catch::Contains("| classic uniforms=uber | 320x240 | 1 |"));
     CHECK(test::run_crtforge("bench --quick --preset classic --uniforms some").exit_code == 2);
 }

@@ -92,6 +92,9 @@ struct StageSpec {
     std::string glsl_path;        // the snippet file
     std::string glsl_source;      // its text
     SourceLocation where;
+    // The uber-shader's (--uniforms uber) int uniform choosing what the stage does at run time:
+    // 0 off, k the k-th form. Made by the loader ("crtStage_<name>"); no specialised shader has it.
+    ParamSpec stage_switch;
 
     const ParamSpec* find_param(const std::string& name) const;
     const FormSpec* find_form(const std::string& name) const;

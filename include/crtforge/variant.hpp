@@ -17,10 +17,14 @@ const char* precision_name(Precision precision);
 
 // How params are split between baked constants and uniforms.
 struct UniformSelection {
-    enum class Mode { Default, All, None, Names } mode = Mode::Default;
+    // Uber: not a specialised shader at all — every stage of the library the pass can feed, each
+    // behind its int switch uniform (StageSpec::stage_switch: 0 off, k its k-th form), every param
+    // a uniform: one shader for every preset, branching at run time (what "only what the scene
+    // needs" saves is measured against it).
+    enum class Mode { Default, All, None, Names, Uber } mode = Mode::Default;
     std::vector<std::string> names;  // Mode::Names only
 
-    // Parses the CLI syntax: "default", "all", "none" or "NAME,NAME,...".
+    // Parses the CLI syntax: "default", "all", "none", "uber" or "NAME,NAME,...".
     static Result<UniformSelection> parse(const std::string& text);
     std::string str() const;
 };
@@ -37,6 +41,15 @@ struct VariantParam {
     bool uniform = false;
 };
 
+// A stage as the shader holds it: one form in a specialised shader; in the uber-shader every form
+// the pass can feed, chosen at run time by the stage's switch.
+struct VariantStage {
+    const StageSpec* stage = nullptr;
+    std::vector<const FormSpec*> forms;
+    bool switched = false;  // behind stage->stage_switch (the uber-shader)
+    int switch_value(const FormSpec* form) const;  // 1 + index of `form` in the stage's forms
+};
+
 struct Variant {
     const Preset* preset = nullptr;
     const Pass* pass = nullptr;         // the pass this variant draws
@@ -44,10 +57,12 @@ struct Variant {
     VariantOptions options;
     std::vector<VariantParam> params;   // every param the enabled forms read, in pass order
     std::vector<Builtin> builtins;      // builtins in the uniform block, in declaration order
+    std::vector<VariantStage> stages;    // what the shader holds, in pass order
     // Textures besides `source`, bound at 2, 3, ... in this order (the pass's texture_names()).
     std::vector<std::string> textures;
 
     bool has_uniform_block() const;
+    bool uber() const { return options.uniforms.mode == UniformSelection::Mode::Uber; }
     // What the pass's files are named after: the preset ("classic") for a single-pass preset, the
     // preset and the pass alias ("super-win.trails") in a scene of several passes.
     std::string file_stem() const;
@@ -65,6 +80,8 @@ struct Variant {
 // Default: params whose spec says runtime = true stay uniforms, all others are baked.
 // All: every runtime-capable param is a uniform. None: everything baked.
 // Names: exactly the listed params are uniforms; each must be runtime-capable and used.
+// Uber: every stage the pass can feed (its forms' textures bound by the pass), every param a uniform
+// (runtime = true or not), and each stage's switch set to the pass's form (0 where it is off).
 Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
                              const VariantOptions& options, size_t pass_index = 0);
 

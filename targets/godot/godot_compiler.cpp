@@ -123,8 +123,17 @@ void GodotCompiler::prepare() {
             const std::string name = get_member_name(ub.base_type_id, i);
             Builtin builtin{};
             std::string expr = parse_builtin(name, builtin) ? builtin_expression(name) : name;
-            for (const VariantParam& p : variant_.params)
-                if (p.spec->name == name && p.spec->type == ParamType::Color && options_.godot_version < 4) expr = name + ".rgb";
+            for (const VariantParam& p : variant_.params) {
+                if (p.spec->name != name) continue;
+                if (p.spec->type == ParamType::Color && options_.godot_version < 4) expr = name + ".rgb";
+                // SPIR-V holds a bool uniform as a uint; Godot's uniform is a bool (a checkbox in
+                // the inspector). compile_godot() turns SPIRV-Cross's `x != 0u` back into `x`; any
+                // other use gets the uint it stood for (Godot 3 has no uint(bool): it refuses that).
+                if (p.spec->type == ParamType::Bool) {
+                    expr = "uint(" + name + ")";
+                    bool_members_.push_back(name);
+                }
+            }
             member_expressions_[name] = expr;
         }
     }
@@ -133,6 +142,11 @@ void GodotCompiler::prepare() {
 std::string GodotCompiler::compile_godot() {
     prepare();
     std::string text = detail::shorten_float_literals(compile());
+    for (const std::string& name : bool_members_) {
+        const std::string test = std::string(kBlockMarker) + "." + name + " != 0u";
+        for (size_t at = text.find(test); at != std::string::npos; at = text.find(test, at + name.size()))
+            text.replace(at, test.size(), name);
+    }
     std::string out = detail::replace_block_access(text, kBlockMarker, [&](const std::string& member) {
         auto found = member_expressions_.find(member);
         if (found == member_expressions_.end()) throw spirv_cross::CompilerError("unknown uniform member " + member);

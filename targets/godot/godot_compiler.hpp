@@ -40,6 +40,7 @@ private:
     const Variant& variant_;
     godot::Options options_;
     std::map<std::string, std::string> member_expressions_;  // block member -> Godot expression  // qualified: CompilerGLSL has its own nested Options
+    std::vector<std::string> bool_members_;  // block members that are bool params (a uint in SPIR-V)
 };
 
 }  // namespace crtforge::godot
