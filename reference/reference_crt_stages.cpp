@@ -9,8 +9,16 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kArticlePi = 3.14159;  // the Atari and Quiet Frame articles' literal
 
-bool warp_curvature(const std::string& form, const Params& p, const Fragment&, Vec2& uv) {
+// A filtered curvature form warps as its point form ("atari_filtered" -> "atari").
+std::string curvature_base(const std::string& form) {
+    const std::string suffix = "_filtered";
+    return form.size() > suffix.size() && form.compare(form.size() - suffix.size(), suffix.size(), suffix) == 0
+               ? form.substr(0, form.size() - suffix.size()) : form;
+}
+
+bool warp_curvature(const std::string& filtered_or_point, const Params& p, const Fragment&, Vec2& uv) {
     const double k = p.num("curvature");
+    const std::string form = curvature_base(filtered_or_point);
     if (form == "atari") {  // r measured on the -1..1 square
         Vec2 c = uv * 2.0 - Vec2{1, 1};
         c = c * (1.0 + k * dot(c, c));
@@ -232,14 +240,39 @@ bool apply_vignette(const std::string& form, const Params& p, const Fragment& f,
 
 bool outside_screen(const Fragment& f) { return f.uv.x < 0.0 || f.uv.x > 1.0 || f.uv.y < 0.0 || f.uv.y > 1.0; }
 
+// The filtered forms' share of the pixel on the screen (templates/stages/curvature.glsl): each
+// edge a straight line through the warp's Jacobian d uv / d pixel, box-filtered, the two axes'
+// shares multiplied. Computed here from the Jacobian's definition, the derivative of the warp:
+// dw/dc = s I + 2 k c c^T for w = c * s(c), s = 1 + k r^2 (atari, quiet_frame: r^2 = c.c) or
+// 1 + k (r^2 - 1) (crt_effect).
+double screen_coverage(const std::string& form, const Params& p, const Fragment& f) {
+    const double k = p.num("curvature");
+    const std::string base = curvature_base(form);
+    const Vec2 c = base == "quiet_frame" ? f.screen_uv - Vec2{0.5, 0.5} : f.screen_uv * 2.0 - Vec2{1, 1};
+    const double s = base == "crt_effect" ? 1.0 + (dot(c, c) - 1.0) * k : 1.0 + k * dot(c, c);
+    // d uv_out / d uv_in = dw/dc for every form (atari and crt_effect: c = 2 uv - 1 and uv = w / 2 + 1/2).
+    const double j00 = s + 2.0 * k * c.x * c.x, j01 = 2.0 * k * c.x * c.y, j11 = s + 2.0 * k * c.y * c.y;
+    const double rate_x = std::max(std::hypot(j00 / f.output_size.x, j01 / f.output_size.y), 1e-8);
+    const double rate_y = std::max(std::hypot(j01 / f.output_size.x, j11 / f.output_size.y), 1e-8);
+    auto share = [](double inside, double rate) { return std::clamp(inside / rate + 0.5, 0.0, 1.0); };
+    return share(std::min(f.uv.x, 1.0 - f.uv.x), rate_x) * share(std::min(f.uv.y, 1.0 - f.uv.y), rate_y);
+}
+
+bool is_filtered(const std::string& form) { return curvature_base(form) != form; }
+
 // Retro CRT Effects' crt.frag writes vec4(0.0) outside: its preset sets bezelAlpha = 0.
-bool bezel_alpha(const std::string&, const Params& p, const Fragment& f, double& alpha) {
-    if (outside_screen(f)) alpha = p.num("bezelAlpha");
+bool bezel_alpha(const std::string& form, const Params& p, const Fragment& f, double& alpha) {
+    if (is_filtered(form)) alpha = mix(p.num("bezelAlpha"), alpha, screen_coverage(form, p, f));
+    else if (outside_screen(f)) alpha = p.num("bezelAlpha");
     return true;
 }
 
-bool apply_bezel(const std::string&, const Params& p, const Fragment& f, Vec3& color) {
-    if (outside_screen(f)) color = p.color("bezelColor");
+bool apply_bezel(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
+    if (is_filtered(form)) {
+        const double t = screen_coverage(form, p, f);
+        color = p.color("bezelColor") * (1.0 - t) + color * t;
+    }
+    else if (outside_screen(f)) color = p.color("bezelColor");
     return true;
 }
 

@@ -130,32 +130,38 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
     const TemplateLibrary& lib = test::shipped_library();
     const Preset& shadow = *lib.find_preset("crt-shadow-mask");
     const std::vector<PresetTier> tiers = preset_tiers(shadow);
-    // Two stages have filtered forms: point, each alone (pass order), both.
-    REQUIRE(tiers.size() == 4);
+    // Three stages have filtered forms: point, each alone (pass order), all.
+    REQUIRE(tiers.size() == 5);
     CHECK(tiers[0].tier == QualityTier::Point);
     CHECK(tiers[0].name == "point");
     CHECK(tiers[0].changes.empty());  // written with the point-sampled forms
-    CHECK(tiers[1].name == "filtered:scanlines");
-    CHECK(tiers[1].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered"});
-    CHECK(tiers[2].name == "filtered:mask");
-    CHECK(tiers[2].changes == std::vector<std::string>{"pass main: mask shadow -> shadow_filtered"});
-    CHECK(tiers[3].tier == QualityTier::Filtered);
-    CHECK(tiers[3].name == "filtered");
-    REQUIRE(tiers[3].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered",
+    CHECK(tiers[1].name == "filtered:curvature");
+    CHECK(tiers[1].changes == std::vector<std::string>{"pass main: curvature crt_effect -> crt_effect_filtered"});
+    CHECK(tiers[2].name == "filtered:scanlines");
+    CHECK(tiers[2].changes == std::vector<std::string>{"pass main: scanlines crt_effect -> crt_effect_filtered"});
+    CHECK(tiers[3].name == "filtered:mask");
+    CHECK(tiers[3].changes == std::vector<std::string>{"pass main: mask shadow -> shadow_filtered"});
+    CHECK(tiers[4].tier == QualityTier::Filtered);
+    CHECK(tiers[4].name == "filtered");
+    REQUIRE(tiers[4].changes == std::vector<std::string>{"pass main: curvature crt_effect -> crt_effect_filtered",
+                                                         "pass main: scanlines crt_effect -> crt_effect_filtered",
                                                          "pass main: mask shadow -> shadow_filtered"});
-    const ResolvedStage* mask = tiers[3].preset.passes.front().find_stage("mask");
+    const ResolvedStage* mask = tiers[4].preset.passes.front().find_stage("mask");
     REQUIRE(mask);
     CHECK(mask->form->name == "shadow_filtered");
     CHECK(std::get<std::string>(mask->values.at("maskMode")) == "shadow_filtered");
     CHECK(mask->values.at("maskSize") == shadow.passes.front().find_stage("mask")->values.at("maskSize"));
-    CHECK(tiers[1].preset.passes.front().find_stage("mask")->form->name == "shadow");  // the other stage stays point-sampled
+    CHECK(tiers[2].preset.passes.front().find_stage("mask")->form->name == "shadow");  // the other stages stay point-sampled
+    CHECK(tiers[2].preset.passes.front().find_stage("curvature")->form->name == "crt_effect");
     // A preset written with the filtered forms offers the point ones first, as the cheaper tier.
-    const std::vector<PresetTier> back = preset_tiers(tiers[3].preset);
-    REQUIRE(back.size() == 4);
-    CHECK(back[0].changes == std::vector<std::string>{"pass main: scanlines crt_effect_filtered -> crt_effect",
+    const std::vector<PresetTier> back = preset_tiers(tiers[4].preset);
+    REQUIRE(back.size() == 5);
+    CHECK(back[0].changes == std::vector<std::string>{"pass main: curvature crt_effect_filtered -> crt_effect",
+                                                      "pass main: scanlines crt_effect_filtered -> crt_effect",
                                                       "pass main: mask shadow_filtered -> shadow"});
-    CHECK(back[2].changes == std::vector<std::string>{"pass main: scanlines crt_effect_filtered -> crt_effect"});
-    CHECK(back[3].changes.empty());
+    CHECK(back[3].changes == std::vector<std::string>{"pass main: curvature crt_effect_filtered -> crt_effect",
+                                                      "pass main: scanlines crt_effect_filtered -> crt_effect"});
+    CHECK(back[4].changes.empty());
     // No stage with a filtered form: one tier, as written.
     const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("atari-16"));
     REQUIRE(one.size() == 1);
@@ -167,7 +173,8 @@ TEST_CASE("each filtered form is its point form averaged over each pixel", "[ben
     // finely (the box filter the filtered form computes exactly), and it is far from the point one.
     const TemplateLibrary& lib = test::validation_library();
     for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered", "stage-scanlines-quiet-frame-filtered",
-                             "stage-scanlines-crt-effect-filtered"}) {
+                             "stage-scanlines-crt-effect-filtered", "stage-curvature-atari-filtered",
+                             "stage-curvature-crt-effect-filtered", "stage-curvature-quiet-frame-filtered"}) {
         INFO(name);
         const std::vector<PresetTier> tiers = preset_tiers(*lib.find_preset(name));
         REQUIRE(tiers.size() == 2);
@@ -198,32 +205,35 @@ TEST_CASE("bench measures every tier against the point tier's supersampled pictu
         errors.push_back(timing.value().vs_supersampled->rmse);
     }
     // crt-shadow-mask's 2.67 px stripes alias when point-sampled; the filtered tiers with the mask
-    // in them remove most of it, the scanlines alone little.
-    REQUIRE(errors.size() == 4);
+    // in them remove most of it, the scanlines alone little, the bezel's edge (only the corners
+    // fall off the screen in the CRT-effect barrel) less still.
+    REQUIRE(errors.size() == 5);
+    CHECK(errors[4] < 0.5 * errors[0]);
     CHECK(errors[3] < 0.5 * errors[0]);
-    CHECK(errors[2] < 0.5 * errors[0]);
+    CHECK(errors[2] > 0.8 * errors[0]);
     CHECK(errors[1] > 0.8 * errors[0]);
+    CHECK(errors[1] == Approx(errors[0]).epsilon(0.05));  // a 2x2 reference is too coarse to rank the edge
     // Each tier's point reference, and the point tier's supersampled one once for all tiers; a
     // --uniforms variant of a tier draws the same pictures and renders none again.
-    CHECK(session.reference_renders() == 5);
+    CHECK(session.reference_renders() == 6);
     options.variant.uniforms = UniformSelection::parse("none").value();
     options.uniforms_label = "none";
-    auto baked = session.tier(tiers, 3, options);
+    auto baked = session.tier(tiers, 4, options);
     REQUIRE(baked.ok());
     CHECK(baked.value().label() == "crt-shadow-mask@filtered uniforms=none");
-    CHECK(baked.value().vs_supersampled->rmse == Approx(errors[3]).margin(1e-4));
-    CHECK(session.reference_renders() == 5);
+    CHECK(baked.value().vs_supersampled->rmse == Approx(errors[4]).margin(1e-4));
+    CHECK(session.reference_renders() == 6);
     // The uber-shader runs the same forms behind its switches: the same picture, at its own cost.
     options.variant.uniforms = UniformSelection::parse("uber").value();
     options.uniforms_label = "uber";
-    auto uber = session.tier(tiers, 3, options);
+    auto uber = session.tier(tiers, 4, options);
     REQUIRE(uber.ok());
     CHECK(uber.value().label() == "crt-shadow-mask@filtered uniforms=uber");
-    CHECK(uber.value().vs_supersampled->rmse == Approx(errors[3]).margin(1e-4));
+    CHECK(uber.value().vs_supersampled->rmse == Approx(errors[4]).margin(1e-4));
     CHECK(uber.value().vs_point->rmse == Approx(baked.value().vs_point->rmse).margin(1e-4));
     CHECK(uber.value().cost().instructions > 2 * baked.value().cost().instructions);
     CHECK(uber.value().cost().samples > baked.value().cost().samples);
-    CHECK(session.reference_renders() == 5);
+    CHECK(session.reference_renders() == 6);
 }
 
 TEST_CASE("budget mode generates the cheapest tier within --max-error and says why", "[bench][tiers][cli]") {

@@ -1,6 +1,6 @@
 // Barrel distortion (screen curvature) and the bezel clamp.
 
-#ifdef CRT_FORM_curvature_atari
+#if defined(CRT_FORM_curvature_atari) || defined(CRT_FORM_curvature_atari_filtered)
 // Retro CRT Effects, crt.frag distort(): scale the -1..1 coordinate by 1 + curvature * r^2.
 vec2 curvature_atari(vec2 uv) {
     uv = uv * 2.0 - 1.0;
@@ -10,7 +10,7 @@ vec2 curvature_atari(vec2 uv) {
 }
 #endif
 
-#ifdef CRT_FORM_curvature_crt_effect
+#if defined(CRT_FORM_curvature_crt_effect) || defined(CRT_FORM_curvature_crt_effect_filtered)
 // CRT effect (XorDev): the factor is 1 on the unit circle (r^2 = 1), so edge midpoints stay put,
 // the centre is magnified and the corners fall outside the screen.
 vec2 curvature_crt_effect(vec2 uv) {
@@ -20,7 +20,7 @@ vec2 curvature_crt_effect(vec2 uv) {
 }
 #endif
 
-#ifdef CRT_FORM_curvature_quiet_frame
+#if defined(CRT_FORM_curvature_quiet_frame) || defined(CRT_FORM_curvature_quiet_frame_filtered)
 // Quiet Frame barrel(): r is measured in 0..0.5 units, so the same amount bends less than atari.
 vec2 curvature_quiet_frame(vec2 uv) {
     vec2 c = uv - 0.5;
@@ -45,3 +45,58 @@ vec3 curvature_bezel(vec3 color, CrtFrag frag) {
 float curvature_bezel_alpha(float alpha, CrtFrag frag) {
     return curvature_outside(frag) ? bezelAlpha : alpha;
 }
+
+#if defined(CRT_FORM_curvature_atari_filtered) || defined(CRT_FORM_curvature_crt_effect_filtered) || defined(CRT_FORM_curvature_quiet_frame_filtered)
+// The edge anti-aliased bezel: the share of the pixel's square that lands on the screen, instead of
+// whether its centre does. Across one pixel the warp is close to linear; its Jacobian is
+// factor * I + 2 * curvature * c c^T for each form's centred coordinate c and scale factor, so the
+// screen's edge x = 0 (or 1) is a straight line at |uv.x| / |grad uv.x| pixels, and a box filter
+// over the pixel covers clamp(0.5 + distance, 0, 1) of it. At a corner the two shares multiply.
+float curvature_coverage(CrtFrag frag, vec2 c, float factor) {
+    float bend = 2.0 * curvature * c.x * c.y;
+    vec2 rowX = vec2(factor + 2.0 * curvature * c.x * c.x, bend) / outputSize;
+    vec2 rowY = vec2(bend, factor + 2.0 * curvature * c.y * c.y) / outputSize;
+    vec2 rate = max(vec2(length(rowX), length(rowY)), vec2(1e-8));
+    vec2 share = clamp(min(frag.uv, 1.0 - frag.uv) / rate + 0.5, 0.0, 1.0);
+    return share.x * share.y;
+}
+#endif
+
+#ifdef CRT_FORM_curvature_atari_filtered
+float curvature_atari_coverage(CrtFrag frag) {
+    vec2 c = frag.screenUv * 2.0 - 1.0;
+    return curvature_coverage(frag, c, 1.0 + curvature * dot(c, c));
+}
+vec3 curvature_atari_bezel_filtered(vec3 color, CrtFrag frag) {
+    return mix(bezelColor, color, curvature_atari_coverage(frag));
+}
+float curvature_atari_alpha_filtered(float alpha, CrtFrag frag) {
+    return mix(bezelAlpha, alpha, curvature_atari_coverage(frag));
+}
+#endif
+
+#ifdef CRT_FORM_curvature_crt_effect_filtered
+float curvature_crt_effect_coverage(CrtFrag frag) {
+    vec2 c = frag.screenUv * 2.0 - 1.0;
+    return curvature_coverage(frag, c, 1.0 + (dot(c, c) - 1.0) * curvature);
+}
+vec3 curvature_crt_effect_bezel_filtered(vec3 color, CrtFrag frag) {
+    return mix(bezelColor, color, curvature_crt_effect_coverage(frag));
+}
+float curvature_crt_effect_alpha_filtered(float alpha, CrtFrag frag) {
+    return mix(bezelAlpha, alpha, curvature_crt_effect_coverage(frag));
+}
+#endif
+
+#ifdef CRT_FORM_curvature_quiet_frame_filtered
+float curvature_quiet_frame_coverage(CrtFrag frag) {
+    vec2 c = frag.screenUv - 0.5;
+    return curvature_coverage(frag, c, 1.0 + dot(c, c) * curvature);
+}
+vec3 curvature_quiet_frame_bezel_filtered(vec3 color, CrtFrag frag) {
+    return mix(bezelColor, color, curvature_quiet_frame_coverage(frag));
+}
+float curvature_quiet_frame_alpha_filtered(float alpha, CrtFrag frag) {
+    return mix(bezelAlpha, alpha, curvature_quiet_frame_coverage(frag));
+}
+#endif
