@@ -13,6 +13,9 @@
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/validate/bench.hpp"
+#include "crtforge/validate/target_render.hpp"
+#include "crtforge/exporter.hpp"
+#include "crtforge/cache.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -186,6 +189,42 @@ TEST_CASE("each filtered form is its point form averaged over each pixel", "[ben
         REQUIRE(point_vs_box.ok());
         CHECK(vs_box.value().rmse < 0.01);
         CHECK(point_vs_box.value().rmse > 5 * vs_box.value().rmse);
+    }
+}
+
+// The edge anti-aliased bezel spreads the screen's edge over a pixel or two, exactly where the golden
+// judge allows a render the golden's own 3x3 variation (a sub-pixel shift at a discontinuity), so a
+// wrong edge profile could pass validation: here the Vulkan render must match the reference of the
+// same form pixel for pixel, with no such allowance.
+TEST_CASE("the edge anti-aliased bezel renders its reference's edge profile", "[bench][tiers][vulkan]") {
+    const TemplateLibrary& lib = test::validation_library();
+    TargetRenderer renderer;
+    for (const char* name : {"stage-curvature-atari-filtered", "stage-curvature-crt-effect-filtered", "stage-curvature-quiet-frame-filtered"}) {
+        INFO(name);
+        const Preset& preset = *lib.find_preset(name);
+        auto compiled = compile_scene(lib, preset, {}, Cache());
+        REQUIRE(compiled.ok());
+        SceneRenderRequest r;
+        r.preset = &preset;
+        r.passes = &compiled.value();
+        r.source = [](int frame) { return make_test_input("grey_ramp", 320, 240, frame); };
+        r.width = 96;
+        r.height = 64;
+        r.frames = {0};
+        auto vulkan = renderer.render_scene(r);
+        REQUIRE(vulkan.ok());
+        ReferenceSceneJob job;
+        job.library = &lib;
+        job.preset = &preset;
+        job.source = r.source;
+        job.width = r.width;
+        job.height = r.height;
+        job.frames = {0};
+        auto reference = render_reference_scene(job);
+        REQUIRE(reference.ok());
+        auto m = compare_images(vulkan.value().front(), reference.value().front());
+        REQUIRE(m.ok());
+        CHECK(m.value().max_abs < 0.004);
     }
 }
 

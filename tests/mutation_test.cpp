@@ -76,6 +76,8 @@ std::string run_mutation(const Mutation& m, const std::string& shipped_goldens) 
     }
     auto lib = t.load();
     if (!lib.ok()) return "the mutated templates do not load: " + lib.error().str();
+    // The stage-isolation presets too: a form no shipped preset uses is caught on its own.
+    if (auto s = lib.value()->add_test_presets(shipped_goldens + "/stages"); !s.ok()) return s.error().str();
     FaultGuard guard;
     if (auto s = set_reference_fault(m.reference); !s.ok()) return s.error().str();
 
