@@ -113,7 +113,7 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
     auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,atari-16,super-win --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
-    REQUIRE(json.size() == 7);  // crt-shadow-mask's four quality tiers, and the three others as written
+    REQUIRE(json.size() == 9);  // crt-shadow-mask's five quality tiers, classic's two, and the two others as written
     size_t on_front = 0;
     for (const auto& preset : json) {
         CHECK(preset["ratio"].get<double>() > 0);
@@ -124,7 +124,7 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
     CHECK(on_front >= 1);
     const std::string md = read_text_file(out / "bench.md").value();
     CHECK_THAT(md, Catch::Contains("| crt-shadow-mask@point | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered | 320x240 | 1 |") &&
-                       Catch::Contains("| classic | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered"));
+                       Catch::Contains("| classic@filtered | 320x240 | 1 |") && Catch::Contains("| atari-16 | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered"));
     const std::string svg = read_text_file(out / "bench.svg").value();
     CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">super-win</text>"));
 }
@@ -334,7 +334,7 @@ void main() {
     // Baking params folds code away: classic with every param a constant is smaller than with its
     // live ones, and bench reports both variants.
     test::TempDir out;
-    auto run = test::run_crtforge("bench --quick --preset classic --uniforms none,default,uber --supersample 0 --out " + out.path());
+    auto run = test::run_crtforge("bench --quick --no-tiers --preset classic --uniforms none,default,uber --supersample 0 --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
     REQUIRE(json.size() == 3);
