@@ -24,10 +24,11 @@ json package_json() {
     p["exports"] = json{{".", json{{"types", "./index.d.ts"}, {"default", "./index.mjs"}}},
                         {"./crt-webgpu.mjs", json{{"types", "./index.d.ts"}, {"default", "./crt-webgpu.mjs"}}},
                         {"./three", json{{"types", "./three.d.ts"}, {"default", "./three.mjs"}}},
+                        {"./pixi", json{{"types", "./pixi.d.ts"}, {"default", "./pixi.mjs"}}},
                         {"./manifest.json", "./manifest.json"},
                         {"./wgsl/*", "./wgsl/*"},
                         {"./luts/*", "./luts/*"}};
-    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "manifest.json", "wgsl/",
+    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "pixi.mjs", "pixi.d.ts", "manifest.json", "wgsl/",
                               "luts/", "README.md"});
     p["sideEffects"] = false;
     p["peerDependencies"] = json{{"@webgpu/types", ">=0.1.40"}};
@@ -75,6 +76,8 @@ Status add_web_package(const json& manifest, std::map<std::string, std::string>&
     package[dir + "README.md"] = sources.readme;
     package[dir + "three.mjs"] = sources.three;
     package[dir + "three.d.ts"] = sources.three_declarations;
+    package[dir + "pixi.mjs"] = sources.pixi;
+    package[dir + "pixi.d.ts"] = sources.pixi_declarations;
     for (const std::string& path : kept) {
         auto file = files.find(path);
         if (file == files.end())  // the manifest names only files the export wrote

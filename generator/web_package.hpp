@@ -24,6 +24,8 @@ struct WebPackageSources {
     const char* readme;        // package/README.md
     const char* three;               // package/three.mjs: the three.js WebGPURenderer pass
     const char* three_declarations;  // package/three.d.ts
+    const char* pixi;                // package/pixi.mjs: the PixiJS v8 WebGPURenderer pass
+    const char* pixi_declarations;   // package/pixi.d.ts
 };
 const WebPackageSources& web_package_sources();
 

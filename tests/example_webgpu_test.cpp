@@ -300,9 +300,14 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
         std::ofstream out(app / "app.mts", std::ios::trunc);
         out << "import { loadCrtPreset, loadManifest, type Manifest, type CrtScene } from 'crtforge-presets';\n"
                "import { createThreeCrtPass, type ThreeWebGPURendererLike } from 'crtforge-presets/three';\n"
+               "import { createPixiCrtPass, type PixiCrtPass, type PixiWebGPURendererLike } from 'crtforge-presets/pixi';\n"
                "export async function three(renderer: ThreeWebGPURendererLike, game: { texture: object }, screen: { texture: object }) {\n"
                "  const pass = await createThreeCrtPass(renderer, 'classic', { format: 'rgba8unorm' });\n"
                "  await pass.render(game, screen, { time: 1.5 });\n"
+               "}\n"
+               "export async function pixi(renderer: PixiWebGPURendererLike, game: object, screen: object) {\n"
+               "  const pass: PixiCrtPass = await createPixiCrtPass(renderer, 'classic');\n"
+               "  await pass.render(game, screen, { frame: 3 });\n"
                "}\n"
                "export async function run(device: GPUDevice, source: GPUTexture, view: GPUTextureView): Promise<number> {\n"
                "  const manifest: Manifest = await loadManifest();\n"
@@ -323,7 +328,7 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
     auto bad = test::run_command(tsc);
     INFO(bad.out);
     CHECK(bad.exit_code != 0);
-    CHECK_THAT(bad.out, Catch::Contains("app.mts(10,") && Catch::Contains("'string'"));
+    CHECK_THAT(bad.out, Catch::Contains("app.mts(15,") && Catch::Contains("'string'"));
 }
 
 // The package's three.js adapter (crtforge-presets/three): three.js's WebGPURenderer (npm three,
@@ -349,6 +354,36 @@ TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wg
             run_check(tmp, from_package(app) + " --three on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
                       kSceneWidth, kSceneHeight);
             check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {2}, "through three.js");
+        }
+    }
+}
+
+// The package's PixiJS adapter (crtforge-presets/pixi): PixiJS v8's WebGPURenderer (npm pixi.js,
+// pinned in tools/wgsl-runner) on Dawn's Vulkan backend on SwiftShader (a core adapter: Pixi's
+// shaders need it) draws the picture as a Sprite into a RenderTexture, the crtforge pass renders it
+// into another; the frames must match crtforge's Vulkan render of the same 8-bit picture.
+TEST_CASE("The npm package's PixiJS adapter renders presets like Vulkan", "[wgsl][example][npm][pixi]") {
+    INFO("SwiftShader's Vulkan driver missing (Debian's chromium-common): run scripts/setup.sh");
+    REQUIRE(fs::exists("/usr/lib/chromium/vk_swiftshader_icd.json"));
+    test::TempDir tmp;
+    const std::vector<std::string> presets = {"classic", "super-win"};
+    const std::string app = export_with_app(tmp, "wgsl", "classic,super-win", "pixi.js/package.json");
+
+    // Pixi uploads 8-bit pictures: both renderers get the same 8-bit values.
+    std::vector<Image> inputs;
+    for (int f : {0, 1, 2}) {
+        auto input = make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, f);
+        REQUIRE(input.ok());
+        for (float& v : input.value().rgba) v = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
+        inputs.push_back(std::move(input.value()));
+    }
+    TargetRenderer renderer;
+    for (const std::string& name : presets) {
+        SECTION(name) {
+            const std::string prefix = tmp / (name + "-pixi-");
+            run_check(tmp, from_package(app) + " --pixi on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
+                      kSceneWidth, kSceneHeight);
+            check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {2}, "through PixiJS");
         }
     }
 }

@@ -6,7 +6,7 @@
 //   node examples/webgpu/check.mjs (--export DIR | --package APP_DIR) --preset NAME \
 //        --input IN.raw --input-width W --input-height H \
 //        --width W --height H --output OUT [--frames 0,1,...] [--capture 1,9] [--time SECONDS]
-//        [--fit stretch|aspect|integer] [--set name=value ...] [--three on]
+//        [--fit stretch|aspect|integer] [--set name=value ...] [--three on | --pixi on]
 //
 // --package: load the preset through the npm package `crtforge-presets` (an export's npm/ folder)
 // as an app would, `import ... from 'crtforge-presets'` resolved from APP_DIR's node_modules, and
@@ -14,6 +14,11 @@
 // --three (with --package): through the package's three.js adapter instead (crtforge-presets/three
 // on a three.js WebGPURenderer on the same Dawn device): the input, quantised to 8 bits, is drawn
 // by three into a RenderTarget, the pass renders it into another (half float), read back.
+// --pixi (with --package): through the package's PixiJS adapter (crtforge-presets/pixi) on a PixiJS
+// v8 WebGPURenderer: Pixi draws the 8-bit picture as a Sprite into a RenderTexture, the pass
+// renders it into a half-float one. Pixi needs a core WebGPU adapter (its shaders interpolate
+// `flat`), so this runs on Dawn's Vulkan backend on SwiftShader (Debian's chromium-common; lavapipe
+// lacks a feature Dawn requires), where the others run on Dawn's GLES backend.
 // RAW = little-endian float32 RGBA, rows top first. IN.raw holds one picture, or one per entry of
 // --frames (the original at each frame drawn, in order). --frames defaults to 0; --capture (the
 // frames written, default: the last drawn) writes OUT<frame>.raw each, or OUT itself when one
@@ -56,11 +61,14 @@ function parseArgs(argv) {
     else if (flag === '--frames') args.frames = frameList(flag, value);
     else if (flag === '--capture') args.capture = frameList(flag, value);
     else if (flag === '--three') args.three = value === 'on' ? true : fail(`--three takes 'on', got '${value}'`);
+    else if (flag === '--pixi') args.pixi = value === 'on' ? true : fail(`--pixi takes 'on', got '${value}'`);
     else if (names[flag]) args[names[flag]] = value;
     else fail(`unknown argument '${flag}'`);
   }
   if ((args.export === undefined) === (args.package === undefined)) fail('give one of --export DIR and --package APP_DIR');
   if (args.three && args.package === undefined) fail('--three needs --package APP_DIR');
+  if (args.pixi && args.package === undefined) fail('--pixi needs --package APP_DIR');
+  if (args.pixi && args.three) fail('give one of --three and --pixi');
   for (const key of ['preset', 'input', 'inputWidth', 'inputHeight', 'width', 'height', 'output'])
     if (args[key] === undefined) fail(`missing --${key.replace(/[A-Z]/g, (c) => '-' + c.toLowerCase())}`);
   for (const key of ['inputWidth', 'inputHeight', 'width', 'height']) {
@@ -169,12 +177,20 @@ try {
   fail(`cannot load the npm package 'webgpu' from tools/wgsl-runner (run scripts/setup.sh): ${e.message}`);
 }
 Object.assign(globalThis, webgpu.globals);
-const gpu = webgpu.create(['backend=opengles']);
-const adapter = await gpu.requestAdapter({ featureLevel: 'compatibility' });
-if (!adapter) fail(`Dawn found no OpenGL ES adapter (EGL_PLATFORM=${process.env.EGL_PLATFORM})`);
-const device = await adapter.requestDevice({
-  requiredLimits: { maxTextureDimension2D: adapter.limits.maxTextureDimension2D },
-});
+const kSwiftShaderIcd = '/usr/lib/chromium/vk_swiftshader_icd.json';
+if (args.pixi) process.env.VK_ICD_FILENAMES ??= kSwiftShaderIcd;  // read when Dawn opens Vulkan
+const gpu = webgpu.create([args.pixi ? 'backend=vulkan' : 'backend=opengles']);
+let device, pixiRenderer;
+if (args.pixi) {
+  pixiRenderer = await startPixi();
+  device = pixiRenderer.gpu.device;
+} else {
+  const adapter = await gpu.requestAdapter({ featureLevel: 'compatibility' });
+  if (!adapter) fail(`Dawn found no OpenGL ES adapter (EGL_PLATFORM=${process.env.EGL_PLATFORM})`);
+  device = await adapter.requestDevice({
+    requiredLimits: { maxTextureDimension2D: adapter.limits.maxTextureDimension2D },
+  });
+}
 const uncaptured = [];
 device.addEventListener('uncapturederror', (event) => uncaptured.push(event.error?.message ?? 'uncaptured error'));
 
@@ -256,8 +272,77 @@ async function renderThree() {
   });
 }
 
+// PixiJS v8 in Node: the few browser pieces its WebGPU renderer touches while it starts, stand-ins
+// that draw nothing (its accessibility layer's DOM, a canvas, the WebGL context it asks for batch
+// limits), and dawn.node made as lenient as browsers' WebIDL, which convert a numeric string to a
+// number and treat a trailing `undefined` as an omitted argument (Pixi relies on both).
+async function startPixi() {
+  const element = () => ({ style: {}, children: [], setAttribute() {}, addEventListener() {}, removeEventListener() {}, appendChild() {}, removeChild() {}, remove() {} });
+  globalThis.document ??= { createElement: element, body: element(), documentElement: element(), addEventListener() {}, removeEventListener() {} };
+  globalThis.addEventListener ??= () => {};
+  globalThis.removeEventListener ??= () => {};
+  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
+  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
+  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
+  const trim = (a) => { while (a.length && a[a.length - 1] === undefined) a.pop(); return a; };
+  const lenient = (proto, name, slot) => {
+    const original = proto[name];
+    proto[name] = function (...a) {
+      if (slot !== undefined && a[slot] !== undefined) a[slot] = Number(a[slot]);
+      return original.apply(this, trim(a));
+    };
+  };
+  for (const name of ['setVertexBuffer', 'setBindGroup']) lenient(GPURenderPassEncoder.prototype, name, 0);
+  for (const name of ['setIndexBuffer', 'draw', 'drawIndexed', 'setViewport', 'setScissorRect']) lenient(GPURenderPassEncoder.prototype, name);
+  lenient(GPUQueue.prototype, 'writeBuffer');
+  const gl = { MAX_TEXTURE_IMAGE_UNITS: 0x8872, FRAGMENT_SHADER: 0x8b30, VERTEX_SHADER: 0x8b31, COMPILE_STATUS: 0x8b81, HIGH_FLOAT: 0x8df2,
+    getParameter: () => 16, getExtension: () => null, isContextLost: () => false, createShader: () => ({}), shaderSource() {},
+    compileShader() {}, getShaderParameter: () => true, deleteShader() {}, getShaderPrecisionFormat: () => ({ precision: 23, rangeMin: 127, rangeMax: 127 }) };
+  const context = { configure() {}, unconfigure() {}, getCurrentTexture() { throw new Error('no canvas in Node'); } };
+  const canvas = (width = 1, height = 1) => ({ width, height, style: {}, addEventListener() {}, removeEventListener() {},
+    getBoundingClientRect: () => ({ left: 0, top: 0, x: 0, y: 0, width, height, right: width, bottom: height }),
+    getContext: (kind) => (kind === 'webgpu' ? context : kind.startsWith('webgl') ? gl : null) });
+  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
+  const PIXI = await import(pathToFileURL(require.resolve('pixi.js')).href);
+  PIXI.DOMAdapter.set({
+    createCanvas: canvas, getCanvasRenderingContext2D: () => class {}, getWebGLRenderingContext: () => class {},
+    getNavigator: () => globalThis.navigator, getBaseUrl: () => pathToFileURL(repo).href, getFontFaceSet: () => null,
+    fetch: (...a) => fetch(...a), parseXML: () => fail('Pixi asked to parse XML'),
+  });
+  const renderer = new PIXI.WebGPURenderer();
+  await renderer.init({ width: args.width, height: args.height, canvas: canvas(args.width, args.height), resolution: 1, antialias: false,
+    autoDensity: false, powerPreference: 'high-performance' });
+  if (!renderer.gpu?.device) fail('PixiJS found no WebGPU device (Dawn on Vulkan: SwiftShader at ' + kSwiftShaderIcd + ')');
+  renderer.pixi = PIXI;
+  return renderer;
+}
+
+// The package's PixiJS adapter: Pixi draws the picture (8-bit) as a Sprite filling a RenderTexture,
+// the crtforge pass draws that into a half-float RenderTexture, which is read back.
+async function renderPixi() {
+  const PIXI = pixiRenderer.pixi;
+  const { createPixiCrtPass } = await import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve('crtforge-presets/pixi')).href);
+  const w = args.inputWidth, h = args.inputHeight;
+  const bytes = new Uint8Array(w * h * 4);
+  const picture = new PIXI.BufferImageSource({ resource: bytes, width: w, height: h, format: 'rgba8unorm', scaleMode: 'nearest', alphaMode: 'no-premultiply-alpha' });
+  const sprite = new PIXI.Sprite(new PIXI.Texture({ source: picture }));
+  const input = PIXI.RenderTexture.create({ width: w, height: h, scaleMode: 'nearest' });
+  const output = PIXI.RenderTexture.create({ width: args.width, height: args.height, format: 'rgba16float' });
+  const crt = await createPixiCrtPass(pixiRenderer, args.preset, { format: 'rgba16float' });
+  applySets(crt);
+  return drawFrames(async (i, frame) => {
+    const pixels = pictures[Math.min(i, pictures.length - 1)];
+    for (let k = 0; k < bytes.length; ++k) bytes[k] = Math.round(Math.min(1, Math.max(0, pixels[k])) * 255);
+    picture.update();
+    pixiRenderer.render({ container: sprite, target: input, clearColor: [0, 0, 0, 0] });
+    await crt.render(input, output, { frame, time: args.time, fit: args.fit });
+    return crt.textureOf(output);
+  });
+}
+
 async function render() {
   if (args.three) return renderThree();
+  if (args.pixi) return renderPixi();
   const linear = preset.passes.some((p) => p.textures.some((t) => /^original(@\d+)?$/.test(t.from) && t.filter !== 'nearest'));
   const inputFormat = linear ? 'rgba16float' : 'rgba32float';
   const source = device.createTexture({
