@@ -25,10 +25,11 @@ json package_json() {
                         {"./crt-webgpu.mjs", json{{"types", "./index.d.ts"}, {"default", "./crt-webgpu.mjs"}}},
                         {"./three", json{{"types", "./three.d.ts"}, {"default", "./three.mjs"}}},
                         {"./pixi", json{{"types", "./pixi.d.ts"}, {"default", "./pixi.mjs"}}},
+                        {"./babylon", json{{"types", "./babylon.d.ts"}, {"default", "./babylon.mjs"}}},
                         {"./manifest.json", "./manifest.json"},
                         {"./wgsl/*", "./wgsl/*"},
                         {"./luts/*", "./luts/*"}};
-    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "pixi.mjs", "pixi.d.ts", "manifest.json", "wgsl/",
+    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "pixi.mjs", "pixi.d.ts", "babylon.mjs", "babylon.d.ts", "manifest.json", "wgsl/",
                               "luts/", "README.md"});
     p["sideEffects"] = false;
     p["peerDependencies"] = json{{"@webgpu/types", ">=0.1.40"}};
@@ -78,6 +79,8 @@ Status add_web_package(const json& manifest, std::map<std::string, std::string>&
     package[dir + "three.d.ts"] = sources.three_declarations;
     package[dir + "pixi.mjs"] = sources.pixi;
     package[dir + "pixi.d.ts"] = sources.pixi_declarations;
+    package[dir + "babylon.mjs"] = sources.babylon;
+    package[dir + "babylon.d.ts"] = sources.babylon_declarations;
     for (const std::string& path : kept) {
         auto file = files.find(path);
         if (file == files.end())  // the manifest names only files the export wrote

@@ -26,6 +26,8 @@ struct WebPackageSources {
     const char* three_declarations;  // package/three.d.ts
     const char* pixi;                // package/pixi.mjs: the PixiJS v8 WebGPURenderer pass
     const char* pixi_declarations;   // package/pixi.d.ts
+    const char* babylon;                // package/babylon.mjs: the Babylon.js WebGPUEngine pass
+    const char* babylon_declarations;   // package/babylon.d.ts
 };
 const WebPackageSources& web_package_sources();
 

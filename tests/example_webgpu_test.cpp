@@ -301,9 +301,14 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
         out << "import { loadCrtPreset, loadManifest, type Manifest, type CrtScene } from 'crtforge-presets';\n"
                "import { createThreeCrtPass, type ThreeWebGPURendererLike } from 'crtforge-presets/three';\n"
                "import { createPixiCrtPass, type PixiCrtPass, type PixiWebGPURendererLike } from 'crtforge-presets/pixi';\n"
+               "import { createBabylonCrtPass, type BabylonCrtPass, type BabylonWebGPUEngineLike } from 'crtforge-presets/babylon';\n"
                "export async function three(renderer: ThreeWebGPURendererLike, game: { texture: object }, screen: { texture: object }) {\n"
                "  const pass = await createThreeCrtPass(renderer, 'classic', { format: 'rgba8unorm' });\n"
                "  await pass.render(game, screen, { time: 1.5 });\n"
+               "}\n"
+               "export async function babylon(engine: BabylonWebGPUEngineLike, game: object, screen: object) {\n"
+               "  const pass: BabylonCrtPass = await createBabylonCrtPass(engine, 'classic', { format: 'rgba16float' });\n"
+               "  await pass.render(game, screen, { fit: 'aspect' });\n"
                "}\n"
                "export async function pixi(renderer: PixiWebGPURendererLike, game: object, screen: object) {\n"
                "  const pass: PixiCrtPass = await createPixiCrtPass(renderer, 'classic');\n"
@@ -328,18 +333,20 @@ TEST_CASE("The npm package's .d.ts types an app's use of it", "[wgsl][example][n
     auto bad = test::run_command(tsc);
     INFO(bad.out);
     CHECK(bad.exit_code != 0);
-    CHECK_THAT(bad.out, Catch::Contains("app.mts(15,") && Catch::Contains("'string'"));
+    CHECK_THAT(bad.out, Catch::Contains("app.mts(20,") && Catch::Contains("'string'"));
 }
 
-// The package's three.js adapter (crtforge-presets/three): three.js's WebGPURenderer (npm three,
-// pinned in tools/wgsl-runner) on Dawn draws the picture into a RenderTarget and the crtforge pass
-// renders it into another; the frames must match crtforge's Vulkan render of the same 8-bit picture.
-TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wgsl][example][npm][three]") {
-    test::TempDir tmp;
-    const std::vector<std::string> presets = {"classic", "super-win"};
-    const std::string app = export_with_app(tmp, "wgsl", "classic,super-win", "three/package.json");
+// A web framework adapter of the package: the framework (pinned in tools/wgsl-runner) holds the
+// 8-bit picture in its own texture, the adapter runs the preset on the framework's device into
+// another; frame 2 of classic and super-win must match crtforge's Vulkan render of the same 8-bit
+// picture. `flag` is check.mjs's switch (--three, --pixi, --babylon), `installed` a file of the
+// framework's npm package.
+namespace {
 
-    // three uploads 8-bit pictures: both renderers get the same 8-bit values.
+void check_framework_adapter(const std::string& flag, const char* installed, const std::string& framework) {
+    test::TempDir tmp;
+    const std::string app = export_with_app(tmp, "wgsl", "classic,super-win", installed);
+    // The framework uploads 8-bit pictures: both renderers get the same 8-bit values.
     std::vector<Image> inputs;
     for (int f : {0, 1, 2}) {
         auto input = make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, f);
@@ -348,42 +355,35 @@ TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wg
         inputs.push_back(std::move(input.value()));
     }
     TargetRenderer renderer;
-    for (const std::string& name : presets) {
-        SECTION(name) {
-            const std::string prefix = tmp / (name + "-three-");
-            run_check(tmp, from_package(app) + " --three on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
-                      kSceneWidth, kSceneHeight);
-            check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {2}, "through three.js");
-        }
+    for (const std::string name : {"classic", "super-win"}) {
+        INFO(name);
+        const std::string prefix = tmp / (name + "-" + flag + "-");
+        run_check(tmp, from_package(app) + " --" + flag + " on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
+                  kSceneWidth, kSceneHeight);
+        check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {2}, "through " + framework);
     }
 }
 
-// The package's PixiJS adapter (crtforge-presets/pixi): PixiJS v8's WebGPURenderer (npm pixi.js,
-// pinned in tools/wgsl-runner) on Dawn's Vulkan backend on SwiftShader (a core adapter: Pixi's
-// shaders need it) draws the picture as a Sprite into a RenderTexture, the crtforge pass renders it
-// into another; the frames must match crtforge's Vulkan render of the same 8-bit picture.
+}  // namespace
+
+// three.js's WebGPURenderer on Dawn (GLES) draws the picture into a RenderTarget; the pass renders
+// it into another.
+TEST_CASE("The npm package's three.js adapter renders presets like Vulkan", "[wgsl][example][npm][three]") {
+    check_framework_adapter("three", "three/package.json", "three.js");
+}
+
+// PixiJS v8's WebGPURenderer draws the picture as a Sprite into a RenderTexture; the pass renders it
+// into another. On Dawn's Vulkan backend on SwiftShader: Pixi's shaders need a core adapter.
 TEST_CASE("The npm package's PixiJS adapter renders presets like Vulkan", "[wgsl][example][npm][pixi]") {
     INFO("SwiftShader's Vulkan driver missing (Debian's chromium-common): run scripts/setup.sh");
     REQUIRE(fs::exists("/usr/lib/chromium/vk_swiftshader_icd.json"));
-    test::TempDir tmp;
-    const std::vector<std::string> presets = {"classic", "super-win"};
-    const std::string app = export_with_app(tmp, "wgsl", "classic,super-win", "pixi.js/package.json");
+    check_framework_adapter("pixi", "pixi.js/package.json", "PixiJS");
+}
 
-    // Pixi uploads 8-bit pictures: both renderers get the same 8-bit values.
-    std::vector<Image> inputs;
-    for (int f : {0, 1, 2}) {
-        auto input = make_test_input("moving_sprite", kPixelArtWidth, kPixelArtHeight, f);
-        REQUIRE(input.ok());
-        for (float& v : input.value().rgba) v = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
-        inputs.push_back(std::move(input.value()));
-    }
-    TargetRenderer renderer;
-    for (const std::string& name : presets) {
-        SECTION(name) {
-            const std::string prefix = tmp / (name + "-pixi-");
-            run_check(tmp, from_package(app) + " --pixi on", name, inputs, prefix, " --frames 0,1,2 --capture 2",
-                      kSceneWidth, kSceneHeight);
-            check_scene_frames_like_vulkan(renderer, name, inputs, prefix, {2}, "through PixiJS");
-        }
-    }
+// Babylon.js's WebGPUEngine uploads the picture as a RawTexture; the pass renders it into a
+// RenderTargetTexture. On Dawn's Vulkan backend on SwiftShader, as PixiJS.
+TEST_CASE("The npm package's Babylon.js adapter renders presets like Vulkan", "[wgsl][example][npm][babylon]") {
+    INFO("SwiftShader's Vulkan driver missing (Debian's chromium-common): run scripts/setup.sh");
+    REQUIRE(fs::exists("/usr/lib/chromium/vk_swiftshader_icd.json"));
+    check_framework_adapter("babylon", "@babylonjs/core/package.json", "Babylon.js");
 }

@@ -6,7 +6,7 @@
 //   node examples/webgpu/check.mjs (--export DIR | --package APP_DIR) --preset NAME \
 //        --input IN.raw --input-width W --input-height H \
 //        --width W --height H --output OUT [--frames 0,1,...] [--capture 1,9] [--time SECONDS]
-//        [--fit stretch|aspect|integer] [--set name=value ...] [--three on | --pixi on]
+//        [--fit stretch|aspect|integer] [--set name=value ...] [--three on | --pixi on | --babylon on]
 //
 // --package: load the preset through the npm package `crtforge-presets` (an export's npm/ folder)
 // as an app would, `import ... from 'crtforge-presets'` resolved from APP_DIR's node_modules, and
@@ -19,6 +19,9 @@
 // renders it into a half-float one. Pixi needs a core WebGPU adapter (its shaders interpolate
 // `flat`), so this runs on Dawn's Vulkan backend on SwiftShader (Debian's chromium-common; lavapipe
 // lacks a feature Dawn requires), where the others run on Dawn's GLES backend.
+// --babylon (with --package): through the package's Babylon.js adapter (crtforge-presets/babylon)
+// on a Babylon.js WebGPUEngine (Dawn's Vulkan backend too): Babylon uploads the 8-bit picture as a
+// RawTexture, the pass renders it into a half-float RenderTargetTexture.
 // RAW = little-endian float32 RGBA, rows top first. IN.raw holds one picture, or one per entry of
 // --frames (the original at each frame drawn, in order). --frames defaults to 0; --capture (the
 // frames written, default: the last drawn) writes OUT<frame>.raw each, or OUT itself when one
@@ -62,13 +65,15 @@ function parseArgs(argv) {
     else if (flag === '--capture') args.capture = frameList(flag, value);
     else if (flag === '--three') args.three = value === 'on' ? true : fail(`--three takes 'on', got '${value}'`);
     else if (flag === '--pixi') args.pixi = value === 'on' ? true : fail(`--pixi takes 'on', got '${value}'`);
+    else if (flag === '--babylon') args.babylon = value === 'on' ? true : fail(`--babylon takes 'on', got '${value}'`);
     else if (names[flag]) args[names[flag]] = value;
     else fail(`unknown argument '${flag}'`);
   }
   if ((args.export === undefined) === (args.package === undefined)) fail('give one of --export DIR and --package APP_DIR');
   if (args.three && args.package === undefined) fail('--three needs --package APP_DIR');
-  if (args.pixi && args.package === undefined) fail('--pixi needs --package APP_DIR');
-  if (args.pixi && args.three) fail('give one of --three and --pixi');
+  const frameworks = ['three', 'pixi', 'babylon'].filter((f) => args[f]);
+  if (frameworks.length && args.package === undefined) fail(`--${frameworks[0]} needs --package APP_DIR`);
+  if (frameworks.length > 1) fail('give one of --three, --pixi and --babylon');
   for (const key of ['preset', 'input', 'inputWidth', 'inputHeight', 'width', 'height', 'output'])
     if (args[key] === undefined) fail(`missing --${key.replace(/[A-Z]/g, (c) => '-' + c.toLowerCase())}`);
   for (const key of ['inputWidth', 'inputHeight', 'width', 'height']) {
@@ -178,12 +183,16 @@ try {
 }
 Object.assign(globalThis, webgpu.globals);
 const kSwiftShaderIcd = '/usr/lib/chromium/vk_swiftshader_icd.json';
-if (args.pixi) process.env.VK_ICD_FILENAMES ??= kSwiftShaderIcd;  // read when Dawn opens Vulkan
-const gpu = webgpu.create([args.pixi ? 'backend=vulkan' : 'backend=opengles']);
-let device, pixiRenderer;
+const core = args.pixi || args.babylon;  // frameworks that need a core adapter
+if (core) process.env.VK_ICD_FILENAMES ??= kSwiftShaderIcd;  // read when Dawn opens Vulkan
+const gpu = webgpu.create([core ? 'backend=vulkan' : 'backend=opengles']);
+let device, pixiRenderer, babylonEngine;
 if (args.pixi) {
   pixiRenderer = await startPixi();
   device = pixiRenderer.gpu.device;
+} else if (args.babylon) {
+  babylonEngine = await startBabylon();
+  device = babylonEngine._device;
 } else {
   const adapter = await gpu.requestAdapter({ featureLevel: 'compatibility' });
   if (!adapter) fail(`Dawn found no OpenGL ES adapter (EGL_PLATFORM=${process.env.EGL_PLATFORM})`);
@@ -340,9 +349,64 @@ async function renderPixi() {
   });
 }
 
+// Babylon.js's WebGPUEngine in Node: a canvas whose context hands out one texture as its current
+// texture (nothing is presented), and the adapter's feature set given the forEach browsers have.
+async function startBabylon() {
+  const adapter = await gpu.requestAdapter();
+  if (!adapter) fail('Dawn found no Vulkan adapter (SwiftShader at ' + kSwiftShaderIcd + ')');
+  const features = Object.getPrototypeOf(adapter.features);
+  features.forEach ??= function (callback, thisArg) { for (const f of this) callback.call(thisArg, f, f, this); };
+  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
+  globalThis.self ??= globalThis;
+  globalThis.addEventListener ??= () => {};
+  globalThis.removeEventListener ??= () => {};
+  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
+  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
+  let config = null, backbuffer = null;
+  const canvas = { width: args.width, height: args.height, style: {}, addEventListener() {}, removeEventListener() {},
+    getBoundingClientRect: () => ({ left: 0, top: 0, width: args.width, height: args.height }),
+    getContext: (kind) => (kind !== 'webgpu' ? null : {
+      configure(c) { config = c; backbuffer = null; }, unconfigure() { config = null; },
+      getCurrentTexture() {
+        backbuffer ??= config.device.createTexture({ size: [args.width, args.height], format: config.format, usage: config.usage ?? GPUTextureUsage.RENDER_ATTACHMENT });
+        return backbuffer;
+      },
+    }) };
+  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
+  const BABYLON = await import(pathToFileURL(require.resolve('@babylonjs/core')).href);
+  BABYLON.Logger.LogLevels = BABYLON.Logger.ErrorLogLevel;
+  const engine = new BABYLON.WebGPUEngine(canvas, { antialias: false, adaptToDeviceRatio: false });
+  await engine.initAsync();
+  engine.babylon = BABYLON;
+  return engine;
+}
+
+// The package's Babylon.js adapter: Babylon uploads the picture (8-bit, nearest) as a RawTexture,
+// the crtforge pass draws it into a half-float RenderTargetTexture, which is read back.
+async function renderBabylon() {
+  const BABYLON = babylonEngine.babylon;
+  const { createBabylonCrtPass } = await import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve('crtforge-presets/babylon')).href);
+  const w = args.inputWidth, h = args.inputHeight;
+  const scene = new BABYLON.Scene(babylonEngine);
+  const bytes = new Uint8Array(w * h * 4);
+  const input = BABYLON.RawTexture.CreateRGBATexture(bytes, w, h, scene, false, false, BABYLON.Texture.NEAREST_SAMPLINGMODE);
+  const output = new BABYLON.RenderTargetTexture('crt', { width: args.width, height: args.height }, scene,
+    { generateMipMaps: false, generateDepthBuffer: false, type: BABYLON.Constants.TEXTURETYPE_HALF_FLOAT });
+  const crt = await createBabylonCrtPass(babylonEngine, args.preset, { format: 'rgba16float' });
+  applySets(crt);
+  return drawFrames(async (i, frame) => {
+    const pixels = pictures[Math.min(i, pictures.length - 1)];
+    for (let k = 0; k < bytes.length; ++k) bytes[k] = Math.round(Math.min(1, Math.max(0, pixels[k])) * 255);
+    input.update(bytes);
+    await crt.render(input, output, { frame, time: args.time, fit: args.fit });
+    return crt.textureOf(output);
+  });
+}
+
 async function render() {
   if (args.three) return renderThree();
   if (args.pixi) return renderPixi();
+  if (args.babylon) return renderBabylon();
   const linear = preset.passes.some((p) => p.textures.some((t) => /^original(@\d+)?$/.test(t.from) && t.filter !== 'nearest'));
   const inputFormat = linear ? 'rgba16float' : 'rgba32float';
   const source = device.createTexture({
