@@ -151,11 +151,12 @@ std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
 }
 
 std::string bench_svg(const std::vector<SceneTiming>& timings) {
-    // Cost on x (ratio to a blit, linear), error against the supersampled reference on y (log).
-    constexpr double W = 760, H = 500, L = 70, R = 30, T = 50, B = 50;
-    double max_cost = 1, min_err = 1e9, max_err = 0;
+    // Cost on x (ratio to a blit) and error against the supersampled reference on y, both log: the
+    // costs span a blit to tens of blits (a multi-pass scene), the errors decades.
+    constexpr double W = 900, H = 560, L = 70, R = 30, T = 50, B = 50;
+    double min_cost = 1, max_cost = 1, min_err = 1e9, max_err = 0;
     for (const SceneTiming& t : timings) {
-        max_cost = std::max(max_cost, t.ratio());
+        if (t.ratio() > 0) min_cost = std::min(min_cost, t.ratio()), max_cost = std::max(max_cost, t.ratio());
         if (t.vs_supersampled) {
             min_err = std::min(min_err, std::max(t.vs_supersampled->rmse, 1e-6));
             max_err = std::max(max_err, t.vs_supersampled->rmse);
@@ -163,69 +164,111 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     }
     if (max_err <= 0) min_err = 1e-4, max_err = 1e-1;
     const double lo = std::floor(std::log10(min_err)), hi = std::max(lo + 1, std::ceil(std::log10(max_err)));
-    // About eight x ticks of 1, 2, 5, 10, ... blits.
-    double step = 1;
-    while (max_cost / step > 8) step = step == 1 ? 2 : step == 2 ? 5 : step * 2;
-    const double xmax = step * std::ceil((max_cost + 0.25) / step);
-    auto X = [&](double c) { return L + (W - L - R) * c / xmax; };
+    // x from the 1-2-5 step below the cheapest to the one above the dearest.
+    auto nice_below = [](double v) {
+        const double d = std::pow(10.0, std::floor(std::log10(v)));
+        return v >= 5 * d ? 5 * d : v >= 2 * d ? 2 * d : d;
+    };
+    auto nice_above = [](double v) {
+        const double d = std::pow(10.0, std::floor(std::log10(v)));
+        return v <= d ? d : v <= 2 * d ? 2 * d : v <= 5 * d ? 5 * d : 10 * d;
+    };
+    const double xmin = nice_below(min_cost * 0.95), xmax = nice_above(max_cost * 1.05);
+    const double lx0 = std::log10(xmin), lx1 = std::max(lx0 + 0.3, std::log10(xmax));
+    auto X = [&](double c) { return L + (W - L - R) * (std::log10(std::max(c, xmin)) - lx0) / (lx1 - lx0); };
     auto Y = [&](double e) { return T + (H - T - B) * (hi - std::log10(std::max(e, 1e-6))) / (hi - lo); };
-    std::string s = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"12\">\n"
-                                "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", W, H);
-    s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
-                     timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
-                                                                   xml_escape(timings.front().device)));
-    for (double c = 0; c <= xmax + 1e-9; c += step)
-        s += fmt::format("<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#ddd\"/><text x=\"{0}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
-                         X(c), T, H - B, H - B + 16, c);
+
+    std::string body;
+    for (double d = std::pow(10.0, std::floor(lx0)); d <= xmax * 1.0001; d *= 10)
+        for (double m : {1.0, 2.0, 5.0}) {
+            const double c = d * m;
+            if (c < xmin * 0.9999 || c > xmax * 1.0001) continue;
+            body += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#ddd\"/><text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
+                                X(c), T, H - B, H - B + 16, c);
+        }
     for (int d = static_cast<int>(lo); d <= hi; ++d)
-        s += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#ddd\"/><text x=\"{3}\" y=\"{4}\" text-anchor=\"end\">1e{5}</text>\n",
-                         L, W - R, Y(std::pow(10.0, d)), L - 6, Y(std::pow(10.0, d)) + 4, d);
-    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">GPU time per frame, as a ratio to a blit of the same display</text>\n",
-                     (L + W - R) / 2, H - 12);
-    s += fmt::format("<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" text-anchor=\"middle\">RMSE against the supersampled fp64 reference</text>\n",
-                     (T + H - B) / 2);
+        body += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#ddd\"/><text x=\"{3}\" y=\"{4}\" text-anchor=\"end\">1e{5}</text>\n",
+                            L, W - R, Y(std::pow(10.0, d)), L - 6, Y(std::pow(10.0, d)) + 4, d);
+    body += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">GPU time per frame, as a ratio to a blit of the same display (log)</text>\n",
+                        (L + W - R) / 2, H - 12);
+    body += fmt::format("<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" text-anchor=\"middle\">RMSE against the supersampled fp64 reference</text>\n",
+                        (T + H - B) / 2);
     const std::vector<size_t> front = pareto_front(timings);
     std::string path;
     for (size_t i : front)
         path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(timings[i].ratio()), Y(timings[i].vs_supersampled->rmse));
-    if (!path.empty()) s += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
+    if (!path.empty()) body += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
     // A preset's tiers joined, point to filtered: what filtering buys and costs.
     for (const auto& [point, filtered] : tier_pairs(timings))
-        s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#36c\" stroke-dasharray=\"4 3\"/>\n",
-                         X(point->ratio()), Y(point->vs_supersampled->rmse), X(filtered->ratio()), Y(filtered->vs_supersampled->rmse));
-    // The front's points last, so a point of it is never hidden under another.
+        body += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#36c\" stroke-dasharray=\"4 3\"/>\n",
+                            X(point->ratio()), Y(point->vs_supersampled->rmse), X(filtered->ratio()), Y(filtered->vs_supersampled->rmse));
+
+    // Points first (the front's last, so none of it is hidden), then labels: the front's first,
+    // each at the first free spot around its point (right, left, then lines above and below,
+    // inside the plot). A label with no free spot becomes a number, named in a list under the plot.
     std::vector<size_t> order;
     for (size_t i = 0; i < timings.size(); ++i)
         if (std::find(front.begin(), front.end(), i) == front.end()) order.push_back(i);
     order.insert(order.end(), front.begin(), front.end());
-    // Labels that would overlap an earlier one (two tiers at one error, say) move to the nearest
-    // free line above or below.
     struct Box { double x0, x1, y0, y1; };
     std::vector<Box> placed;
+    auto overlaps = [&](const Box& b) {
+        return std::any_of(placed.begin(), placed.end(), [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
+    };
     for (size_t i : order) {
+        if (!timings[i].vs_supersampled) continue;
+        const double x = X(timings[i].ratio()), y = Y(timings[i].vs_supersampled->rmse);
+        body += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>\n", x, y,
+                            std::find(front.begin(), front.end(), i) != front.end() ? "#d33" : "#36c");
+        placed.push_back(Box{x - 4, x + 4, y - 4, y + 4});
+    }
+    std::vector<size_t> label_order(front.begin(), front.end());
+    for (size_t i : order)
+        if (std::find(front.begin(), front.end(), i) == front.end()) label_order.push_back(i);
+    std::vector<std::string> unplaced;
+    for (size_t i : label_order) {
         const SceneTiming& t = timings[i];
         if (!t.vs_supersampled) continue;
-        const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
         const double x = X(t.ratio()), y = Y(t.vs_supersampled->rmse);
-        const bool right = x > W - R - 120;  // labels near the right edge go to the point's left
-        const double width = 7.2 * static_cast<double>(t.label().size()), tx = right ? x - 6 : x + 6;
-        Box box{right ? tx - width : tx, right ? tx : tx + width, y - 15, y - 3};
-        auto overlaps = [&](const Box& b) {
-            return std::any_of(placed.begin(), placed.end(), [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
-        };
-        // Nearest free line: 0, up 1, down 1, up 2, ... (13 px each); as it was when none is free.
-        const Box home = box;
-        for (int k = 1; k <= 12 && overlaps(box); ++k) {
-            const double shift = 13.0 * ((k + 1) / 2) * (k % 2 ? -1 : 1);
-            box = Box{home.x0, home.x1, home.y0 + shift, home.y1 + shift};
+        const double width = 6.9 * static_cast<double>(t.label().size());
+        bool done = false;
+        for (int line = 0; line <= 6 && !done; ++line) {
+            const double dy = 13.0 * ((line + 1) / 2) * (line % 2 ? -1 : 1);
+            for (const bool right : {true, false}) {
+                const double tx = right ? x + 7 : x - 7;
+                const Box box{right ? tx : tx - width, right ? tx + width : tx, y + dy - 6, y + dy + 6};
+                if (box.x0 < L || box.x1 > W - R || box.y0 < T || box.y1 > H - B || overlaps(box)) continue;
+                placed.push_back(box);
+                if (dy != 0)
+                    body += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" stroke-width=\"0.5\"/>\n",
+                                        x, y, tx, y + dy);
+                body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n", tx, y + dy + 4,
+                                    right ? "start" : "end", xml_escape(t.label()));
+                done = true;
+                break;
+            }
         }
-        if (overlaps(box)) box = home;
-        placed.push_back(box);
-        s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n",
-                         x, y, on_front ? "#d33" : "#36c", tx, box.y1 - 1, right ? "end" : "start", xml_escape(t.label()));
+        if (done) continue;
+        unplaced.push_back(t.label());
+        const std::string number = std::to_string(unplaced.size());
+        const Box box{x + 4, x + 4 + 7.0 * static_cast<double>(number.size()), y - 12, y};
+        if (!overlaps(box)) placed.push_back(box);
+        body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"#555\">{}</text>\n", x + 4, y - 3, number);
     }
+    // The numbered points' names, in columns under the plot.
+    constexpr int kColumns = 3;
+    const int rows = static_cast<int>((unplaced.size() + kColumns - 1) / kColumns);
+    for (size_t k = 0; k < unplaced.size(); ++k)
+        body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{}: {}</text>\n", L + (W - L - R) / kColumns * static_cast<double>(k % kColumns),
+                            H + 14.0 * static_cast<double>(k / kColumns), k + 1, xml_escape(unplaced[k]));
+    const double height = H + 14.0 * rows + (rows ? 6 : 0);
+    std::string s = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"12\">\n"
+                                "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", W, height);
+    s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
+                     timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
+                                                                   xml_escape(timings.front().device)));
     s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: Pareto front (nothing both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
-    return s + "</svg>\n";
+    return s + body + "</svg>\n";
 }
 
 }  // namespace crtforge
