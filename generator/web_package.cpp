@@ -29,7 +29,7 @@ json package_json() {
                         {"./manifest.json", "./manifest.json"},
                         {"./wgsl/*", "./wgsl/*"},
                         {"./luts/*", "./luts/*"}};
-    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "pixi.mjs", "pixi.d.ts", "babylon.mjs", "babylon.d.ts", "manifest.json", "wgsl/",
+    p["files"] = json::array({"index.mjs", "index.d.ts", "crt-webgpu.mjs", "three.mjs", "three.d.ts", "pixi.mjs", "pixi.d.ts", "babylon.mjs", "babylon.d.ts", "framework-pass.mjs", "manifest.json", "wgsl/",
                               "luts/", "README.md"});
     p["sideEffects"] = false;
     p["peerDependencies"] = json{{"@webgpu/types", ">=0.1.40"}};
@@ -81,6 +81,7 @@ Status add_web_package(const json& manifest, std::map<std::string, std::string>&
     package[dir + "pixi.d.ts"] = sources.pixi_declarations;
     package[dir + "babylon.mjs"] = sources.babylon;
     package[dir + "babylon.d.ts"] = sources.babylon_declarations;
+    package[dir + "framework-pass.mjs"] = sources.framework_pass;
     for (const std::string& path : kept) {
         auto file = files.find(path);
         if (file == files.end())  // the manifest names only files the export wrote

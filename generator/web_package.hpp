@@ -28,6 +28,7 @@ struct WebPackageSources {
     const char* pixi_declarations;   // package/pixi.d.ts
     const char* babylon;                // package/babylon.mjs: the Babylon.js WebGPUEngine pass
     const char* babylon_declarations;   // package/babylon.d.ts
+    const char* framework_pass;         // package/framework-pass.mjs: what the three adapters share
 };
 const WebPackageSources& web_package_sources();
 

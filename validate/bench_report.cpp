@@ -154,7 +154,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     // Cost on x (ratio to a blit) and error against the supersampled reference on y, both log: the
     // costs span a blit to tens of blits (a multi-pass scene), the errors decades.
     constexpr double W = 900, H = 560, L = 70, R = 30, T = 50, B = 50;
-    double min_cost = 1, max_cost = 1, min_err = 1e9, max_err = 0;
+    double min_cost = 1e9, max_cost = 0, min_err = 1e9, max_err = 0;
     for (const SceneTiming& t : timings) {
         if (t.ratio() > 0) min_cost = std::min(min_cost, t.ratio()), max_cost = std::max(max_cost, t.ratio());
         if (t.vs_supersampled) {
@@ -163,6 +163,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         }
     }
     if (max_err <= 0) min_err = 1e-4, max_err = 1e-1;
+    if (max_cost <= 0) min_cost = max_cost = 1;
     const double lo = std::floor(std::log10(min_err)), hi = std::max(lo + 1, std::ceil(std::log10(max_err)));
     // x from the 1-2-5 step below the cheapest to the one above the dearest.
     auto nice_below = [](double v) {
