@@ -34,8 +34,9 @@ TEST_CASE("exports are byte-identical across runs, cold or warm cache", "[export
     // copy of the LUTs, a copy in the npm package, and for a single-pass preset the screen material
     // and the overlay scene; per Godot addon a README, the pipeline script and the editor plugin
     // (plugin.cfg, its script, the overlay node's script); the manifest; and the npm package's
-    // package.json, manifest, index.mjs, index.d.ts, crt-webgpu.mjs, three.mjs, three.d.ts and README.
-    size_t expected = 2 * 5 + 1 + 8;
+    // package.json, manifest, index.mjs, index.d.ts, crt-webgpu.mjs, README, the three.js, PixiJS
+    // and Babylon.js adapters (.mjs and .d.ts each) and the framework-pass.mjs they share.
+    size_t expected = 2 * 5 + 1 + 13;
     for (const Preset& p : lib.presets())
         expected += p.passes.size() * (7 * 2 + 2 * 3 + 1 + 1) + p.luts.size() + 2 * (1 + p.luts.size()) + p.luts.size() +
                     (p.single_pass() ? 2 * 2 : 0);
