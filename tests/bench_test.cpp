@@ -23,17 +23,8 @@ using namespace crtforge;
 namespace {
 
 Image reference_frame(const Preset& preset, int width, int height, int supersample, const std::string& input = "pixel_art") {
-    ReferenceSceneJob job;
-    job.library = &test::shipped_library();
-    job.preset = &preset;
-    job.source = [input](int frame) { return make_test_input(input, 320, 240, frame); };
-    job.width = width;
-    job.height = height;
-    job.frames = {0};
-    job.supersample = supersample;
-    auto images = render_reference_scene(job);
-    REQUIRE(images.ok());
-    return images.value().front();
+    const test::SceneShot shot{[input](int frame) { return make_test_input(input, 320, 240, frame); }, width, height, {0}};
+    return test::reference_scene_or_fail(test::shipped_library(), preset, shot, supersample).front();
 }
 
 // A small, quick measurement: 160x120, one draw per timing, 4x4 supersampled reference.
@@ -199,30 +190,14 @@ TEST_CASE("each filtered form is its point form averaged over each pixel", "[ben
 TEST_CASE("the edge anti-aliased bezel renders its reference's edge profile", "[bench][tiers][vulkan]") {
     const TemplateLibrary& lib = test::validation_library();
     TargetRenderer renderer;
+    const test::SceneShot shot{[](int frame) { return make_test_input("grey_ramp", 320, 240, frame); }, 96, 64, {0}};
     for (const char* name : {"stage-curvature-atari-filtered", "stage-curvature-crt-effect-filtered", "stage-curvature-quiet-frame-filtered"}) {
         INFO(name);
         const Preset& preset = *lib.find_preset(name);
         auto compiled = compile_scene(lib, preset, {}, Cache());
         REQUIRE(compiled.ok());
-        SceneRenderRequest r;
-        r.preset = &preset;
-        r.passes = &compiled.value();
-        r.source = [](int frame) { return make_test_input("grey_ramp", 320, 240, frame); };
-        r.width = 96;
-        r.height = 64;
-        r.frames = {0};
-        auto vulkan = renderer.render_scene(r);
-        REQUIRE(vulkan.ok());
-        ReferenceSceneJob job;
-        job.library = &lib;
-        job.preset = &preset;
-        job.source = r.source;
-        job.width = r.width;
-        job.height = r.height;
-        job.frames = {0};
-        auto reference = render_reference_scene(job);
-        REQUIRE(reference.ok());
-        auto m = compare_images(vulkan.value().front(), reference.value().front());
+        auto m = compare_images(test::render_scene_or_fail(renderer, preset, compiled.value(), shot).front(),
+                                test::reference_scene_or_fail(lib, preset, shot).front());
         REQUIRE(m.ok());
         CHECK(m.value().max_abs < 0.004);
     }

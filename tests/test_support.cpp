@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 #include <sys/wait.h>
 
+#include "crtforge/reference/reference_renderer.hpp"
+
 namespace fs = std::filesystem;
 
 namespace crtforge::test {
@@ -107,6 +109,36 @@ CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& p
     auto compiled = compile_variant(lib, *preset, options, Cache());
     if (!compiled.ok()) FAIL(preset_name << ": " << compiled.error().str());
     return std::move(compiled.value());
+}
+
+std::vector<Image> render_scene_or_fail(TargetRenderer& renderer, const Preset& preset, const std::vector<CompiledVariant>& passes,
+                                        const SceneShot& shot, TargetId target, const std::vector<TargetOutput>* outputs) {
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &passes;
+    r.target = target;
+    r.outputs = outputs;
+    r.source = shot.source;
+    r.width = shot.width;
+    r.height = shot.height;
+    r.frames = shot.frames;
+    auto images = renderer.render_scene(r);
+    if (!images.ok()) FAIL(preset.name << " through " << target_info(target).name << ": " << images.error().str());
+    return std::move(images.value());
+}
+
+std::vector<Image> reference_scene_or_fail(const TemplateLibrary& lib, const Preset& preset, const SceneShot& shot, int supersample) {
+    ReferenceSceneJob job;
+    job.library = &lib;
+    job.preset = &preset;
+    job.source = shot.source;
+    job.width = shot.width;
+    job.height = shot.height;
+    job.frames = shot.frames;
+    job.supersample = supersample;
+    auto images = render_reference_scene(job);
+    if (!images.ok()) FAIL(preset.name << " by the reference: " << images.error().str());
+    return std::move(images.value());
 }
 
 std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const std::string& golden_dir) {

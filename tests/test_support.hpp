@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -12,6 +13,7 @@
 #include "crtforge/runtime/image.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/validate/golden.hpp"
+#include "crtforge/validate/target_render.hpp"
 
 namespace crtforge::test {
 
@@ -91,5 +93,21 @@ const OutputFile& file_with_role(const TargetOutput& out, const std::string& rol
 // Compiles and emits one preset through every target; fails the test on any error.
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,
                                 const VariantOptions& options = {});
+
+// What a scene render of a test draws: the picture at each frame, the display and the frames kept.
+struct SceneShot {
+    std::function<Result<Image>(int frame)> source;
+    int width = 0, height = 0;
+    std::vector<int> frames;
+};
+
+// The display images of a scene through a target's consumer (`outputs`: the target's files per
+// pass; none for spirv, which renders the compiled modules); fails the test on any error.
+std::vector<Image> render_scene_or_fail(TargetRenderer& renderer, const Preset& preset, const std::vector<CompiledVariant>& passes,
+                                        const SceneShot& shot, TargetId target = TargetId::Spirv,
+                                        const std::vector<TargetOutput>* outputs = nullptr);
+
+// The same from the fp64 reference, `supersample` x `supersample` samples per pixel.
+std::vector<Image> reference_scene_or_fail(const TemplateLibrary& lib, const Preset& preset, const SceneShot& shot, int supersample = 1);
 
 }  // namespace crtforge::test

@@ -111,6 +111,7 @@ TEST_CASE("the uber-shader draws what the specialised shader draws, on every pre
     VariantOptions all;
     all.uniforms = UniformSelection::parse("all").value();
     TargetRenderer renderer;
+    const test::SceneShot shot{[](int frame) { return make_test_input("pixel_art", 80, 60, frame); }, 96, 72, {2}};
     int presets = 0;
     for (const Preset& preset : lib.presets()) {
         if (preset.test_only) continue;
@@ -120,17 +121,7 @@ TEST_CASE("the uber-shader draws what the specialised shader draws, on every pre
             auto compiled = compile_scene(lib, preset, options, Cache());
             INFO((compiled.ok() ? std::string() : compiled.error().str()));
             REQUIRE(compiled.ok());
-            SceneRenderRequest r;
-            r.preset = &preset;
-            r.passes = &compiled.value();
-            r.source = [](int frame) { return make_test_input("pixel_art", 80, 60, frame); };
-            r.width = 96;
-            r.height = 72;
-            r.frames = {2};
-            auto images = renderer.render_scene(r);
-            INFO((images.ok() ? std::string() : images.error().str()));
-            REQUIRE(images.ok());
-            frames.push_back(std::move(images.value().front()));
+            frames.push_back(test::render_scene_or_fail(renderer, preset, compiled.value(), shot).front());
         }
         auto metrics = compare_images(frames[1], frames[0]);
         REQUIRE(metrics.ok());
@@ -150,22 +141,10 @@ TEST_CASE("the uber-shader renders on every target like the specialised shader",
     const Preset* classic = lib.find_preset("classic");
     REQUIRE(classic);
     TargetRenderer renderer;
-    auto render = [&](const std::vector<CompiledVariant>& passes, TargetId target, const std::vector<TargetOutput>* outputs) {
-        SceneRenderRequest r;
-        r.preset = classic;
-        r.passes = &passes;
-        r.target = target;
-        r.outputs = outputs;
-        r.source = [](int frame) { return make_test_input("pixel_art", 80, 60, frame); };
-        r.width = 96;
-        r.height = 72;
-        r.frames = {1};
-        return renderer.render_scene(r);
-    };
+    const test::SceneShot shot{[](int frame) { return make_test_input("pixel_art", 80, 60, frame); }, 96, 72, {1}};
     auto specialised = compile_scene(lib, *classic, {}, Cache());
     REQUIRE(specialised.ok());
-    auto expected = render(specialised.value(), TargetId::Spirv, nullptr);
-    REQUIRE(expected.ok());
+    const Image expected = test::render_scene_or_fail(renderer, *classic, specialised.value(), shot).front();
     auto uber = compile_scene(lib, *classic, uber_options(), Cache());
     REQUIRE(uber.ok());
     for (const TargetInfo& target : all_targets()) {
@@ -181,10 +160,8 @@ TEST_CASE("the uber-shader renders on every target like the specialised shader",
             CHECK(compiled.ok());
         }
         outputs.push_back(std::move(out.value()));
-        auto images = render(uber.value(), target.id, &outputs);
-        INFO((images.ok() ? std::string() : images.error().str()));
-        REQUIRE(images.ok());
-        auto metrics = compare_images(images.value().front(), expected.value().front());
+        const Image image = test::render_scene_or_fail(renderer, *classic, uber.value(), shot, target.id, &outputs).front();
+        auto metrics = compare_images(image, expected);
         REQUIRE(metrics.ok());
         const double quantum = renderer.output_quantum(target.id);  // Godot 3's 8-bit display
         INFO("RMSE " << metrics.value().rmse << " max " << metrics.value().max_abs);

@@ -46,6 +46,16 @@ function fail(message) {
   process.exit(1);
 }
 
+// A module of tools/wgsl-runner's pinned npm packages (webgpu, three, pixi.js, @babylonjs/core).
+function importTool(specifier) {
+  return import(pathToFileURL(createRequire(path.join(repo, 'tools/wgsl-runner/package.json')).resolve(specifier)).href);
+}
+
+// A module of the package under test, resolved from --package's app as the app would resolve it.
+function importFromApp(specifier) {
+  return import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve(specifier)).href);
+}
+
 function frameList(flag, text) {
   const frames = String(text).split(',').map(Number);
   if (!frames.length || !frames.every((f) => Number.isInteger(f) && f >= 0)) fail(`${flag} must be comma-separated frame numbers, got '${text}'`);
@@ -128,8 +138,7 @@ let manifest, preset, pkg;
 const wgsl = {}, lutBytes = {};
 if (args.package !== undefined) {
   try {
-    const require = createRequire(path.join(path.resolve(args.package), 'package.json'));
-    pkg = await import(pathToFileURL(require.resolve('crtforge-presets')).href);
+    pkg = await importFromApp('crtforge-presets');
     manifest = await pkg.loadManifest();
   } catch (e) {
     fail(`cannot load the package 'crtforge-presets' from ${args.package}: ${e.message}`);
@@ -176,8 +185,7 @@ try {
 process.env.EGL_PLATFORM ??= 'surfaceless';
 let webgpu;
 try {
-  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
-  webgpu = await import(pathToFileURL(require.resolve('webgpu')).href);
+  webgpu = await importTool('webgpu');
 } catch (e) {
   fail(`cannot load the npm package 'webgpu' from tools/wgsl-runner (run scripts/setup.sh): ${e.message}`);
 }
@@ -240,21 +248,40 @@ function applySets(crt) {
   }
 }
 
+// The browser globals a framework reads while it starts in Node: navigator.gpu (Dawn), `self`,
+// window event listeners, and an animation-frame clock (unused: frames are drawn by hand).
+function installBrowserGlobals() {
+  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
+  globalThis.self ??= globalThis;
+  globalThis.addEventListener ??= () => {};
+  globalThis.removeEventListener ??= () => {};
+  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
+  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
+}
+
+// A canvas of the display's size that is never shown; `contexts` maps getContext's kinds to what
+// it returns.
+function canvasStandIn(width, height, contexts) {
+  return { width, height, style: {}, addEventListener() {}, removeEventListener() {},
+    getBoundingClientRect: () => ({ left: 0, top: 0, x: 0, y: 0, width, height, right: width, bottom: height }),
+    getContext: (kind) => contexts[kind] ?? null };
+}
+
+// A WebGPU canvas context for frameworks that configure one but never present to it here (a
+// function, not a constant: startPixi() runs while the module's top level is still evaluating).
+function presentlessContext() {
+  return { configure() {}, unconfigure() {}, getCurrentTexture() { throw new Error('no canvas in Node'); } };
+}
+
 // The package's three.js adapter: three draws the picture (8-bit, rows bottom-up as three's
 // DataTexture takes them) into a RenderTarget, the crtforge pass draws that into a half-float one.
 async function renderThree() {
-  // three picks its WebGPU backend when navigator.gpu exists (Node 20 has no navigator), and its
-  // animation loop reads `self` and requestAnimationFrame (unused here: frames are drawn by hand).
-  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
-  globalThis.self ??= globalThis;
-  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
-  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
-  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
-  const THREE = await import(pathToFileURL(require.resolve('three/webgpu')).href);
-  const { createThreeCrtPass } = await import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve('crtforge-presets/three')).href);
-  // No window here: a canvas stand-in (nothing is presented; everything goes through RenderTargets).
-  const context = { configure() {}, unconfigure() {}, getCurrentTexture() { throw new Error('no canvas in Node'); } };
-  const canvas = { width: args.width, height: args.height, style: {}, getContext: () => context, addEventListener() {}, removeEventListener() {} };
+  // three picks its WebGPU backend when navigator.gpu exists (Node 20 has no navigator).
+  installBrowserGlobals();
+  const THREE = await importTool('three/webgpu');
+  const { createThreeCrtPass } = await importFromApp('crtforge-presets/three');
+  // Nothing is presented: everything goes through RenderTargets.
+  const canvas = canvasStandIn(args.width, args.height, { webgpu: presentlessContext() });
   const renderer = new THREE.WebGPURenderer({ canvas, device, antialias: false });
   await renderer.init();
   const w = args.inputWidth, h = args.inputHeight;
@@ -288,11 +315,7 @@ async function renderThree() {
 async function startPixi() {
   const element = () => ({ style: {}, children: [], setAttribute() {}, addEventListener() {}, removeEventListener() {}, appendChild() {}, removeChild() {}, remove() {} });
   globalThis.document ??= { createElement: element, body: element(), documentElement: element(), addEventListener() {}, removeEventListener() {} };
-  globalThis.addEventListener ??= () => {};
-  globalThis.removeEventListener ??= () => {};
-  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
-  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
-  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
+  installBrowserGlobals();
   const trim = (a) => { while (a.length && a[a.length - 1] === undefined) a.pop(); return a; };
   const lenient = (proto, name, slot) => {
     const original = proto[name];
@@ -307,12 +330,9 @@ async function startPixi() {
   const gl = { MAX_TEXTURE_IMAGE_UNITS: 0x8872, FRAGMENT_SHADER: 0x8b30, VERTEX_SHADER: 0x8b31, COMPILE_STATUS: 0x8b81, HIGH_FLOAT: 0x8df2,
     getParameter: () => 16, getExtension: () => null, isContextLost: () => false, createShader: () => ({}), shaderSource() {},
     compileShader() {}, getShaderParameter: () => true, deleteShader() {}, getShaderPrecisionFormat: () => ({ precision: 23, rangeMin: 127, rangeMax: 127 }) };
-  const context = { configure() {}, unconfigure() {}, getCurrentTexture() { throw new Error('no canvas in Node'); } };
-  const canvas = (width = 1, height = 1) => ({ width, height, style: {}, addEventListener() {}, removeEventListener() {},
-    getBoundingClientRect: () => ({ left: 0, top: 0, x: 0, y: 0, width, height, right: width, bottom: height }),
-    getContext: (kind) => (kind === 'webgpu' ? context : kind.startsWith('webgl') ? gl : null) });
-  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
-  const PIXI = await import(pathToFileURL(require.resolve('pixi.js')).href);
+  const context = presentlessContext();
+  const canvas = (width = 1, height = 1) => canvasStandIn(width, height, { webgpu: context, webgl: gl, webgl2: gl });
+  const PIXI = await importTool('pixi.js');
   PIXI.DOMAdapter.set({
     createCanvas: canvas, getCanvasRenderingContext2D: () => class {}, getWebGLRenderingContext: () => class {},
     getNavigator: () => globalThis.navigator, getBaseUrl: () => pathToFileURL(repo).href, getFontFaceSet: () => null,
@@ -330,7 +350,7 @@ async function startPixi() {
 // the crtforge pass draws that into a half-float RenderTexture, which is read back.
 async function renderPixi() {
   const PIXI = pixiRenderer.pixi;
-  const { createPixiCrtPass } = await import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve('crtforge-presets/pixi')).href);
+  const { createPixiCrtPass } = await importFromApp('crtforge-presets/pixi');
   const w = args.inputWidth, h = args.inputHeight;
   const bytes = new Uint8Array(w * h * 4);
   const picture = new PIXI.BufferImageSource({ resource: bytes, width: w, height: h, format: 'rgba8unorm', scaleMode: 'nearest', alphaMode: 'no-premultiply-alpha' });
@@ -356,24 +376,16 @@ async function startBabylon() {
   if (!adapter) fail('Dawn found no Vulkan adapter (SwiftShader at ' + kSwiftShaderIcd + ')');
   const features = Object.getPrototypeOf(adapter.features);
   features.forEach ??= function (callback, thisArg) { for (const f of this) callback.call(thisArg, f, f, this); };
-  if (!globalThis.navigator?.gpu) Object.defineProperty(globalThis, 'navigator', { value: { gpu, userAgent: 'node' }, configurable: true });
-  globalThis.self ??= globalThis;
-  globalThis.addEventListener ??= () => {};
-  globalThis.removeEventListener ??= () => {};
-  globalThis.requestAnimationFrame ??= (callback) => setTimeout(() => callback(performance.now()), 16);
-  globalThis.cancelAnimationFrame ??= (id) => clearTimeout(id);
+  installBrowserGlobals();
   let config = null, backbuffer = null;
-  const canvas = { width: args.width, height: args.height, style: {}, addEventListener() {}, removeEventListener() {},
-    getBoundingClientRect: () => ({ left: 0, top: 0, width: args.width, height: args.height }),
-    getContext: (kind) => (kind !== 'webgpu' ? null : {
-      configure(c) { config = c; backbuffer = null; }, unconfigure() { config = null; },
-      getCurrentTexture() {
-        backbuffer ??= config.device.createTexture({ size: [args.width, args.height], format: config.format, usage: config.usage ?? GPUTextureUsage.RENDER_ATTACHMENT });
-        return backbuffer;
-      },
-    }) };
-  const require = createRequire(path.join(repo, 'tools/wgsl-runner/package.json'));
-  const BABYLON = await import(pathToFileURL(require.resolve('@babylonjs/core')).href);
+  const canvas = canvasStandIn(args.width, args.height, { webgpu: {
+    configure(c) { config = c; backbuffer = null; }, unconfigure() { config = null; },
+    getCurrentTexture() {
+      backbuffer ??= config.device.createTexture({ size: [args.width, args.height], format: config.format, usage: config.usage ?? GPUTextureUsage.RENDER_ATTACHMENT });
+      return backbuffer;
+    },
+  } });
+  const BABYLON = await importTool('@babylonjs/core');
   BABYLON.Logger.LogLevels = BABYLON.Logger.ErrorLogLevel;
   const engine = new BABYLON.WebGPUEngine(canvas, { antialias: false, adaptToDeviceRatio: false });
   await engine.initAsync();
@@ -385,7 +397,7 @@ async function startBabylon() {
 // the crtforge pass draws it into a half-float RenderTargetTexture, which is read back.
 async function renderBabylon() {
   const BABYLON = babylonEngine.babylon;
-  const { createBabylonCrtPass } = await import(pathToFileURL(createRequire(path.join(path.resolve(args.package), 'package.json')).resolve('crtforge-presets/babylon')).href);
+  const { createBabylonCrtPass } = await importFromApp('crtforge-presets/babylon');
   const w = args.inputWidth, h = args.inputHeight;
   const scene = new BABYLON.Scene(babylonEngine);
   const bytes = new Uint8Array(w * h * 4);
