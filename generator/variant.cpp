@@ -129,6 +129,34 @@ void add_uber_stages(const TemplateLibrary& library, Variant& variant) {
     }
 }
 
+// A specialised shader's stages: the pass's, one form each, and the params those forms read, each
+// baked or a uniform as --uniforms says; `used` collects their names.
+void add_pass_stages(Variant& variant, std::set<std::string>& used) {
+    const UniformSelection& selection = variant.options.uniforms;
+    for (const ResolvedStage& rs : variant.pass->stages) {
+        variant.stages.push_back(VariantStage{rs.stage, {rs.form}, false});
+        // Params in declaration order of the spec, so layouts are stable and readable.
+        for (const ParamSpec& spec : rs.stage->params) {
+            auto v = rs.values.find(spec.name);
+            if (v == rs.values.end()) continue;
+            VariantParam vp;
+            vp.spec = &spec;
+            vp.stage = rs.stage;
+            vp.value = v->second;
+            using Mode = UniformSelection::Mode;
+            switch (selection.mode) {
+                case Mode::Default:
+                case Mode::All: vp.uniform = spec.runtime; break;
+                case Mode::None: vp.uniform = false; break;
+                case Mode::Names: vp.uniform = contains(selection.names, spec.name); break;
+                case Mode::Uber: break;  // not a specialised shader: add_uber_stages()
+            }
+            used.insert(spec.name);
+            variant.params.push_back(std::move(vp));
+        }
+    }
+}
+
 }  // namespace
 
 Result<Variant> make_variant(const TemplateLibrary& library, const Preset& preset,
@@ -143,45 +171,16 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
     variant.textures = variant.pass->texture_names();
 
     std::set<std::string> used;
+    if (variant.uber()) add_uber_stages(library, variant);
+    else add_pass_stages(variant, used);
     bool needs_time = false, needs_source_size = false, needs_frame_count = false;
-    auto note_builtins = [&](const FormSpec& form) {
-        for (Builtin b : form.builtins) {
-            needs_time = needs_time || b == Builtin::Time;
-            needs_source_size = needs_source_size || b == Builtin::SourceSize;
-            needs_frame_count = needs_frame_count || b == Builtin::FrameCount;
-        }
-    };
-    if (variant.uber()) {
-        add_uber_stages(library, variant);
-        for (const VariantStage& ss : variant.stages)
-            for (const FormSpec* form : ss.forms) note_builtins(*form);
-    }
-    for (const ResolvedStage& rs : variant.uber() ? std::vector<ResolvedStage>{} : variant.pass->stages) {
-        variant.stages.push_back(VariantStage{rs.stage, {rs.form}, false});
-        // Params in declaration order of the spec, so layouts are stable and readable.
-        for (const ParamSpec& spec : rs.stage->params) {
-            auto v = rs.values.find(spec.name);
-            if (v == rs.values.end()) continue;
-            VariantParam vp;
-            vp.spec = &spec;
-            vp.stage = rs.stage;
-            vp.value = v->second;
-            using Mode = UniformSelection::Mode;
-            switch (options.uniforms.mode) {
-                case Mode::Default: vp.uniform = spec.runtime; break;
-                case Mode::All: vp.uniform = spec.runtime; break;
-                case Mode::None: vp.uniform = false; break;
-                case Mode::Uber: vp.uniform = true; break;
-                case Mode::Names:
-                    vp.uniform = std::find(options.uniforms.names.begin(), options.uniforms.names.end(),
-                                           spec.name) != options.uniforms.names.end();
-                    break;
+    for (const VariantStage& ss : variant.stages)
+        for (const FormSpec* form : ss.forms)
+            for (Builtin b : form->builtins) {
+                needs_time = needs_time || b == Builtin::Time;
+                needs_source_size = needs_source_size || b == Builtin::SourceSize;
+                needs_frame_count = needs_frame_count || b == Builtin::FrameCount;
             }
-            used.insert(spec.name);
-            variant.params.push_back(std::move(vp));
-        }
-        note_builtins(*rs.form);
-    }
 
     if (options.uniforms.mode == UniformSelection::Mode::Names) {
         for (const auto& name : options.uniforms.names) {
