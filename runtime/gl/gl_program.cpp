@@ -1,9 +1,8 @@
-#include <array>
-#include <set>
-
 #include "runtime/gl/gl_program.hpp"
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <vector>
 
 #include <fmt/core.h>
