@@ -3,6 +3,7 @@
 #include "crtforge/parse_number.hpp"
 #include "crtforge/version.hpp"
 #include "generator/spirv_debug_names.hpp"
+#include "generator/spirv_pow_reduction.hpp"
 
 #include <mutex>
 #include <regex>
@@ -181,6 +182,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
             if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
             else return optimized.error();
         }
+        reduce_constant_powers(spirv);  // last: the exponents are constants only once spirv-opt has folded
     }
     if (auto valid = validate_spirv(spirv); !valid.ok())
         return make_validation_error(valid.error().message + " (the generator produced invalid SPIR-V)", name);

@@ -1,0 +1,105 @@
+// pow() with a constant exponent leaves the generator as square roots and products
+// (generator/spirv_pow_reduction.cpp): checked in the module's text, and by rendering the rewritten
+// module on lavapipe against std::pow.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/spirv_compiler.hpp"
+#include "tests/test_support.hpp"
+
+namespace {
+
+using namespace crtforge;
+
+SpirvBinary compile_optimized(const std::string& source, ShaderStage stage) {
+    CompileOptions options;
+    options.stage = stage;
+    options.source_name = "<pow test>";
+    auto spirv = compile_to_spirv(source, options);
+    INFO((spirv.ok() ? std::string() : spirv.error().str()));
+    REQUIRE(spirv.ok());
+    return spirv.value();
+}
+
+size_t count(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
+
+// x runs over the output's columns: x = (column + 0.5) / width * 2 - 0.5, so some bases are negative.
+std::string powers_shader(const std::string& e0, const std::string& e1, const std::string& e2, const std::string& e3) {
+    return "#version 450\n"
+           "layout(location = 0) in vec2 vTexCoord;\n"
+           "layout(location = 0) out vec4 fragColor;\n"
+           "void main() {\n"
+           "    float x = vTexCoord.x * 2.0 - 0.5;\n"
+           "    fragColor = vec4(pow(x, " + e0 + "), pow(x, " + e1 + "), pow(x, " + e2 + "), pow(x, " + e3 + "));\n"
+           "}\n";
+}
+
+const char* const kVertex = R"(#version 450
+layout(location = 0) out vec2 vTexCoord;
+void main() {
+    vec2 uv = vec2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));
+    vTexCoord = uv;
+    gl_Position = vec4(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+}  // namespace
+
+TEST_CASE("pow with a constant exponent becomes sqrt and products, the others stay pow", "[compile][pow]") {
+    const std::string text = disassemble_spirv(compile_optimized(R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(std140, set = 0, binding = 0) uniform P { float e; } p;
+void main() {
+    float x = vTexCoord.x;
+    vec3 v = vec3(vTexCoord, x);
+    vec3 a = pow(v, vec3(1.5)) + pow(v, vec3(2.0, 2.0, 3.0));  // a mixed vector exponent stays pow
+    fragColor = vec4(a, pow(x, 0.5) + pow(x, 2.5) + pow(x, 4.0) + pow(x, -0.5) + pow(x, 1.7) + pow(x, p.e));
+}
+)", ShaderStage::Fragment));
+    INFO(text);
+    CHECK(count(text, " Pow ") == 3);           // vec3(2, 2, 3), 1.7 and the uniform
+    CHECK(count(text, " Sqrt ") == 3);          // 1.5, 0.5, 2.5
+    CHECK(count(text, " InverseSqrt ") == 1);   // -0.5
+    CHECK(count(text, "OpFMul") >= 4);          // x*sqrt(x), x*x and x*x*sqrt(x), (x*x)^2
+}
+
+TEST_CASE("the rewritten powers compute what std::pow does, on lavapipe", "[compile][pow][runtime][vulkan]") {
+    auto engine = create_vulkan_engine(EngineOptions{"", /*validation*/ true});
+    INFO((engine.ok() ? std::string() : engine.error().str()));
+    REQUIRE(engine.ok());
+    const int width = 32;
+    struct Case {
+        std::array<std::string, 4> glsl;
+        std::array<double, 4> exponent;
+    };
+    for (const Case& c : {Case{{"0.5", "1.5", "2.0", "2.5"}, {0.5, 1.5, 2.0, 2.5}},
+                          Case{{"3.0", "4.0", "-0.5", "1.7"}, {3.0, 4.0, -0.5, 1.7}}}) {
+        auto job = test::frame_job<RenderJob>(Image{}, width, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
+        job.vertex_spirv = compile_optimized(kVertex, ShaderStage::Vertex);
+        job.fragment_spirv = compile_optimized(powers_shader(c.glsl[0], c.glsl[1], c.glsl[2], c.glsl[3]), ShaderStage::Fragment);
+        const Image out = test::require_image(engine.value()->render(job), width, 1);
+        for (int px = 0; px < width; ++px) {
+            const double x = (px + 0.5) / width * 2.0 - 0.5;
+            for (int ch = 0; ch < 4; ++ch) {
+                const double want = std::pow(x, c.exponent[ch]);
+                const float got = out.pixel(px, 0)[ch];
+                INFO("pow(" << x << ", " << c.exponent[ch] << ") = " << got << ", std::pow " << want);
+                if (std::isnan(want)) {
+                    CHECK(std::isnan(got));  // a negative base to a fractional power, as pow gives
+                } else if (std::isinf(want)) {
+                    CHECK(std::isinf(got));
+                } else {
+                    CHECK(std::abs(got - want) <= 2e-3 * std::max(1.0, std::abs(want)));  // half-float output
+                }
+            }
+        }
+    }
+}
