@@ -3,6 +3,7 @@
 // here (speed lives in the bench command); only that each figure is there and the errors mean what
 // they say.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "crtforge/files.hpp"
@@ -97,6 +98,38 @@ TEST_CASE("bench reports every pass and the frame's error against both reference
         const std::string table = format_scene_timing(timing.value());
         CHECK_THAT(table, Catch::Contains("error vs point-sampled fp64") && Catch::Contains("4x4 supersampled fp64"));
     }
+}
+
+TEST_CASE("bench --stage-costs times each pass once per stage turned off", "[bench][stages]") {
+    BenchOptions options = small_bench();
+    options.supersample = 0;
+    options.stage_costs = true;
+    // super-win: stages that read textures of their own (the LUT, the previous frame) in six passes.
+    for (const char* name : {"classic", "super-win"}) {
+        INFO(name);
+        const Preset& preset = *test::shipped_library().find_preset(name);
+        auto timing = bench_scene(test::shipped_library(), preset, options);
+        REQUIRE(timing.ok());
+        std::vector<std::string> expected, got;
+        for (const Pass& pass : preset.passes)
+            for (const ResolvedStage& rs : pass.stages) expected.push_back(pass.alias + ":" + rs.stage->name + ":" + rs.form->name);
+        for (const StageCost& c : timing.value().stage_costs) {
+            got.push_back(c.pass + ":" + c.stage + ":" + c.form);
+            CHECK(c.blit_ns > 0);
+            CHECK(std::isfinite(c.ns));
+        }
+        CHECK(got == expected);
+        const std::string table = format_scene_timing(timing.value());
+        for (const StageCost& c : timing.value().stage_costs) CHECK_THAT(table, Catch::Contains("+ " + c.stage));
+        auto json = nlohmann::json::parse(bench_json({timing.value()}));
+        CHECK(json[0]["stageCosts"].size() == expected.size());
+        CHECK_THAT(bench_markdown({timing.value()}), Catch::Contains("| stage (form) | adds (us per draw) |"));
+    }
+    // Without the option: none.
+    options.stage_costs = false;
+    auto plain = bench_scene(test::shipped_library(), *test::shipped_library().find_preset("classic"), options);
+    REQUIRE(plain.ok());
+    CHECK(plain.value().stage_costs.empty());
 }
 
 TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front", "[bench][cli]") {

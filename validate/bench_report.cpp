@@ -55,6 +55,13 @@ std::vector<size_t> pareto_front(const std::vector<SceneTiming>& timings) {
     return front;
 }
 
+json stage_costs_json(const std::vector<StageCost>& costs) {
+    json out = json::array();
+    for (const StageCost& c : costs)
+        out.push_back({{"pass", c.pass}, {"stage", c.stage}, {"form", c.form}, {"nsPerDraw", c.ns}, {"ratio", c.ratio()}});
+    return out;
+}
+
 std::string xml_escape(const std::string& s) {
     std::string out;
     for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
@@ -89,6 +96,7 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
                        {"errorVsPoint", metrics_json(t.vs_point)},
                        {"errorVsSupersampled", metrics_json(t.vs_supersampled)},
                        {"supersample", t.supersample},
+                       {"stageCosts", stage_costs_json(t.stage_costs)},
                        {"pareto", std::find(front.begin(), front.end(), i) != front.end()}});
     }
     return out.dump(2) + "\n";
@@ -110,6 +118,12 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
                           t.ratio(), c.instructions, c.samples, c.transcendentals,
                           num(t.vs_point, false), num(t.vs_supersampled, false), num(t.vs_supersampled, true),
                           std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
+    }
+    if (std::any_of(timings.begin(), timings.end(), [](const SceneTiming& t) { return !t.stage_costs.empty(); })) {
+        md += "\n| preset | pass | stage (form) | adds (us per draw) | adds (x blit) |\n|---|---|---|---:|---:|\n";
+        for (const SceneTiming& t : timings)
+            for (const StageCost& c : t.stage_costs)
+                md += fmt::format("| {} | {} | {} ({}) | {:.1f} | {:.2f} |\n", t.label(), c.pass, c.stage, c.form, c.ns / 1000, c.ratio());
     }
     const std::vector<TierPick> picks = pick_tiers(timings);
     if (!picks.empty()) {

@@ -25,13 +25,15 @@ struct BenchOptions {
     std::string input = "pixel_art";  // a generated test input (at the preset's source size, or 320x240)
     int frame = 1;                    // the frame whose passes are timed (earlier ones run first)
     int draws = 40;                   // draws per timing
-    int repeats = 5;                  // timings per job; the median is kept
+    int repeats = 5;                  // timings per pass, the median kept; a blit takes the fastest of max(repeats, 9)
     // Error of the timed frame against the two double-precision references: point-sampled
     // (arithmetic error) and `supersample` x `supersample` box-filtered (also aliasing). 0: none.
     int supersample = 4;
     bool point_reference = true;  // false: only the supersampled reference (budget mode)
     VariantOptions variant;       // which params stay uniforms (--uniforms), precision
     std::string uniforms_label;   // how --uniforms was written, for the report
+    // Also time each pass once per enabled stage with that stage turned off: what each stage costs.
+    bool stage_costs = false;
     EngineOptions vulkan;  // the device bench_scene() opens (a BenchSession is given its own)
 };
 
@@ -50,9 +52,19 @@ struct PassTiming {
     int input_width = 0, input_height = 0;
     std::string format;              // the pass's framebuffer format
     double ns = 0;                   // device nanoseconds per draw (median)
-    double blit_ns = 0;              // a blit of the same sizes and format
+    double blit_ns = 0;              // a blit of the same sizes and format (fastest timing)
     double spread = 0;               // (max - min) / median of the pass's timings
     ShaderCost cost;                 // of the pass's fragment shader
+    double ratio() const { return blit_ns > 0 ? ns / blit_ns : 0; }
+};
+
+// What one stage costs: its pass's time minus the same pass's time with the stage turned off (the
+// rest of the scene as it was). Stages interact (curvature gives the bezel test its work), so the
+// stages' costs need not add up to the pass's.
+struct StageCost {
+    std::string pass, stage, form;
+    double ns = 0;       // device nanoseconds per draw the stage adds (median against median)
+    double blit_ns = 0;  // the pass's blit
     double ratio() const { return blit_ns > 0 ? ns / blit_ns : 0; }
 };
 
@@ -69,6 +81,8 @@ struct SceneTiming {
     int width = 0, height = 0, frame = 0, draws = 0;
     std::vector<PassTiming> passes;
     double display_blit_ns = 0;      // a blit of the source onto the whole display
+    int source_width = 0, source_height = 0;
+    std::vector<StageCost> stage_costs;  // with BenchOptions::stage_costs
     double total_ns() const;
     // The Vulkan frame against the point-sampled reference and the supersampled one (when measured).
     std::optional<ImageMetrics> vs_point, vs_supersampled;
@@ -94,10 +108,14 @@ public:
     Result<SceneTiming> tier(const std::vector<PresetTier>& tiers, size_t index, const BenchOptions& options);
     // How many reference pictures the session has rendered (each distinct one once).
     size_t reference_renders() const;
+    // `timing`'s blits set to the fastest the session has measured of each shape: a scene timed
+    // early in a run is compared against the same baseline as one timed late.
+    void rebase(SceneTiming& timing) const;
 
 private:
     Result<SceneTiming> measure(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
     Result<Image> reference(const Preset& preset, const BenchOptions& options, int supersample);
+    Result<std::vector<StageCost>> stage_costs(const Preset& preset, const SceneTiming& timed, const BenchOptions& options);
     struct State;
     const TemplateLibrary& library_;
     std::unique_ptr<State> state_;
