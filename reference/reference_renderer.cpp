@@ -386,7 +386,10 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             rj.time = job.start_time + frame / preset.scene.fps;
             rj.jitter = job.jitter;
             rj.texel_jitter = job.texel_jitter;
-            if (i + 1 == preset.passes.size()) rj.supersample = job.supersample;
+            // Every pass box-filtered over its own pixels: what a pass drawn at the display's size
+            // aliases (atari-chain's CRT pass under its palette pass) shows in the display's
+            // picture, as it would not if only the last pass were supersampled.
+            rj.supersample = job.supersample;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();

@@ -73,7 +73,7 @@ struct ReferenceSceneJob {
     std::array<double, 2> jitter{0.0, 0.0};
     double texel_jitter = 0.0;  // ReferenceJob::texel_jitter, for every pass
     double input_gain = 1.0;
-    int supersample = 1;        // ReferenceJob::supersample, for the display's pass
+    int supersample = 1;        // ReferenceJob::supersample, for every pass (each the anti-aliased picture of its inputs)
 };
 
 // Test-only: injects a fault into the oracle, to prove that validate notices a wrong reference
