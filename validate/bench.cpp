@@ -329,6 +329,9 @@ void BenchSession::rebase(SceneTiming& timing) const {
     const BlitShape display{timing.source_width, timing.source_height, timing.width, timing.height,
                             format_name(OutputFormat::Rgba16Float)};
     if (auto known = state_->fastest_blit.find(display); known != state_->fastest_blit.end()) timing.display_blit_ns = known->second;
+    for (StageCost& c : timing.stage_costs)
+        for (const PassTiming& p : timing.passes)
+            if (p.alias == c.pass) c.blit_ns = p.blit_ns;
 }
 
 Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& preset, const BenchOptions& options) {

@@ -1,5 +1,5 @@
 // crtforge bench's files: bench.json (every figure), bench.md (a table) and bench.svg (error against
-// cost, one point per preset, the Pareto front joined): see crtforge/validate/bench.hpp.
+// cost, one point per timing, each preset's Pareto front joined): see crtforge/validate/bench.hpp.
 #include <algorithm>
 #include <cmath>
 
@@ -37,21 +37,28 @@ json metrics_json(const std::optional<ImageMetrics>& m) {
     return {{"rmse", m->rmse}, {"psnr", m->psnr}, {"maxAbs", m->max_abs}, {"ssim", m->ssim}};
 }
 
-// The presets no other preset beats on both cost and error (against the supersampled reference).
+// Per preset, the timings (its tiers and --uniforms variants) that no other timing of the same
+// preset beats on both cost and error against the supersampled reference; a preset timed once has
+// no alternatives and no front. Across presets the errors do not compare: each is measured against
+// its own preset's picture (a palette preset that matches its reference exactly at a blit's cost
+// would otherwise "dominate" every CRT look).
 std::vector<size_t> pareto_front(const std::vector<SceneTiming>& timings) {
     std::vector<size_t> front;
     for (size_t i = 0; i < timings.size(); ++i) {
         if (!timings[i].vs_supersampled) continue;
-        bool dominated = false;
+        bool dominated = false, alternatives = false;
         for (size_t j = 0; j < timings.size() && !dominated; ++j) {
-            if (j == i || !timings[j].vs_supersampled) continue;
+            if (j == i || !timings[j].vs_supersampled || timings[j].preset != timings[i].preset) continue;
+            alternatives = true;
             const double ci = timings[i].ratio(), cj = timings[j].ratio();
             const double ei = timings[i].vs_supersampled->rmse, ej = timings[j].vs_supersampled->rmse;
             dominated = cj <= ci && ej <= ei && (cj < ci || ej < ei);
         }
-        if (!dominated) front.push_back(i);
+        if (alternatives && !dominated) front.push_back(i);
     }
-    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return timings[a].ratio() < timings[b].ratio(); });
+    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) {
+        return std::make_pair(timings[a].preset, timings[a].ratio()) < std::make_pair(timings[b].preset, timings[b].ratio());
+    });
     return front;
 }
 
@@ -209,9 +216,13 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     body += fmt::format("<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" text-anchor=\"middle\">RMSE against the supersampled fp64 reference</text>\n",
                         (T + H - B) / 2);
     const std::vector<size_t> front = pareto_front(timings);
+    // Each preset's front joined, cheapest first (the front is sorted by preset, then cost).
     std::string path;
-    for (size_t i : front)
-        path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(timings[i].ratio()), Y(timings[i].vs_supersampled->rmse));
+    for (size_t k = 0; k < front.size(); ++k) {
+        const bool starts = k == 0 || timings[front[k - 1]].preset != timings[front[k]].preset;
+        path += fmt::format("{}{:.1f},{:.1f}", starts ? (path.empty() ? "M" : " M") : " L", X(timings[front[k]].ratio()),
+                            Y(timings[front[k]].vs_supersampled->rmse));
+    }
     if (!path.empty()) body += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
     // A preset's tiers joined, point to filtered: what filtering buys and costs.
     for (const auto& [point, filtered] : tier_pairs(timings))
@@ -282,7 +293,7 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
     s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
                      timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
                                                                    xml_escape(timings.front().device)));
-    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: Pareto front (nothing both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
+    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: each preset's Pareto front (no tier of it both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
     return s + body + "</svg>\n";
 }
 

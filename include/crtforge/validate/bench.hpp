@@ -129,7 +129,8 @@ std::string format_scene_timing(const SceneTiming& timing);
 
 // The files of `crtforge bench --out DIR` (validate/bench_report.cpp): every figure as JSON, a
 // markdown table, and an SVG plot of error (against the supersampled reference, log scale) against
-// cost (ratio to a blit), the Pareto front marked.
+// cost (ratio to a blit), each preset's Pareto front over its tiers and variants marked (errors
+// compare within a preset, each being against that preset's own picture).
 std::string bench_json(const std::vector<SceneTiming>& timings);
 // Per preset with several tiers, the one to pick at the measured size: the filtered tier where it
 // lowers the error against the supersampled reference by at least a tenth, else the cheaper point tier.
