@@ -1,5 +1,6 @@
 // The LUT generators and the PNG writer for their files (see crtforge/luts.hpp).
 #include "crtforge/luts.hpp"
+#include "generator/palette_cells.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -71,6 +72,7 @@ LutImage atari_ntsc(const std::map<std::string, double>& p) {
             for (int k = 0; k < 3; ++k) px[k] = to_byte(rgb[k]);
             px[3] = 255;
         }
+    append_palette_cells(out);  // the nearest-colour search tables below the palette
     return out;
 }
 
@@ -119,7 +121,8 @@ const std::vector<LutGenerator>& lut_generators() {
         {"atari_ntsc",
          "The Atari 2600 NTSC palette from its generation rule: hue 0 grey, hues 1..15 one phase step apart from "
          "the colour burst (gold), 8 luminances, one saturation, YIQ -> RGB",
-         "128x1: texel (hue * 8 + luminance)",
+         "128 wide: row 0 the palette, texel (hue * 8 + luminance); the rows below list, per cell of a 16^3 RGB grid "
+         "over [-1/16, 17/16], the entries that can be nearest there (generator/palette_cells.hpp)",
          {{"burstPhase", -180.0, 180.0, -57.0, "Phase of hue 1 (gold, the colour burst: -U) in the I/Q plane, degrees"},
           {"hueStep", 20.0, 30.0, 24.0, "Phase delay between successive hues, degrees (24: 15 hues evenly round)"},
           {"saturation", 0.0, 0.6, 0.3, "Chroma amplitude of hues 1..15"},

@@ -5,6 +5,7 @@
 // only, dithered by the article's 4x4 Bayer matrix.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -283,6 +284,85 @@ TEST_CASE("the palette pass outputs palette colours only", "[scene][palette]") {
             CHECK(used.size() > 8);  // colour bars reach many palette entries, not one fallback
         }
     }
+}
+
+TEST_CASE("the palette LUT's cell lists hold every entry that can be nearest in the cell", "[scene][palette]") {
+    const Preset& ntsc = *test::shipped_library().find_preset("atari-ntsc");
+    auto lut = generate_lut("atari_ntsc", ntsc.find_lut("ntsc")->params);
+    REQUIRE(lut.ok());
+    const LutImage& image = lut.value();
+    REQUIRE(image.width == 128);
+    REQUIRE(image.height > 1);
+    auto byte = [&](int x, int y, int c) { return static_cast<int>(image.rgba[(static_cast<size_t>(y) * 128 + static_cast<size_t>(x)) * 4 + static_cast<size_t>(c)]); };
+    const int header_rows = (4096 + 127) / 128;
+    // Each cell's list, read back as the shader reads it.
+    auto list_of = [&](int cell) {
+        const int first = byte(cell % 128, 1 + cell / 128, 0) + 256 * byte(cell % 128, 1 + cell / 128, 1);
+        const int texels = byte(cell % 128, 1 + cell / 128, 2);
+        std::vector<int> list;
+        for (int t = first; t < first + texels; ++t)
+            for (int c = 0; c < 4; ++c) list.push_back(byte(t % 128, 1 + header_rows + t / 128, c));
+        return list;
+    };
+    size_t listed = 0;
+    for (int cell = 0; cell < 4096; ++cell) {
+        const std::vector<int> list = list_of(cell);
+        REQUIRE(!list.empty());
+        REQUIRE(list.size() % 4 == 0);
+        bool ordered = true;  // ascending, then padding with the first
+        for (size_t i = 1; i < list.size(); ++i) ordered = ordered && (list[i] > list[i - 1] || list[i] == list.front());
+        if (!ordered) FAIL_CHECK("cell " << cell << "'s list is out of order");
+        listed += list.size();
+    }
+    CHECK(listed < 4096 * 8);  // a few entries per cell, not the palette's 128
+    // Colours all over the grid (and on its cell boundaries): the nearest entry, searched over the
+    // whole palette in double precision, is always in the colour's cell's list.
+    uint32_t state = 12345;
+    int missing = 0;
+    auto next = [&] { state = state * 1664525u + 1013904223u; return (state >> 8) / 16777216.0; };
+    for (int n = 0; n < 20000; ++n) {
+        double rgb[3];
+        for (double& v : rgb) v = n % 4 == 0 ? -0.0625 + std::floor(next() * 17) * (1.125 / 16) : -0.0625 + 1.125 * next() * 0.999999;
+        int best = 0;
+        double best_distance = INFINITY;
+        for (int i = 0; i < 128; ++i) {
+            double d = 0;
+            for (int c = 0; c < 3; ++c) d += std::pow(byte(i, 0, c) / 255.0 - rgb[c], 2);
+            if (d < best_distance) best_distance = d, best = i;
+        }
+        int cell = 0;
+        for (int c = 2; c >= 0; --c) cell = cell * 16 + std::clamp(static_cast<int>(std::floor((rgb[c] + 0.0625) * (16 / 1.125))), 0, 15);
+        const std::vector<int> list = list_of(cell);
+        if (std::find(list.begin(), list.end(), best) == list.end()) {
+            FAIL_CHECK("colour " << rgb[0] << ", " << rgb[1] << ", " << rgb[2] << ": nearest entry " << best << " not in cell " << cell << "'s list");
+            if (++missing > 5) break;
+        }
+    }
+    CHECK(missing == 0);
+}
+
+TEST_CASE("the palette pass picks through its cell lists what a search of every entry picks", "[scene][palette]") {
+    // Colours sweeping RGB past the grid's edges (they search the whole palette), and some that are
+    // not numbers: Vulkan (the cell lists) against the reference (every entry, in double).
+    const Preset& p = *test::shipped_library().find_preset("atari-ntsc");
+    const int w = 96, h = 64;
+    auto source = [&](int) -> Result<Image> {
+        Image image = Image::make(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float r = -0.15f + 1.3f * (x % 32) / 31.0f, g = -0.15f + 1.3f * (y % 32) / 31.0f,
+                            b = -0.15f + 1.3f * ((x / 32) + 3 * (y / 32)) / 5.0f;
+                image.set_pixel(x, y, {r, g, b, 1.0f});
+            }
+        image.set_pixel(5, 5, {NAN, 0.5f, 0.5f, 1.0f});
+        return image;
+    };
+    const SceneRenders r = render_both(p, source, w, h, {0});
+    size_t different = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) different += std::abs(r.vulkan.front().at(x, y)[c] - r.reference.front().at(x, y)[c]) > 1e-3f;
+    CHECK(different == 0);
 }
 
 TEST_CASE("the palette pass dithers with the article's 4x4 Bayer matrix", "[scene][palette]") {

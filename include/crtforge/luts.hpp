@@ -37,9 +37,9 @@ struct LutGenerator {
 // of 32x32 side by side: x = blue * 32 + red, y = green), each texel the RGB after an NTSC YIQ
 // decode with hue, saturation, contrast, brightness and gamma ("a simplified version of Drag's
 // NES Palette Generator").
-// atari_ntsc: the Atari 2600's NTSC palette, 128 colours as 128x1 (x = hue * 8 + luminance):
+// atari_ntsc: the Atari 2600's NTSC palette, 128 colours in row 0 (x = hue * 8 + luminance):
 // hue 0 grey, hues 1..15 at a fixed phase step from the colour burst (gold), 8 luminances, one
-// saturation, YIQ -> RGB.
+// saturation, YIQ -> RGB; below it the tables of its nearest-colour search (palette_cells.hpp).
 const std::vector<LutGenerator>& lut_generators();
 const LutGenerator* find_lut_generator(const std::string& name);
 

@@ -204,7 +204,11 @@ std::string GodotCompiler::with_loop_increments(const std::string& text) {
     // found: QUESTION"), which SPIRV-Cross leaves out when the loop steps inside its body. An
     // increment of zero changes nothing: `x += 0` on the loop's own variable, or on a variable
     // declared for the purpose when the loop declares none.
-    static const std::regex loop(R"(for \(([^;]*); ([^;]*); \))");
+    // SPIRV-Cross writes `for (;;)` for a loop it cannot put in for's three parts (one whose exit
+    // test is not at its head). Godot 3.2.3 refuses that in some places ("Expected expression" at
+    // atari-ntsc's cell-list loop, nested in an if) and takes it in others; with all three parts,
+    // `true` the condition, it takes it everywhere.
+    static const std::regex loop(R"(for \(([^;]*); ?([^;]*); ?\))");
     static const std::regex declared(R"(^(int|uint|float) (\w+))");
     std::string out;
     size_t last = 0;
@@ -222,7 +226,8 @@ std::string GodotCompiler::with_loop_increments(const std::string& text) {
         } else {
             throw spirv_cross::CompilerError("a for loop with no increment and an initialiser Godot 3 cannot extend: " + init);
         }
-        out += "for (" + init + "; " + (*it)[2].str() + "; " + step + ")";
+        const std::string condition = (*it)[2].str().empty() ? std::string("true") : (*it)[2].str();
+        out += "for (" + init + "; " + condition + "; " + step + ")";
         last = static_cast<size_t>(it->position() + it->length());
     }
     out.append(text, last, std::string::npos);

@@ -22,7 +22,7 @@ void fragment()
     float sum_1_1;
     int k_1 = 0;
     float sum_3 = 0.0;
-    for (;;)
+    for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)
     {
         if (k_1 < loopCount)
         {

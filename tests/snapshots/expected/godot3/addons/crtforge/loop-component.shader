@@ -17,7 +17,7 @@ void fragment()
     int k_1_1;
     vec4 s_1_1;
     int k_2 = 0;
-    for (;;)
+    for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)
     {
         s_1_1 = s_2;
         s_1_1.y = _379 * 0.9 + (0.01 * float(k_2));
