@@ -155,7 +155,14 @@ TEST_CASE("a session divides every scene by the fastest blit it measured of that
         CHECK(t.passes.front().blit_ns <= before);
         CHECK(t.display_blit_ns == fastest);  // a single pass onto the display is the display's shape
         for (const StageCost& c : t.stage_costs) CHECK(c.blit_ns == fastest);
+        CHECK(t.passes.front().own_blit_ns >= fastest);
     }
+    // A scene whose blits ran well above the session's fastest was timed in a slow spell.
+    SceneTiming slow = timings.front();
+    slow.passes.front().own_blit_ns = 1.1 * fastest;
+    CHECK(session.quiet(slow));
+    slow.passes.front().own_blit_ns = 1.5 * fastest;
+    CHECK_FALSE(session.quiet(slow));
 }
 
 TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front", "[bench][cli]") {

@@ -52,7 +52,8 @@ struct PassTiming {
     int input_width = 0, input_height = 0;
     std::string format;              // the pass's framebuffer format
     double ns = 0;                   // device nanoseconds per draw (median)
-    double blit_ns = 0;              // a blit of the same sizes and format (fastest timing)
+    double blit_ns = 0;              // a blit of the same sizes and format: the session's fastest
+    double own_blit_ns = 0;          // the fastest of the blits timed beside this pass
     double spread = 0;               // (max - min) / median of the pass's timings
     ShaderCost cost;                 // of the pass's fragment shader
     double ratio() const { return blit_ns > 0 ? ns / blit_ns : 0; }
@@ -111,6 +112,9 @@ public:
     // `timing`'s blits set to the fastest the session has measured of each shape: a scene timed
     // early in a run is compared against the same baseline as one timed late.
     void rebase(SceneTiming& timing) const;
+    // Whether every pass of `timing` was timed while the machine ran blits at their fastest (within
+    // 15 % of the session's fastest of the shape); a scene that was not is worth timing again.
+    bool quiet(const SceneTiming& timing) const;
 
 private:
     Result<SceneTiming> measure(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
