@@ -30,7 +30,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--input", o->input, "Generated test input, at the preset's source size")->capture_default_str();
     cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
     cmd->add_option("--draws", o->draws, "Draws per timing")->check(CLI::Range(1, 100000))->capture_default_str();
-    cmd->add_option("--repeats", o->repeats, "Timings per pass (the median is reported; the blit baseline takes the fastest of max(N, 9))")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 9))")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
     cmd->add_option("--uniforms", o->uniforms,

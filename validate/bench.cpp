@@ -36,56 +36,42 @@ const char* format_name(OutputFormat f) {
     return "other";
 }
 
-// The blit baseline: the fastest of its timings, taken between the pass's own timings and kept
-// across the session for each shape. A copy is bound by memory, and on lavapipe on a shared machine
-// its time comes in two modes that last seconds: at 1920x1080 the same blit takes 4.6 ms or 7.9 ms
-// (rarely between), while a shader bound by arithmetic moves by a few percent and one bound by
-// memory (a palette lookup) as much as the copy. A median picks either mode, and the ratios with it
-// (a preset read 2.1x and 3.7x in two runs). So the ratio is the pass's time in the fast mode over
-// the fastest blit: only the pass's timings whose neighbouring blit ran within kQuiet of the fastest
-// known count, and a scene timed wholly in a slow spell is timed again (BenchSession::quiet()).
+// Both sides of a ratio are the fastest of their timings. On lavapipe on a shared machine a copy
+// runs at one of two speeds, switching every second or so and from one pipeline to the next: at
+// 1920x1080 the same blit takes 4.6 ms or 7.9 ms (rarely between); a shader bound by arithmetic
+// moves by a few percent, one bound by memory (a palette lookup, the passthrough) as much as the
+// copy. A median picks either mode, and the ratios with it (a preset read 2.1x and 3.7x in two
+// runs, the passthrough 1.6x); the fastest is what each costs when nothing gets in the way. The blit
+// is timed beside every timing of the pass, twelve times more for a shape's first pass, and the
+// ratio divides by the session's fastest; a scene whose blits all ran slow is timed again
+// (BenchSession::quiet()).
 constexpr int kBaselineTimings = 9;
 constexpr int kCalibrationTimings = 12;
 constexpr double kQuiet = 1.15;
 
 struct PassTimes {
-    double median = 0, spread = 0, fastest_blit = 0;
+    double fastest = 0, median = 0, spread = 0, fastest_blit = 0;
 };
 
-// The pass's `repeats` timings and, given a blit, at least kBaselineTimings of it, interleaved so
-// each pass timing has a blit beside it; `known_fastest`: the session's fastest blit of the shape
-// (0: none yet). The median and spread are of the timings taken in the fast mode, or of all when
-// there were none.
-Result<PassTimes> time_pass(RenderEngine& engine, const RenderJob& job, const RenderJob* blit, const BenchOptions& o,
-                            double known_fastest = 0) {
-    std::vector<std::pair<double, double>> pairs;  // pass, the blit after it
+// The pass's `repeats` timings and, given a blit, at least kBaselineTimings of it, interleaved.
+Result<PassTimes> time_pass(RenderEngine& engine, const RenderJob& job, const RenderJob* blit, const BenchOptions& o) {
+    std::vector<double> samples;
     PassTimes out;
-    out.fastest_blit = known_fastest;
     for (int i = 0; i < (blit ? std::max(o.repeats, kBaselineTimings) : o.repeats); ++i) {
-        double pass = 0;
         if (i < o.repeats) {
             auto ns = engine.time_draw(job, o.draws);
             if (!ns.ok()) return ns.error();
-            pass = ns.value();
+            samples.push_back(ns.value());
         }
-        double base = 0;
-        if (blit) {
-            auto ns = engine.time_draw(*blit, o.draws);
-            if (!ns.ok()) return ns.error();
-            base = ns.value();
-            out.fastest_blit = out.fastest_blit > 0 ? std::min(out.fastest_blit, base) : base;
-        }
-        if (i < o.repeats) pairs.emplace_back(pass, base);
+        if (!blit) continue;
+        auto base = engine.time_draw(*blit, o.draws);
+        if (!base.ok()) return base.error();
+        out.fastest_blit = i == 0 ? base.value() : std::min(out.fastest_blit, base.value());
     }
-    std::vector<double> quiet, all;
-    for (const auto& [pass, base] : pairs) {
-        all.push_back(pass);
-        if (!blit || base <= kQuiet * out.fastest_blit) quiet.push_back(pass);
-    }
-    std::vector<double>& samples = quiet.empty() ? all : quiet;
     std::sort(samples.begin(), samples.end());
+    out.fastest = samples.front();
     out.median = samples[samples.size() / 2];
-    out.spread = out.median > 0 ? (samples.back() - samples.front()) / out.median : 0.0;
+    out.spread = out.fastest > 0 ? (samples.back() - samples.front()) / out.fastest : 0.0;
     return out;
 }
 
@@ -244,7 +230,7 @@ Result<std::vector<StageCost>> BenchSession::stage_costs(const Preset& preset, c
             cost.pass = preset.passes[p].alias;
             cost.stage = stage.stage ? stage.stage->name : std::string();
             cost.form = stage.form ? stage.form->name : std::string();
-            cost.ns = timed.passes[p].ns - times.value().median;
+            cost.ns = timed.passes[p].ns - times.value().fastest;
             cost.blit_ns = timed.passes[p].blit_ns;
             costs.push_back(std::move(cost));
         }
@@ -309,10 +295,10 @@ Result<SceneTiming> BenchSession::measure(const Preset& preset, const Preset& su
                 state_->fastest(shape_of(t), ns.value());
             }
         }
-        const auto known = state_->fastest_blit.find(shape_of(t));
-        auto times = time_pass(*engine.value(), job, &blit, o, known == state_->fastest_blit.end() ? 0.0 : known->second);
+        auto times = time_pass(*engine.value(), job, &blit, o);
         if (!times.ok()) return times.error();
-        t.ns = times.value().median;
+        t.ns = times.value().fastest;
+        t.median_ns = times.value().median;
         t.spread = times.value().spread;
         t.own_blit_ns = times.value().fastest_blit;
         t.blit_ns = state_->fastest(shape_of(t), times.value().fastest_blit);
@@ -378,7 +364,7 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
 }
 
 std::string format_scene_timing(const SceneTiming& t) {
-    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, median of the timings)\n", t.label(), t.width,
+    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, the fastest of the timings)\n", t.label(), t.width,
                                 t.height, t.frame, t.device, t.draws);
     s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12} {:>12} {:>8} {:>7} {:>7} {:>7} {:>6}\n", "pass", "input", "output", "format",
                      "us/draw", "blit us", "x blit", "spread", "instr", "samples", "transc");

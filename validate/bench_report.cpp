@@ -85,7 +85,7 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
         json passes = json::array();
         for (const PassTiming& p : t.passes)
             passes.push_back({{"alias", p.alias}, {"input", {p.input_width, p.input_height}}, {"output", {p.width, p.height}},
-                              {"format", p.format}, {"nsPerDraw", p.ns}, {"blitNs", p.blit_ns}, {"ratio", p.ratio()}, {"spread", p.spread},
+                              {"format", p.format}, {"nsPerDraw", p.ns}, {"medianNsPerDraw", p.median_ns}, {"blitNs", p.blit_ns}, {"ratio", p.ratio()}, {"spread", p.spread},
                               {"shader", cost_json(p.cost)}});
         out.push_back({{"preset", t.preset},
                        {"tier", t.tier},
