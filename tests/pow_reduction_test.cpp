@@ -41,15 +41,6 @@ std::string powers_shader(const std::string& e0, const std::string& e1, const st
            "}\n";
 }
 
-const char* const kVertex = R"(#version 450
-layout(location = 0) out vec2 vTexCoord;
-void main() {
-    vec2 uv = vec2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));
-    vTexCoord = uv;
-    gl_Position = vec4(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
 }  // namespace
 
 TEST_CASE("pow with a constant exponent becomes sqrt and products, the others stay pow", "[compile][pow]") {
@@ -83,7 +74,7 @@ TEST_CASE("the rewritten powers compute what std::pow does, on lavapipe", "[comp
     for (const Case& c : {Case{{"0.5", "1.5", "2.0", "2.5"}, {0.5, 1.5, 2.0, 2.5}},
                           Case{{"3.0", "4.0", "-0.5", "1.7"}, {3.0, 4.0, -0.5, 1.7}}}) {
         auto job = test::frame_job<RenderJob>(Image{}, width, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
-        job.vertex_spirv = compile_optimized(kVertex, ShaderStage::Vertex);
+        job.vertex_spirv = compile_optimized(test::shipped_library().vertex_source(), ShaderStage::Vertex);  // the generator's
         job.fragment_spirv = compile_optimized(powers_shader(c.glsl[0], c.glsl[1], c.glsl[2], c.glsl[3]), ShaderStage::Fragment);
         const Image out = test::require_image(engine.value()->render(job), width, 1);
         for (int px = 0; px < width; ++px) {
