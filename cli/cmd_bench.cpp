@@ -3,7 +3,6 @@
 // Each pass of each preset's scene timed on Vulkan by GPU timestamps, as a ratio to a blit of the
 // same sizes measured in the same run (crtforge/validate/bench.hpp).
 #include <algorithm>
-#include <memory>
 
 #include <fmt/core.h>
 
@@ -90,56 +89,34 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
             if (std::none_of(variants.begin(), variants.end(), [&](const auto& v) { return v.first == u; }))
                 variants.emplace_back(u, parsed.value());
         }
-        // Each scene to time: a preset's tier under one --uniforms variant.
-        struct Scene {
-            std::shared_ptr<const std::vector<PresetTier>> tiers;
-            size_t tier = 0;
-            std::string label;
-            VariantOptions variant;
-        };
-        std::vector<Scene> scenes;
-        for (const Preset* preset : presets) {
-            auto tiers = std::make_shared<std::vector<PresetTier>>();
-            if (o->no_tiers) tiers->push_back({QualityTier::Point, *preset, {}});
-            else *tiers = preset_tiers(*preset);
-            for (size_t t = 0; t < tiers->size(); ++t)
-                for (const auto& [label, variant] : variants) scenes.push_back({tiers, t, label, variant});
-        }
-        BenchSession session(*lib, options.vulkan);
-        auto time_scene = [&](const Scene& scene) {
-            options.variant = scene.variant;
-            options.uniforms_label = scene.label;
-            options.stage_costs = o->stage_costs && scene.tier == 0;
-            return session.tier(*scene.tiers, scene.tier, options);
-        };
-        auto print_scene = [&](const Scene& scene, const SceneTiming& timing, const char* note) {
-            const PresetTier& tier = (*scene.tiers)[scene.tier];
-            fmt::print("{}{}{}\n", note, format_scene_timing(timing), tier.changes.empty() ? std::string() : "tier: " + join_list(tier.changes) + "\n");
-            std::fflush(stdout);
-        };
         std::vector<SceneTiming> timings;
-        for (const Scene& scene : scenes) {
-            auto timing = time_scene(scene);
-            if (!timing.ok()) return report(timing.error());
-            print_scene(scene, timing.value(), "");
-            timings.push_back(std::move(timing.value()));
-        }
-        // A scene timed wholly while the machine ran copies slowly (the blits beside it well above
-        // the run's fastest) is timed once more, now that the fastest is known.
-        for (size_t i = 0; i < timings.size(); ++i) {
-            if (session.quiet(timings[i])) continue;
-            auto again = time_scene(scenes[i]);
-            if (!again.ok()) return report(again.error());
-            print_scene(scenes[i], again.value(), "timed again (the machine was slow the first time):\n");
-            timings[i] = std::move(again.value());
+        BenchSession session(*lib, options.vulkan);
+        for (const Preset* preset : presets) {
+            std::vector<PresetTier> tiers;
+            if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}});
+            else tiers = preset_tiers(*preset);
+            for (size_t t = 0; t < tiers.size(); ++t)
+            for (const auto& [label, variant] : variants) {
+                options.variant = variant;
+                options.uniforms_label = label;
+                options.stage_costs = o->stage_costs && t == 0;
+                auto timing = session.tier(tiers, t, options);
+                if (!timing.ok()) return report(timing.error());
+                fmt::print("{}{}{}\n", timing.value().retimed ? "timed twice (the blits beside the first timing all ran slow):\n" : "",
+                           format_scene_timing(timing.value()),
+                           tiers[t].changes.empty() ? std::string() : "tier: " + join_list(tiers[t].changes) + "\n");
+                std::fflush(stdout);
+                timings.push_back(std::move(timing.value()));
+            }
         }
         // The summary: every ratio against the run's fastest blit of its shape (the tables above
         // were printed with the fastest known when each scene ran).
         for (SceneTiming& timing : timings) session.rebase(timing);
-        if (timings.size() > 1 || !o->out.empty()) fmt::print("{}", bench_markdown(timings));
+        const std::string markdown = bench_markdown(timings);
+        if (timings.size() > 1 || !o->out.empty()) fmt::print("{}", markdown);
         if (!o->out.empty()) {
             for (const auto& [name, text] : {std::pair<std::string, std::string>{"bench.json", bench_json(timings)},
-                                             {"bench.md", bench_markdown(timings)}, {"bench.svg", bench_svg(timings)}})
+                                             {"bench.md", markdown}, {"bench.svg", bench_svg(timings)}})
                 if (auto s = write_file_atomic(o->out + "/" + name, text); !s.ok()) return report(s.error());
             fmt::print("bench: {} scenes into {}/bench.json, bench.md, bench.svg\n", timings.size(), o->out);
         }

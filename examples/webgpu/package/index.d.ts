@@ -204,3 +204,22 @@ export function loadManifest(): Promise<Manifest>;
 export function presetNames(): Promise<string[]>;
 /** A whole preset, its WGSL and LUTs read from the package: ready to encode(). */
 export function loadCrtPreset(device: GPUDevice, name: string, options: { format: GPUTextureFormat }): Promise<CrtScene>;
+
+/**
+ * The pass the framework adapters (crtforge-presets/three, /pixi, /babylon) return: one preset on a
+ * framework's own GPUDevice, drawing between two of its textures (`Texture`: how that framework
+ * names one).
+ */
+export interface FrameworkCrtPass<Texture> {
+  readonly scene: CrtScene;
+  params(): Array<CrtParam & { pass: string }>;
+  setParam(name: string, value: ParamValue): void;
+  /** Draws `input` through the preset into `output`, at output's size; submits on the framework's device. */
+  render(input: Texture, output: Texture,
+         options?: { frame?: number; time?: number; fit?: 'stretch' | 'aspect' | 'integer' }): Promise<void>;
+  /** Records the pass into your encoder, onto a view of the format the pass was made for. */
+  encode(encoder: GPUCommandEncoder, options: Parameters<CrtScene['encode']>[1]): void;
+  /** The GPUTexture the framework made for a texture. */
+  textureOf(texture: Texture): GPUTexture;
+  destroy(): void;
+}

@@ -85,6 +85,7 @@ struct SceneTiming {
     double display_blit_ns = 0;      // a blit of the source onto the whole display
     int source_width = 0, source_height = 0;
     std::vector<StageCost> stage_costs;  // with BenchOptions::stage_costs
+    bool retimed = false;                // timed a second time: the blits beside the first all ran slow
     double total_ns() const;
     // The Vulkan frame against the point-sampled reference and the supersampled one (when measured).
     std::optional<ImageMetrics> vs_point, vs_supersampled;
@@ -114,11 +115,14 @@ public:
     // early in a run is compared against the same baseline as one timed late.
     void rebase(SceneTiming& timing) const;
     // Whether every pass of `timing` was timed while the machine ran blits at their fastest (within
-    // 15 % of the session's fastest of the shape); a scene that was not is worth timing again.
+    // 15 % of the session's fastest of the shape); scene() and tier() time a scene that was not
+    // once more.
     bool quiet(const SceneTiming& timing) const;
 
 private:
+    // measure_once(), and once more when quiet() says the machine was slow throughout.
     Result<SceneTiming> measure(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
+    Result<SceneTiming> measure_once(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
     Result<Image> reference(const Preset& preset, const BenchOptions& options, int supersample);
     Result<std::vector<StageCost>> stage_costs(const Preset& preset, const SceneTiming& timed, const BenchOptions& options);
     struct State;
