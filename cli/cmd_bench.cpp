@@ -1,4 +1,4 @@
-// crtforge bench [--preset NAME ...] [--size WxH] [--input NAME] [--frame N] [--draws N] [--supersample N]
+// crtforge bench [--preset NAME ...] [--size WxH,...] [--input NAME] [--frame N] [--draws N] [--supersample N]
 //                [--repeats N] [--device NAME|INDEX]
 // Each pass of each preset's scene timed on Vulkan by GPU timestamps, as a ratio to a blit of the
 // same sizes measured in the same run (crtforge/validate/bench.hpp).
@@ -13,22 +13,43 @@
 
 namespace crtforge::cli {
 
+namespace {
+
+// The default sizes: the three displays, a small one, HD and 4K (ratios to a blit move
+// with the size: the source texture stays in cache while the target grows).
+constexpr const char* kDefaultSizes = "640x480,1920x1080,3840x2160";
+// Draws per timing when --draws is not given: as many pixels as 32 draws at 1280x960 (about 130 ms
+// of blits on lavapipe at any size: 128 draws at 640x480, 19 at 1920x1080, 5 at 3840x2160).
+constexpr double kPixelsPerTiming = 32.0 * 1280 * 960;
+int default_draws(int width, int height) {
+    return std::clamp(static_cast<int>(std::lround(kPixelsPerTiming / (double(width) * height))), 2, 1000);
+}
+// Samples per axis of the supersampled reference when --supersample is not given: 4 x 4 up to
+// 1920x1080, 2 x 2 above, where device pixels are small against the source's texels and a 4 x 4
+// fp64 reference of every preset would take minutes.
+int default_supersample(int width, int height) { return double(width) * height <= 1920.0 * 1080 ? 4 : 2; }
+
+}  // namespace
+
 Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     auto* cmd = app.add_subcommand("bench", "Time every pass of presets on Vulkan (GPU timestamps) as ratios to a same-size blit");
     struct Options {
-        std::vector<std::string> presets;
-        std::string size = "1280x960", input = "pixel_art", device;
-        int frame = 1, draws = 40, repeats = 5, supersample = 4;
+        std::vector<std::string> presets, sizes{kDefaultSizes};
+        std::string input = "pixel_art", device;
+        int frame = 1, draws = 0, repeats = 5, supersample = 4;  // draws 0: default_draws()
         std::string out;
         bool quick = false, no_tiers = false, stage_costs = false;
         std::vector<std::string> uniforms{"default"};
     };
     auto o = std::make_shared<Options>();
     cmd->add_option("--preset", o->presets, "Presets to time (repeat or comma-separate; default: all)")->delimiter(',');
-    cmd->add_option("--size", o->size, "Display size WIDTHxHEIGHT")->capture_default_str();
+    cmd->add_option("--size", o->sizes, "Display sizes WIDTHxHEIGHT, each timed and measured (repeat or comma-separate)")
+        ->delimiter(',')
+        ->capture_default_str();
     cmd->add_option("--input", o->input, "Generated test input, at the preset's source size")->capture_default_str();
     cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
-    cmd->add_option("--draws", o->draws, "Draws per timing")->check(CLI::Range(1, 100000))->capture_default_str();
+    auto* draws = cmd->add_option("--draws", o->draws, "Draws per timing (default: 32 at 1280x960, scaled by pixels: 128 at 640x480, 5 at 3840x2160)")
+                      ->check(CLI::Range(1, 100000));
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 9))")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
@@ -40,22 +61,28 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_flag("--stage-costs", o->stage_costs,
                   "Also time each pass once per stage with that stage off, on the point tier: what each stage costs");
     cmd->add_flag("--quick", o->quick, "320x240, 5 draws, 3 repeats, 2x2 supersampling: every preset in well under a minute");
-    cmd->add_option("--supersample", o->supersample,
-                    "Error against the point-sampled fp64 reference and an N x N supersampled one (0: no error columns)")
-        ->check(CLI::Range(0, 16))
-        ->capture_default_str();
-    return [&g, o]() {
+    auto* supersample = cmd->add_option("--supersample", o->supersample,
+                                        "Error against the point-sampled fp64 reference and an N x N supersampled one (0: no error "
+                                        "columns; default: 4 up to 1920x1080, 2 above)")
+                            ->check(CLI::Range(0, 16));
+    return [&g, o, draws, supersample]() {
         int code = kExitOk;
         auto lib = load_library(g, code);
         if (!lib) return code;
+        const bool draws_given = draws->count() > 0, supersample_given = supersample->count() > 0;
         if (o->quick) {
-            o->size = "320x240";
-            o->draws = 5;
+            o->sizes = {"320x240"};
+            if (!draws_given) o->draws = 5;
             o->repeats = 3;
-            o->supersample = std::min(o->supersample, 2);
+            o->supersample = std::min(supersample_given ? o->supersample : 2, 2);
         }
-        auto size = parse_size(o->size);
-        if (!size.ok()) return report(size.error());
+        drop_repeats(o->sizes);
+        std::vector<std::pair<int, int>> sizes;
+        for (const std::string& text : o->sizes) {
+            auto size = parse_size(text);
+            if (!size.ok()) return report(size.error());
+            sizes.push_back(size.value());
+        }
         if (o->frame < 0) return report(make_error("must be 0 or more", {}, 0, "--frame"));
         const auto& inputs = test_input_names();
         if (std::find(inputs.begin(), inputs.end(), o->input) == inputs.end())
@@ -70,14 +97,10 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
             presets.push_back(p.value());
         }
         BenchOptions options;
-        options.width = size.value().first;
-        options.height = size.value().second;
         options.input = o->input;
         options.frame = o->frame;
-        options.draws = o->draws;
         options.repeats = o->repeats;
         options.vulkan.device = o->device;
-        options.supersample = o->supersample;
         std::vector<std::pair<std::string, VariantOptions>> variants;
         for (const std::string& u : o->uniforms) {
             if (u != "default" && u != "all" && u != "none" && u != "uber")
@@ -91,7 +114,12 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         }
         std::vector<SceneTiming> timings;
         BenchSession session(*lib, options.vulkan);
+        for (const auto& [width, height] : sizes)
         for (const Preset* preset : presets) {
+            options.width = width;
+            options.height = height;
+            options.draws = draws_given || o->quick ? o->draws : default_draws(width, height);
+            options.supersample = supersample_given || o->quick ? o->supersample : default_supersample(width, height);
             std::vector<PresetTier> tiers;
             if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}});
             else tiers = preset_tiers(*preset);

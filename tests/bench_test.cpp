@@ -4,6 +4,7 @@
 // they say.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "crtforge/files.hpp"
@@ -186,6 +187,39 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
                        Catch::Contains("| classic@filtered | 320x240 | 1 |") && Catch::Contains("| atari-16 | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered"));
     const std::string svg = read_text_file(out / "bench.svg").value();
     CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">super-win</text>"));
+}
+
+TEST_CASE("bench at several sizes reports each size on its own", "[bench][cli]") {
+    test::TempDir out;
+    auto run = test::run_crtforge("bench --preset crt-shadow-mask --size 160x120,240x180 --draws 2 --repeats 1 --supersample 2 --out " + out.path());
+    REQUIRE(run.exit_code == 0);
+    auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
+    REQUIRE(json.size() == 10);  // five quality tiers at each size, the first size first
+    std::map<int, int> on_front;  // per display width
+    for (size_t i = 0; i < json.size(); ++i) {
+        CHECK(json[i]["display"][0].get<int>() == (i < 5 ? 160 : 240));
+        CHECK(json[i]["drawsPerTiming"].get<int>() == 2);
+        on_front[json[i]["display"][0].get<int>()] += json[i]["pareto"].get<bool>();
+    }
+    CHECK(on_front[160] >= 1);  // each size has its own front
+    CHECK(on_front[240] >= 1);
+    const std::string md = read_text_file(out / "bench.md").value();
+    CHECK_THAT(md, Catch::Contains("### 160x120") && Catch::Contains("### 240x180") && Catch::Contains("tier to pick at 160x120") &&
+                       Catch::Contains("tier to pick at 240x180"));
+    CHECK(md.find("### 160x120") < md.find("### 240x180"));
+    const std::string svg = read_text_file(out / "bench.svg").value();
+    CHECK_THAT(svg, Catch::Contains("(160x120, ") && Catch::Contains("(240x180, "));  // one plot per size
+
+    // Without --draws, a timing draws as many pixels at every size.
+    auto scaled = test::run_crtforge("bench --preset passthrough --no-tiers --size 320x240,640x480 --repeats 1 --supersample 0 --out " + out.path());
+    REQUIRE(scaled.exit_code == 0);
+    json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
+    REQUIRE(json.size() == 2);
+    CHECK(json[0]["drawsPerTiming"].get<int>() == 4 * json[1]["drawsPerTiming"].get<int>());
+
+    auto bad = test::run_crtforge("bench --preset passthrough --size 160x120,0x5");
+    CHECK(bad.exit_code != 0);
+    CHECK_THAT(bad.err, Catch::Contains("--size") && Catch::Contains("0x5"));
 }
 
 TEST_CASE("a preset's quality tiers swap each stage between its point-sampled and filtered forms", "[bench][tiers]") {

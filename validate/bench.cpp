@@ -53,21 +53,16 @@ struct PassTimes {
     double fastest = 0, median = 0, spread = 0, fastest_blit = 0;
 };
 
-// The pass's `repeats` timings and, given a blit, at least kBaselineTimings of it, interleaved.
+// The pass's `repeats` timings and, given a blit, at least kBaselineTimings of it, interleaved
+// (each job built once for all its timings).
 Result<PassTimes> time_pass(RenderEngine& engine, const RenderJob& job, const RenderJob* blit, const BenchOptions& o) {
-    std::vector<double> samples;
+    std::vector<TimedJob> timed{{&job, o.repeats}};
+    if (blit) timed.push_back({blit, std::max(o.repeats, kBaselineTimings)});
+    auto ns = engine.time_draws(timed, o.draws);
+    if (!ns.ok()) return ns.error();
+    std::vector<double>& samples = ns.value()[0];
     PassTimes out;
-    for (int i = 0; i < (blit ? std::max(o.repeats, kBaselineTimings) : o.repeats); ++i) {
-        if (i < o.repeats) {
-            auto ns = engine.time_draw(job, o.draws);
-            if (!ns.ok()) return ns.error();
-            samples.push_back(ns.value());
-        }
-        if (!blit) continue;
-        auto base = engine.time_draw(*blit, o.draws);
-        if (!base.ok()) return base.error();
-        out.fastest_blit = i == 0 ? base.value() : std::min(out.fastest_blit, base.value());
-    }
+    if (blit) out.fastest_blit = *std::min_element(ns.value()[1].begin(), ns.value()[1].end());
     std::sort(samples.begin(), samples.end());
     out.fastest = samples.front();
     out.median = samples[samples.size() / 2];
@@ -288,11 +283,9 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
     // mode), so the first pass of that shape is judged against a fastest that means something.
     auto calibrate = [&](const BlitShape& shape, const RenderJob& blit) -> Status {
         if (state_->fastest_blit.count(shape)) return Ok{};
-        for (int i = 0; i < kCalibrationTimings; ++i) {
-            auto ns = engine.value()->time_draw(blit, o.draws);
-            if (!ns.ok()) return ns.error();
-            state_->fastest(shape, ns.value());
-        }
+        auto ns = engine.value()->time_draws({{&blit, kCalibrationTimings}}, o.draws);
+        if (!ns.ok()) return ns.error();
+        for (double t : ns.value()[0]) state_->fastest(shape, t);
         return Ok{};
     };
     for (size_t i = 0; i < jobs.size(); ++i) {

@@ -14,6 +14,22 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+constexpr double kPlotWidth = 900;
+
+// Costs and errors compare only at one display size: a blit's cost and the aliasing both change with it.
+bool same_display(const SceneTiming& a, const SceneTiming& b) { return a.width == b.width && a.height == b.height; }
+
+// The timings grouped by display size, in the order the sizes first appear.
+std::vector<std::vector<SceneTiming>> by_display(const std::vector<SceneTiming>& timings) {
+    std::vector<std::vector<SceneTiming>> groups;
+    for (const SceneTiming& t : timings) {
+        auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& group) { return same_display(group.front(), t); });
+        if (g == groups.end()) groups.push_back({t});
+        else g->push_back(t);
+    }
+    return groups;
+}
+
 // Each preset's point tier with each of its other tiers ("filtered", "filtered:<stage>"), measured
 // with the same --uniforms variant.
 std::vector<std::pair<const SceneTiming*, const SceneTiming*>> tier_pairs(const std::vector<SceneTiming>& timings) {
@@ -21,7 +37,8 @@ std::vector<std::pair<const SceneTiming*, const SceneTiming*>> tier_pairs(const 
     for (const SceneTiming& point : timings) {
         if (point.tier != "point" || !point.vs_supersampled) continue;
         for (const SceneTiming& filtered : timings)
-            if (filtered.preset == point.preset && filtered.uniforms == point.uniforms && filtered.tier.rfind("filtered", 0) == 0 &&
+            if (filtered.preset == point.preset && filtered.uniforms == point.uniforms && same_display(filtered, point) &&
+                filtered.tier.rfind("filtered", 0) == 0 &&
                 filtered.vs_supersampled)
                 pairs.emplace_back(&point, &filtered);
     }
@@ -37,8 +54,8 @@ json metrics_json(const std::optional<ImageMetrics>& m) {
     return {{"rmse", m->rmse}, {"psnr", m->psnr}, {"maxAbs", m->max_abs}, {"ssim", m->ssim}};
 }
 
-// Per preset, the timings (its tiers and --uniforms variants) that no other timing of the same
-// preset beats on both cost and error against the supersampled reference; a preset timed once has
+// Per preset and display size, the timings (its tiers and --uniforms variants) that no other timing
+// of the same preset at that size beats on both cost and error against the supersampled reference; a preset timed once has
 // no alternatives and no front. Across presets the errors do not compare: each is measured against
 // its own preset's picture (a palette preset that matches its reference exactly at a blit's cost
 // would otherwise "dominate" every CRT look).
@@ -48,7 +65,8 @@ std::vector<size_t> pareto_front(const std::vector<SceneTiming>& timings) {
         if (!timings[i].vs_supersampled) continue;
         bool dominated = false, alternatives = false;
         for (size_t j = 0; j < timings.size() && !dominated; ++j) {
-            if (j == i || !timings[j].vs_supersampled || timings[j].preset != timings[i].preset) continue;
+            if (j == i || !timings[j].vs_supersampled || timings[j].preset != timings[i].preset || !same_display(timings[i], timings[j]))
+                continue;
             alternatives = true;
             const double ci = timings[i].ratio(), cj = timings[j].ratio();
             const double ei = timings[i].vs_supersampled->rmse, ej = timings[j].vs_supersampled->rmse;
@@ -109,7 +127,9 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
     return out.dump(2) + "\n";
 }
 
-std::string bench_markdown(const std::vector<SceneTiming>& timings) {
+namespace {
+
+std::string markdown_of_display(const std::vector<SceneTiming>& timings) {
     const std::vector<size_t> front = pareto_front(timings);
     std::string md = "| preset | display | passes | cost (x blit) | instructions / samples / transcendentals | RMSE vs point fp64 | "
                      "RMSE vs supersampled fp64 | SSIM vs supersampled | Pareto |\n"
@@ -140,8 +160,19 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
     return md;
 }
 
+}  // namespace
+
+std::string bench_markdown(const std::vector<SceneTiming>& timings) {
+    const auto groups = by_display(timings);
+    if (groups.size() < 2) return markdown_of_display(timings);
+    std::string md;
+    for (const auto& group : groups)
+        md += fmt::format("{}### {}x{}\n\n{}", md.empty() ? "" : "\n", group.front().width, group.front().height, markdown_of_display(group));
+    return md;
+}
+
 std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
-    // Per preset: the point tier unless another lowers the aliasing error by at least a tenth; of
+    // Per preset and display size: the point tier unless another lowers the aliasing error by at least a tenth; of
     // those, the one doing the least work (the partial tiers come before "filtered") whose error is
     // within a tenth of the best tier's.
     std::vector<TierPick> picks;
@@ -160,21 +191,24 @@ std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
         const double ep = point->vs_supersampled->rmse;
         const std::string variant = point->uniforms.empty() || point->uniforms == "default" ? "" : " uniforms=" + point->uniforms;
         if (!chosen) {
-            picks.push_back({point->preset + variant, "point", fmt::format("RMSE vs supersampled {:.5f} point; filtering gains under a tenth; cost {:.2f}x blit", ep, point->ratio())});
+            picks.push_back({point->preset + variant, point->width, point->height, "point", fmt::format("RMSE vs supersampled {:.5f} point; filtering gains under a tenth; cost {:.2f}x blit", ep, point->ratio())});
             continue;
         }
         const double ef = chosen->vs_supersampled->rmse;
-        picks.push_back({point->preset + variant, chosen->tier,
+        picks.push_back({point->preset + variant, point->width, point->height, chosen->tier,
                          fmt::format("RMSE vs supersampled {:.5f} {}, {:.5f} point ({:.0f}% less aliasing); cost {:.2f}x vs {:.2f}x blit", ef,
                                      chosen->tier, ep, 100 * (1 - ef / std::max(ep, 1e-12)), chosen->ratio(), point->ratio())});
     }
     return picks;
 }
 
-std::string bench_svg(const std::vector<SceneTiming>& timings) {
+namespace {
+
+// One display size's plot, `top` pixels down the picture; returns its height.
+double svg_panel(const std::vector<SceneTiming>& timings, double top, std::string& out) {
     // Cost on x (ratio to a blit) and error against the supersampled reference on y, both log: the
     // costs span a blit to tens of blits (a multi-pass scene), the errors decades.
-    constexpr double W = 900, H = 560, L = 70, R = 30, T = 50, B = 50;
+    constexpr double W = kPlotWidth, H = 560, L = 70, R = 30, T = 50, B = 50;
     double min_cost = 1e9, max_cost = 0, min_err = 1e9, max_err = 0;
     for (const SceneTiming& t : timings) {
         if (t.ratio() > 0) min_cost = std::min(min_cost, t.ratio()), max_cost = std::max(max_cost, t.ratio());
@@ -288,13 +322,27 @@ std::string bench_svg(const std::vector<SceneTiming>& timings) {
         body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{}: {}</text>\n", L + (W - L - R) / kColumns * static_cast<double>(k % kColumns),
                             H + 14.0 * static_cast<double>(k / kColumns), k + 1, xml_escape(unplaced[k]));
     const double height = H + 14.0 * rows + (rows ? 6 : 0);
-    std::string s = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"12\">\n"
-                                "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", W, height);
-    s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
-                     timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
-                                                                   xml_escape(timings.front().device)));
-    s += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: each preset's Pareto front (no tier of it both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
-    return s + body + "</svg>\n";
+    out += fmt::format("<g transform=\"translate(0 {})\">\n", top);
+    out += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
+                       timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
+                                                                     xml_escape(timings.front().device)));
+    out += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: each preset's Pareto front (no tier of it both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
+    out += body + "</g>\n";
+    return height;
+}
+
+}  // namespace
+
+std::string bench_svg(const std::vector<SceneTiming>& timings) {
+    // One plot per display size, stacked.
+    std::string panels;
+    double top = 0;
+    for (const auto& group : by_display(timings)) top += svg_panel(group, top, panels) + 10;
+    if (panels.empty()) top = svg_panel({}, 0, panels) + 10;
+    return fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"12\">\n"
+                       "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+                       kPlotWidth, top - 10) +
+           panels + "</svg>\n";
 }
 
 }  // namespace crtforge

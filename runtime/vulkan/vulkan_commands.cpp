@@ -96,14 +96,16 @@ void record_pass(VkCommandBuffer commands, const PassCommands& pass) {
     record_readback(commands, pass.target, pass.readback);
 }
 
-void record_timed_pass(VkCommandBuffer commands, const PassCommands& pass, VkQueryPool queries, int draws) {
+void record_uploads(VkCommandBuffer commands, const PassCommands& pass) {
     for (const SampledTexture& texture : pass.textures) record_upload(commands, texture.staging, texture.image);
-    record_draw(commands, pass);  // warm-up: first use of the pipeline and textures
+}
+
+void record_timed_draws(VkCommandBuffer commands, const PassCommands& pass, VkQueryPool queries, int draws) {
+    record_draw(commands, pass);  // warm-up: the caches hold this pass's pipeline and textures again
     vkCmdResetQueryPool(commands, queries, 0, 2);
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 0);
     for (int i = 0; i < draws; ++i) record_draw(commands, pass);
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
-    record_readback(commands, pass.target, pass.readback);
 }
 
 Status submit_and_wait(const VulkanContext& context, const std::function<void(VkCommandBuffer)>& record) {

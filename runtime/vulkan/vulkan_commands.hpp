@@ -29,9 +29,12 @@ struct PassCommands {
 
 void record_pass(VkCommandBuffer commands, const PassCommands& pass);
 
-// The same, with `draws` more draws between two timestamps (query 0 and 1 of `queries`) after the
-// first: what time_draw() measures.
-void record_timed_pass(VkCommandBuffer commands, const PassCommands& pass, VkQueryPool queries, int draws);
+// The textures' uploads alone: a job timed many times uploads once (time_draws()).
+void record_uploads(VkCommandBuffer commands, const PassCommands& pass);
+
+// One untimed draw, then `draws` draws between two timestamps (query 0 and 1 of `queries`), no
+// readback: one timing of time_draws(). The textures must have been uploaded.
+void record_timed_draws(VkCommandBuffer commands, const PassCommands& pass, VkQueryPool queries, int draws);
 
 // Records with `record` into a fresh one-time command buffer, submits it to the context's queue
 // and blocks until the device has finished it.

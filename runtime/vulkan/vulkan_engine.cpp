@@ -1,6 +1,7 @@
 // The Vulkan RenderEngine: check the job, create its objects, run the one command buffer, read
 // the target back. The instance and device (VulkanContext) live as long as the engine; everything
-// else lives for one render() call.
+// else lives for one render() or time_draws() call.
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <optional>
@@ -88,88 +89,116 @@ public:
         }
     }
 
-    Result<double> time_draw(const RenderJob& job, int draws) override {
+    Result<std::vector<std::vector<double>>> time_draws(const std::vector<TimedJob>& jobs, int draws) override {
         try {
             if (draws < 1 || draws > 100000) return make_error(fmt::format("draws must be 1..100000; got {}", draws), {}, 0, "draws");
             context_->take_validation_messages();
-            auto plan = check_job(*context_, job);
-            if (!plan) return plan.error();
-            uint32_t families = 0;
-            vkGetPhysicalDeviceQueueFamilyProperties(context_->physical_device(), &families, nullptr);
-            std::vector<VkQueueFamilyProperties> properties(families);
-            vkGetPhysicalDeviceQueueFamilyProperties(context_->physical_device(), &families, properties.data());
-            if (context_->queue_family() >= families || properties[context_->queue_family()].timestampValidBits == 0)
-                return make_error("the device's graphics queue has no timestamps: it cannot time draws");
-            auto ns = run(job, plan.value(), draws);
+            if (!has_timestamps()) return make_error("the device's graphics queue has no timestamps: it cannot time draws");
+            auto ns = time_prepared(jobs, draws);
             if (auto messages = context_->take_validation_messages(); !messages.empty())
                 return validation_failure("while timing", messages);
-            if (!ns) return ns.error();
-            return ns.value().second;
+            return ns;
         } catch (const std::exception& e) {
             return make_error(fmt::format("timing failed: {}", e.what()));
         }
     }
 
 private:
-    Result<Image> run(const RenderJob& job, const JobPlan& plan) {
-        auto out = run(job, plan, 0);
-        if (!out) return out.error();
-        return std::move(out.value().first);
-    }
+    // Everything one job's draws need, built once: a job timed many times compiles its pipeline and
+    // uploads its textures once. Held by pointer: `commands` refers into the rest.
+    struct PreparedJob {
+        JobResources resources;
+        GraphicsPass pass;
+        UniqueFramebuffer framebuffer;
+        DescriptorSet descriptors;
+        std::optional<PassCommands> commands;
+    };
 
-    // The render, and with `timed_draws` > 0 the device nanoseconds per timed draw.
-    Result<std::pair<Image, double>> run(const RenderJob& job, const JobPlan& plan, int timed_draws) {
+    Result<std::unique_ptr<PreparedJob>> prepare(const RenderJob& job, const JobPlan& plan) {
         const VulkanContext& context = *context_;
         auto resources = create_job_resources(context, job, plan);
         if (!resources) return resources.error();
-        const JobResources& r = resources.value();
-
         auto pass = create_graphics_pass(context, job, plan.output_format);
         if (!pass) return pass.error();
-        auto framebuffer = create_framebuffer(context, pass.value().render_pass.get(), r.target);
+        auto out = std::make_unique<PreparedJob>(PreparedJob{std::move(resources).value(), std::move(pass).value(), {}, {}, {}});
+        auto framebuffer = create_framebuffer(context, out->pass.render_pass.get(), out->resources.target);
         if (!framebuffer) return framebuffer.error();
-        auto descriptors =
-            create_descriptor_set(context, pass.value(), job, r.uniforms ? &*r.uniforms : nullptr, r.textures);
+        out->framebuffer = std::move(framebuffer).value();
+        const JobResources& r = out->resources;
+        auto descriptors = create_descriptor_set(context, out->pass, job, r.uniforms ? &*r.uniforms : nullptr, r.textures);
         if (!descriptors) return descriptors.error();
+        out->descriptors = std::move(descriptors).value();
+        out->commands.emplace(PassCommands{r.textures, out->pass, out->framebuffer.get(), out->descriptors.set,
+                                           job.descriptor_set, r.target, r.readback, job.clear_color});
+        return out;
+    }
 
-        const PassCommands commands{r.textures,
-                                    pass.value(),
-                                    framebuffer.value().get(),
-                                    descriptors.value().set,
-                                    job.descriptor_set,
-                                    r.target,
-                                    r.readback,
-                                    job.clear_color};
-        VkQueryPool queries = VK_NULL_HANDLE;
-        if (timed_draws > 0) {
-            VkQueryPoolCreateInfo info{};
-            info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-            info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-            info.queryCount = 2;
-            if (VkResult res = vkCreateQueryPool(context.device(), &info, nullptr, &queries); res != VK_SUCCESS)
-                return vk_error("vkCreateQueryPool", res);
+    bool has_timestamps() const {
+        uint32_t families = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(context_->physical_device(), &families, nullptr);
+        std::vector<VkQueueFamilyProperties> properties(families);
+        vkGetPhysicalDeviceQueueFamilyProperties(context_->physical_device(), &families, properties.data());
+        return context_->queue_family() < families && properties[context_->queue_family()].timestampValidBits != 0;
+    }
+
+    // Every job built and uploaded once; then rounds: in each, every job with timings left is timed
+    // once, in the given order (so a pass and its baseline alternate).
+    Result<std::vector<std::vector<double>>> time_prepared(const std::vector<TimedJob>& jobs, int draws) {
+        const VulkanContext& context = *context_;
+        std::vector<std::unique_ptr<PreparedJob>> prepared;
+        int rounds = 0;
+        for (size_t i = 0; i < jobs.size(); ++i) {
+            if (!jobs[i].job || jobs[i].timings < 1)
+                return make_error(fmt::format("timed job {} has no job or no timings", i), {}, 0, "jobs");
+            auto plan = check_job(context, *jobs[i].job);
+            if (!plan) return plan.error();
+            auto job = prepare(*jobs[i].job, plan.value());
+            if (!job) return job.error();
+            prepared.push_back(std::move(job).value());
+            rounds = std::max(rounds, jobs[i].timings);
         }
+        if (auto s = submit_and_wait(context, [&](VkCommandBuffer cb) { for (auto& p : prepared) record_uploads(cb, *p->commands); }); !s)
+            return s.error();
+
+        VkQueryPoolCreateInfo info{};
+        info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = 2;
+        VkQueryPool queries = VK_NULL_HANDLE;
+        if (VkResult res = vkCreateQueryPool(context.device(), &info, nullptr, &queries); res != VK_SUCCESS)
+            return vk_error("vkCreateQueryPool", res);
         struct PoolGuard {
             VkDevice device;
             VkQueryPool pool;
-            ~PoolGuard() { if (pool != VK_NULL_HANDLE) vkDestroyQueryPool(device, pool, nullptr); }
+            ~PoolGuard() { vkDestroyQueryPool(device, pool, nullptr); }
         } guard{context.device(), queries};
-        auto record = [&](VkCommandBuffer cb) {
-            if (timed_draws > 0) record_timed_pass(cb, commands, queries, timed_draws);
-            else record_pass(cb, commands);
-        };
-        if (auto s = submit_and_wait(context, record); !s) return s.error();
-        double ns = 0;
-        if (timed_draws > 0) {
-            uint64_t stamps[2] = {0, 0};
-            if (VkResult res = vkGetQueryPoolResults(context.device(), queries, 0, 2, sizeof stamps, stamps, sizeof(uint64_t),
-                                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-                res != VK_SUCCESS)
-                return vk_error("vkGetQueryPoolResults", res);
-            ns = static_cast<double>(stamps[1] - stamps[0]) * context.limits().timestampPeriod / timed_draws;
+
+        std::vector<std::vector<double>> out(jobs.size());
+        for (int round = 0; round < rounds; ++round) {
+            for (size_t i = 0; i < jobs.size(); ++i) {
+                if (round >= jobs[i].timings) continue;
+                auto record = [&](VkCommandBuffer cb) { record_timed_draws(cb, *prepared[i]->commands, queries, draws); };
+                if (auto s = submit_and_wait(context, record); !s) return s.error();
+                uint64_t stamps[2] = {0, 0};
+                if (VkResult res = vkGetQueryPoolResults(context.device(), queries, 0, 2, sizeof stamps, stamps, sizeof(uint64_t),
+                                                         VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+                    res != VK_SUCCESS)
+                    return vk_error("vkGetQueryPoolResults", res);
+                out[i].push_back(static_cast<double>(stamps[1] - stamps[0]) * context.limits().timestampPeriod / draws);
+            }
         }
-        if (auto s = invalidate(context, r.readback); !s) return s.error();
-        return std::make_pair(read_texels(r.readback.mapped, job.width, job.height, job.format), ns);
+        return out;
+    }
+
+    // The render: uploads, the draw, the readback.
+    Result<Image> run(const RenderJob& job, const JobPlan& plan) {
+        auto prepared = prepare(job, plan);
+        if (!prepared) return prepared.error();
+        const PassCommands& commands = *prepared.value()->commands;
+        if (auto s = submit_and_wait(*context_, [&](VkCommandBuffer cb) { record_pass(cb, commands); }); !s) return s.error();
+        const HostBuffer& readback = prepared.value()->resources.readback;
+        if (auto s = invalidate(*context_, readback); !s) return s.error();
+        return read_texels(readback.mapped, job.width, job.height, job.format);
     }
 
     std::unique_ptr<VulkanContext> context_;

@@ -93,6 +93,12 @@ struct RenderJob {
     uint32_t uniform_binding = 0, texture_binding = 1, descriptor_set = 0;
 };
 
+// One job of RenderEngine::time_draws(): timed `timings` times.
+struct TimedJob {
+    const RenderJob* job = nullptr;
+    int timings = 1;
+};
+
 struct DeviceInfo {
     uint32_t index = 0;  // position in the Vulkan loader's enumeration; EngineOptions::device accepts it
     std::string name;    // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
@@ -111,11 +117,19 @@ public:
     // malformed or oversized texture, a viewport outside the target, a non-finite clear colour)
     // returns an ErrorKind::Input error with field "job.<name>" before any GPU work.
     virtual Result<Image> render(const RenderJob& job) = 0;
-    // The device time of the job's draw (render pass with its clear, pipeline, descriptors, the
-    // full-screen triangle), in nanoseconds per draw: `draws` repetitions recorded back to back
-    // between two timestamp queries, after one untimed draw (uploads done, caches warm). An
-    // ErrorKind::Input error when the device's queue has no timestamps.
-    virtual Result<double> time_draw(const RenderJob& job, int draws) = 0;
+    // Device times of jobs' draws (render pass with its clear, pipeline, descriptors, the
+    // full-screen triangle), in nanoseconds per draw: each job is built and uploaded once, then
+    // timed `timings` times, the jobs taking turns (round 1: each job once, in order; round 2 ...),
+    // each timing `draws` draws recorded back to back between two timestamp queries after one
+    // untimed draw. out[i] holds jobs[i]'s timings in order. An ErrorKind::Input error when the
+    // device's queue has no timestamps.
+    virtual Result<std::vector<std::vector<double>>> time_draws(const std::vector<TimedJob>& jobs, int draws) = 0;
+    // One job, timed once.
+    Result<double> time_draw(const RenderJob& job, int draws) {
+        auto ns = time_draws({{&job, 1}}, draws);
+        if (!ns.ok()) return ns.error();
+        return ns.value()[0][0];
+    }
 };
 
 struct EngineOptions {

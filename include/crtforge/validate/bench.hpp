@@ -141,10 +141,12 @@ std::string format_scene_timing(const SceneTiming& timing);
 // cost (ratio to a blit), each preset's Pareto front over its tiers and variants marked (errors
 // compare within a preset, each being against that preset's own picture).
 std::string bench_json(const std::vector<SceneTiming>& timings);
-// Per preset with several tiers, the one to pick at the measured size: the filtered tier where it
+// Per preset with several tiers and per display size measured, the one to pick at that size: the filtered tier where it
 // lowers the error against the supersampled reference by at least a tenth, else the cheaper point tier.
 struct TierPick {
-    std::string preset, tier, why;
+    std::string preset;
+    int width = 0, height = 0;  // the display it was measured at (one pick per preset and size)
+    std::string tier, why;
 };
 std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings);
 std::string bench_markdown(const std::vector<SceneTiming>& timings);
