@@ -35,28 +35,45 @@ ReferenceFault& fault_slot() {
 const ReferenceFault& reference_fault() { return fault_slot(); }
 void install_reference_fault(const ReferenceFault& fault) { fault_slot() = fault; }
 
-template <typename T>
-const T* Params::find(const std::string& name, const char* type) const {
-    auto it = values_.find(name);
-    const T* value = it == values_.end() ? nullptr : std::get_if<T>(&it->second);
-    if (!value) missing_.note("param '" + name + "' (" + type + ")");
-    return value;
+Params::Params(const std::map<std::string, Value>& values, const MissingNames& missing) : missing_(missing) {
+    size_t size = 16;
+    while (size < 4 * values.size()) size *= 2;  // at most a quarter full: short probes
+    slots_.assign(size, {std::string_view(), nullptr});
+    for (const auto& [name, value] : values) {
+        size_t i = slot_hash(name) & (size - 1);
+        while (slots_[i].second) i = (i + 1) & (size - 1);
+        slots_[i] = {name, &value};
+    }
 }
 
-double Params::num(const std::string& name) const {
-    const double factor = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
-    auto it = values_.find(name);
-    if (it != values_.end()) {
-        if (auto i = std::get_if<int64_t>(&it->second)) return static_cast<double>(*i) * factor;
-    }
-    const double* d = find<double>(name, "a number");
-    return d ? *d * factor : 0.0;
+const Value* Params::value(std::string_view name) const {
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = slot_hash(name) & mask; slots_[i].second; i = (i + 1) & mask)
+        if (slots_[i].first == name) return slots_[i].second;
+    return nullptr;
 }
-bool Params::flag(const std::string& name) const {
+
+template <typename T>
+const T* Params::find(std::string_view name, const char* type) const {
+    const Value* v = value(name);
+    const T* typed = v ? std::get_if<T>(v) : nullptr;
+    if (!typed) missing_.note("param '" + std::string(name) + "' (" + type + ")");
+    return typed;
+}
+
+double Params::num(std::string_view name) const {
+    const double factor = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
+    const Value* v = value(name);  // one lookup: int or float
+    if (auto i = v ? std::get_if<int64_t>(v) : nullptr) return static_cast<double>(*i) * factor;
+    if (auto d = v ? std::get_if<double>(v) : nullptr) return *d * factor;
+    missing_.note("param '" + std::string(name) + "' (a number)");
+    return 0.0;
+}
+bool Params::flag(std::string_view name) const {
     const bool* b = find<bool>(name, "a bool");
     return b && *b;
 }
-Vec3 Params::color(const std::string& name) const {
+Vec3 Params::color(std::string_view name) const {
     const Color* c = find<Color>(name, "a colour");
     if (!c) return {0, 0, 0};
     const double f = name == reference_fault().scale_param ? reference_fault().factor : 1.0;
@@ -251,6 +268,9 @@ Result<Image> render_reference(const ReferenceJob& job) {
     auto render_rows = [&](int y0, int y1) -> std::optional<Diagnostic> {
         Fragment f = base;  // each thread its own
         for (int y = y0; y < y1; ++y) {
+            if (!job.rows.empty() &&
+                std::none_of(job.rows.begin(), job.rows.end(), [y](const auto& r) { return y >= r.first && y < r.second; }))
+                continue;
             for (int x = 0; x < job.width; ++x) {
                 float* dst = out.at(x, y);
                 if (n == 1) {
@@ -391,6 +411,12 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             // picture, as it would not if only the last pass were supersampled.
             rj.supersample = job.supersample;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
+            if (i + 1 == preset.passes.size() && frame == run.back())
+                for (const auto& [first, end] : job.display_rows)  // display rows to the pass's, inside it
+                    if (std::min(end - screen.y, rj.height) > std::max(first - screen.y, 0))
+                        rj.rows.emplace_back(std::max(first - screen.y, 0), std::min(end - screen.y, rj.height));
+            if (!job.display_rows.empty() && rj.rows.empty() && i + 1 == preset.passes.size() && frame == run.back())
+                rj.rows.emplace_back(0, 0);  // no display row falls on the screen: shade none
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();
             // Every framebuffer but the display's stores its format; the last pass is compared unrounded.

@@ -2,6 +2,7 @@
 #include "crtforge/validate/bench.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <tuple>
 
@@ -45,7 +46,7 @@ const char* format_name(OutputFormat f) {
 // is timed beside every timing of the pass, twelve times more for a shape's first pass, and the
 // ratio divides by the session's fastest; a scene whose blits all ran slow is timed again
 // (BenchSession::measure()).
-constexpr int kBaselineTimings = 9;
+constexpr int kBaselineTimings = 5;
 constexpr int kCalibrationTimings = 12;
 constexpr double kQuiet = 1.15;
 
@@ -67,6 +68,56 @@ Result<PassTimes> time_pass(RenderEngine& engine, const RenderJob& job, const Re
     out.fastest = samples.front();
     out.median = samples[samples.size() / 2];
     out.spread = out.fastest > 0 ? (samples.back() - samples.front()) / out.fastest : 0.0;
+    return out;
+}
+
+// The error is measured on the whole frame up to 1920x1080; above, on evenly spaced bands of
+// kBandRows rows holding about as many pixels (a quarter of a 4K frame): a 4K reference of every
+// tier would otherwise take minutes, and the bands see the screen's middle and its edges alike.
+constexpr double kErrorPixels = 1920.0 * 1080;
+constexpr int kBandRows = 64;
+
+std::vector<std::pair<int, int>> error_rows(int width, int height) {
+    const int bands = static_cast<int>(std::ceil(kErrorPixels / (double(width) * kBandRows)));
+    if (double(width) * height <= kErrorPixels || bands * kBandRows >= height) return {};
+    std::vector<std::pair<int, int>> rows;
+    for (int i = 0; i < bands; ++i) {
+        const int first = i * height / bands + (height / bands - kBandRows) / 2;
+        rows.emplace_back(first, first + kBandRows);
+    }
+    return rows;
+}
+
+// `test` against `reference` on those rows: RMSE and max over their pixels, SSIM the mean of each
+// band's (windows never straddle two bands).
+Result<ImageMetrics> compare_rows(const Image& test, const Image& reference, const std::vector<std::pair<int, int>>& rows) {
+    if (rows.empty()) return compare_images(test, reference);
+    if (test.width != reference.width || test.height != reference.height)
+        return make_error("image sizes differ: the frame against its reference");
+    ImageMetrics out;
+    double squares = 0, ssim = 0, pixels = 0;
+    for (const auto& [first, end] : rows) {
+        auto band = [&](const Image& from) {
+            Image b = Image::make(from.width, end - first);
+            std::copy(from.rgba.begin() + static_cast<std::ptrdiff_t>(first) * from.width * 4,
+                      from.rgba.begin() + static_cast<std::ptrdiff_t>(end) * from.width * 4, b.rgba.begin());
+            return b;
+        };
+        auto m = compare_images(band(test), band(reference));
+        if (!m.ok()) return m.error();
+        const double n = double(test.width) * (end - first);
+        squares += m.value().rmse * m.value().rmse * n;
+        ssim += m.value().ssim * n;
+        pixels += n;
+        if (m.value().max_abs > out.max_abs || pixels == n) {
+            out.max_abs = m.value().max_abs;
+            out.worst_x = m.value().worst_x;
+            out.worst_y = m.value().worst_y + first;
+        }
+    }
+    out.rmse = std::sqrt(squares / pixels);
+    out.psnr = out.rmse > 0 ? std::min(100.0, 20.0 * std::log10(1.0 / out.rmse)) : 100.0;
+    out.ssim = ssim / pixels;
     return out;
 }
 
@@ -143,6 +194,7 @@ Result<Image> BenchSession::reference(const Preset& preset, const BenchOptions& 
     ref.height = o.height;
     ref.frames = {o.frame};
     ref.supersample = supersample;
+    ref.display_rows = error_rows(o.width, o.height);
     auto rendered = render_reference_scene(ref);
     if (!rendered.ok()) return rendered.error();
     return state_->references[key] = std::move(rendered.value().front());
@@ -315,11 +367,12 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
             if (n == 1 && !o.point_reference) continue;
             auto reference = this->reference(n == 1 ? preset : supersampled, o, n);
             if (!reference.ok()) return reference.error();
-            auto metrics = compare_images(run.value().frame, reference.value());
+            auto metrics = compare_rows(run.value().frame, reference.value(), error_rows(o.width, o.height));
             if (!metrics.ok()) return metrics.error();
             (n == 1 ? out.vs_point : out.vs_supersampled) = metrics.value();
         }
         out.supersample = o.supersample;
+        for (const auto& [first, end] : error_rows(o.width, o.height)) out.error_rows += end - first;
     }
     // The display blit: the source onto the whole display, a pass's shape for single-pass scenes.
     const BlitShape display{source_width, source_height, o.width, o.height, format_name(OutputFormat::Rgba16Float)};

@@ -121,6 +121,7 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
                        {"errorVsPoint", metrics_json(t.vs_point)},
                        {"errorVsSupersampled", metrics_json(t.vs_supersampled)},
                        {"supersample", t.supersample},
+                       {"errorRows", t.error_rows ? t.error_rows : t.height},
                        {"stageCosts", stage_costs_json(t.stage_costs)},
                        {"pareto", std::find(front.begin(), front.end(), i) != front.end()}});
     }
@@ -146,6 +147,8 @@ std::string markdown_of_display(const std::vector<SceneTiming>& timings) {
                           num(t.vs_point, false), num(t.vs_supersampled, false), num(t.vs_supersampled, true),
                           std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "");
     }
+    if (auto banded = std::find_if(timings.begin(), timings.end(), [](const SceneTiming& t) { return t.error_rows > 0; }); banded != timings.end())
+        md += fmt::format("\nErrors measured on {} of the {} rows (evenly spaced bands of 64 rows).\n", banded->error_rows, banded->height);
     if (std::any_of(timings.begin(), timings.end(), [](const SceneTiming& t) { return !t.stage_costs.empty(); })) {
         md += "\n| preset | pass | stage (form) | adds (us per draw) | adds (x blit) |\n|---|---|---|---:|---:|\n";
         for (const SceneTiming& t : timings)

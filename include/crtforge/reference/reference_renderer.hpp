@@ -46,6 +46,9 @@ struct ReferenceJob {
     // its distance measures arithmetic error); n > 1 box-filters n x n samples over each pixel's
     // footprint (its distance also measures aliasing: mask and scanline moire). 1..16.
     int supersample = 1;
+    // Rows to shade, as [first, end) ranges; every other row stays transparent black. Empty: all.
+    // (A benchmark measures the error of a 4K frame on evenly spaced bands of rows.)
+    std::vector<std::pair<int, int>> rows;
 };
 
 // Renders one pass's math. A stage or form the reference has no model for is an error, never a
@@ -74,6 +77,9 @@ struct ReferenceSceneJob {
     double texel_jitter = 0.0;  // ReferenceJob::texel_jitter, for every pass
     double input_gain = 1.0;
     int supersample = 1;        // ReferenceJob::supersample, for every pass (each the anti-aliased picture of its inputs)
+    // Display rows to render of the last pass in the last frame, [first, end) ranges (the rest of
+    // the display black); every earlier pass and frame is rendered whole. Empty: all.
+    std::vector<std::pair<int, int>> display_rows;
 };
 
 // Test-only: injects a fault into the oracle, to prove that validate notices a wrong reference

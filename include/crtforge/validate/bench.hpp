@@ -25,7 +25,7 @@ struct BenchOptions {
     std::string input = "pixel_art";  // a generated test input (at the preset's source size, or 320x240)
     int frame = 1;                    // the frame whose passes are timed (earlier ones run first)
     int draws = 40;                   // draws per timing
-    int repeats = 5;                  // timings per pass, the fastest kept; a blit takes the fastest of max(repeats, 9)
+    int repeats = 5;                  // timings per pass, the fastest kept; a blit takes the fastest of max(repeats, 5)
     // Error of the timed frame against the two double-precision references: point-sampled
     // (arithmetic error) and `supersample` x `supersample` box-filtered (also aliasing). 0: none.
     int supersample = 4;
@@ -90,6 +90,9 @@ struct SceneTiming {
     // The Vulkan frame against the point-sampled reference and the supersampled one (when measured).
     std::optional<ImageMetrics> vs_point, vs_supersampled;
     int supersample = 0;
+    // Rows of the display the errors were measured on (evenly spaced bands above 1920x1080
+    // pixels); 0: every row.
+    int error_rows = 0;
 };
 
 // One benchmark run: the Vulkan engine, the blit it compares against and the reference pictures
