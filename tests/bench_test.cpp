@@ -78,6 +78,40 @@ TEST_CASE("the supersampled reference box-filters each pixel's footprint", "[ben
     CHECK(worst < 1e-3);  // the sampler models Vulkan's 8-bit sub-texel weights
 }
 
+TEST_CASE("a reference of some display rows equals the whole picture on those rows", "[bench][reference]") {
+    // super-win: six passes with feedback, its last pass drawn into the screen's rectangle.
+    for (const char* name : {"classic", "super-win"}) {
+        const Preset& preset = *test::shipped_library().find_preset(name);
+        ReferenceSceneJob job;
+        job.library = &test::shipped_library();
+        job.preset = &preset;
+        job.source = [](int frame) { return make_test_input("pixel_art", 256, 224, frame); };
+        job.width = 200;
+        job.height = 150;
+        job.frames = {2};
+        job.supersample = 2;
+        auto whole = render_reference_scene(job);
+        REQUIRE(whole.ok());
+        job.display_rows = {{0, 3}, {40, 52}, {140, 150}};
+        auto banded = render_reference_scene(job);
+        REQUIRE(banded.ok());
+        const Image& w = whole.value().front();
+        const Image& b = banded.value().front();
+        int inside = 0, outside_black = 0, outside = 0;
+        for (int y = 0; y < job.height; ++y) {
+            const bool in = y < 3 || (y >= 40 && y < 52) || y >= 140;
+            for (int x = 0; x < job.width; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    if (in) inside += b.at(x, y)[c] == w.at(x, y)[c];
+                    else outside += 1, outside_black += b.at(x, y)[c] == 0.0f;
+                }
+        }
+        INFO(name);
+        CHECK(inside == 25 * job.width * 3);  // bit for bit where rendered
+        CHECK(outside_black == outside);      // and nothing shaded elsewhere
+    }
+}
+
 TEST_CASE("bench reports every pass and the frame's error against both references", "[bench]") {
     const BenchOptions options = small_bench();
     for (const char* name : {"crt-shadow-mask", "atari-chain", "super-win"}) {
@@ -162,7 +196,7 @@ TEST_CASE("a session divides every scene by the fastest blit it measured of that
     SceneTiming slow = timings.front();
     slow.passes.front().own_blit_ns = 1.1 * fastest;
     CHECK(session.quiet(slow));
-    slow.passes.front().own_blit_ns = 1.5 * fastest;
+    slow.passes.front().own_blit_ns = 1.8 * fastest;
     CHECK_FALSE(session.quiet(slow));
 }
 

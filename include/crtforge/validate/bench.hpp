@@ -90,7 +90,7 @@ struct SceneTiming {
     // The Vulkan frame against the point-sampled reference and the supersampled one (when measured).
     std::optional<ImageMetrics> vs_point, vs_supersampled;
     int supersample = 0;
-    // Rows of the display the errors were measured on (evenly spaced bands above 1920x1080
+    // Rows of the display the errors were measured on (evenly spaced bands above 1280x960
     // pixels); 0: every row.
     int error_rows = 0;
 };
@@ -118,7 +118,7 @@ public:
     // early in a run is compared against the same baseline as one timed late.
     void rebase(SceneTiming& timing) const;
     // Whether every pass of `timing` was timed while the machine ran blits at their fastest (within
-    // 15 % of the session's fastest of the shape); scene() and tier() time a scene that was not
+    // 50 % of the session's fastest of the shape); scene() and tier() time a scene that was not
     // once more.
     bool quiet(const SceneTiming& timing) const;
 
