@@ -411,12 +411,12 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             // picture, as it would not if only the last pass were supersampled.
             rj.supersample = job.supersample;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
-            if (i + 1 == preset.passes.size() && frame == run.back())
+            if (!job.display_rows.empty() && i + 1 == preset.passes.size() && frame == run.back()) {
                 for (const auto& [first, end] : job.display_rows)  // display rows to the pass's, inside it
                     if (std::min(end - screen.y, rj.height) > std::max(first - screen.y, 0))
                         rj.rows.emplace_back(std::max(first - screen.y, 0), std::min(end - screen.y, rj.height));
-            if (!job.display_rows.empty() && rj.rows.empty() && i + 1 == preset.passes.size() && frame == run.back())
-                rj.rows.emplace_back(0, 0);  // no display row falls on the screen: shade none
+                if (rj.rows.empty()) rj.rows.emplace_back(0, 0);  // no display row falls on the screen: shade none
+            }
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();
             // Every framebuffer but the display's stores its format; the last pass is compared unrounded.

@@ -124,12 +124,6 @@ public:
     // untimed draw. out[i] holds jobs[i]'s timings in order. An ErrorKind::Input error when the
     // device's queue has no timestamps.
     virtual Result<std::vector<std::vector<double>>> time_draws(const std::vector<TimedJob>& jobs, int draws) = 0;
-    // One job, timed once.
-    Result<double> time_draw(const RenderJob& job, int draws) {
-        auto ns = time_draws({{&job, 1}}, draws);
-        if (!ns.ok()) return ns.error();
-        return ns.value()[0][0];
-    }
 };
 
 struct EngineOptions {
