@@ -137,6 +137,31 @@ TEST_CASE("bench reports every pass and the frame's error against both reference
     }
 }
 
+TEST_CASE("a point sample exactly on a texel edge is a tie judged against the jittered reference", "[bench][reference]") {
+    // 540 rows over a 240-row source: 2.25 px a texel, so every ninth row's sample falls on a texel
+    // edge of the nearest-filtered palette pass, where fp32 and fp64 may each take either texel.
+    BenchOptions options = small_bench();
+    options.supersample = 2;
+    const Preset& preset = *test::shipped_library().find_preset("atari-16");
+    options.width = 720;
+    options.height = 540;
+    auto tied = bench_scene(test::shipped_library(), preset, options);
+    REQUIRE(tied.ok());
+    REQUIRE(tied.value().vs_point);
+    CHECK(tied.value().vs_point->rmse < 0.002);
+    // At most the rows on texel edges, and never the whole frame.
+    CHECK(tied.value().point_ties <= 720 * (540 / 9 + 1));
+    CHECK_THAT(format_scene_timing(tied.value()), Catch::Contains(std::to_string(tied.value().point_ties) + " pixels sample a discontinuity") ||
+                                                       Catch::Contains("RMSE 0.0000"));
+    // At a whole number of pixels a texel no sample is on an edge: nothing to judge as a tie.
+    options.width = 640;
+    options.height = 480;
+    auto whole = bench_scene(test::shipped_library(), preset, options);
+    REQUIRE(whole.ok());
+    CHECK(whole.value().point_ties == 0);
+    CHECK(whole.value().vs_point->rmse < 0.002);
+}
+
 TEST_CASE("bench --stage-costs times each pass once per stage turned off", "[bench][stages]") {
     BenchOptions options = small_bench();
     options.supersample = 0;

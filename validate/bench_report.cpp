@@ -122,6 +122,7 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
                        {"errorVsSupersampled", metrics_json(t.vs_supersampled)},
                        {"supersample", t.supersample},
                        {"errorRows", t.error_rows ? t.error_rows : t.height},
+                       {"pointTies", t.point_ties},
                        {"stageCosts", stage_costs_json(t.stage_costs)},
                        {"pareto", std::find(front.begin(), front.end(), i) != front.end()}});
     }
@@ -149,6 +150,12 @@ std::string markdown_of_display(const std::vector<SceneTiming>& timings) {
     }
     if (auto banded = std::find_if(timings.begin(), timings.end(), [](const SceneTiming& t) { return t.error_rows > 0; }); banded != timings.end())
         md += fmt::format("\nErrors measured on {} of the {} rows (evenly spaced bands of 64 rows).\n", banded->error_rows, banded->height);
+    std::string tied;
+    for (const SceneTiming& t : timings)
+        if (t.point_ties > 0) tied += fmt::format("{}{} ({})", tied.empty() ? "" : ", ", t.label(), t.point_ties);
+    if (!tied.empty())
+        md += "\nPixels whose point sample sits exactly on a discontinuity (the point reference flips under a jitter of 1/16384 px), "
+              "each judged against the nearest of the reference and its two jittered renders: " + tied + ".\n";
     if (std::any_of(timings.begin(), timings.end(), [](const SceneTiming& t) { return !t.stage_costs.empty(); })) {
         md += "\n| preset | pass | stage (form) | adds (us per draw) | adds (x blit) |\n|---|---|---|---:|---:|\n";
         for (const SceneTiming& t : timings)

@@ -146,20 +146,11 @@ Result<Image> golden_input(const GoldenEntry& entry, int frame) {
 
 namespace {
 
-// The jitter: of the order of fp32's rounding of a pixel position near 1000 (ulp 6e-5) and, for
-// values, a few times fp32's relative step, so only discontinuities within a driver's rounding of
-// the sample are found (a larger jitter would also flag a palette quantiser's near-ties, which
-// every driver rounds alike).
-constexpr double kJitterPixels = 1.0 / 16384.0;
-// Texture reads move too, by the order of fp32's rounding of a coordinate computed through a
-// dozen operations (a warped mask-cell centre), so a computed sample on a texel edge is found.
-constexpr double kJitterTexels = 1.0 / 4096.0;
-constexpr double kJitterGain = 1.0 / 1048576.0;
 // A change under jitter below the per-pixel limit needs no allowance: the limit covers it.
 constexpr double kFlip = 0.01;
 
 Result<std::vector<Image>> render_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence,
-                                             std::array<double, 2> jitter, double input_gain) {
+                                             double jitter_sign) {
     if (sequence.empty()) return std::vector<Image>{};
     const GoldenEntry& first = *sequence.front();
     const Preset* preset = library.find_preset(first.preset);
@@ -173,18 +164,15 @@ Result<std::vector<Image>> render_references(const TemplateLibrary& library, con
     job.fit = first.fit;
     job.overrides = first.overrides;
     job.start_time = first.start_time;
-    job.jitter = jitter;
-    job.texel_jitter = jitter[0] == 0.0 ? 0.0 : (jitter[0] > 0 ? kJitterTexels : -kJitterTexels);
-    job.input_gain = input_gain;
     for (const GoldenEntry* e : sequence) job.frames.push_back(e->frame);
-    return render_reference_scene(job);
+    return render_reference_scene(jitter_sign == 0.0 ? job : jittered(job, jitter_sign, jitter_sign));
 }
 
 
 }  // namespace
 
 Result<std::vector<Image>> render_golden_references(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence) {
-    return render_references(library, sequence, {0.0, 0.0}, 1.0);
+    return render_references(library, sequence, 0.0);
 }
 
 Result<std::vector<Image>> render_golden_unstable(const TemplateLibrary& library, const std::vector<const GoldenEntry*>& sequence,
@@ -192,7 +180,7 @@ Result<std::vector<Image>> render_golden_unstable(const TemplateLibrary& library
     std::vector<Image> out;
     for (const Image& r : references) out.push_back(Image::make(r.width, r.height, {0, 0, 0, 1}));
     for (const double sign : {1.0, -1.0}) {
-        auto moved = render_references(library, sequence, {sign * kJitterPixels, sign * kJitterPixels}, 1.0 + sign * kJitterGain);
+        auto moved = render_references(library, sequence, sign);
         if (!moved.ok()) return moved.error();
         for (size_t f = 0; f < references.size(); ++f) {
             const Image& a = references[f];

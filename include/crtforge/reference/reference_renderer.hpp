@@ -82,6 +82,27 @@ struct ReferenceSceneJob {
     std::vector<std::pair<int, int>> display_rows;
 };
 
+// The jittered renders that tell a discontinuity exactly at a sample (a mask cell edge on a pixel
+// centre, a palette tie on a texel edge) from an error: sample points move by kJitterPixels (of the
+// order of fp32's rounding of a pixel position near 1000, ulp 6e-5), texture reads by
+// kJitterTexels (fp32's rounding of a coordinate computed through a dozen operations: a warped
+// mask-cell centre) and the original's RGB by a factor 1 + kJitterGain (a few times fp32's
+// relative step). Larger would also flag a quantiser's near-ties, which every driver rounds alike.
+inline constexpr double kJitterPixels = 1.0 / 16384.0;
+inline constexpr double kJitterTexels = 1.0 / 4096.0;
+inline constexpr double kJitterGain = 1.0 / 1048576.0;
+
+// `job` with every perturbation above applied in direction `sign` (+1 or -1), the sample points
+// moved by `sign` across and `sign_y` down (a sample on a corner of four texels needs both
+// diagonals to meet each of them). Texture reads move along the diagonal only, so an anti-diagonal
+// render moves its sample points alone (the reads follow them, by kJitterPixels over the scale).
+inline ReferenceSceneJob jittered(ReferenceSceneJob job, double sign, double sign_y) {
+    job.jitter = {sign * kJitterPixels, sign_y * kJitterPixels};
+    job.texel_jitter = sign == sign_y ? sign * kJitterTexels : 0.0;
+    job.input_gain = 1.0 + sign * kJitterGain;
+    return job;
+}
+
 // Test-only: injects a fault into the oracle, to prove that validate notices a wrong reference
 // (tests/mutations.toml): "scale:<param>:<factor>" (the param reads scaled), "skip:<stage>" (the
 // stage is left out), "sampler-shift:<texels>" (every texture read moves right); "" removes it.

@@ -93,6 +93,9 @@ struct SceneTiming {
     // Rows of the display the errors were measured on (evenly spaced bands above 1280x960
     // pixels); 0: every row.
     int error_rows = 0;
+    // Pixels of those rows whose point sample sits exactly on a discontinuity (the point reference
+    // flips under a jitter of 1/16384 px): each judged against the nearest of the three renders.
+    int point_ties = 0;
 };
 
 // One benchmark run: the Vulkan engine, the blit it compares against and the reference pictures
@@ -127,6 +130,8 @@ private:
     Result<SceneTiming> measure(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
     Result<SceneTiming> measure_once(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
     Result<Image> reference(const Preset& preset, const BenchOptions& options, int supersample);
+    // `reference` (the point one) with each tie of `frame` replaced by the nearest jittered render.
+    Result<Image> tie_tolerant(const Preset& preset, const BenchOptions& options, const Image& frame, Image reference, int& ties);
     Result<std::vector<StageCost>> stage_costs(const Preset& preset, const SceneTiming& timed, const BenchOptions& options);
     struct State;
     const TemplateLibrary& library_;
