@@ -128,7 +128,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
             for (const auto& [label, variant] : variants) {
                 options.variant = variant;
                 options.uniforms_label = label;
-                options.stage_costs = o->stage_costs && t == 0;
+                options.stage_costs = o->stage_costs && tiers[t].name == "point";
                 auto timing = session.tier(tiers, t, options);
                 if (!timing.ok()) return report(timing.error());
                 fmt::print("{}{}{}\n", timing.value().retimed ? "timed twice (the blits beside the first timing all ran slow):\n" : "",

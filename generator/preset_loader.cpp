@@ -292,13 +292,76 @@ Status parse_scene_tables(const TomlReader& r, const toml::table& root, PresetFi
 
 }  // namespace
 
+// [<prefix>.<alias>] tables: per pass, its stages' changes and a new scale factor.
+Result<std::map<std::string, PassOverride>> parse_pass_overrides(const TomlReader& r, const toml::node& node, const std::string& prefix,
+                                                                 const TemplateLibrary* library) {
+    const toml::table* t = node.as_table();
+    if (!t) return r.error(&node, prefix, "must be a table of [" + prefix + ".<alias>] sections");
+    std::map<std::string, PassOverride> out;
+    for (const auto& [alias, pass_node] : *t) {
+        const std::string field = prefix + "." + std::string(alias.str());
+        const toml::table* pt = pass_node.as_table();
+        if (!pt) return r.error(&pass_node, field, "must be a table");
+        if (auto s = r.only_keys(*pt, {"stages", "scale"}, field); !s.ok()) return s.error();
+        PassOverride o;
+        o.line = r.line_of(pass_node);
+        if (const toml::node* stages = pt->get("stages")) {
+            auto entries = parse_stage_entries(r, *stages, field + ".stages", library);
+            if (!entries.ok()) return entries.error();
+            o.stages = std::move(entries.value());
+        }
+        if (const toml::node* scale = pt->get("scale")) {
+            const std::optional<double> f = scale->value<double>();
+            if (!scale->is_number() || !f || !(*f > 0.0 && *f <= 16.0))
+                return r.error(scale, field + ".scale", "must be a number above 0 and at most 16 (the pass's factor on both axes)");
+            o.scale = *f;
+            o.scale_line = r.line_of(*scale);
+        }
+        out[std::string(alias.str())] = std::move(o);
+    }
+    return out;
+}
+
+// [tiers.<name>] tables: a one-line doc and the passes they change, in file order.
+Result<std::vector<TierEntry>> parse_tiers(const TomlReader& r, const toml::node& node, const TemplateLibrary* library) {
+    const toml::table* t = node.as_table();
+    if (!t) return r.error(&node, "tiers", "must be a table of [tiers.<name>] sections");
+    std::vector<TierEntry> out;
+    for (const auto& [key, tier_node] : *t) {
+        TierEntry tier;
+        tier.name = std::string(key.str());
+        const std::string field = "tiers." + tier.name;
+        tier.line = r.line_of(tier_node);
+        // A tier's name joins the point and filtered tiers' ("<name>+filtered") in reports and CLI.
+        if (!is_preset_name(tier.name) || tier.name == "point" || tier.name == "filtered")
+            return r.error(&tier_node, field, "'" + tier.name + "' must be lower-case letters, digits, '-' or '_', and not 'point' or 'filtered'");
+        const toml::table* tt = tier_node.as_table();
+        if (!tt) return r.error(&tier_node, field, "must be a table");
+        if (auto s = r.only_keys(*tt, {"doc", "passes"}, field); !s.ok()) return s.error();
+        auto doc = r.string(*tt, "doc", field, true);
+        if (!doc.ok()) return doc.error();
+        tier.doc = doc.value();
+        if (tier.doc.empty() || tier.doc.find('\n') != std::string::npos)
+            return r.error(tt->get("doc"), field + ".doc", "must be one non-empty line");
+        const toml::node* passes = tt->get("passes");
+        if (!passes) return r.error(&tier_node, field + ".passes", "a tier changes at least one pass ([" + field + ".passes.<alias>])");
+        auto parsed = parse_pass_overrides(r, *passes, field + ".passes", library);
+        if (!parsed.ok()) return parsed.error();
+        tier.passes = std::move(parsed.value());
+        if (tier.passes.empty()) return r.error(passes, field + ".passes", "a tier changes at least one pass");
+        out.push_back(std::move(tier));
+    }
+    std::sort(out.begin(), out.end(), [](const TierEntry& a, const TierEntry& b) { return a.line < b.line; });
+    return out;
+}
+
 Result<PresetFile> parse_preset_file(const std::string& text, const std::string& path,
                                      const TemplateLibrary* library) {
     TomlReader r(path);
     auto parsed = r.parse(text);
     if (!parsed.ok()) return parsed.error();
     const toml::table& root = parsed.value();
-    if (auto s = r.only_keys(root, {"name", "doc", "base", "filter", "stages", "pass", "passes", "source", "display", "time", "lut", "format", "glitch"}, "");
+    if (auto s = r.only_keys(root, {"name", "doc", "base", "filter", "stages", "pass", "passes", "tiers", "source", "display", "time", "lut", "format", "glitch"}, "");
         !s.ok())
         return s.error();
 
@@ -356,24 +419,16 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
         }
     }
     if (const toml::node* overrides = root.get("passes")) {
-        const toml::table* t = overrides->as_table();
-        if (!t) return r.error(overrides, "passes", "must be a table of [passes.<alias>.stages.<stage>] sections");
         if (root.get("pass"))
             return r.error(overrides, "passes", "[passes.<alias>] changes a base preset's passes; this file defines its own [[pass]]");
-        for (const auto& [alias, node] : *t) {
-            const std::string field = "passes." + std::string(alias.str());
-            const toml::table* pt = node.as_table();
-            if (!pt) return r.error(&node, field, "must be a table");
-            if (auto s = r.only_keys(*pt, {"stages"}, field); !s.ok()) return s.error();
-            std::vector<PresetStageEntry> entries;
-            if (const toml::node* stages = pt->get("stages")) {
-                auto parsed_entries = parse_stage_entries(r, *stages, field + ".stages", library);
-                if (!parsed_entries.ok()) return parsed_entries.error();
-                entries = std::move(parsed_entries.value());
-            }
-            file.pass_overrides[std::string(alias.str())] = std::move(entries);
-            file.pass_override_lines[std::string(alias.str())] = r.line_of(node);
-        }
+        auto parsed = parse_pass_overrides(r, *overrides, "passes", library);
+        if (!parsed.ok()) return parsed.error();
+        file.pass_overrides = std::move(parsed.value());
+    }
+    if (const toml::node* tiers = root.get("tiers")) {
+        auto parsed = parse_tiers(r, *tiers, library);
+        if (!parsed.ok()) return parsed.error();
+        file.tiers = std::move(parsed.value());
     }
     if (auto s = parse_scene_tables(r, root, file); !s.ok()) return s.error();
     if (const toml::node* luts = root.get("lut")) {

@@ -218,6 +218,80 @@ Result<TextureSource> parse_source(const std::string& text, const std::string& f
     return src;
 }
 
+// A pass's scale factor replaced on both axes, its scale type kept; an absolute size (pixels) is
+// not a factor to change.
+Status rescale(Pass& pass, double factor, const std::string& file, int line, const std::string& field) {
+    if (pass.scale_x.type == PassScale::Type::Absolute || pass.scale_y.type == PassScale::Type::Absolute)
+        return make_error("pass '" + pass.alias + "' has an absolute size in pixels; scale changes a source or viewport factor", file, line, field);
+    pass.scale_x.factor = factor;
+    pass.scale_y.factor = factor;
+    return Ok{};
+}
+
+// `preset` with `tier`'s changes (declared in `file`): each named pass rescaled and its stages
+// changed as a derived preset's [passes.<alias>] would change them.
+Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Preset& preset, const TierEntry& tier, const std::string& file) {
+    Preset out = preset;
+    out.tiers.clear();
+    DeclaredTier declared{tier.name, tier.doc, {file, tier.line}, nullptr, {}};
+    for (const auto& [alias, o] : tier.passes) {
+        const std::string field = "tiers." + tier.name + ".passes." + alias;
+        auto pass = std::find_if(out.passes.begin(), out.passes.end(), [&](const Pass& p) { return p.alias == alias; });
+        if (pass == out.passes.end()) return make_error("there is no pass '" + alias + "' in preset '" + preset.name + "'", file, o.line, field);
+        if (o.scale) {
+            declared.changes.push_back(fmt::format("pass {}: scale {} -> {}", alias, value_to_string(Value{pass->scale_x.factor}),
+                                                   value_to_string(Value{*o.scale})));
+            if (auto s = rescale(*pass, *o.scale, file, o.scale_line, field + ".scale"); !s.ok()) return s.error();
+        }
+        if (o.stages.empty()) continue;
+        StageValues enabled;
+        for (const ResolvedStage& rs : pass->stages) enabled[rs.stage->name] = rs.values;
+        apply_entries(enabled, o.stages);
+        auto stages = resolve_stages(specs, enabled, o.stages, file, field + ".stages.");
+        if (!stages.ok()) return stages.error();
+        for (const ResolvedStage& now : stages.value()) {
+            const ResolvedStage* was = pass->find_stage(now.stage->name);
+            if (!was) {
+                declared.changes.push_back(fmt::format("pass {}: {} on", alias, now.stage->name));
+                continue;
+            }
+            for (const auto& [param, value] : now.values)
+                if (!was->values.count(param) || !(was->values.at(param) == value))
+                    declared.changes.push_back(fmt::format("pass {}: {}.{} {} -> {}", alias, now.stage->name, param,
+                                                           was->values.count(param) ? value_to_string(was->values.at(param)) : "-",
+                                                           value_to_string(value)));
+        }
+        for (const ResolvedStage& was : pass->stages)
+            if (std::none_of(stages.value().begin(), stages.value().end(), [&](const ResolvedStage& rs) { return rs.stage == was.stage; }))
+                declared.changes.push_back(fmt::format("pass {}: {} off", alias, was.stage->name));
+        pass->stages = std::move(stages.value());
+        for (const std::string& t : pass->texture_names())
+            if (!pass->find_input(t))
+                return make_error("turns on a stage that reads texture '" + t + "', which pass '" + alias + "' does not bind", file, o.line,
+                                  field + ".stages");
+    }
+    declared.preset = std::make_shared<const Preset>(std::move(out));
+    return declared;
+}
+
+// Every [tiers.<name>] of the chain applied to `preset`: a base's tiers first, a derived file's
+// tier of the same name replacing the base's.
+Status add_declared_tiers(const std::vector<StageSpec>& specs, Preset& preset, const std::vector<const PresetFile*>& chain) {
+    std::vector<std::pair<const TierEntry*, const PresetFile*>> tiers;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+        for (const TierEntry& t : (*it)->tiers) {
+            auto same = std::find_if(tiers.begin(), tiers.end(), [&](const auto& e) { return e.first->name == t.name; });
+            if (same != tiers.end()) *same = {&t, *it};
+            else tiers.emplace_back(&t, *it);
+        }
+    for (const auto& [tier, file] : tiers) {
+        auto declared = apply_tier(specs, preset, *tier, file->where.file);
+        if (!declared.ok()) return declared.error();
+        preset.tiers.push_back(std::move(declared.value()));
+    }
+    return Ok{};
+}
+
 }  // namespace
 
 Result<Preset> TemplateLibrary::resolve(const std::vector<PresetFile>& files, const std::string& name) const {
@@ -286,7 +360,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         for (const PresetFile* f : chain)
             if (!f->pass_overrides.empty())
                 return make_error("[passes." + f->pass_overrides.begin()->first + "] changes passes, but no base defines [[pass]]",
-                                  f->where.file, f->pass_override_lines.begin()->second, "passes");
+                                  f->where.file, f->pass_overrides.begin()->second.line, "passes");
         StageValues enabled;
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) apply_entries(enabled, (*it)->stages);
         auto stages = resolve_stages(stages_, enabled, leaf->stages, leaf->where.file, "stages.");
@@ -318,6 +392,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         if (preset.scene.source_fit != SourceFit::Stretch && !preset.scene.source_width)
             return make_error("a source fit other than stretch needs the source's size ([source] size = [w, h])",
                               leaf->where.file, leaf->key_lines.count("source") ? leaf->key_lines.at("source") : 1, "source.fit");
+        if (auto s = add_declared_tiers(stages_, preset, chain); !s.ok()) return s.error();
         visiting.erase(name);
         return preset;
     }
@@ -329,12 +404,10 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
     const PresetFile& def = **definer;
     const std::string& file = def.where.file;
     for (auto it = chain.begin(); it != definer; ++it)
-        for (const auto& [alias, line] : (*it)->pass_override_lines) {
-            (void)line;
+        for (const auto& [alias, o] : (*it)->pass_overrides)
             if (std::none_of(def.passes.begin(), def.passes.end(), [&](const PassEntry& p) { return p.alias == alias; }))
-                return make_error("there is no pass '" + alias + "' in base preset '" + def.name + "'", (*it)->where.file,
-                                  (*it)->pass_override_lines.at(alias), "passes." + alias);
-        }
+                return make_error("there is no pass '" + alias + "' in base preset '" + def.name + "'", (*it)->where.file, o.line,
+                                  "passes." + alias);
 
     const size_t count = def.passes.size();
     for (size_t index = 0; index < count; ++index) {
@@ -363,12 +436,18 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         apply_entries(enabled, entry.stages);
         std::vector<PresetStageEntry> leaf_entries = entry.stages;
         // Overrides from the files derived from the definer, root-most first.
+        const PassOverride* scaled = nullptr;  // the most derived one that sets a scale, and its file
+        std::string scaled_file;
         for (auto it = definer; it != chain.begin();) {
             --it;
             auto o = (*it)->pass_overrides.find(entry.alias);
             if (o == (*it)->pass_overrides.end()) continue;
-            apply_entries(enabled, o->second);
-            if (*it == leaf) leaf_entries = o->second;
+            apply_entries(enabled, o->second.stages);
+            if (*it == leaf) leaf_entries = o->second.stages;
+            if (o->second.scale) {
+                scaled = &o->second;
+                scaled_file = (*it)->where.file;
+            }
         }
         const std::string& values_file = leaf == &def ? file : leaf->where.file;
         const std::string values_field = leaf == &def ? field + ".stages." : "passes." + entry.alias + ".stages.";
@@ -382,6 +461,9 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         const PassScale fallback{last ? PassScale::Type::Viewport : PassScale::Type::Source, 1.0};
         pass.scale_x = entry.scale_x.value_or(fallback);
         pass.scale_y = entry.scale_y.value_or(fallback);
+        if (scaled)
+            if (auto s = rescale(pass, *scaled->scale, scaled_file, scaled->scale_line, "passes." + entry.alias + ".scale"); !s.ok())
+                return s.error();
         pass.format = entry.format.value_or(PixelFormat::Rgba8);
         pass.frame_count_mod = entry.frame_count_mod.value_or(0);
 
@@ -463,6 +545,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
     if (preset.scene.source_fit != SourceFit::Stretch && !preset.scene.source_width)
         return make_error("a source fit other than stretch needs the source's size ([source] size = [w, h])", leaf->where.file,
                           leaf->key_lines.count("source") ? leaf->key_lines.at("source") : 1, "source.fit");
+    if (auto s = add_declared_tiers(stages_, preset, chain); !s.ok()) return s.error();
     visiting.erase(name);
     return preset;
 }

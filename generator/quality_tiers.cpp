@@ -54,8 +54,22 @@ std::vector<std::string> filterable_stages(const Preset& preset) {
 std::vector<PresetTier> preset_tiers(const Preset& preset) {
     PresetTier point = with_tier(preset, QualityTier::Point);
     PresetTier filtered = with_tier(preset, QualityTier::Filtered);
-    if (point.changes.empty() && filtered.changes.empty()) return {std::move(point)};
-    std::vector<PresetTier> tiers{std::move(point)};
+    const bool filterable = !point.changes.empty() || !filtered.changes.empty();
+    if (!filterable && preset.tiers.empty()) return {std::move(point)};
+    // The declared tiers first (each a cheaper scene), point-sampled, then filtered.
+    std::vector<PresetTier> tiers;
+    for (const DeclaredTier& declared : preset.tiers)
+        for (const QualityTier q : {QualityTier::Point, QualityTier::Filtered}) {
+            if (q == QualityTier::Filtered && !filterable) continue;
+            // Point: the declared scene as written (its own forms stand); filtered: every stage filtered.
+            PresetTier t = q == QualityTier::Point ? PresetTier{q, *declared.preset, {}, declared.name} : with_tier(*declared.preset, q);
+            t.name = q == QualityTier::Point ? declared.name : declared.name + "+filtered";
+            t.changes.insert(t.changes.begin(), declared.changes.begin(), declared.changes.end());
+            t.declared = declared.name;
+            tiers.push_back(std::move(t));
+        }
+    tiers.push_back(std::move(point));
+    if (!filterable) return tiers;
     const std::vector<std::string> stages = filterable_stages(preset);
     if (stages.size() > 1)
         for (const std::string& stage : stages) tiers.push_back(with_tier(preset, QualityTier::Filtered, stage));

@@ -111,30 +111,77 @@ bool screen_border(const std::string& form, const Params& p, const Fragment& f, 
     return true;
 }
 
-bool texel_mask(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
-    if (form != "pincushion") return false;
-    Vec2 c = f.uv * 2.0 - Vec2{1, 1};
+// The mask's coordinate in source texels at a (warped) screen coordinate.
+Vec2 texel_mask_coord(const Params& p, const Fragment& f, Vec2 uv) {
+    Vec2 c = uv * 2.0 - Vec2{1, 1};
     c = c * (1.0 + p.num("maskPincushion") * dot(c, c));
     const Vec2 texel = f.source_uv(c * 0.5 + Vec2{0.5, 0.5});
-    const double fx = fract(texel.x * f.source_size.x), fy = fract(texel.y * f.source_size.y);
-    const double sx = std::sin(fx * kPi), sy = std::sin(fy * kPi);
-    const double rows = 1.0 - p.num("maskScanline") * (1.0 - sy * sy);
-    const double columns = 1.0 - p.num("maskColumn") * (1.0 - sx * sx);
-    color = color * (p.num("maskGain") * rows * columns);
+    return {texel.x * f.source_size.x, texel.y * f.source_size.y};
+}
+
+double sinc(double x) { return x == 0.0 ? 1.0 : std::sin(kPi * x) / (kPi * x); }
+
+bool texel_mask(const std::string& form, const Params& p, const Fragment& f, Vec3& color) {
+    const Vec2 t = texel_mask_coord(p, f, f.uv);
+    const double fx = fract(t.x), fy = fract(t.y);
+    double mask = 0.0;
+    if (form == "pincushion") {
+        const double sx = std::sin(fx * kPi), sy = std::sin(fy * kPi);
+        const double rows = 1.0 - p.num("maskScanline") * (1.0 - sy * sy);
+        const double columns = 1.0 - p.num("maskColumn") * (1.0 - sx * sx);
+        mask = rows * columns;
+    } else if (form == "pincushion_filtered") {
+        // The coordinate's change over one pixel across (a, c) and down (b, d), through the warp;
+        // the mask (1 - S - S cos 2 pi t.y)(1 - C - C cos 2 pi t.x) averaged over the pixel's square
+        // with t linear across it.
+        const Vec2 across{0.5 / f.output_size.x, 0.0}, down{0.0, 0.5 / f.output_size.y};
+        auto at = [&](Vec2 screen) { return texel_mask_coord(p, f, f.warp(screen)); };
+        const Vec2 dx = at(f.screen_uv + across) - at(f.screen_uv - across);
+        const Vec2 dy = at(f.screen_uv + down) - at(f.screen_uv - down);
+        const double a = dx.x, b = dy.x, c = dx.y, d = dy.y;
+        const double columns = std::cos(2 * kPi * fx) * sinc(a) * sinc(b);
+        const double rows = std::cos(2 * kPi * fy) * sinc(c) * sinc(d);
+        const double both = 0.5 * (std::cos(2 * kPi * (fx + fy)) * sinc(a + c) * sinc(b + d) +
+                                   std::cos(2 * kPi * (fx - fy)) * sinc(a - c) * sinc(b - d));
+        const double s = 0.5 * p.num("maskScanline"), k = 0.5 * p.num("maskColumn");
+        mask = (1 - s) * (1 - k) - s * (1 - k) * rows - k * (1 - s) * columns + s * k * both;
+    } else {
+        return false;
+    }
+    color = color * (p.num("maskGain") * mask);
     return true;
 }
 
 // The centre and 12 taps of the Poisson-disk set the spec names.
-bool poisson_blur(const std::string& form, const Params& p, const Fragment& f, Vec2 uv, Vec3& color) {
-    if (form != "poisson") return false;
+Vec3 poisson_disk(const Params& p, const Fragment& f, Vec2 uv, Vec3 centre) {
     static const Vec2 disk[12] = {{0.3137, -0.3266}, {-0.8880, 0.3373}, {0.6626, 0.3968},  {-0.2229, -0.2067},
                                   {0.4765, -0.8205}, {-0.2606, 0.7713}, {-0.2568, -0.7517}, {0.2967, 0.1267},
                                   {-0.9739, -0.4774}, {-0.2619, 0.2653}, {0.8322, -0.0817},  {0.2822, 0.7673}};
     const double radius = p.num("blurRadius");
-    Vec3 sum = color;
+    Vec3 sum = centre;
     for (const Vec2& tap : disk)
         sum = sum + f.source->rgb({uv.x + tap.x * radius / f.output_size.x, uv.y + tap.y * radius / f.output_size.y});
-    color = sum * (1.0 / 13.0);
+    return sum * (1.0 / 13.0);
+}
+
+bool poisson_blur(const std::string& form, const Params& p, const Fragment& f, Vec2 uv, Vec3& color) {
+    if (form == "poisson") {
+        color = poisson_disk(p, f, uv, color);
+        return true;
+    }
+    if (form != "poisson_filtered") return false;
+    // A pass that shrinks its source: the blur at 4 x 4 points of the output pixel's square.
+    if (f.source_size.x <= f.output_size.x && f.source_size.y <= f.output_size.y) {
+        color = poisson_disk(p, f, uv, color);
+        return true;
+    }
+    Vec3 sum{};
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const Vec2 at{uv.x + (i - 1.5) / 4.0 / f.output_size.x, uv.y + (j - 1.5) / 4.0 / f.output_size.y};
+            sum = sum + poisson_disk(p, f, at, f.source->rgb(at));
+        }
+    color = sum * (1.0 / 16.0);
     return true;
 }
 

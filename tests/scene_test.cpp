@@ -12,6 +12,7 @@
 #include "crtforge/exporter.hpp"
 #include "crtforge/luts.hpp"
 #include "crtforge/preset.hpp"
+#include "crtforge/quality_tiers.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/scene.hpp"
 #include "crtforge/runtime/image_compare.hpp"
@@ -476,4 +477,87 @@ TEST_CASE("the exported Godot 3 scene keeps the previous frame: the trail decays
             CHECK(image.at(kSize / 2, (kLast - k) * kBar + 1)[c] == Approx(std::pow(0.6 * tint[c], k)).margin(2.5 / 255));
         }
     CHECK(image.at(kSize / 2, kSize - 1)[0] == 0.0f);
+}
+
+TEST_CASE("a preset's declared tiers change its passes' scales and stages and come before the point tier", "[scene][tiers]") {
+    const std::string scene = "name = \"p\"\ndoc = \"d\"\n"
+                              "[[pass]]\nalias = \"screen\"\nscale_type = \"viewport\"\n[pass.stages.mask]\nmaskMode = \"grille\"\n"
+                              "[[pass]]\nalias = \"blur\"\nscale_type = \"viewport\"\n[pass.stages.poisson_blur]\nblurRadius = 8.0\n";
+    const std::string tier = "[tiers.cheap]\ndoc = \"a smaller blur\"\n[tiers.cheap.passes.blur]\nscale = 0.5\n"
+                             "[tiers.cheap.passes.blur.stages.poisson_blur]\nblurRadius = 4.0\n";
+    const Preset preset = resolve_or_fail(scene + tier, "p");
+    REQUIRE(preset.tiers.size() == 1);
+    const DeclaredTier& cheap = preset.tiers.front();
+    CHECK(cheap.name == "cheap");
+    CHECK(cheap.doc == "a smaller blur");
+    CHECK(cheap.where.line == 13);
+    REQUIRE(cheap.preset);
+    const Pass* blur = cheap.preset->find_pass("blur");
+    REQUIRE(blur);
+    CHECK(blur->scale_x.factor == 0.5);
+    CHECK(blur->scale_y.factor == 0.5);
+    CHECK(blur->scale_x.type == PassScale::Type::Viewport);
+    CHECK(std::get<double>(blur->find_stage("poisson_blur")->values.at("blurRadius")) == 4.0);
+    CHECK(cheap.preset->tiers.empty());
+    CHECK(cheap.changes == std::vector<std::string>{"pass blur: scale 1.0 -> 0.5", "pass blur: poisson_blur.blurRadius 8.0 -> 4.0"});
+    // The preset itself is as written.
+    CHECK(preset.find_pass("blur")->scale_x.factor == 1.0);
+    CHECK(std::get<double>(preset.find_pass("blur")->find_stage("poisson_blur")->values.at("blurRadius")) == 8.0);
+
+    // The declared tier first, as written and with every stage filtered, then point and filtered.
+    const std::vector<PresetTier> tiers = preset_tiers(preset);
+    std::vector<std::string> names;
+    for (const PresetTier& t : tiers) names.push_back(t.name);
+    CHECK(names == std::vector<std::string>{"cheap", "cheap+filtered", "point", "filtered"});
+    CHECK(tiers[0].declared == "cheap");
+    CHECK(tiers[1].preset.find_pass("screen")->find_stage("mask")->form->name == "grille_filtered");
+    CHECK(tiers[1].preset.find_pass("blur")->scale_x.factor == 0.5);
+    CHECK(tiers[2].preset.find_pass("blur")->scale_x.factor == 1.0);
+}
+
+TEST_CASE("a derived preset inherits its base's tiers and may rescale a base's pass", "[scene][tiers]") {
+    const std::string base = "name = \"b\"\ndoc = \"d\"\n"
+                             "[[pass]]\nalias = \"a\"\nscale_type = \"source\"\n[pass.stages.vignette]\n"
+                             "[[pass]]\nalias = \"z\"\n[pass.stages.scanlines]\n"
+                             "[tiers.half]\ndoc = \"half\"\n[tiers.half.passes.a]\nscale = 0.5\n";
+    const std::string derived = "name = \"c\"\ndoc = \"d\"\nbase = \"b\"\n[passes.a]\nscale = 2.0\n";
+    auto p = resolve_texts({{"b.toml", base}, {"c.toml", derived}}, "c");
+    INFO((p.ok() ? std::string() : p.error().str()));
+    REQUIRE(p.ok());
+    CHECK(p.value().find_pass("a")->scale_x.factor == 2.0);
+    REQUIRE(p.value().tiers.size() == 1);
+    CHECK(p.value().tiers.front().preset->find_pass("a")->scale_x.factor == 0.5);
+    CHECK(p.value().tiers.front().where.file == "b.toml");
+}
+
+TEST_CASE("a bad declared tier is a file:line error naming its field", "[scene][tiers][errors]") {
+    const std::string head = "name = \"p\"\ndoc = \"d\"\n[[pass]]\nalias = \"a\"\nscale_type = \"source\"\n[pass.stages.vignette]\n"
+                             "[[pass]]\nalias = \"px\"\nscale_type = \"absolute\"\nscale = 64\n[pass.stages.scanlines]\n";
+    struct Case {
+        std::string text, field, says;
+        int line;
+    };
+    const std::vector<Case> cases = {
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.nope]\nscale = 0.5\n", "tiers.t.passes.nope", "no pass 'nope'", 14},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.px]\nscale = 0.5\n", "tiers.t.passes.px.scale", "absolute size", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nscale = 0.0\n", "tiers.t.passes.a.scale", "above 0", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nscale = 17.0\n", "tiers.t.passes.a.scale", "at most 16", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nscale = \"half\"\n", "tiers.t.passes.a.scale", "must be a number", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nsize = 2\n", "tiers.t.passes.a.size", "", 15},
+        {"[tiers.point]\ndoc = \"x\"\n[tiers.point.passes.a]\nscale = 0.5\n", "tiers.point", "not 'point'", 12},
+        {"[tiers.t]\n[tiers.t.passes.a]\nscale = 0.5\n", "tiers.t.doc", "", 12},
+        {"[tiers.t]\ndoc = \"x\"\n", "tiers.t.passes", "at least one pass", 12},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a.stages.vignette]\nnoSuchParam = 1.0\n", "tiers.t.passes.a.stages.vignette.noSuchParam",
+         "unknown param", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a.stages.trails]\n", "tiers.t.passes.a.stages", "reads texture 'feedback'", 14},
+    };
+    for (const Case& c : cases) {
+        INFO(c.text);
+        auto p = resolve_texts({{"p.toml", head + c.text}}, "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().file == "p.toml");
+        CHECK(p.error().field == c.field);
+        CHECK(p.error().line == c.line);
+        CHECK_THAT(p.error().message, Catch::Contains(c.says));
+    }
 }

@@ -30,17 +30,17 @@ std::vector<std::vector<SceneTiming>> by_display(const std::vector<SceneTiming>&
     return groups;
 }
 
-// Each preset's point tier with each of its other tiers ("filtered", "filtered:<stage>"), measured
-// with the same --uniforms variant.
+// Each preset's point tier with each of its other tiers (declared ones, "filtered",
+// "filtered:<stage>"), measured at the same size with the same --uniforms variant, in the order
+// they were timed (preset_tiers(): by the work they do).
 std::vector<std::pair<const SceneTiming*, const SceneTiming*>> tier_pairs(const std::vector<SceneTiming>& timings) {
     std::vector<std::pair<const SceneTiming*, const SceneTiming*>> pairs;
     for (const SceneTiming& point : timings) {
         if (point.tier != "point" || !point.vs_supersampled) continue;
-        for (const SceneTiming& filtered : timings)
-            if (filtered.preset == point.preset && filtered.uniforms == point.uniforms && same_display(filtered, point) &&
-                filtered.tier.rfind("filtered", 0) == 0 &&
-                filtered.vs_supersampled)
-                pairs.emplace_back(&point, &filtered);
+        for (const SceneTiming& other : timings)
+            if (other.preset == point.preset && other.uniforms == point.uniforms && same_display(other, point) && !other.tier.empty() &&
+                other.tier != "point" && other.vs_supersampled)
+                pairs.emplace_back(&point, &other);
     }
     return pairs;
 }
@@ -182,32 +182,46 @@ std::string bench_markdown(const std::vector<SceneTiming>& timings) {
 }
 
 std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
-    // Per preset and display size: the point tier unless another lowers the aliasing error by at least a tenth; of
-    // those, the one doing the least work (the partial tiers come before "filtered") whose error is
-    // within a tenth of the best tier's.
+    // Per preset, variant and display size: the first tier, in the order of the work they do
+    // (declared tiers, point, each filtered stage alone, filtered), whose error against the
+    // supersampled reference is within a tenth of the best tier's; a declared tier only where it
+    // also measured cheaper than the point tier (it exists to be cheaper).
     std::vector<TierPick> picks;
     const auto pairs = tier_pairs(timings);
     for (size_t i = 0; i < pairs.size(); ++i) {
         const SceneTiming* point = pairs[i].first;
-        if (i > 0 && pairs[i - 1].first == point) continue;  // one pick per preset and variant
+        if (i > 0 && pairs[i - 1].first == point) continue;  // one pick per preset, variant and size
+        std::vector<const SceneTiming*> order;  // the point tier after the declared ones (they have no ':' or "filtered")
+        for (const auto& [p, t] : pairs)
+            if (p == point && t->tier.rfind("filtered", 0) != 0) order.push_back(t);
+        order.push_back(point);
+        for (const auto& [p, t] : pairs)
+            if (p == point && t->tier.rfind("filtered", 0) == 0) order.push_back(t);
         double best = point->vs_supersampled->rmse;
-        for (const auto& [p, t] : pairs)
-            if (p == point) best = std::min(best, t->vs_supersampled->rmse);
-        const SceneTiming* chosen = nullptr;
-        for (const auto& [p, t] : pairs)
-            if (p == point && !chosen && t->vs_supersampled->rmse <= 0.9 * point->vs_supersampled->rmse &&
-                t->vs_supersampled->rmse <= 1.1 * best)
+        for (const SceneTiming* t : order) best = std::min(best, t->vs_supersampled->rmse);
+        const SceneTiming* chosen = point;
+        for (const SceneTiming* t : order) {
+            const bool declared = t != point && t->tier.rfind("filtered", 0) != 0;
+            if (t->vs_supersampled->rmse <= 1.1 * best && (!declared || t->ratio() < point->ratio())) {
                 chosen = t;
+                break;
+            }
+        }
         const double ep = point->vs_supersampled->rmse;
         const std::string variant = point->uniforms.empty() || point->uniforms == "default" ? "" : " uniforms=" + point->uniforms;
-        if (!chosen) {
-            picks.push_back({point->preset + variant, point->width, point->height, "point", fmt::format("RMSE vs supersampled {:.5f} point; filtering gains under a tenth; cost {:.2f}x blit", ep, point->ratio())});
+        if (chosen == point) {
+            std::string why = fmt::format("RMSE vs supersampled {:.5f} point; filtering gains under a tenth; cost {:.2f}x blit", ep, point->ratio());
+            for (const SceneTiming* t : order)
+                if (t != point && t->tier.rfind("filtered", 0) != 0)
+                    why += fmt::format("; {} RMSE {:.5f} at {:.2f}x", t->tier, t->vs_supersampled->rmse, t->ratio());
+            picks.push_back({point->preset + variant, point->width, point->height, "point", why});
             continue;
         }
         const double ef = chosen->vs_supersampled->rmse;
+        const double gain = 100 * (1 - ef / std::max(ep, 1e-12));
         picks.push_back({point->preset + variant, point->width, point->height, chosen->tier,
-                         fmt::format("RMSE vs supersampled {:.5f} {}, {:.5f} point ({:.0f}% less aliasing); cost {:.2f}x vs {:.2f}x blit", ef,
-                                     chosen->tier, ep, 100 * (1 - ef / std::max(ep, 1e-12)), chosen->ratio(), point->ratio())});
+                         fmt::format("RMSE vs supersampled {:.5f} {}, {:.5f} point ({:.0f}% {}); cost {:.2f}x vs {:.2f}x blit", ef, chosen->tier,
+                                     ep, std::abs(gain), gain >= 0 ? "less aliasing" : "more error", chosen->ratio(), point->ratio())});
     }
     return picks;
 }

@@ -1,4 +1,5 @@
 // golden/plan.toml -> the list of goldens: which presets, inputs, sizes and frames have a reference.
+#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -58,6 +59,13 @@ class PlanReader {
 public:
     explicit PlanReader(std::string path) : path_(std::move(path)) {}
 
+    // A stage-isolation preset of the plan's folder (golden/stages/<name>.toml): known by name even
+    // to a library that did not load them (such a library has no goldens of it to plan).
+    bool is_stage_preset(const std::string& name) const {
+        const std::filesystem::path dir = std::filesystem::path(path_).parent_path() / "stages";
+        return name.find('/') == std::string::npos && std::filesystem::is_regular_file(dir / (name + ".toml"));
+    }
+
     Diagnostic error(const toml::node* node, const std::string& field, const std::string& message) const {
         return make_error(message, path_, node ? static_cast<int>(node->source().begin.line) : 0, field);
     }
@@ -116,7 +124,8 @@ public:
                 auto list = names(t, "presets", "golden.presets");
                 if (!list.ok()) return list.error();
                 for (const auto& name : list.value())
-                    if (!library.find_preset(name)) return error(t.get("presets"), "golden.presets", "unknown preset '" + name + "'");
+                    if (!library.find_preset(name) && !is_stage_preset(name))
+                        return error(t.get("presets"), "golden.presets", "unknown preset '" + name + "'");
                 rule.presets = list.value();
             }
             if (t.get("except")) {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -123,6 +124,24 @@ struct SceneSettings {
     double fps = 60.0;
 };
 
+// What a derived preset's [passes.<alias>], or a tier's [tiers.<name>.passes.<alias>], changes in
+// one pass of the scene it builds on.
+struct PassOverride {
+    std::vector<PresetStageEntry> stages;  // [...<alias>.stages.<stage>]: values set, stages turned on or off
+    std::optional<double> scale;           // the pass's scale factor on both axes (its scale type kept)
+    int line = 0;
+    int scale_line = 0;
+};
+
+// [tiers.<name>]: a cheaper form of the whole scene the preset's author offers (a bloom blurred at a
+// quarter of the display's size), weighed by crtforge bench and chosen by budget mode like the
+// point and filtered tiers (quality_tiers.hpp).
+struct TierEntry {
+    std::string name, doc;
+    int line = 0;
+    std::map<std::string, PassOverride> passes;  // by pass alias ("main" in a single-pass preset)
+};
+
 struct PresetFile {
     std::string name;
     std::string doc;
@@ -130,8 +149,8 @@ struct PresetFile {
     std::optional<Filter> filter;          // source texture filter; inherited when unset
     std::vector<PresetStageEntry> stages;  // in file order (single-pass presets)
     std::vector<PassEntry> passes;         // [[pass]]: this file defines the pass list
-    std::map<std::string, std::vector<PresetStageEntry>> pass_overrides;  // [passes.<alias>.stages.*]
-    std::map<std::string, int> pass_override_lines;
+    std::map<std::string, PassOverride> pass_overrides;  // [passes.<alias>]: changes to a base's passes
+    std::vector<TierEntry> tiers;                          // [tiers.<name>], in file order
     // [source], [display], [time]: each key inherited on its own.
     std::optional<int> source_width, source_height, pixel_aspect_x, pixel_aspect_y, screen_aspect_x,
         screen_aspect_y;
@@ -167,6 +186,16 @@ struct Pass {
     std::vector<std::string> texture_names() const;
 };
 
+struct Preset;
+
+// A declared tier, resolved: the whole preset with the tier's changes.
+struct DeclaredTier {
+    std::string name, doc;
+    SourceLocation where;
+    std::shared_ptr<const Preset> preset;
+    std::vector<std::string> changes;  // e.g. "pass bloom_up: scale 1 -> 0.25"
+};
+
 struct Preset {
     std::string name;
     std::string doc;
@@ -177,6 +206,7 @@ struct Preset {
     std::vector<std::string> lineage;      // this preset, then its bases
     SourceLocation where;
     bool test_only = false;                // a validation configuration (add_test_presets), not shipped
+    std::vector<DeclaredTier> tiers;       // [tiers.<name>] of the preset and its bases (a tier's own preset has none)
 
     bool single_pass() const { return passes.size() == 1; }
     // The first enabled stage of that name in any pass.

@@ -17,14 +17,18 @@ struct PresetTier {
     QualityTier tier = QualityTier::Point;
     Preset preset;                     // the preset with its stages in the tier's forms
     std::vector<std::string> changes;  // e.g. "pass main: mask shadow -> shadow_filtered" (empty: as written)
-    // "point", "filtered", or "filtered:<stage>" for a tier that filters that stage alone.
+    // "point", "filtered", or "filtered:<stage>" for a tier that filters that stage alone; a
+    // declared tier's name, or "<name>+filtered" for it with every stage filtered.
     std::string name = "point";
+    std::string declared;  // the [tiers.<name>] it starts from ("": the preset as written)
 };
 
-// The tiers a preset offers, by the work they do: "point" (every stage with a filtered form back to
-// its point-sampled one); when two or more stages have filtered forms, "filtered:<stage>" for each
-// of them alone, in pass order (the others point-sampled); then "filtered" (all of them). One entry
-// when no stage of the preset has a filtered form.
+// The tiers a preset offers, by the work they do: first each tier the preset declares
+// ([tiers.<name>]: a cheaper scene), point-sampled and, where the preset has filtered forms, as
+// "<name>+filtered"; then "point" (every stage with a filtered form back to its point-sampled one);
+// when two or more stages have filtered forms, "filtered:<stage>" for each of them alone, in pass
+// order (the others point-sampled); then "filtered" (all of them). One entry when the preset
+// declares no tier and no stage of it has a filtered form.
 std::vector<PresetTier> preset_tiers(const Preset& preset);
 
 }  // namespace crtforge

@@ -112,8 +112,9 @@ public:
     // `preset`'s passes timed, and its frame's error against its own references.
     Result<SceneTiming> scene(const Preset& preset, const BenchOptions& options);
     // Tier `index` of `tiers` (preset_tiers()), named in the timing when there are several, its
-    // error measured against the first (point) tier supersampled: the picture every tier
-    // approximates (a filtered tier against itself supersampled would be filtered twice).
+    // error measured against the point tier supersampled: the picture every tier approximates (a
+    // filtered tier against itself supersampled would be filtered twice, a declared tier's cheaper
+    // scene would be its own yardstick).
     Result<SceneTiming> tier(const std::vector<PresetTier>& tiers, size_t index, const BenchOptions& options);
     // How many reference pictures the session has rendered (each distinct one once).
     size_t reference_renders() const;
