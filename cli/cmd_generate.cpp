@@ -14,7 +14,7 @@ namespace crtforge::cli {
 namespace {
 
 struct GenerateArgs {
-    std::string preset, target, out;
+    std::string preset, target, out, tier;
     VariantFlags flags;
     // Budget mode: the tier to generate is measured at this display size.
     std::string resolution, device;
@@ -95,6 +95,9 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--out", args->out,
                     "Write the files into this directory; without it the fragment shader is printed "
                     "(SPIR-V as disassembly)");
+    cmd->add_option("--tier", args->tier,
+                    "Generate this quality tier of the preset (crtforge bench lists them: point, filtered, filtered:<stage>, a tier "
+                    "the preset declares, <tier>+filtered)");
     cmd->add_option("--resolution", args->resolution,
                     "Budget mode: generate the cheapest quality tier (point, each filtered stage alone, all filtered) that meets --max-error and/or "
                     "--max-cost at this display size WIDTHxHEIGHT, each measured on Vulkan");
@@ -140,6 +143,13 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
         if (!preset_found.ok()) return report(preset_found.error());
         const Preset* preset = preset_found.value();
         std::optional<PresetTier> chosen;
+        if (!args->tier.empty()) {
+            if (budget) return report(make_error("give a tier or a budget (--max-error / --max-cost), not both", {}, 0, "--tier"));
+            auto tier = find_tier(*preset, args->tier);
+            if (!tier.ok()) return report(tier.error());
+            chosen = std::move(tier.value());
+            preset = &chosen->preset;
+        }
         if (budget) {
             auto tier = choose_tier(*lib, *preset, *args, resolution.first, resolution.second);
             if (!tier.ok()) return report(tier.error());
@@ -147,21 +157,45 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
             preset = &chosen->preset;
         }
         Cache cache = make_cache(g);
-        auto compiled = compile_variant(*lib, *preset, options.value(), cache);
+        // Every pass of the scene (one for a single-pass preset), as export writes them.
+        auto compiled = compile_scene(*lib, *preset, options.value(), cache);
         if (!compiled.ok()) return report(compiled.error());
-        auto out = emit_target(compiled.value(), target->id, cache);
-        if (!out.ok()) return report(out.error());
+        std::vector<TargetOutput> outputs;
+        for (const CompiledVariant& pass : compiled.value()) {
+            auto out = emit_target(pass, target->id, cache);
+            if (!out.ok()) return report(out.error());
+            outputs.push_back(std::move(out.value()));
+        }
+        const bool several = outputs.size() > 1;
         if (args->out.empty()) {
-            if (target->id == TargetId::Spirv) {
-                fmt::print("{}", disassemble_spirv(compiled.value().fragment));
-            } else {
-                for (const auto& f : out.value().files)
-                    if (f.manifest_role() == "fragment" || f.manifest_role() == "shader") fmt::print("{}", f.data);
+            for (size_t i = 0; i < outputs.size(); ++i) {
+                const CompiledVariant& pass = compiled.value()[i];
+                if (several)
+                    fmt::print("{} pass {} of {}: {}\n", target->id == TargetId::Spirv ? ";" : "//", i + 1, outputs.size(), pass.variant.pass->alias);
+                if (target->id == TargetId::Spirv) {
+                    fmt::print("{}", disassemble_spirv(pass.fragment));
+                } else {
+                    for (const auto& f : outputs[i].files)
+                        if (f.manifest_role() == "fragment" || f.manifest_role() == "shader") fmt::print("{}", f.data);
+                }
             }
             return kExitOk;
         }
         std::map<std::string, std::string> files;
-        for (const auto& f : out.value().files) files[f.path.empty() ? preset->name + f.suffix : f.path] = f.data;
+        for (size_t i = 0; i < outputs.size(); ++i)
+            for (const auto& f : outputs[i].files)
+                files[f.path.empty() ? (several ? compiled.value()[i].variant.file_stem() : preset->name) + f.suffix : f.path] = f.data;
+        if (several || !preset->luts.empty()) {
+            // The scene's own files (a host script, a scene) and the LUTs they load, as export has them.
+            auto luts = lut_files(*preset);
+            if (!luts.ok()) return report(luts.error());
+            auto scene = generate_target_scene(target->id, *preset, compiled.value(), outputs, luts.value());
+            if (!scene.ok()) return report(scene.error());
+            for (const auto& f : scene.value()) files[f.path] = f.data;
+            // A target with scene files packs the LUTs it loads among them; for the others, beside the shaders.
+            if (scene.value().empty())
+                for (const LutSpec& lut : preset->luts) files[lut_export_path(*preset, lut)] = luts.value().at(lut.name);
+        }
         if (auto s = write_files(args->out, files); !s.ok()) return report(s.error());
         for (const auto& [path, data] : files) fmt::print("{}/{}\n", args->out, path);
         return kExitOk;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/quality_tiers.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/parse_number.hpp"
@@ -82,7 +83,7 @@ Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, 
 }
 
 struct RenderArgs {
-    std::string preset, target = "spirv", input, output, size, device, frames, fit;
+    std::string preset, tier, target = "spirv", input, output, size, device, frames, fit;
     int frame = 0, supersample = 1;
     bool reference = false;
     VariantFlags flags;
@@ -119,6 +120,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     auto a = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand("render", "Render a preset's scene through one target's consumer onto an image or a sequence");
     cmd->add_option("--preset", a->preset, "Preset name")->required();
+    cmd->add_option("--tier", a->tier, "Render this quality tier of the preset (see generate --tier)");
     cmd->add_option("--target", a->target, "Target whose consumer renders it")->capture_default_str();
     cmd->add_option("--input", a->input,
                     "An image file (any format OpenImageIO reads), a sequence of them (in_%03d.png: frame N reads in_00N.png) "
@@ -165,6 +167,13 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         auto preset_found = lookup_preset(*lib, a->preset);
         if (!preset_found.ok()) return report(preset_found.error());
         const Preset* preset = preset_found.value();
+        std::optional<PresetTier> tier;
+        if (!a->tier.empty()) {
+            auto found = find_tier(*preset, a->tier);
+            if (!found.ok()) return report(found.error());
+            tier = std::move(found.value());
+            preset = &tier->preset;
+        }
         auto source = input_source(a->input, preset);
         if (!source.ok()) return report(source.error());
         int w = size ? size->first : 0, h = size ? size->second : 0;

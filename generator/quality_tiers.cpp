@@ -77,4 +77,14 @@ std::vector<PresetTier> preset_tiers(const Preset& preset) {
     return tiers;
 }
 
+Result<PresetTier> find_tier(const Preset& preset, const std::string& name) {
+    std::vector<PresetTier> tiers = preset_tiers(preset);
+    std::string names;
+    for (PresetTier& t : tiers) {
+        if (t.name == name) return std::move(t);
+        names += (names.empty() ? "" : ", ") + t.name;
+    }
+    return make_error("preset '" + preset.name + "' has no tier '" + name + "' (its tiers: " + names + ")", {}, 0, "--tier");
+}
+
 }  // namespace crtforge

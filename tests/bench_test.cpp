@@ -4,6 +4,7 @@
 // they say.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -434,6 +435,33 @@ TEST_CASE("bench measures every tier against the point tier's supersampled pictu
     CHECK(uber.value().cost().instructions > 2 * baked.value().cost().instructions);
     CHECK(uber.value().cost().samples > baked.value().cost().samples);
     CHECK(session.reference_renders() == 6);
+}
+
+TEST_CASE("generate and render take a tier by name and refuse one the preset lacks", "[bench][tiers][cli]") {
+    test::TempDir out;
+    auto written = test::run_crtforge("generate --preset super-win --target glsl450 --out " + (out / "written"));
+    auto cheap = test::run_crtforge("generate --preset super-win --target glsl450 --tier quarter-bloom --out " + (out / "cheap"));
+    REQUIRE(written.exit_code == 0);
+    REQUIRE(cheap.exit_code == 0);
+    // The tier's downsample is the filtered blur: another bloom_down shader, the other passes alike.
+    const auto down = [&](const char* dir) { return read_text_file(out / (std::string(dir) + "/super-win.bloom_down.frag")).value(); };
+    const auto screen = [&](const char* dir) { return read_text_file(out / (std::string(dir) + "/super-win.screen.frag")).value(); };
+    CHECK(down("written") != down("cheap"));
+    CHECK(screen("written") == screen("cheap"));
+
+    auto unknown = test::run_crtforge("generate --preset super-win --target glsl450 --tier nope --out " + (out / "nope"));
+    CHECK(unknown.exit_code != 0);
+    CHECK_THAT(unknown.err, Catch::Contains("--tier") && Catch::Contains("no tier 'nope'") && Catch::Contains("quarter-bloom+filtered"));
+    CHECK_FALSE(std::filesystem::exists(out / "nope"));
+    auto both = test::run_crtforge("generate --preset super-win --target glsl450 --tier point --resolution 64x48 --max-cost 100");
+    CHECK(both.exit_code != 0);
+    CHECK_THAT(both.err, Catch::Contains("not both"));
+
+    auto rendered = test::run_crtforge("render --preset super-win --tier quarter-bloom+filtered --input pixel_art --size 128x96 --output " +
+                                       (out / "tier.png"));
+    INFO(rendered.err);
+    CHECK(rendered.exit_code == 0);
+    CHECK(std::filesystem::exists(out / "tier.png"));
 }
 
 TEST_CASE("budget mode generates the cheapest tier within --max-error and says why", "[bench][tiers][cli]") {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "crtforge/diagnostic.hpp"
 #include "crtforge/preset.hpp"
 
 namespace crtforge {
@@ -30,5 +31,9 @@ struct PresetTier {
 // order (the others point-sampled); then "filtered" (all of them). One entry when the preset
 // declares no tier and no stage of it has a filtered form.
 std::vector<PresetTier> preset_tiers(const Preset& preset);
+
+// The tier of that name (as preset_tiers() names them); an unknown name is an error listing them,
+// on field --tier.
+Result<PresetTier> find_tier(const Preset& preset, const std::string& name);
 
 }  // namespace crtforge
