@@ -18,12 +18,14 @@ namespace {
 // The default sizes: the three displays, a small one, HD and 4K (ratios to a blit move
 // with the size: the source texture stays in cache while the target grows).
 const std::vector<std::string> kDefaultSizes{"640x480", "1920x1080", "3840x2160"};
-// Draws per timing when --draws is not given: as many pixels as 8 draws at 1280x960 (about 35 ms
-// of blits on lavapipe at any size: 32 draws at 640x480, 5 at 1920x1080, 2 at 3840x2160). Short
-// timings catch the machine's fast spells as well as long ones (both sides keep their fastest).
-constexpr double kPixelsPerTiming = 8.0 * 1280 * 960;
+// Draws per timing when --draws is not given: as many pixels as 4 draws at 1280x960 (about 18 ms
+// of blits on lavapipe at any size: 16 draws at 640x480, 2 at 1920x1080, 1 at 3840x2160, whose
+// draw alone lasts 25 ms or more). Short timings catch the machine's fast spells as well as long
+// ones (both sides keep their fastest), and keep the default run of every tier at three sizes
+// under 10 minutes.
+constexpr double kPixelsPerTiming = 4.0 * 1280 * 960;
 int default_draws(int width, int height) {
-    return std::clamp(static_cast<int>(std::lround(kPixelsPerTiming / (double(width) * height))), 2, 1000);
+    return std::clamp(static_cast<int>(std::lround(kPixelsPerTiming / (double(width) * height))), 1, 1000);
 }
 // Samples per axis of the supersampled reference when --supersample is not given: 4 x 4 up to
 // 1920x1080, 2 x 2 above, where device pixels are small against the source's texels and a 4 x 4
