@@ -53,7 +53,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
     auto* draws = cmd->add_option("--draws", o->draws, "Draws per timing (default: 8 at 1280x960, scaled by pixels: 32 at 640x480, 2 at 3840x2160)")
                       ->check(CLI::Range(1, 100000));
-    cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 5), beside the first of a size twelve more)")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 5), beside the first of a size eight more)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
     cmd->add_option("--uniforms", o->uniforms,

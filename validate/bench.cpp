@@ -43,11 +43,11 @@ const char* format_name(OutputFormat f) {
 // moves by a few percent, one bound by memory (a palette lookup, the passthrough) as much as the
 // copy. A median picks either mode, and the ratios with it (a preset read 2.1x and 3.7x in two
 // runs, the passthrough 1.6x); the fastest is what each costs when nothing gets in the way. The blit
-// is timed beside every timing of the pass, twelve times more for a shape's first pass, and the
+// is timed beside every timing of the pass, eight times more for a shape's first pass, and the
 // ratio divides by the session's fastest; a scene whose blits all ran slow is timed again
 // (BenchSession::measure()).
 constexpr int kBaselineTimings = 5;
-constexpr int kCalibrationTimings = 12;
+constexpr int kCalibrationTimings = 8;
 constexpr double kQuiet = 1.5;
 
 struct PassTimes {
@@ -72,15 +72,16 @@ Result<PassTimes> time_pass(RenderEngine& engine, const RenderJob& job, const Re
 }
 
 // The error is measured on the whole frame up to 1280x960; above, on evenly spaced bands of
-// kBandRows rows holding about as many pixels (640 of 1080 rows, 320 of 4K's 2160): the fp64
+// kBandRows rows holding about half as many pixels (320 of 1080 rows, 192 of 4K's 2160): the fp64
 // references of every tier at 1080p and 4K would otherwise take most of the run, and the bands
 // see the screen's middle and its edges alike.
-constexpr double kErrorPixels = 1280.0 * 960;
+constexpr double kWholeFramePixels = 1280.0 * 960;
+constexpr double kBandedPixels = 640.0 * 960;
 constexpr int kBandRows = 64;
 
 std::vector<std::pair<int, int>> error_rows(int width, int height) {
-    const int bands = static_cast<int>(std::ceil(kErrorPixels / (double(width) * kBandRows)));
-    if (double(width) * height <= kErrorPixels || bands * kBandRows >= height) return {};
+    const int bands = static_cast<int>(std::ceil(kBandedPixels / (double(width) * kBandRows)));
+    if (double(width) * height <= kWholeFramePixels || bands * kBandRows >= height) return {};
     std::vector<std::pair<int, int>> rows;
     for (int i = 0; i < bands; ++i) {
         const int first = i * height / bands + (height / bands - kBandRows) / 2;
