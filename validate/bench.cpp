@@ -182,6 +182,7 @@ struct BenchSession::State {
     // scene's two frames through validation's path takes longer than timing it).
     std::string jobs_key;
     SceneJobs jobs;
+    bool long_slow_spell = false;  // the last retime ran slow too; set back by a quiet scene
     double fastest(const BlitShape& shape, double ns) {
         auto [at, fresh] = fastest_blit.emplace(shape, ns);
         if (!fresh) at->second = std::min(at->second, ns);
@@ -376,13 +377,20 @@ Result<std::vector<StageCost>> BenchSession::stage_costs(const Preset& preset, c
 
 Result<SceneTiming> BenchSession::measure(const Preset& preset, const Preset& supersampled, const BenchOptions& o) {
     auto timing = measure_once(preset, supersampled, o);
-    if (!timing.ok() || quiet(timing.value())) return timing;
+    if (!timing.ok()) return timing;
+    if (quiet(timing.value())) {
+        state_->long_slow_spell = false;
+        return timing;
+    }
     // The blits beside the passes all ran slow: the machine was in a slow spell. Once more; the
-    // picture is the same, so its error is not measured again.
+    // picture is the same, so its error is not measured again. Not while the last retime ran slow
+    // too: in a long slow spell a retime is as slow and only doubles the run.
+    if (state_->long_slow_spell) return timing;
     BenchOptions timing_only = o;
     timing_only.supersample = 0;
     auto again = measure_once(preset, supersampled, timing_only);
     if (!again.ok()) return again;
+    state_->long_slow_spell = !quiet(again.value());
     again.value().retimed = true;
     again.value().vs_point = timing.value().vs_point;
     again.value().vs_supersampled = timing.value().vs_supersampled;
