@@ -155,7 +155,7 @@ std::string markdown_of_display(const std::vector<SceneTiming>& timings) {
         if (t.point_ties > 0) tied += fmt::format("{}{} ({})", tied.empty() ? "" : ", ", t.label(), t.point_ties);
     if (!tied.empty())
         md += "\nPixels whose point sample sits exactly on a discontinuity (the point reference flips under a jitter of 1/16384 px), "
-              "each judged against the nearest of the reference and its two jittered renders: " + tied + ".\n";
+              "each judged against the nearest of the reference and its renders jittered along the diagonals: " + tied + ".\n";
     if (std::any_of(timings.begin(), timings.end(), [](const SceneTiming& t) { return !t.stage_costs.empty(); })) {
         md += "\n| preset | pass | stage (form) | adds (us per draw) | adds (x blit) |\n|---|---|---|---:|---:|\n";
         for (const SceneTiming& t : timings)
@@ -350,7 +350,7 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     out += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
                        timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
                                                                      xml_escape(timings.front().device)));
-    out += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: each preset's Pareto front (no tier of it both cheaper and closer); dashed: point tier to filtered tier; error 0 at the bottom</text>\n", L);
+    out += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: each preset's Pareto front (no tier of it both cheaper and closer); dashed: point tier to each other tier; error 0 at the bottom</text>\n", L);
     out += body + "</g>\n";
     return height;
 }
