@@ -184,7 +184,7 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
         std::map<std::string, std::string> files;
         for (size_t i = 0; i < outputs.size(); ++i)
             for (const auto& f : outputs[i].files)
-                files[f.path.empty() ? (several ? compiled.value()[i].variant.file_stem() : preset->name) + f.suffix : f.path] = f.data;
+                files[f.path.empty() ? compiled.value()[i].variant.file_stem() + f.suffix : f.path] = f.data;
         if (several || !preset->luts.empty()) {
             // The scene's own files (a host script, a scene) and the LUTs they load, as export has them.
             auto luts = lut_files(*preset);

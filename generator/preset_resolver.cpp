@@ -218,6 +218,20 @@ Result<TextureSource> parse_source(const std::string& text, const std::string& f
     return src;
 }
 
+// Every texture the pass's enabled forms read is bound by the pass; else an error at `line` naming
+// the stage that reads the unbound one.
+Status textures_bound(const Pass& pass, const std::string& file, int line, const std::string& field) {
+    for (const std::string& t : pass.texture_names())
+        if (!pass.find_input(t)) {
+            std::string stage;
+            for (const ResolvedStage& rs : pass.stages)
+                if (std::find(rs.form->textures.begin(), rs.form->textures.end(), t) != rs.form->textures.end()) stage = rs.stage->name;
+            return make_error("stage '" + stage + "' reads texture '" + t + "': bind it with [pass.textures] " + t + " = \"...\"", file,
+                              line, field);
+        }
+    return Ok{};
+}
+
 // A pass's scale factor replaced on both axes, its scale type kept; an absolute size (pixels) is
 // not a factor to change.
 Status rescale(Pass& pass, double factor, const std::string& file, int line, const std::string& field) {
@@ -265,10 +279,7 @@ Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Prese
             if (std::none_of(stages.value().begin(), stages.value().end(), [&](const ResolvedStage& rs) { return rs.stage == was.stage; }))
                 declared.changes.push_back(fmt::format("pass {}: {} off", alias, was.stage->name));
         pass->stages = std::move(stages.value());
-        for (const std::string& t : pass->texture_names())
-            if (!pass->find_input(t))
-                return make_error("turns on a stage that reads texture '" + t + "', which pass '" + alias + "' does not bind", file, o.line,
-                                  field + ".stages");
+        if (auto s = textures_bound(*pass, file, o.line, field + ".stages"); !s.ok()) return s.error();
     }
     declared.preset = std::make_shared<const Preset>(std::move(out));
     return declared;
@@ -494,14 +505,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
             }
             pass.inputs.push_back(std::move(input));
         }
-        for (const std::string& t : reads)
-            if (!pass.find_input(t)) {
-                std::string stage;
-                for (const ResolvedStage& rs : pass.stages)
-                    if (std::find(rs.form->textures.begin(), rs.form->textures.end(), t) != rs.form->textures.end()) stage = rs.stage->name;
-                return make_error("stage '" + stage + "' reads texture '" + t + "': bind it with [pass.textures] " + t + " = \"...\"",
-                                  file, entry.line, field + ".textures");
-            }
+        if (auto s = textures_bound(pass, file, entry.line, field + ".textures"); !s.ok()) return s.error();
         preset.passes.push_back(std::move(pass));
     }
 

@@ -77,6 +77,11 @@ std::vector<PresetTier> preset_tiers(const Preset& preset) {
     return tiers;
 }
 
+const PresetTier& point_tier(const std::vector<PresetTier>& tiers) {
+    auto point = std::find_if(tiers.begin(), tiers.end(), [](const PresetTier& t) { return t.name == "point"; });
+    return point != tiers.end() ? *point : tiers.front();
+}
+
 Result<PresetTier> find_tier(const Preset& preset, const std::string& name) {
     std::vector<PresetTier> tiers = preset_tiers(preset);
     std::string names;

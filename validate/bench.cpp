@@ -297,9 +297,7 @@ Result<SceneTiming> BenchSession::scene(const Preset& preset, const BenchOptions
 
 Result<SceneTiming> BenchSession::tier(const std::vector<PresetTier>& tiers, size_t index, const BenchOptions& o) {
     if (index >= tiers.size()) return make_error("no tier " + std::to_string(index));
-    // The point tier: the preset as written, every stage point-sampled (declared tiers come before it).
-    auto point = std::find_if(tiers.begin(), tiers.end(), [](const PresetTier& t) { return t.name == "point"; });
-    auto timing = measure(tiers[index].preset, (point != tiers.end() ? *point : tiers.front()).preset, o);
+    auto timing = measure(tiers[index].preset, point_tier(tiers).preset, o);
     if (timing.ok() && tiers.size() > 1) {
         timing.value().tier = tiers[index].name;
         timing.value().tier_changes = tiers[index].changes;

@@ -32,6 +32,10 @@ struct PresetTier {
 // declares no tier and no stage of it has a filtered form.
 std::vector<PresetTier> preset_tiers(const Preset& preset);
 
+// The point tier of preset_tiers()'s list (the preset as written, every stage point-sampled): the
+// picture every tier is measured against. `tiers` is not empty.
+const PresetTier& point_tier(const std::vector<PresetTier>& tiers);
+
 // The tier of that name (as preset_tiers() names them); an unknown name is an error listing them,
 // on field --tier.
 Result<PresetTier> find_tier(const Preset& preset, const std::string& name);
