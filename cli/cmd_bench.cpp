@@ -51,7 +51,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         ->capture_default_str();
     cmd->add_option("--input", o->input, "Generated test input, at the preset's source size")->capture_default_str();
     cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
-    auto* draws = cmd->add_option("--draws", o->draws, "Draws per timing (default: 8 at 1280x960, scaled by pixels: 32 at 640x480, 2 at 3840x2160)")
+    auto* draws = cmd->add_option("--draws", o->draws, "Draws per timing (default: as many pixels as 4 draws at 1280x960: 16 at 640x480, 2 at 1920x1080, 1 at 3840x2160)")
                       ->check(CLI::Range(1, 100000));
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 5), beside the first of a size eight more)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
@@ -124,7 +124,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
             options.draws = draws_given || o->quick ? o->draws : default_draws(width, height);
             options.supersample = supersample_given || o->quick ? o->supersample : default_supersample(width, height);
             std::vector<PresetTier> tiers;
-            if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}});
+            if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}, "point", ""});
             else tiers = preset_tiers(*preset);
             for (size_t t = 0; t < tiers.size(); ++t)
             for (const auto& [label, variant] : variants) {

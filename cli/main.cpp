@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/runtime/process_memory.hpp"
 #include "crtforge/version.hpp"
 
 namespace crtforge::cli {
@@ -53,6 +54,7 @@ Result<VariantOptions> VariantFlags::parse() const {
 }  // namespace crtforge::cli
 
 int main(int argc, char** argv) {
+    crtforge::keep_freed_memory();  // before anything allocates an image
     using namespace crtforge::cli;
     CLI::App app{"crtforge: generate, cross-compile and export CRT shader variants"};
     app.set_version_flag("--version", std::string("crtforge ") + CRTFORGE_VERSION);

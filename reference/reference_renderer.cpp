@@ -317,7 +317,49 @@ Status reference_models(const Preset& preset) {
     return Ok{};
 }
 
-Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) {
+namespace {
+
+// Display rows [first, end) as the rows of a pass drawn into `screen`; a pass none falls on shades none.
+std::vector<std::pair<int, int>> pass_rows(const std::vector<std::pair<int, int>>& display_rows, const PixelRect& screen, int pass_height) {
+    std::vector<std::pair<int, int>> rows;
+    for (const auto& [first, end] : display_rows)
+        if (std::min(end - screen.y, pass_height) > std::max(first - screen.y, 0))
+            rows.emplace_back(std::max(first - screen.y, 0), std::min(end - screen.y, pass_height));
+    if (rows.empty()) rows.emplace_back(0, 0);
+    return rows;
+}
+
+// The last pass's picture in the screen's rectangle of a width x height display over opaque black.
+Image on_display(const Image& last_pass, const PixelRect& screen, int width, int height) {
+    if (screen.width == width && screen.height == height) return last_pass;
+    Image display = Image::make(width, height, {0, 0, 0, 1});
+    for (int y = 0; y < screen.height; ++y)
+        for (int x = 0; x < screen.width; ++x) display.set_pixel(screen.x + x, screen.y + y, last_pass.pixel(x, y));
+    return display;
+}
+
+void scale_rgb(Image& image, double gain) {
+    for (size_t c = 0; c < image.rgba.size(); ++c)
+        if (c % 4 != 3) image.rgba[c] = static_cast<float>(image.rgba[c] * gain);
+}
+
+}  // namespace
+
+Result<Image> render_display_pass(const ReferenceDisplayPass& pass, const ReferenceSceneJob& perturbation) {
+    ReferenceJob rj = pass.job;
+    rj.variant = &pass.variant;
+    rj.jitter = perturbation.jitter;
+    rj.texel_jitter = perturbation.texel_jitter;
+    rj.supersample = perturbation.supersample;
+    if (!perturbation.display_rows.empty()) rj.rows = pass_rows(perturbation.display_rows, pass.screen, rj.height);
+    if (perturbation.input_gain != 1.0)
+        for (const std::string& name : pass.originals) scale_rgb(name == "source" ? rj.input : rj.textures.at(name).image, perturbation.input_gain);
+    auto image = render_reference(rj);
+    if (!image.ok()) return image.error();
+    return on_display(image.value(), pass.screen, pass.display_width, pass.display_height);
+}
+
+Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job, ReferenceDisplayPass* display_pass) {
     if (!job.library || !job.preset || !job.source) return make_error("reference scene job without a preset or a source");
     if (job.width <= 0 || job.height <= 0 || job.width > kMaxImageDimension || job.height > kMaxImageDimension ||
         !image_budget_error(job.width, job.height).empty())
@@ -364,9 +406,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
     for (int frame : run) {
         auto original = job.source(frame);
         if (!original.ok()) return original.error();
-        if (job.input_gain != 1.0)
-            for (size_t c = 0; c < original.value().rgba.size(); ++c)
-                if (c % 4 != 3) original.value().rgba[c] = static_cast<float>(original.value().rgba[c] * job.input_gain);
+        if (job.input_gain != 1.0) scale_rgb(original.value(), job.input_gain);
         const PixelSize source{original.value().width, original.value().height};
         const PixelRect screen = screen_rect(preset, {job.width, job.height}, source, job.fit);
         const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
@@ -411,11 +451,19 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             // picture, as it would not if only the last pass were supersampled.
             rj.supersample = job.supersample;
             rj.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
-            if (!job.display_rows.empty() && i + 1 == preset.passes.size() && frame == run.back()) {
-                for (const auto& [first, end] : job.display_rows)  // display rows to the pass's, inside it
-                    if (std::min(end - screen.y, rj.height) > std::max(first - screen.y, 0))
-                        rj.rows.emplace_back(std::max(first - screen.y, 0), std::min(end - screen.y, rj.height));
-                if (rj.rows.empty()) rj.rows.emplace_back(0, 0);  // no display row falls on the screen: shade none
+            const bool display_pass_now = i + 1 == preset.passes.size() && frame == run.back();
+            if (!job.display_rows.empty() && display_pass_now) rj.rows = pass_rows(job.display_rows, screen, rj.height);
+            if (display_pass && display_pass_now) {
+                display_pass->variant = variants[i];
+                display_pass->job = rj;
+                display_pass->job.variant = nullptr;
+                display_pass->job.rows.clear();
+                display_pass->originals.clear();
+                for (const PassInput& in : pass.inputs)
+                    if (in.from.kind == TextureSource::Kind::Original && in.from.frames_back == 0) display_pass->originals.push_back(in.binding);
+                display_pass->screen = screen;
+                display_pass->display_width = job.width;
+                display_pass->display_height = job.height;
             }
             auto image = render_reference(rj);
             if (!image.ok()) return image.error();
@@ -426,14 +474,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job) 
             current[pass.alias] = std::move(image.value());
         }
         if (std::find(job.frames.begin(), job.frames.end(), frame) != job.frames.end()) {
-            const Image& last_pass = current.at(preset.passes.back().alias);
-            Image display = last_pass;
-            if (screen.width != job.width || screen.height != job.height) {
-                display = Image::make(job.width, job.height, {0, 0, 0, 1});
-                for (int y = 0; y < screen.height; ++y)
-                    for (int x = 0; x < screen.width; ++x) display.set_pixel(screen.x + x, screen.y + y, last_pass.pixel(x, y));
-            }
-            kept[frame] = std::move(display);
+            kept[frame] = on_display(current.at(preset.passes.back().alias), screen, job.width, job.height);
         }
         if (stateful) {
             previous = std::move(current);

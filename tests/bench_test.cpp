@@ -113,6 +113,57 @@ TEST_CASE("a reference of some display rows equals the whole picture on those ro
     }
 }
 
+namespace {
+
+bool same_pixels(const Image& a, const Image& b) { return a.width == b.width && a.height == b.height && a.rgba == b.rgba; }
+
+}  // namespace
+
+TEST_CASE("the display pass drawn again from its kept inputs is the scene's last pass", "[bench][reference]") {
+    for (const char* name : {"classic", "atari-16", "super-win"}) {
+        INFO(name);
+        const Preset& preset = *test::shipped_library().find_preset(name);
+        ReferenceSceneJob job;
+        job.library = &test::shipped_library();
+        job.preset = &preset;
+        job.source = [](int frame) { return make_test_input("pixel_art", 256, 224, frame); };
+        job.width = 200;
+        job.height = 150;
+        job.frames = {2};
+        ReferenceDisplayPass kept;
+        auto whole = render_reference_scene(job, &kept);
+        REQUIRE(whole.ok());
+        CHECK(kept.display_width == 200);
+        CHECK(kept.variant.pass == &preset.passes.back());
+        auto again = render_display_pass(kept, job);
+        REQUIRE(again.ok());
+        CHECK(same_pixels(again.value(), whole.value().front()));
+        // Display rows as the scene takes them; supersampling too where the pass is the scene (in a
+        // scene of several, every pass is supersampled, and the kept inputs are point-sampled).
+        job.display_rows = {{0, 3}, {40, 52}};
+        job.supersample = preset.passes.size() == 1 ? 2 : 1;
+        auto banded = render_reference_scene(job);
+        auto banded_again = render_display_pass(kept, job);
+        REQUIRE(banded.ok());
+        REQUIRE(banded_again.ok());
+        CHECK(same_pixels(banded_again.value(), banded.value().front()));
+        // A single-pass scene reads the original only: perturbed, the pass alone is the scene
+        // perturbed (the input gain included).
+        if (preset.passes.size() == 1) {
+            job.display_rows.clear();
+            job.supersample = 1;
+            for (const auto& [sign, sign_y] : {std::pair{1.0, 1.0}, {-1.0, 1.0}}) {
+                auto moved = render_reference_scene(jittered(job, sign, sign_y));
+                auto moved_again = render_display_pass(kept, jittered(job, sign, sign_y));
+                REQUIRE(moved.ok());
+                REQUIRE(moved_again.ok());
+                CHECK(same_pixels(moved_again.value(), moved.value().front()));
+                if (preset.name == "classic") CHECK_FALSE(same_pixels(moved_again.value(), whole.value().front()));  // (a palette's output may not move)
+            }
+        }
+    }
+}
+
 TEST_CASE("bench reports every pass and the frame's error against both references", "[bench]") {
     const BenchOptions options = small_bench();
     for (const char* name : {"crt-shadow-mask", "atari-chain", "super-win"}) {

@@ -173,10 +173,17 @@ struct SceneJobs {
 
 }  // namespace
 
+struct BenchSession::Reference {
+    Image image;
+    std::optional<ReferenceDisplayPass> display_pass;  // the point reference's, for the tie check
+};
+
 struct BenchSession::State {
     ConsumerEngines engines;
     SpirvBinary blit_fragment;
-    std::map<std::string, Image> references;
+    std::string references_of;  // the preset, size, frame and input of every picture in `references`
+    std::map<std::string, Reference> references;
+    size_t reference_renders = 0;
     std::map<BlitShape, double> fastest_blit;  // over the whole session
     // The last scene rendered for timing, kept for a retime of the same scene (at 4K rendering a
     // scene's two frames through validation's path takes longer than timing it).
@@ -195,7 +202,7 @@ BenchSession::BenchSession(const TemplateLibrary& library, EngineOptions vulkan)
     : library_(library), state_(std::make_unique<State>(std::move(vulkan))) {}
 BenchSession::~BenchSession() = default;
 
-size_t BenchSession::reference_renders() const { return state_->references.size(); }
+size_t BenchSession::reference_renders() const { return state_->reference_renders; }
 
 namespace {
 
@@ -226,23 +233,35 @@ constexpr float kTie = 0.01f;
 
 }  // namespace
 
-Result<Image> BenchSession::reference(const Preset& preset, const BenchOptions& o, int supersample) {
+Result<const BenchSession::Reference*> BenchSession::reference(const Preset& preset, const BenchOptions& o, int supersample) {
+    const std::string of = fmt::format("{}|{}x{}|{}|{}", preset.name, o.width, o.height, o.frame, o.input);
+    if (state_->references_of != of) {
+        state_->references.clear();
+        state_->references_of = of;
+    }
     const std::string key = reference_key(preset, o, supersample);
-    if (auto found = state_->references.find(key); found != state_->references.end()) return found->second;
-    auto rendered = render_reference_scene(reference_job(library_, preset, o, supersample));
+    if (auto found = state_->references.find(key); found != state_->references.end()) return &found->second;
+    Reference made;
+    if (supersample == 1) made.display_pass.emplace();
+    auto rendered = render_reference_scene(reference_job(library_, preset, o, supersample), made.display_pass ? &*made.display_pass : nullptr);
     if (!rendered.ok()) return rendered.error();
-    return state_->references[key] = std::move(rendered.value().front());
+    ++state_->reference_renders;
+    made.image = std::move(rendered.value().front());
+    return &(state_->references[key] = std::move(made));
 }
 
 // A point sample exactly on a discontinuity is a tie, not an error: at 1920x1080 a 240-row source
 // is 4.5 px a texel, so every ninth row samples a nearest-filtered texel edge, where fp32 and fp64
-// may each take either texel. On the rows where `frame` is off `reference` by more than kTie, the
-// reference is rendered again jittered along a diagonal both ways (kJitterPixels ...), and along
-// the other where a pixel is still off, and a pixel the jitter flips is judged against whichever
-// render is nearest; `ties` counts those pixels.
-Result<Image> BenchSession::tie_tolerant(const Preset& preset, const BenchOptions& o, const Image& frame, Image reference, int& ties) {
+// may each take either texel. On the rows where `frame` is off the reference by more than kTie,
+// the display pass is rendered again jittered along a diagonal both ways (kJitterPixels ...; the
+// passes before it keep their pictures: a six-pass scene at 4K would otherwise render twelve
+// passes for each jitter), and along the other diagonal where a pixel the jitter flipped still
+// matches neither render (a corner of four texels). A pixel the jitter flips is judged against
+// whichever render is nearest; `ties` counts those pixels.
+Result<Image> BenchSession::tie_tolerant(const Reference& point, const BenchOptions& o, const Image& frame, int& ties) {
     ties = 0;
-    if (frame.width != reference.width || frame.height != reference.height) return reference;
+    Image reference = point.image;
+    if (frame.width != reference.width || frame.height != reference.height || !point.display_pass) return reference;
     std::vector<std::pair<int, int>> measured = error_rows(o.width, o.height);
     if (measured.empty()) measured.emplace_back(0, reference.height);
     std::vector<std::pair<int, int>> rows;  // the rows with a pixel off by more than kTie, merged
@@ -255,25 +274,29 @@ Result<Image> BenchSession::tie_tolerant(const Preset& preset, const BenchOption
             else rows.emplace_back(y, y + 1);
         }
     if (rows.empty()) return reference;
-    ReferenceSceneJob job = reference_job(library_, preset, o, 1);
+    ReferenceSceneJob job;
     job.display_rows = rows;
     std::vector<Image> moved;
-    // The diagonals first; the anti-diagonals only where a pixel is still off (a corner of four texels).
-    auto unexplained = [&] {
+    // Whether a pixel the diagonal jitters flipped matches neither render.
+    auto corner_left = [&] {
         for (const auto& [first, end] : rows)
             for (int y = first; y < end; ++y)
                 for (int x = 0; x < frame.width; ++x) {
                     float best = pixel_distance(frame, reference, x, y);
-                    for (const Image& m : moved) best = std::min(best, pixel_distance(frame, m, x, y));
-                    if (best > kTie) return true;
+                    bool flipped = false;
+                    for (const Image& m : moved) {
+                        best = std::min(best, pixel_distance(frame, m, x, y));
+                        flipped = flipped || pixel_distance(m, reference, x, y) > kTie;
+                    }
+                    if (flipped && best > kTie) return true;
                 }
         return false;
     };
     for (const auto& [sign, sign_y] : {std::pair{1.0, 1.0}, {-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}}) {
-        if (moved.size() == 2 && !unexplained()) break;
-        auto rendered = render_reference_scene(jittered(job, sign, sign_y));
+        if (moved.size() == 2 && !corner_left()) break;
+        auto rendered = render_display_pass(*point.display_pass, jittered(job, sign, sign_y));
         if (!rendered.ok()) return rendered.error();
-        moved.push_back(std::move(rendered.value().front()));
+        moved.push_back(std::move(rendered.value()));
     }
     for (const auto& [first, end] : rows)
         for (int y = first; y < end; ++y)
@@ -478,9 +501,9 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
             if (n == 1 && !o.point_reference) continue;
             auto reference = this->reference(n == 1 ? preset : supersampled, o, n);
             if (!reference.ok()) return reference.error();
-            if (n == 1) reference = tie_tolerant(preset, o, run.frame, std::move(reference.value()), out.point_ties);
-            if (!reference.ok()) return reference.error();
-            auto metrics = compare_rows(run.frame, reference.value(), error_rows(o.width, o.height));
+            Result<Image> tie_free = n == 1 ? tie_tolerant(*reference.value(), o, run.frame, out.point_ties) : Result<Image>(Image());
+            if (!tie_free.ok()) return tie_free.error();
+            auto metrics = compare_rows(run.frame, n == 1 ? tie_free.value() : reference.value()->image, error_rows(o.width, o.height));
             if (!metrics.ok()) return metrics.error();
             (n == 1 ? out.vs_point : out.vs_supersampled) = metrics.value();
         }

@@ -14,6 +14,7 @@
 
 #include "crtforge/runtime/image.hpp"
 #include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/scene.hpp"
 #include "crtforge/template_library.hpp"
 #include "crtforge/variant.hpp"
 
@@ -117,8 +118,26 @@ const char* reference_source_hash();
 // it lacks (a user's own stage: validate it against goldens approved with `crtforge golden approve`).
 Status reference_models(const Preset& preset);
 
+// A scene's last pass in its last frame with every input it read, as the scene resolved them:
+// render_display_pass() draws that pass again, perturbed, without the passes and frames before it
+// (a benchmark's tie check of a six-pass scene at 4K: one pass of one frame instead of twelve).
+struct ReferenceDisplayPass {
+    Variant variant;                     // the pass
+    ReferenceJob job;                    // its inputs, unperturbed (job.variant is set on use)
+    std::vector<std::string> originals;  // the inputs that are the frame's original ("source": the main one)
+    PixelRect screen;                    // where it lies on the display
+    int display_width = 0, display_height = 0;
+};
+
 // The display images of job.frames, in that order. Frames before the last kept one are rendered
 // too when the scene keeps state between frames (feedback, history); otherwise only the kept ones.
-Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job);
+// Given `display_pass`, the last pass of the last frame is kept there as well.
+Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job, ReferenceDisplayPass* display_pass = nullptr);
+
+// The display image of `pass` under `perturbation`'s jitter, texel jitter, input gain (on the
+// inputs that are the original), supersampling and display rows; its other fields are not read.
+// Earlier passes keep their unperturbed pictures: only a discontinuity at this pass's own sample
+// points shows.
+Result<Image> render_display_pass(const ReferenceDisplayPass& pass, const ReferenceSceneJob& perturbation);
 
 }  // namespace crtforge

@@ -101,7 +101,7 @@ struct SceneTiming {
 // One benchmark run: the Vulkan engine, the blit it compares against and the reference pictures
 // are made once and shared by every scene it measures (a reference is keyed by the preset's
 // content, size, frame, input and samples, so the point tier's supersampled picture serves every
-// tier and --uniforms variant of a preset).
+// tier and --uniforms variant of a preset at a size).
 class BenchSession {
 public:
     BenchSession(const TemplateLibrary& library, EngineOptions vulkan = {});
@@ -130,9 +130,12 @@ private:
     // measure_once(), and once more when quiet() says the machine was slow throughout.
     Result<SceneTiming> measure(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
     Result<SceneTiming> measure_once(const Preset& timed, const Preset& supersampled, const BenchOptions& options);
-    Result<Image> reference(const Preset& preset, const BenchOptions& options, int supersample);
-    // `reference` (the point one) with each tie of `frame` replaced by the nearest jittered render.
-    Result<Image> tie_tolerant(const Preset& preset, const BenchOptions& options, const Image& frame, Image reference, int& ties);
+    struct Reference;
+    // The reference picture, rendered once for every tier and variant of a preset at a size (the
+    // session keeps those of one preset and size at a time: 4K pictures are 130 MB each).
+    Result<const Reference*> reference(const Preset& preset, const BenchOptions& options, int supersample);
+    // `point`'s picture with each tie of `frame` replaced by the nearest jittered render.
+    Result<Image> tie_tolerant(const Reference& point, const BenchOptions& options, const Image& frame, int& ties);
     Result<std::vector<StageCost>> stage_costs(const Preset& preset, const SceneTiming& timed, const BenchOptions& options);
     struct State;
     const TemplateLibrary& library_;
