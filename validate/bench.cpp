@@ -118,7 +118,7 @@ Result<ImageMetrics> compare_rows(const Image& test, const Image& reference, con
         }
     }
     out.rmse = std::sqrt(squares / pixels);
-    out.psnr = out.rmse > 0 ? std::min(100.0, 20.0 * std::log10(1.0 / out.rmse)) : 100.0;
+    out.psnr = psnr_of(out.rmse);
     out.ssim = ssim / pixels;
     return out;
 }

@@ -127,6 +127,8 @@ std::array<float, 4> heat_colour(double ratio) {
 
 }  // namespace
 
+double psnr_of(double rmse) { return rmse > 0 ? std::min(kPsnrCap, 20.0 * std::log10(1.0 / rmse)) : kPsnrCap; }
+
 Result<ImageMetrics> compare_images(const Image& test, const Image& reference) {
     if (test.empty() || !test.consistent()) return make_error("test image is empty or malformed (" + size_text(test) + ")");
     if (reference.empty() || !reference.consistent()) {
@@ -159,7 +161,7 @@ Result<ImageMetrics> compare_images(const Image& test, const Image& reference) {
         }
     }
     m.rmse = std::sqrt(squares / (3.0 * static_cast<double>(test.pixel_count())));
-    m.psnr = m.rmse > 0 ? std::min(kPsnrCap, 20.0 * std::log10(1.0 / m.rmse)) : kPsnrCap;
+    m.psnr = psnr_of(m.rmse);
 
     const std::vector<double> x = clamped_luma(test), y = clamped_luma(reference);
     if (x == y) {

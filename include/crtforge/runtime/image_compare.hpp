@@ -26,6 +26,9 @@ struct ImageMetrics {
 // Images narrower or shorter than 11 pixels use one window covering the whole image, unweighted.
 Result<ImageMetrics> compare_images(const Image& test, const Image& reference);
 
+// ImageMetrics::psnr of an RMSE (for figures combined from several comparisons).
+double psnr_of(double rmse);
+
 // A picture of where the images differ: per pixel the largest |difference| over RGB, d, mapped
 // through black (d = 0) -> blue (tolerance/3) -> magenta (2/3) -> red (d = tolerance) -> yellow
 // (2x) -> white (>= 4x tolerance). Alpha is 1. A tolerance <= 0 (or not finite) maps every
