@@ -133,36 +133,45 @@ std::string main_body(const Variant& variant) {
     // anything beyond half's range its largest value, so no consumer's framebuffer, and no later
     // pass, sees a NaN or an infinity. isnan() selects rather than clamp(), whose NaN result GLSL,
     // HLSL and WGSL leave undefined.
-    std::string out = "vec4 crt_finite(vec4 c) { return mix(clamp(c, -65504.0, 65504.0), vec4(0.0), isnan(c)); }\n\n";
-    out += "void main() {\n";
+    const std::string finite = "vec4 crt_finite(vec4 c) { return mix(clamp(c, -65504.0, 65504.0), vec4(0.0), isnan(c)); }\n\n";
+    std::string out = finite + "void main() {\n";
     if (variant.stages.empty()) {
         out += fmt::format("    fragColor = crt_finite(texture({}, {}));  // CRT off: plain passthrough blit\n",
                            kSourceTextureName, kTexCoordName);
         return out + "}\n";
     }
     auto calls = [&](Hook hook, const std::string& pattern) { return hook_calls(variant, hook, pattern); };
-    out += "    CrtFrag frag;\n";
-    out += fmt::format("    frag.screenUv = {};\n", kTexCoordName);
-    out += fmt::format("    frag.pixel = {} * outputSize;\n", kTexCoordName);
-    out += fmt::format("    frag.uv = {};\n", kTexCoordName);
-    out += calls(Hook::Warp, "frag.uv = {}(frag.uv);");
-    out += "    frag.centered = frag.uv * 2.0 - 1.0;\n";
-    out += "    vec2 sampleUv = frag.uv;\n";
-    out += calls(Hook::SampleUv, "sampleUv = {}(sampleUv, frag);");
-    if (maps_source(variant)) out += "    sampleUv = crt_source_uv(sampleUv);  // the picture on the screen ([source] fit)\n";
-    out += fmt::format("    vec3 color = texture({}, sampleUv).rgb;\n", kSourceTextureName);
-    out += calls(Hook::Fetch, "color = {}(color, sampleUv);");
-    out += calls(Hook::Color, "color = {}(color, frag);");
-    out += calls(Hook::Finish, "color = {}(color, frag);");
+    // A supersampled pass shades n x n points of its pixel (crt_shade) and averages them, each
+    // finite: the reference's box filter of the pass (ReferenceJob::pass_supersample).
+    const int n = variant.pass->supersample;
+    const std::string coord = n > 1 ? "crtTexCoord" : kTexCoordName;
+    std::string body;
+    body += "    CrtFrag frag;\n";
+    body += fmt::format("    frag.screenUv = {};\n", coord);
+    body += fmt::format("    frag.pixel = {} * outputSize;\n", coord);
+    body += fmt::format("    frag.uv = {};\n", coord);
+    body += calls(Hook::Warp, "frag.uv = {}(frag.uv);");
+    body += "    frag.centered = frag.uv * 2.0 - 1.0;\n";
+    body += "    vec2 sampleUv = frag.uv;\n";
+    body += calls(Hook::SampleUv, "sampleUv = {}(sampleUv, frag);");
+    if (maps_source(variant)) body += "    sampleUv = crt_source_uv(sampleUv);  // the picture on the screen ([source] fit)\n";
+    body += fmt::format("    vec3 color = texture({}, sampleUv).rgb;\n", kSourceTextureName);
+    body += calls(Hook::Fetch, "color = {}(color, sampleUv);");
+    body += calls(Hook::Color, "color = {}(color, frag);");
+    body += calls(Hook::Finish, "color = {}(color, frag);");
     // Alpha only where a stage sets it, so every other shader stays as it was.
     const std::string alpha = calls(Hook::Alpha, "alpha = {}(alpha, frag);");
-    if (alpha.empty()) {
-        out += "    fragColor = crt_finite(vec4(color, 1.0));\n";
-    } else {
-        out += "    float alpha = 1.0;\n" + alpha;
-        out += "    fragColor = crt_finite(vec4(color, alpha));\n";
-    }
-    return out + "}\n";
+    const std::string result = alpha.empty() ? "crt_finite(vec4(color, 1.0))" : "crt_finite(vec4(color, alpha))";
+    if (!alpha.empty()) body += "    float alpha = 1.0;\n" + alpha;
+    if (n == 1) return out + body + "    fragColor = " + result + ";\n}\n";
+    // Written out, not looped (Godot 3 refuses a loop's comma operator).
+    std::string shade = fmt::format("vec4 crt_shade(vec2 {}) {{\n", coord) + body + "    return " + result + ";\n}\n\n";
+    std::string sum;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            sum += fmt::format("{}crt_shade({} + vec2({}, {}) / outputSize)", sum.empty() ? "" : "\n        + ", kTexCoordName,
+                               fmt::format("{:.6f}", (x + 0.5) / n - 0.5), fmt::format("{:.6f}", (y + 0.5) / n - 0.5));
+    return finite + shade + "void main() {\n" + fmt::format("    fragColor = ({}) / {}.0;\n}}\n", sum, n * n);
 }
 
 }  // namespace

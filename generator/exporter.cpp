@@ -165,7 +165,7 @@ std::string variant_fingerprint(const Variant& v) {
     auto text = [](const std::string& s) { return fmt::format("{}:{}", s.size(), s); };
     std::string out = text(v.file_stem()) + text(v.preset->doc) +
                       fmt::format("pass {} of {};alpha {};", v.pass_index, v.preset->passes.size(), v.writes_alpha());
-    out += fmt::format("frame_mod {};", v.pass->frame_count_mod);
+    out += fmt::format("frame_mod {};supersample {};", v.pass->frame_count_mod, v.pass->supersample);
     for (const PassInput& input : v.pass->inputs)
         out += text(input.binding) + text(input.from.str()) + filter_name(input.filter) + ":" + wrap_name(input.wrap) +
                (input.mipmap ? ":mip;" : ";");

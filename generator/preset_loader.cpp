@@ -133,10 +133,20 @@ Status parse_scale(const TomlReader& r, const toml::table& t, const std::string&
     return Ok{};
 }
 
+// `supersample` of a [[pass]] or a [passes.<alias>] table: samples per pixel side, 1..4.
+Result<std::optional<int>> parse_supersample(const TomlReader& r, const toml::table& t, const std::string& prefix) {
+    auto n = r.integer(t, "supersample", prefix);
+    if (!n.ok()) return n.error();
+    if (!n.value()) return std::optional<int>();
+    if (*n.value() < 1 || *n.value() > 4)
+        return r.error(t.get("supersample"), prefix + ".supersample", "must be 1..4 (samples per pixel side the pass averages)");
+    return std::optional<int>(static_cast<int>(*n.value()));
+}
+
 Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t index, const TemplateLibrary* library) {
     const std::string prefix = "pass[" + std::to_string(index) + "]";
     if (auto s = r.only_keys(t, {"alias", "preset", "stages", "scale_type", "scale_type_x", "scale_type_y", "scale", "format",
-                                 "input", "filter", "wrap", "mipmap", "textures", "frame_count_mod"},
+                                 "input", "filter", "wrap", "mipmap", "textures", "frame_count_mod", "supersample"},
                              prefix);
         !s.ok())
         return s.error();
@@ -191,6 +201,9 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
             return r.error(t.get("frame_count_mod"), field + ".frame_count_mod", "must be 1..2^30");
         pass.frame_count_mod = static_cast<int>(*mod.value());
     }
+    auto supersample = parse_supersample(r, t, field);
+    if (!supersample.ok()) return supersample.error();
+    pass.supersample = supersample.value();
     return pass;
 }
 
@@ -302,7 +315,7 @@ Result<std::map<std::string, PassOverride>> parse_pass_overrides(const TomlReade
         const std::string field = prefix + "." + std::string(alias.str());
         const toml::table* pt = pass_node.as_table();
         if (!pt) return r.error(&pass_node, field, "must be a table");
-        if (auto s = r.only_keys(*pt, {"stages", "scale"}, field); !s.ok()) return s.error();
+        if (auto s = r.only_keys(*pt, {"stages", "scale", "supersample"}, field); !s.ok()) return s.error();
         PassOverride o;
         o.line = r.line_of(pass_node);
         if (const toml::node* stages = pt->get("stages")) {
@@ -317,6 +330,9 @@ Result<std::map<std::string, PassOverride>> parse_pass_overrides(const TomlReade
             o.scale = *f;
             o.scale_line = r.line_of(*scale);
         }
+        auto supersample = parse_supersample(r, *pt, field);
+        if (!supersample.ok()) return supersample.error();
+        o.supersample = supersample.value();
         out[std::string(alias.str())] = std::move(o);
     }
     return out;

@@ -232,6 +232,13 @@ Status textures_bound(const Pass& pass, const std::string& file, int line, const
     return Ok{};
 }
 
+// A supersampled pass averages its stages' math; a pass without stages is a copy, with nothing to average.
+Status supersample_has_stages(const Pass& pass, const std::string& file, int line, const std::string& field) {
+    if (pass.supersample > 1 && pass.stages.empty())
+        return make_error("pass '" + pass.alias + "' has no stages: supersample averages a pass's stages, and a copy has none", file, line, field);
+    return Ok{};
+}
+
 // A pass's scale factor replaced on both axes, its scale type kept; an absolute size (pixels) is
 // not a factor to change.
 Status rescale(Pass& pass, double factor, const std::string& file, int line, const std::string& field) {
@@ -257,6 +264,10 @@ Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Prese
                                                    value_to_string(Value{*o.scale})));
             if (auto s = rescale(*pass, *o.scale, file, o.scale_line, field + ".scale"); !s.ok()) return s.error();
         }
+        if (o.supersample) {
+            declared.changes.push_back(fmt::format("pass {}: supersample {} -> {}", alias, pass->supersample, *o.supersample));
+            pass->supersample = *o.supersample;
+        }
         if (o.stages.empty()) continue;
         StageValues enabled;
         for (const ResolvedStage& rs : pass->stages) enabled[rs.stage->name] = rs.values;
@@ -281,6 +292,11 @@ Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Prese
         pass->stages = std::move(stages.value());
         if (auto s = textures_bound(*pass, file, o.line, field + ".stages"); !s.ok()) return s.error();
     }
+    for (const auto& [alias, o] : tier.passes)
+        for (const Pass& pass : out.passes)
+            if (pass.alias == alias)
+                if (auto s = supersample_has_stages(pass, file, o.line, "tiers." + tier.name + ".passes." + alias + ".supersample"); !s.ok())
+                    return s.error();
     declared.preset = std::make_shared<const Preset>(std::move(out));
     return declared;
 }
@@ -448,6 +464,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         std::vector<PresetStageEntry> leaf_entries = entry.stages;
         // Overrides from the files derived from the definer, root-most first.
         const PassOverride* scaled = nullptr;  // the most derived one that sets a scale, and its file
+        std::optional<int> supersample = entry.supersample;  // the most derived one set
         std::string scaled_file;
         for (auto it = definer; it != chain.begin();) {
             --it;
@@ -459,6 +476,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
                 scaled = &o->second;
                 scaled_file = (*it)->where.file;
             }
+            if (o->second.supersample) supersample = *o->second.supersample;
         }
         const std::string& values_file = leaf == &def ? file : leaf->where.file;
         const std::string values_field = leaf == &def ? field + ".stages." : "passes." + entry.alias + ".stages.";
@@ -477,6 +495,8 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
                 return s.error();
         pass.format = entry.format.value_or(PixelFormat::Rgba8);
         pass.frame_count_mod = entry.frame_count_mod.value_or(0);
+        pass.supersample = supersample.value_or(1);
+        if (auto s = supersample_has_stages(pass, file, entry.line, field + ".supersample"); !s.ok()) return s.error();
 
         // The main input: the previous pass's output, or the original for the first pass.
         const std::string main = entry.input.value_or(index == 0 ? "original" : def.passes[index - 1].alias);

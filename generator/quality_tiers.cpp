@@ -22,7 +22,7 @@ const FormSpec* form_in_tier(const StageSpec& stage, const FormSpec& form, Quali
 // The preset with each stage in its `tier` form; `only`: the stage filtered alone (the others
 // point-sampled), empty for every stage.
 PresetTier with_tier(const Preset& preset, QualityTier tier, const std::string& only = {}) {
-    PresetTier out{tier, preset, {}, only.empty() ? quality_tier_name(tier) : std::string("filtered:") + only};
+    PresetTier out{tier, preset, {}, only.empty() ? quality_tier_name(tier) : std::string("filtered:") + only, ""};
     for (Pass& pass : out.preset.passes) {
         for (ResolvedStage& rs : pass.stages) {
             if (!rs.stage || !rs.form) continue;
@@ -49,6 +49,15 @@ std::vector<std::string> filterable_stages(const Preset& preset) {
     return names;
 }
 
+// Whether `tier` averages more samples in some pass than `preset` does.
+bool supersamples_more(const Preset& preset, const Preset& tier) {
+    for (const Pass& t : tier.passes)
+        if (const auto p = std::find_if(preset.passes.begin(), preset.passes.end(), [&](const Pass& p) { return p.alias == t.alias; });
+            p != preset.passes.end() && t.supersample > p->supersample)
+            return true;
+    return false;
+}
+
 }  // namespace
 
 std::vector<PresetTier> preset_tiers(const Preset& preset) {
@@ -56,24 +65,27 @@ std::vector<PresetTier> preset_tiers(const Preset& preset) {
     PresetTier filtered = with_tier(preset, QualityTier::Filtered);
     const bool filterable = !point.changes.empty() || !filtered.changes.empty();
     if (!filterable && preset.tiers.empty()) return {std::move(point)};
-    // The declared tiers first (each a cheaper scene), point-sampled, then filtered.
-    std::vector<PresetTier> tiers;
+    // By the work they do: the declared tiers that make a cheaper scene, point-sampled, filtered,
+    // then the declared tiers that do more (a pass supersampled).
+    std::vector<PresetTier> tiers, more;
     for (const DeclaredTier& declared : preset.tiers)
         for (const QualityTier q : {QualityTier::Point, QualityTier::Filtered}) {
             if (q == QualityTier::Filtered && !filterable) continue;
             // Point: the declared scene as written (its own forms stand); filtered: every stage filtered.
-            PresetTier t = q == QualityTier::Point ? PresetTier{q, *declared.preset, {}, declared.name} : with_tier(*declared.preset, q);
+            PresetTier t = q == QualityTier::Point ? PresetTier{q, *declared.preset, {}, declared.name, ""} : with_tier(*declared.preset, q);
             t.name = q == QualityTier::Point ? declared.name : declared.name + "+filtered";
             t.changes.insert(t.changes.begin(), declared.changes.begin(), declared.changes.end());
             t.declared = declared.name;
-            tiers.push_back(std::move(t));
+            (supersamples_more(preset, *declared.preset) ? more : tiers).push_back(std::move(t));
         }
     tiers.push_back(std::move(point));
-    if (!filterable) return tiers;
-    const std::vector<std::string> stages = filterable_stages(preset);
-    if (stages.size() > 1)
-        for (const std::string& stage : stages) tiers.push_back(with_tier(preset, QualityTier::Filtered, stage));
-    tiers.push_back(std::move(filtered));
+    if (filterable) {
+        const std::vector<std::string> stages = filterable_stages(preset);
+        if (stages.size() > 1)
+            for (const std::string& stage : stages) tiers.push_back(with_tier(preset, QualityTier::Filtered, stage));
+        tiers.push_back(std::move(filtered));
+    }
+    for (PresetTier& t : more) tiers.push_back(std::move(t));
     return tiers;
 }
 

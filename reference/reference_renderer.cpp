@@ -264,6 +264,21 @@ Result<Image> render_reference(const ReferenceJob& job) {
         dst[3] = finite_output(alpha);
         return std::nullopt;
     };
+    // A supersampled pass (Pass::supersample) is the mean of its math at s x s points around the
+    // position, each finite, as its shader averages them; the reference's own n x n samples box-filter that.
+    const int s = std::max(1, variant.pass ? variant.pass->supersample : 1);
+    auto shade_pass = [&](Fragment& f, double px, double py, float* dst) -> std::optional<Diagnostic> {
+        if (s == 1) return shade(f, px, py, dst);
+        double sum[4] = {0, 0, 0, 0};
+        float one[4];
+        for (int sy = 0; sy < s; ++sy)
+            for (int sx = 0; sx < s; ++sx) {
+                if (auto e = shade(f, px + (sx + 0.5) / s - 0.5, py + (sy + 0.5) / s - 0.5, one)) return e;
+                for (int i = 0; i < 4; ++i) sum[i] += one[i];
+            }
+        for (int i = 0; i < 4; ++i) dst[i] = finite_output(sum[i] / (s * s));
+        return std::nullopt;
+    };
     const int n = std::max(1, job.supersample);
     auto render_rows = [&](int y0, int y1) -> std::optional<Diagnostic> {
         Fragment f = base;  // each thread its own
@@ -274,7 +289,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
             for (int x = 0; x < job.width; ++x) {
                 float* dst = out.at(x, y);
                 if (n == 1) {
-                    if (auto e = shade(f, x + 0.5 + job.jitter[0], y + 0.5 + job.jitter[1], dst)) return e;
+                    if (auto e = shade_pass(f, x + 0.5 + job.jitter[0], y + 0.5 + job.jitter[1], dst)) return e;
                     continue;
                 }
                 // The pixel's footprint: n x n samples on a regular grid, box-filtered (the mean of
@@ -283,7 +298,7 @@ Result<Image> render_reference(const ReferenceJob& job) {
                 float one[4];
                 for (int sy = 0; sy < n; ++sy)
                     for (int sx = 0; sx < n; ++sx) {
-                        if (auto e = shade(f, x + (sx + 0.5) / n + job.jitter[0], y + (sy + 0.5) / n + job.jitter[1], one)) return e;
+                        if (auto e = shade_pass(f, x + (sx + 0.5) / n + job.jitter[0], y + (sy + 0.5) / n + job.jitter[1], one)) return e;
                         for (int i = 0; i < 4; ++i) sum[i] += one[i];
                     }
                 for (int i = 0; i < 4; ++i) dst[i] = finite_output(sum[i] / (n * n));

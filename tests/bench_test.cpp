@@ -279,10 +279,10 @@ TEST_CASE("a session divides every scene by the fastest blit it measured of that
 
 TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front", "[bench][cli]") {
     test::TempDir out;
-    auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,atari-16,super-win --out " + out.path());
+    auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,webgpu-post,super-win --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
-    // crt-shadow-mask's five quality tiers, classic's two, atari-16 as written and super-win's four
+    // crt-shadow-mask's five quality tiers, classic's two, webgpu-post as written and super-win's four
     // (its declared quarter-bloom tier point-sampled and filtered, then point and filtered)
     REQUIRE(json.size() == 12);
     size_t on_front = 0;
@@ -292,15 +292,15 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
         CHECK(preset["errorVsSupersampled"].is_object());
         on_front += preset["pareto"].get<bool>();
         // The front is each preset's own: a preset timed once has no alternative to beat.
-        if (preset["preset"] == "atari-16") CHECK_FALSE(preset["pareto"].get<bool>());
+        if (preset["preset"] == "webgpu-post") CHECK_FALSE(preset["pareto"].get<bool>());
     }
     CHECK(on_front >= 2);  // crt-shadow-mask's cheapest tier and classic's, at least
     const std::string md = read_text_file(out / "bench.md").value();
     CHECK_THAT(md, Catch::Contains("| crt-shadow-mask@point | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered | 320x240 | 1 |") &&
-                       Catch::Contains("| classic@filtered | 320x240 | 1 |") && Catch::Contains("| atari-16 | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered") &&
+                       Catch::Contains("| classic@filtered | 320x240 | 1 |") && Catch::Contains("| webgpu-post | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered") &&
                        Catch::Contains("| super-win@quarter-bloom | 320x240 | 6 |") && Catch::Contains("| super-win@quarter-bloom+filtered | 320x240 | 6 |"));
     const std::string svg = read_text_file(out / "bench.svg").value();
-    CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">atari-16</text>"));
+    CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">webgpu-post</text>"));
 }
 
 TEST_CASE("bench at several sizes reports each size on its own", "[bench][cli]") {
@@ -372,10 +372,37 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
     CHECK(back[3].changes == std::vector<std::string>{"pass main: curvature crt_effect_filtered -> crt_effect",
                                                       "pass main: scanlines crt_effect_filtered -> crt_effect"});
     CHECK(back[4].changes.empty());
-    // No stage with a filtered form: one tier, as written.
-    const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("atari-16"));
+    // No stage with a filtered form and no declared tier: one tier, as written.
+    const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("webgpu-post"));
     REQUIRE(one.size() == 1);
     CHECK(one[0].changes.empty());
+    // A declared tier that supersamples a pass does more work than point: it comes after.
+    const std::vector<PresetTier> atari = preset_tiers(*lib.find_preset("atari-16"));
+    REQUIRE(atari.size() == 2);
+    CHECK(atari[0].name == "point");
+    CHECK(atari[1].name == "ssaa");
+    CHECK(atari[1].changes == std::vector<std::string>{"pass main: supersample 1 -> 2"});
+    CHECK(atari[1].preset.passes.front().supersample == 2);
+}
+
+TEST_CASE("a supersampled pass draws its own reference and aliases less than point", "[bench][tiers][reference]") {
+    // 1.5 display pixels a texel: nearest-filtered texel edges cross pixels, which point sampling
+    // aliases and atari-16's ssaa tier (2 x 2 points a pixel) box-filters.
+    BenchOptions options = small_bench();
+    options.width = 480;
+    options.height = 360;
+    options.supersample = 4;
+    const std::vector<PresetTier> tiers = preset_tiers(*test::shipped_library().find_preset("atari-16"));
+    REQUIRE(tiers.size() == 2);
+    BenchSession session(test::shipped_library());
+    auto point = session.tier(tiers, 0, options);
+    auto ssaa = session.tier(tiers, 1, options);
+    REQUIRE(point.ok());
+    REQUIRE(ssaa.ok());
+    CHECK(ssaa.value().tier == "ssaa");
+    CHECK(ssaa.value().vs_point->rmse < 0.002);  // the GPU's four points are the reference's
+    CHECK(ssaa.value().vs_supersampled->rmse < 0.5 * point.value().vs_supersampled->rmse);
+    CHECK(ssaa.value().cost().samples == 4 * point.value().cost().samples);
 }
 
 TEST_CASE("each filtered form is its point form averaged over each pixel", "[bench][tiers][reference]") {

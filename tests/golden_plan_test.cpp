@@ -61,12 +61,12 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     CHECK(portrait > 0);
     CHECK(odd > 0);
     CHECK(k4 > 0);
-    // Every stage-isolation preset on flat grey and the ramp, and the downsampling blur once more on
-    // a picture four times its output's size.
+    // Every stage-isolation preset on flat grey and the ramp, the downsampling blur once more on a
+    // picture four times its output's size, and the supersampled palette at 1.5 pixels a texel.
     size_t isolation_presets = 0;
     for (const Preset& p : test::validation_library().presets()) isolation_presets += p.test_only;
     CHECK(isolation_presets >= 20);
-    CHECK(stages == 2 * isolation_presets + 1);
+    CHECK(stages == 2 * isolation_presets + 2);
     // Frame counters past 2^24, on the stage that reads frameCount.
     CHECK(past_2_24 == 2);
 }

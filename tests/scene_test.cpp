@@ -550,6 +550,9 @@ TEST_CASE("a bad declared tier is a file:line error naming its field", "[scene][
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a.stages.vignette]\nnoSuchParam = 1.0\n", "tiers.t.passes.a.stages.vignette.noSuchParam",
          "unknown param", 15},
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a.stages.trails]\n", "tiers.t.passes.a.stages", "reads texture 'feedback'", 14},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nsupersample = 0\n", "tiers.t.passes.a.supersample", "must be 1..4", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nsupersample = 5\n", "tiers.t.passes.a.supersample", "must be 1..4", 15},
+        {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nsupersample = 1.5\n", "tiers.t.passes.a.supersample", "", 15},
     };
     for (const Case& c : cases) {
         INFO(c.text);
@@ -560,4 +563,36 @@ TEST_CASE("a bad declared tier is a file:line error naming its field", "[scene][
         CHECK(p.error().line == c.line);
         CHECK_THAT(p.error().message, Catch::Contains(c.says));
     }
+}
+
+TEST_CASE("a supersampled pass needs stages to average and 1..4 samples a side", "[scene][tiers][errors]") {
+    const std::string head = "name = \"p\"\ndoc = \"d\"\n[[pass]]\nalias = \"a\"\n[pass.stages.vignette]\n[[pass]]\nalias = \"b\"\n";
+    struct Case {
+        std::string text, field, says;
+        int line;
+    };
+    const std::vector<Case> cases = {
+        {"supersample = 2\n", "pass.b.supersample", "no stages", 6},
+        {"supersample = 9\n[pass.stages.vignette]\n", "pass.b.supersample", "must be 1..4", 8},
+        {"supersample = true\n[pass.stages.vignette]\n", "pass.b.supersample", "", 8},
+    };
+    for (const Case& c : cases) {
+        INFO(c.text);
+        auto p = resolve_texts({{"p.toml", head + c.text}}, "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().file == "p.toml");
+        CHECK(p.error().field == c.field);
+        CHECK(p.error().line == c.line);
+        CHECK_THAT(p.error().message, Catch::Contains(c.says));
+    }
+    // Set in a [[pass]], and inherited and changed by a derived preset's [passes.<alias>].
+    const std::string good = head + "supersample = 2\n[pass.stages.vignette]\n";
+    auto base = resolve_texts({{"p.toml", good}}, "p");
+    REQUIRE(base.ok());
+    CHECK(base.value().passes[1].supersample == 2);
+    CHECK(base.value().passes[0].supersample == 1);
+    auto derived = resolve_texts({{"p.toml", good}, {"q.toml", "name = \"q\"\ndoc = \"d\"\nbase = \"p\"\n[passes.a]\nsupersample = 3\n"}}, "q");
+    REQUIRE(derived.ok());
+    CHECK(derived.value().passes[0].supersample == 3);
+    CHECK(derived.value().passes[1].supersample == 2);
 }

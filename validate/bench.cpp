@@ -155,7 +155,7 @@ int source_height_of(const Preset& p) { return p.scene.source_height ? p.scene.s
 std::string reference_key(const Preset& preset, const BenchOptions& o, int supersample) {
     std::string key = fmt::format("{}|{}x{}|{}|{}|{}", preset.name, o.width, o.height, o.frame, o.input, supersample);
     for (const Pass& pass : preset.passes) {
-        key += fmt::format("|{}:{}x{}", pass.alias, pass.scale_x.factor, pass.scale_y.factor);
+        key += fmt::format("|{}:{}x{}:{}", pass.alias, pass.scale_x.factor, pass.scale_y.factor, pass.supersample);
         for (const ResolvedStage& rs : pass.stages) {
             key += ";" + (rs.stage ? rs.stage->name : std::string()) + ":" + (rs.form ? rs.form->name : std::string());
             for (const auto& [name, value] : rs.values) key += "," + name + "=" + value_to_exact_string(value);

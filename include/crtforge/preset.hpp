@@ -85,6 +85,7 @@ struct PassEntry {
     std::map<std::string, std::string> textures;  // binding -> source, as written
     std::map<std::string, int> texture_lines;
     std::optional<int> frame_count_mod;
+    std::optional<int> supersample;
     int line = 0;
 };
 
@@ -129,6 +130,7 @@ struct SceneSettings {
 struct PassOverride {
     std::vector<PresetStageEntry> stages;  // [...<alias>.stages.<stage>]: values set, stages turned on or off
     std::optional<double> scale;           // the pass's scale factor on both axes (its scale type kept)
+    std::optional<int> supersample;        // Pass::supersample
     int line = 0;
     int scale_line = 0;
 };
@@ -178,6 +180,10 @@ struct Pass {
     PixelFormat format = PixelFormat::Rgba8;
     std::vector<PassInput> inputs;         // "source" first, then each texture its stages read
     int frame_count_mod = 0;               // frameCount reaches the shader modulo this (0 = as is)
+    // Samples per pixel side the shader averages (1..4): the pass's whole math at n x n points of
+    // each pixel, a box filter of its point-sampled picture (edges of nearest-filtered texels
+    // under a palette, which no form of a single stage can filter).
+    int supersample = 1;
     SourceLocation where;
 
     const ResolvedStage* find_stage(const std::string& name) const;

@@ -28,8 +28,9 @@ struct PresetTier {
 // ([tiers.<name>]: a cheaper scene), point-sampled and, where the preset has filtered forms, as
 // "<name>+filtered"; then "point" (every stage with a filtered form back to its point-sampled one);
 // when two or more stages have filtered forms, "filtered:<stage>" for each of them alone, in pass
-// order (the others point-sampled); then "filtered" (all of them). One entry when the preset
-// declares no tier and no stage of it has a filtered form.
+// order (the others point-sampled); then "filtered" (all of them); last each declared tier that
+// supersamples a pass more than the preset does (more work), as the first ones. One entry when
+// the preset declares no tier and no stage of it has a filtered form.
 std::vector<PresetTier> preset_tiers(const Preset& preset);
 
 // The point tier of preset_tiers()'s list (the preset as written, every stage point-sampled): the
