@@ -79,17 +79,27 @@ TEST_CASE("the supersampled reference box-filters each pixel's footprint", "[ben
     CHECK(worst < 1e-3);  // the sampler models Vulkan's 8-bit sub-texel weights
 }
 
+namespace {
+
+// Frame 2 of `preset` on pixel art at 200x150 (super-win's screen rectangle inside it).
+ReferenceSceneJob small_scene_job(const Preset& preset) {
+    ReferenceSceneJob job;
+    job.library = &test::shipped_library();
+    job.preset = &preset;
+    job.source = [](int frame) { return make_test_input("pixel_art", 256, 224, frame); };
+    job.width = 200;
+    job.height = 150;
+    job.frames = {2};
+    return job;
+}
+
+}  // namespace
+
 TEST_CASE("a reference of some display rows equals the whole picture on those rows", "[bench][reference]") {
     // super-win: six passes with feedback, its last pass drawn into the screen's rectangle.
     for (const char* name : {"classic", "super-win"}) {
         const Preset& preset = *test::shipped_library().find_preset(name);
-        ReferenceSceneJob job;
-        job.library = &test::shipped_library();
-        job.preset = &preset;
-        job.source = [](int frame) { return make_test_input("pixel_art", 256, 224, frame); };
-        job.width = 200;
-        job.height = 150;
-        job.frames = {2};
+        ReferenceSceneJob job = small_scene_job(preset);
         job.supersample = 2;
         auto whole = render_reference_scene(job);
         REQUIRE(whole.ok());
@@ -123,13 +133,7 @@ TEST_CASE("the display pass drawn again from its kept inputs is the scene's last
     for (const char* name : {"classic", "atari-16", "super-win"}) {
         INFO(name);
         const Preset& preset = *test::shipped_library().find_preset(name);
-        ReferenceSceneJob job;
-        job.library = &test::shipped_library();
-        job.preset = &preset;
-        job.source = [](int frame) { return make_test_input("pixel_art", 256, 224, frame); };
-        job.width = 200;
-        job.height = 150;
-        job.frames = {2};
+        ReferenceSceneJob job = small_scene_job(preset);
         ReferenceDisplayPass kept;
         auto whole = render_reference_scene(job, &kept);
         REQUIRE(whole.ok());

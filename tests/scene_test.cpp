@@ -530,14 +530,32 @@ TEST_CASE("a derived preset inherits its base's tiers and may rescale a base's p
     CHECK(p.value().tiers.front().where.file == "b.toml");
 }
 
+namespace {
+
+// A preset p.toml of `head` and each case's text fails to resolve at the case's field and line.
+struct ErrorCase {
+    std::string text, field, says;
+    int line;
+};
+
+void check_errors(const std::string& head, const std::vector<ErrorCase>& cases) {
+    for (const ErrorCase& c : cases) {
+        INFO(c.text);
+        auto p = resolve_texts({{"p.toml", head + c.text}}, "p");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().file == "p.toml");
+        CHECK(p.error().field == c.field);
+        CHECK(p.error().line == c.line);
+        CHECK_THAT(p.error().message, Catch::Contains(c.says));
+    }
+}
+
+}  // namespace
+
 TEST_CASE("a bad declared tier is a file:line error naming its field", "[scene][tiers][errors]") {
     const std::string head = "name = \"p\"\ndoc = \"d\"\n[[pass]]\nalias = \"a\"\nscale_type = \"source\"\n[pass.stages.vignette]\n"
                              "[[pass]]\nalias = \"px\"\nscale_type = \"absolute\"\nscale = 64\n[pass.stages.scanlines]\n";
-    struct Case {
-        std::string text, field, says;
-        int line;
-    };
-    const std::vector<Case> cases = {
+    const std::vector<ErrorCase> cases = {
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.nope]\nscale = 0.5\n", "tiers.t.passes.nope", "no pass 'nope'", 14},
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.px]\nscale = 0.5\n", "tiers.t.passes.px.scale", "absolute size", 15},
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nscale = 0.0\n", "tiers.t.passes.a.scale", "above 0", 15},
@@ -554,37 +572,17 @@ TEST_CASE("a bad declared tier is a file:line error naming its field", "[scene][
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nsupersample = 5\n", "tiers.t.passes.a.supersample", "must be 1..4", 15},
         {"[tiers.t]\ndoc = \"x\"\n[tiers.t.passes.a]\nsupersample = 1.5\n", "tiers.t.passes.a.supersample", "", 15},
     };
-    for (const Case& c : cases) {
-        INFO(c.text);
-        auto p = resolve_texts({{"p.toml", head + c.text}}, "p");
-        REQUIRE_FALSE(p.ok());
-        CHECK(p.error().file == "p.toml");
-        CHECK(p.error().field == c.field);
-        CHECK(p.error().line == c.line);
-        CHECK_THAT(p.error().message, Catch::Contains(c.says));
-    }
+    check_errors(head, cases);
 }
 
 TEST_CASE("a supersampled pass needs stages to average and 1..4 samples a side", "[scene][tiers][errors]") {
     const std::string head = "name = \"p\"\ndoc = \"d\"\n[[pass]]\nalias = \"a\"\n[pass.stages.vignette]\n[[pass]]\nalias = \"b\"\n";
-    struct Case {
-        std::string text, field, says;
-        int line;
-    };
-    const std::vector<Case> cases = {
+    const std::vector<ErrorCase> cases = {
         {"supersample = 2\n", "pass.b.supersample", "no stages", 6},
         {"supersample = 9\n[pass.stages.vignette]\n", "pass.b.supersample", "must be 1..4", 8},
         {"supersample = true\n[pass.stages.vignette]\n", "pass.b.supersample", "", 8},
     };
-    for (const Case& c : cases) {
-        INFO(c.text);
-        auto p = resolve_texts({{"p.toml", head + c.text}}, "p");
-        REQUIRE_FALSE(p.ok());
-        CHECK(p.error().file == "p.toml");
-        CHECK(p.error().field == c.field);
-        CHECK(p.error().line == c.line);
-        CHECK_THAT(p.error().message, Catch::Contains(c.says));
-    }
+    check_errors(head, cases);
     // Set in a [[pass]], and inherited and changed by a derived preset's [passes.<alias>].
     const std::string good = head + "supersample = 2\n[pass.stages.vignette]\n";
     auto base = resolve_texts({{"p.toml", good}}, "p");
