@@ -109,6 +109,15 @@ bool apply_scanlines(const std::string& form, const Params& p, const Fragment& f
         // One full bright-to-bright period every scanlinePeriodPx device pixels.
         const double freq = f.output_size.y * 2.0 * kPi / p.num("scanlinePeriodPx");
         color = color * (1.0 - p.num("scanlineStrength") * (0.5 + 0.5 * std::sin(f.uv.y * freq)));
+    } else if (form == "period_filtered") {
+        // The point form's factor averaged over the pixel's height (numerically here), the
+        // coordinate running 1 / outputSize.y a pixel through the pixel's centre.
+        const double freq = f.output_size.y * 2.0 * kPi / p.num("scanlinePeriodPx");
+        const double strength = p.num("scanlineStrength");
+        const double k = pixel_height_mean(f.uv.y * f.output_size.y, [&](double y) {
+            return 1.0 - strength * (0.5 + 0.5 * std::sin(y / f.output_size.y * freq));
+        });
+        color = color * k;
     } else if (form == "atari") {
         // iResolution is the source texture's size.
         double s = std::sin(f.uv.y * f.source_size.y * kArticlePi) * 0.5 + 0.5;

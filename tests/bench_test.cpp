@@ -283,10 +283,10 @@ TEST_CASE("a session divides every scene by the fastest blit it measured of that
 
 TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front", "[bench][cli]") {
     test::TempDir out;
-    auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,webgpu-post,super-win --out " + out.path());
+    auto run = test::run_crtforge("bench --quick --preset crt-shadow-mask,classic,passthrough,super-win --out " + out.path());
     REQUIRE(run.exit_code == 0);
     auto json = nlohmann::json::parse(read_text_file(out / "bench.json").value());
-    // crt-shadow-mask's five quality tiers, classic's two, webgpu-post as written and super-win's four
+    // crt-shadow-mask's five quality tiers, classic's two, passthrough as written and super-win's four
     // (its declared quarter-bloom tier point-sampled and filtered, then point and filtered)
     REQUIRE(json.size() == 12);
     size_t on_front = 0;
@@ -296,15 +296,15 @@ TEST_CASE("bench --quick writes its table, JSON and plot with the Pareto front",
         CHECK(preset["errorVsSupersampled"].is_object());
         on_front += preset["pareto"].get<bool>();
         // The front is each preset's own: a preset timed once has no alternative to beat.
-        if (preset["preset"] == "webgpu-post") CHECK_FALSE(preset["pareto"].get<bool>());
+        if (preset["preset"] == "passthrough") CHECK_FALSE(preset["pareto"].get<bool>());
     }
     CHECK(on_front >= 2);  // crt-shadow-mask's cheapest tier and classic's, at least
     const std::string md = read_text_file(out / "bench.md").value();
     CHECK_THAT(md, Catch::Contains("| crt-shadow-mask@point | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered | 320x240 | 1 |") &&
-                       Catch::Contains("| classic@filtered | 320x240 | 1 |") && Catch::Contains("| webgpu-post | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered") &&
+                       Catch::Contains("| classic@filtered | 320x240 | 1 |") && Catch::Contains("| passthrough | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask@filtered:mask | 320x240 | 1 |") && Catch::Contains("| crt-shadow-mask | filtered") &&
                        Catch::Contains("| super-win@quarter-bloom | 320x240 | 6 |") && Catch::Contains("| super-win@quarter-bloom+filtered | 320x240 | 6 |"));
     const std::string svg = read_text_file(out / "bench.svg").value();
-    CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">webgpu-post</text>"));
+    CHECK_THAT(svg, Catch::StartsWith("<svg") && Catch::Contains("Pareto front") && Catch::Contains(">passthrough</text>"));
 }
 
 TEST_CASE("bench at several sizes reports each size on its own", "[bench][cli]") {
@@ -377,7 +377,7 @@ TEST_CASE("a preset's quality tiers swap each stage between its point-sampled an
                                                       "pass main: scanlines crt_effect_filtered -> crt_effect"});
     CHECK(back[4].changes.empty());
     // No stage with a filtered form and no declared tier: one tier, as written.
-    const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("webgpu-post"));
+    const std::vector<PresetTier> one = preset_tiers(*lib.find_preset("passthrough"));
     REQUIRE(one.size() == 1);
     CHECK(one[0].changes.empty());
     // A declared tier that supersamples a pass does more work than point: it comes after.
@@ -416,7 +416,7 @@ TEST_CASE("each filtered form is its point form averaged over each pixel", "[ben
     for (const char* name : {"stage-mask-shadow-filtered", "stage-mask-grille-filtered", "stage-scanlines-quiet-frame-filtered",
                              "stage-scanlines-crt-effect-filtered", "stage-curvature-atari-filtered",
                              "stage-curvature-crt-effect-filtered", "stage-curvature-quiet-frame-filtered",
-                             "stage-texel-mask-pincushion-filtered"}) {
+                             "stage-texel-mask-pincushion-filtered", "stage-scanlines-period-filtered"}) {
         INFO(name);
         const std::vector<PresetTier> tiers = preset_tiers(*lib.find_preset(name));
         REQUIRE(tiers.size() == 2);

@@ -10,6 +10,17 @@ vec3 scanlines_period(vec3 color, CrtFrag frag) {
 }
 #endif
 
+#ifdef CRT_FORM_scanlines_period_filtered
+// The same bands averaged over the pixel's height: a pixel spans h = pi / scanlinePeriodPx of
+// phase either side of its centre, and the mean of sin over it is the centre's sin * sin(h) / h.
+vec3 scanlines_period_filtered(vec3 color, CrtFrag frag) {
+    float h = PI / scanlinePeriodPx;
+    float f = outputSize.y * 2.0 * h;
+    float scan = 1.0 - scanlineStrength * (0.5 + 0.5 * (sin(h) / h) * sin(frag.uv.y * f));
+    return color * scan;
+}
+#endif
+
 #ifdef CRT_FORM_scanlines_atari
 // Retro CRT Effects: iResolution is the input texture's size, so lines follow source rows and
 // bend with the curvature (the warped uv is used).
