@@ -264,21 +264,22 @@ Result<Image> render_reference(const ReferenceJob& job) {
         dst[3] = finite_output(alpha);
         return std::nullopt;
     };
-    // A supersampled pass (Pass::supersample) is the mean of its math at s x s points around the
-    // position, each finite, as its shader averages them; the reference's own n x n samples box-filter that.
-    const int s = std::max(1, variant.pass ? variant.pass->supersample : 1);
-    auto shade_pass = [&](Fragment& f, double px, double py, float* dst) -> std::optional<Diagnostic> {
-        if (s == 1) return shade(f, px, py, dst);
+    // The mean of `sample` at n x n points on a regular grid over the unit square at (x0, y0),
+    // in double, written finite into dst.
+    auto box_mean = [](int n, double x0, double y0, auto&& sample, float* dst) -> std::optional<Diagnostic> {
         double sum[4] = {0, 0, 0, 0};
         float one[4];
-        for (int sy = 0; sy < s; ++sy)
-            for (int sx = 0; sx < s; ++sx) {
-                if (auto e = shade(f, px + (sx + 0.5) / s - 0.5, py + (sy + 0.5) / s - 0.5, one)) return e;
+        for (int sy = 0; sy < n; ++sy)
+            for (int sx = 0; sx < n; ++sx) {
+                if (auto e = sample(x0 + (sx + 0.5) / n, y0 + (sy + 0.5) / n, one)) return e;
                 for (int i = 0; i < 4; ++i) sum[i] += one[i];
             }
-        for (int i = 0; i < 4; ++i) dst[i] = finite_output(sum[i] / (s * s));
+        for (int i = 0; i < 4; ++i) dst[i] = finite_output(sum[i] / (n * n));
         return std::nullopt;
     };
+    // A supersampled pass (Pass::supersample) is the mean of its math at s x s points of the unit
+    // square around the position, each finite, as its shader averages them.
+    const int s = std::max(1, variant.pass ? variant.pass->supersample : 1);
     const int n = std::max(1, job.supersample);
     auto render_rows = [&](int y0, int y1) -> std::optional<Diagnostic> {
         Fragment f = base;  // each thread its own
@@ -287,21 +288,16 @@ Result<Image> render_reference(const ReferenceJob& job) {
                 std::none_of(job.rows.begin(), job.rows.end(), [y](const auto& r) { return y >= r.first && y < r.second; }))
                 continue;
             for (int x = 0; x < job.width; ++x) {
+                // The pixel's footprint: n x n samples, box-filtered (the mean of what a display
+                // would integrate), each the pass's own mean of s x s.
+                auto point = [&](double px, double py, float* dst) { return shade(f, px, py, dst); };
+                auto pass_sample = [&](double px, double py, float* dst) {
+                    return s == 1 ? point(px, py, dst) : box_mean(s, px - 0.5, py - 0.5, point, dst);
+                };
                 float* dst = out.at(x, y);
-                if (n == 1) {
-                    if (auto e = shade_pass(f, x + 0.5 + job.jitter[0], y + 0.5 + job.jitter[1], dst)) return e;
-                    continue;
-                }
-                // The pixel's footprint: n x n samples on a regular grid, box-filtered (the mean of
-                // what a display would integrate), in double.
-                double sum[4] = {0, 0, 0, 0};
-                float one[4];
-                for (int sy = 0; sy < n; ++sy)
-                    for (int sx = 0; sx < n; ++sx) {
-                        if (auto e = shade_pass(f, x + (sx + 0.5) / n + job.jitter[0], y + (sy + 0.5) / n + job.jitter[1], one)) return e;
-                        for (int i = 0; i < 4; ++i) sum[i] += one[i];
-                    }
-                for (int i = 0; i < 4; ++i) dst[i] = finite_output(sum[i] / (n * n));
+                if (auto e = n == 1 ? pass_sample(x + 0.5 + job.jitter[0], y + 0.5 + job.jitter[1], dst)
+                                    : box_mean(n, x + job.jitter[0], y + job.jitter[1], pass_sample, dst))
+                    return e;
             }
         }
         return std::nullopt;

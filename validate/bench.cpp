@@ -152,8 +152,13 @@ int source_height_of(const Preset& p) { return p.scene.source_height ? p.scene.s
 
 // What makes two reference pictures the same: the preset's content (every pass's stages, forms and
 // values), and the size, frame, input and samples per pixel.
+// The preset by name, at the bench's size, frame and input: the references the session keeps at a time.
+std::string picture_key(const Preset& preset, const BenchOptions& o) {
+    return fmt::format("{}|{}x{}|{}|{}", preset.name, o.width, o.height, o.frame, o.input);
+}
+
 std::string reference_key(const Preset& preset, const BenchOptions& o, int supersample) {
-    std::string key = fmt::format("{}|{}x{}|{}|{}|{}", preset.name, o.width, o.height, o.frame, o.input, supersample);
+    std::string key = picture_key(preset, o) + fmt::format("|{}", supersample);
     for (const Pass& pass : preset.passes) {
         key += fmt::format("|{}:{}x{}:{}", pass.alias, pass.scale_x.factor, pass.scale_y.factor, pass.supersample);
         for (const ResolvedStage& rs : pass.stages) {
@@ -234,7 +239,7 @@ constexpr float kTie = 0.01f;
 }  // namespace
 
 Result<const BenchSession::Reference*> BenchSession::reference(const Preset& preset, const BenchOptions& o, int supersample) {
-    const std::string of = fmt::format("{}|{}x{}|{}|{}", preset.name, o.width, o.height, o.frame, o.input);
+    const std::string of = picture_key(preset, o);
     if (state_->references_of != of) {
         state_->references.clear();
         state_->references_of = of;
@@ -258,10 +263,10 @@ Result<const BenchSession::Reference*> BenchSession::reference(const Preset& pre
 // passes for each jitter), and along the other diagonal where a pixel the jitter flipped still
 // matches neither render (a corner of four texels). A pixel the jitter flips is judged against
 // whichever render is nearest; `ties` counts those pixels.
-Result<Image> BenchSession::tie_tolerant(const Reference& point, const BenchOptions& o, const Image& frame, int& ties) {
+Result<std::optional<Image>> BenchSession::tie_tolerant(const Reference& point, const BenchOptions& o, const Image& frame, int& ties) {
     ties = 0;
-    Image reference = point.image;
-    if (frame.width != reference.width || frame.height != reference.height || !point.display_pass) return reference;
+    const Image& reference = point.image;
+    if (frame.width != reference.width || frame.height != reference.height || !point.display_pass) return std::optional<Image>();
     std::vector<std::pair<int, int>> measured = error_rows(o.width, o.height);
     if (measured.empty()) measured.emplace_back(0, reference.height);
     std::vector<std::pair<int, int>> rows;  // the rows with a pixel off by more than kTie, merged
@@ -273,7 +278,7 @@ Result<Image> BenchSession::tie_tolerant(const Reference& point, const BenchOpti
             if (!rows.empty() && rows.back().second == y) rows.back().second = y + 1;
             else rows.emplace_back(y, y + 1);
         }
-    if (rows.empty()) return reference;
+    if (rows.empty()) return std::optional<Image>();
     ReferenceSceneJob job;
     job.display_rows = rows;
     std::vector<Image> moved;
@@ -298,6 +303,7 @@ Result<Image> BenchSession::tie_tolerant(const Reference& point, const BenchOpti
         if (!rendered.ok()) return rendered.error();
         moved.push_back(std::move(rendered.value()));
     }
+    Image patched = reference;
     for (const auto& [first, end] : rows)
         for (int y = first; y < end; ++y)
             for (int x = 0; x < frame.width; ++x) {
@@ -310,10 +316,11 @@ Result<Image> BenchSession::tie_tolerant(const Reference& point, const BenchOpti
                         nearest = &m;
                     }
                 if (!nearest) continue;
-                std::copy_n(nearest->at(x, y), 4, reference.at(x, y));
+                std::copy_n(nearest->at(x, y), 4, patched.at(x, y));
                 ++ties;
             }
-    return reference;
+    if (ties == 0) return std::optional<Image>();
+    return std::optional<Image>(std::move(patched));
 }
 
 Result<SceneTiming> BenchSession::scene(const Preset& preset, const BenchOptions& o) { return measure(preset, preset, o); }
@@ -501,9 +508,10 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
             if (n == 1 && !o.point_reference) continue;
             auto reference = this->reference(n == 1 ? preset : supersampled, o, n);
             if (!reference.ok()) return reference.error();
-            Result<Image> tie_free = n == 1 ? tie_tolerant(*reference.value(), o, run.frame, out.point_ties) : Result<Image>(Image());
-            if (!tie_free.ok()) return tie_free.error();
-            auto metrics = compare_rows(run.frame, n == 1 ? tie_free.value() : reference.value()->image, error_rows(o.width, o.height));
+            Result<std::optional<Image>> patched = n == 1 ? tie_tolerant(*reference.value(), o, run.frame, out.point_ties)
+                                                          : Result<std::optional<Image>>(std::optional<Image>());
+            if (!patched.ok()) return patched.error();
+            auto metrics = compare_rows(run.frame, patched.value() ? *patched.value() : reference.value()->image, error_rows(o.width, o.height));
             if (!metrics.ok()) return metrics.error();
             (n == 1 ? out.vs_point : out.vs_supersampled) = metrics.value();
         }

@@ -134,8 +134,9 @@ private:
     // The reference picture, rendered once for every tier and variant of a preset at a size (the
     // session keeps those of one preset and size at a time: 4K pictures are 130 MB each).
     Result<const Reference*> reference(const Preset& preset, const BenchOptions& options, int supersample);
-    // `point`'s picture with each tie of `frame` replaced by the nearest jittered render.
-    Result<Image> tie_tolerant(const Reference& point, const BenchOptions& options, const Image& frame, int& ties);
+    // `point`'s picture with each tie of `frame` replaced by the nearest jittered render; none when
+    // no pixel is a tie (the picture as it is, not copied: 130 MB at 4K).
+    Result<std::optional<Image>> tie_tolerant(const Reference& point, const BenchOptions& options, const Image& frame, int& ties);
     Result<std::vector<StageCost>> stage_costs(const Preset& preset, const SceneTiming& timed, const BenchOptions& options);
     struct State;
     const TemplateLibrary& library_;
