@@ -142,7 +142,7 @@ std::string main_body(const Variant& variant) {
     }
     auto calls = [&](Hook hook, const std::string& pattern) { return hook_calls(variant, hook, pattern); };
     // A supersampled pass shades n x n points of its pixel (crt_shade) and averages them, each
-    // finite: the reference's box filter of the pass (ReferenceJob::pass_supersample).
+    // finite, as the reference does (render_reference's box_mean over the pass's points).
     const int n = variant.pass->supersample;
     const std::string coord = n > 1 ? "crtTexCoord" : kTexCoordName;
     std::string body;
@@ -169,8 +169,8 @@ std::string main_body(const Variant& variant) {
     std::string sum;
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
-            sum += fmt::format("{}crt_shade({} + vec2({}, {}) / outputSize)", sum.empty() ? "" : "\n        + ", kTexCoordName,
-                               fmt::format("{:.6f}", (x + 0.5) / n - 0.5), fmt::format("{:.6f}", (y + 0.5) / n - 0.5));
+            sum += fmt::format("{}crt_shade({} + vec2({:.6f}, {:.6f}) / outputSize)", sum.empty() ? "" : "\n        + ", kTexCoordName,
+                               (x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5);
     return finite + shade + "void main() {\n" + fmt::format("    fragColor = ({}) / {}.0;\n}}\n", sum, n * n);
 }
 
