@@ -7,6 +7,7 @@
 #   P/include/crtforge/...              (component Development)
 #   P/<libdir>/libcrtforge*.a, P/<libdir>/cmake/crtforge/
 #   P/share/crtforge/tools/wgsl-runner/node_modules  (component Dawn: Dawn for the WGSL consumer)
+#   P/share/crtforge/tools/godot4-runner/node_modules  (component Godot4: Godot 4.6 web build for the godot4 consumer)
 install(TARGETS crtforge_core crtforge_runtime crtforge_reference crtforge_validate
         EXPORT crtforgeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT Development)
@@ -19,6 +20,10 @@ install(FILES ${PROJECT_BINARY_DIR}/include/crtforge/version.hpp
 
 install(DIRECTORY templates golden DESTINATION share/crtforge COMPONENT Runtime)
 install(DIRECTORY tools/godot3-runner DESTINATION share/crtforge/tools COMPONENT Runtime)
+install(DIRECTORY tools/godot4-runner DESTINATION share/crtforge/tools COMPONENT Runtime
+        PATTERN node_modules EXCLUDE)
+install(DIRECTORY tools/godot4-runner/node_modules DESTINATION share/crtforge/tools/godot4-runner
+        COMPONENT Godot4 OPTIONAL)
 install(DIRECTORY tools/wgsl-runner DESTINATION share/crtforge/tools COMPONENT Runtime
         PATTERN node_modules EXCLUDE)
 install(DIRECTORY tools/wgsl-runner/node_modules DESTINATION share/crtforge/tools/wgsl-runner

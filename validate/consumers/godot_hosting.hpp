@@ -1,0 +1,46 @@
+// What validate's two real-Godot consumers (Godot 3 under Xvfb, Godot 4 in Chromium) share: pinning
+// TIME to the frame being rendered, the host scenes that use the exported shaders without
+// crtforge_pipeline.gd (the matrix's host modes), and the frames a scene runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/exporter.hpp"
+#include "crtforge/validate/target_render.hpp"
+
+namespace crtforge::consumers {
+
+// Godot's TIME is the wall clock; to render a given frame, the one TIME token becomes a uniform
+// the host pins to the frame's time (the only change to the shipped text), wrapped as Godot wraps
+// TIME (kGodotTimeRollover). The runners set it on every material that declares it.
+inline constexpr const char* kPinnedTime = "crtforge_validation_time";
+Status pin_time(std::string& code);
+
+// The host scene (.tscn text, Godot `version` 3 or 4) for one host mode over a pass's files:
+// "defaults" (the node-mode shader on a TextureRect, no param set), "material" (the exported
+// .tres) or "screen" (the screen-mode shader on a ColorRect over the picture). Its script is
+// host_script(version), saved as res://crtforge_validation_host.gd.
+Result<std::string> host_scene(int version, const std::string& mode, const TargetOutput& files, bool linear);
+const char* host_script(int version);
+inline constexpr const char* kHostScriptPath = "crtforge_validation_host.gd";
+
+// The frames a scene must draw to show `frames`: every frame up to the last when the scene keeps
+// state, else only those (sorted, unique); and the frames to capture (sorted, unique).
+struct SceneFrames {
+    std::vector<int> run, capture;
+};
+SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames);
+
+// The captured pictures in the order `frames` asked for them.
+std::vector<Image> in_request_order(const std::vector<int>& frames, const std::vector<int>& capture,
+                                    const std::vector<Image>& images);
+
+// The project files of a scene render: the export's files for the preset (TIME pinned in every
+// shader) and the exported scene, or validate's host scene for `request.host`; `scene` gets the
+// res:// path to instance.
+Result<std::map<std::string, std::string>> scene_project_files(int version, TargetId target,
+                                                               const SceneRenderRequest& request, std::string& scene);
+
+}  // namespace crtforge::consumers
