@@ -2,6 +2,7 @@
 #include "targets/float_literals.hpp"
 #include "crtforge/inert_text.hpp"
 
+#include <algorithm>
 #include <regex>
 
 #include <fmt/format.h>
@@ -14,6 +15,34 @@ namespace crtforge::godot {
 
 namespace {
 
+// Godot's shading language has no global variables, only constants: SPIRV-Cross prints each OpUndef
+// (the optimiser's "any value" for a lane or branch never read) as a global `vec4 _1032;`, which
+// Godot 4 refuses ("Expected initialization of constant") and Godot 3 accepts only by luck. Every
+// OpUndef becomes an OpConstantNull of its type (same operands; moved out of a function body into
+// the globals, before the first function), which SPIRV-Cross prints inline as a zero value.
+std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
+    constexpr uint32_t kOpUndef = 1, kOpFunction = 54, kOpConstantNull = 46, kOpTypeVoid = 19;
+    if (words.size() < 5) return words;
+    std::vector<uint32_t> void_types, out(words.begin(), words.begin() + 5), moved, body;
+    bool in_functions = false;
+    for (size_t at = 5; at < words.size();) {
+        const uint32_t count = words[at] >> 16, opcode = words[at] & 0xffff;
+        if (count == 0 || at + count > words.size()) return words;  // malformed: spirv-val said no already
+        std::vector<uint32_t> inst(words.begin() + static_cast<long>(at), words.begin() + static_cast<long>(at + count));
+        at += count;
+        if (opcode == kOpTypeVoid && count >= 2) void_types.push_back(inst[1]);
+        if (opcode == kOpFunction) in_functions = true;
+        const bool undef = opcode == kOpUndef && count == 3 &&
+                           std::find(void_types.begin(), void_types.end(), inst[1]) == void_types.end();
+        if (undef) inst[0] = (count << 16) | kOpConstantNull;
+        std::vector<uint32_t>& to = undef && in_functions ? moved : (in_functions ? body : out);
+        to.insert(to.end(), inst.begin(), inst.end());
+    }
+    out.insert(out.end(), moved.begin(), moved.end());
+    out.insert(out.end(), body.begin(), body.end());
+    return out;
+}
+
 // TIME wraps (rendering/limits/time/time_rollover_secs, 3600 s by default). A phase TIME * speed
 // stays continuous across the wrap when speed * 3600 is a whole number of turns, so the speed
 // is rounded to the nearest multiple of 2*pi/3600 rad/s (a change below 0.0009 rad/s). Which param is
@@ -25,7 +54,7 @@ constexpr const char* kTau = "6.28318530717959";
 }  // namespace
 
 GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options)
-    : CompilerGLSL(std::move(spirv)), variant_(variant), options_(options) {}
+    : CompilerGLSL(without_undefined_values(std::move(spirv))), variant_(variant), options_(options) {}
 
 std::string GodotCompiler::builtin_expression(const std::string& member) const {
     const bool screen = options_.mode == Mode::Screen;

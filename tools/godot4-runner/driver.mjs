@@ -20,7 +20,7 @@
 // Replies: {"ok":true,"format":N} or {"ok":false,"kind":"request"|"validation","error":...,
 // "errors":[what Godot logged]}.
 import { spawn } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync, writeSync } from 'node:fs';
+import { appendFileSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync, writeSync } from 'node:fs';
 import { createInterface } from 'node:readline';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -54,7 +54,7 @@ let browser = null;
 let session = null;
 let nextId = 1;
 const waiting = new Map();
-let pipeBuffer = Buffer.alloc(0);
+let pipeChunks = [];
 let browserGone = null;
 
 function send(method, params = {}, sessionId = session) {
@@ -66,18 +66,67 @@ function send(method, params = {}, sessionId = session) {
   return new Promise((resolve, reject) => waiting.set(id, { resolve, reject }));
 }
 
+// Messages end with a NUL. Chunks are kept apart until one holds the end of a message, and only
+// the new chunk is searched: a 10 MB reply comes in thousands of pipe reads, and joining and
+// rescanning the whole buffer per read made a 1080p picture take 40 s.
 function onPipeData(chunk) {
-  pipeBuffer = Buffer.concat([pipeBuffer, chunk]);
+  let start = 0;
   let end;
-  while ((end = pipeBuffer.indexOf(0)) >= 0) {
-    const message = JSON.parse(pipeBuffer.subarray(0, end).toString('utf8'));
-    pipeBuffer = pipeBuffer.subarray(end + 1);
-    const entry = message.id !== undefined && waiting.get(message.id);
+  while ((end = chunk.indexOf(0, start)) >= 0) {
+    pipeChunks.push(chunk.subarray(start, end));
+    const message = JSON.parse(Buffer.concat(pipeChunks).toString('utf8'));
+    pipeChunks = [];
+    start = end + 1;
+    if (message.id === undefined) {
+      onEvent(message);
+      continue;
+    }
+    const entry = waiting.get(message.id);
     if (!entry) continue;
     waiting.delete(message.id);
     if (message.error) entry.reject(new Error(`${message.error.message} (${message.error.code})`));
     else entry.resolve(message.result);
   }
+  if (start < chunk.length) pipeChunks.push(chunk.subarray(start));
+}
+
+// Pictures come back as downloads (runner.gd's JavaScriptBridge.download_buffer): Chromium saves
+// each into `downloads` under a fresh name (its guid) and says when it is complete.
+const downloads = path.join(scratch, 'downloads');
+const downloadNames = new Map();  // guid -> the name Godot gave
+const completed = new Map();      // the name Godot gave -> the saved file
+let downloadWaiter = null;
+function onEvent(message) {
+  if (message.method === 'Browser.downloadWillBegin') downloadNames.set(message.params.guid, message.params.suggestedFilename);
+  if (message.method === 'Browser.downloadProgress' && message.params.state === 'completed') {
+    completed.set(downloadNames.get(message.params.guid), path.join(downloads, message.params.guid));
+    downloadNames.delete(message.params.guid);
+    if (downloadWaiter) downloadWaiter();
+  }
+  if (message.method === 'Browser.downloadProgress' && message.params.state === 'canceled') {
+    completed.set(downloadNames.get(message.params.guid), null);
+    if (downloadWaiter) downloadWaiter();
+  }
+}
+
+// The saved files of `names`, once Chromium has completed them all.
+async function downloaded(names) {
+  const deadline = Date.now() + 60000;
+  while (!names.every((n) => completed.has(n))) {
+    if (browserGone) throw new Error(browserGone);
+    if (Date.now() > deadline) throw new Error(`Chromium did not save the pictures ${names.join(', ')} within 60 s`);
+    await new Promise((resolve) => {
+      downloadWaiter = resolve;
+      setTimeout(resolve, 200);
+    });
+    downloadWaiter = null;
+  }
+  return names.map((n) => {
+    const file = completed.get(n);
+    completed.delete(n);
+    if (!file) throw new Error(`Chromium cancelled the download of ${n}`);
+    return file;
+  });
 }
 
 function browserEnded(why) {
@@ -117,6 +166,7 @@ async function start() {
   browser.stdio[4].on('data', onPipeData);
   browser.stdio[3].on('error', () => {});
 
+  await send('Browser.setDownloadBehavior', { behavior: 'allowAndName', downloadPath: downloads, eventsEnabled: true }, null);
   const { targetId } = await send('Target.createTarget', { url: page.href }, null);
   ({ sessionId: session } = await send('Target.attachToTarget', { targetId, flatten: true }, null));
   const deadline = Date.now() + 50000;
@@ -136,20 +186,24 @@ function stopBrowser() {
 
 // ---- jobs ----------------------------------------------------------------------------------
 
-function readPixels(file, width, height, count = 1) {
-  let data;
+// Copies a file of the driver's into the engine's file system (the page fetches it: no bytes go
+// through the DevTools pipe); returns its path there.
+let copies = 0;
+async function intoEngine(file, expectedBytes) {
+  let size;
   try {
-    data = readFileSync(file);
+    size = statSync(file).size;
   } catch (e) {
     throw new RequestError(`cannot read '${file}': ${e.message}`);
   }
-  const bytes = width * height * 16;
-  if (!Number.isInteger(width) || !Number.isInteger(height) || data.length !== bytes * count)
-    throw new RequestError(`'${file}' has ${data.length} bytes, ${count} picture(s) of ${width}x${height} float32 RGBA need ${bytes * count}`);
-  const out = [];
-  for (let i = 0; i < count; ++i) out.push(data.subarray(i * bytes, (i + 1) * bytes).toString('base64'));
-  return out;
+  if (expectedBytes !== undefined && size !== expectedBytes)
+    throw new RequestError(`'${file}' has ${size} bytes, expected ${expectedBytes}`);
+  const target = `/tmp/crtforge/file-${copies++}${path.extname(file)}`;
+  await evaluate(`window.crtforgeCopy(${JSON.stringify(pathToFileURL(file).href)}, ${JSON.stringify(target)})`);
+  return target;
 }
+
+const pictureBytes = (w, h, count = 1) => (Number.isInteger(w) && Number.isInteger(h) ? w * h * 16 * count : -1);
 
 function readText(file) {
   try {
@@ -171,8 +225,22 @@ function projectFiles(dir, prefix = '', out = {}) {
 }
 
 let packCount = 0;
+const FORMAT_RGBA8 = 5;  // Godot's Image.FORMAT_RGBA8
+let jobCount = 0;
+
+// A picture as the engine wants it, float32 RGBA: 8-bit ones widened (v / 255).
+function asFloat32(bytes, format) {
+  if (format !== FORMAT_RGBA8) return bytes;
+  const out = new Float32Array(bytes.length);
+  for (let i = 0; i < bytes.length; ++i) out[i] = bytes[i] / 255;
+  return Buffer.from(out.buffer);
+}
+
+const profile = process.env.CRTFORGE_GODOT4_PROFILE;  // a file: per job, where its time went
+const mark = (what, t0) => { if (profile) appendFileSync(profile, `${what} ${Date.now() - t0} ms\n`); };
 
 async function runJob(request) {
+  const t0 = Date.now();
   let job;
   if (request.op === 'shader') {
     job = {
@@ -180,19 +248,20 @@ async function runJob(request) {
       filter: request.filter, params: request.params ?? {}, frames: request.frames ?? 2,
     };
     if (request.input) {
-      job.input = readPixels(request.input, request.input_width, request.input_height)[0];
+      job.input = await intoEngine(request.input, pictureBytes(request.input_width, request.input_height));
       job.input_width = request.input_width;
       job.input_height = request.input_height;
     }
   } else if (request.op === 'scene') {
     if (!Array.isArray(request.run)) throw new RequestError('a scene request needs run');
     // The job's files become a pack of their own, mounted over res:// by the runner.
-    const pack = `/tmp/crtforge-job-${packCount++}.pck`;
-    const bytes = packFiles(projectFiles(request.project));
-    await evaluate(`window.crtforgeEngine.copyToFS(${JSON.stringify(pack)}, Uint8Array.from(atob(${JSON.stringify(bytes.toString('base64'))}), (c) => c.charCodeAt(0)).buffer), true`);
+    const packFile = path.join(scratch, `job-${packCount++}.pck`);
+    writeFileSync(packFile, packFiles(projectFiles(request.project)));
+    const pack = await intoEngine(packFile);
+    rmSync(packFile, { force: true });
     job = {
       op: 'scene', pack, scene: request.scene, width: request.width, height: request.height,
-      inputs: readPixels(request.inputs, request.input_width, request.input_height, request.run.length),
+      inputs: await intoEngine(request.inputs, pictureBytes(request.input_width, request.input_height, request.run.length)),
       input_width: request.input_width, input_height: request.input_height, run: request.run,
       capture: request.capture, fps: request.fps, start_time: request.start_time, params: request.params ?? {},
     };
@@ -200,10 +269,18 @@ async function runJob(request) {
   } else {
     throw new RequestError(`unknown op '${request.op}'`);
   }
+  job.id = `job${jobCount++}`;
+  mark(`${request.op} ${request.scene ?? ''} ${request.width}x${request.height} prepared`, t0);
   const answer = JSON.parse(await evaluate(`window.crtforgeRun(${JSON.stringify(JSON.stringify(job))})`));
+  mark(`  ran (${answer.timings ?? ''})`, t0);
   if (!answer.ok) return answer;
-  const images = answer.images.map((b64) => Buffer.from(b64, 'base64'));
+  const names = [];
+  for (let i = 0; i < answer.count; ++i) names.push(`${job.id}-${i}.bin`);
+  const files = await downloaded(names);
+  const images = files.map((file) => asFloat32(readFileSync(file), answer.format));
+  for (const file of files) rmSync(file, { force: true });
   writeFileSync(request.output, Buffer.concat(images));
+  mark('  written', t0);
   return { ok: true, format: answer.format, count: images.length, errors: answer.errors };
 }
 

@@ -1,14 +1,15 @@
 # crtforge's Godot 4 runner: runs inside Godot 4's web build (index.wasm) in headless Chromium,
 # started by ../driver.mjs through ../page.html. The page hands it one job at a time as JSON
 # (window.crtforgeGodotRequest) and it answers through window.crtforgeGodotDone with a JSON result:
-#   {"ok": true, "images": [base64 float32 RGBA, row 0 = top, ...], "format": Image.FORMAT_* read,
+#   {"ok": true, "count": N, "format": Image.FORMAT_* read, "errors": [...]}, the N pictures handed
+#   over as downloads named "<id>-<i>.bin" (row 0 = top; RGBA8 bytes, else float32 RGBA),
 #    "errors": [...]}  or  {"ok": false, "kind": "request"|"validation", "error": "...", "errors": [...]}
 # "errors" are what Godot reported while the job ran (its Logger): shader errors carry the line of
 # the shader they refer to. Jobs (see ../README.md for every key):
-#   {"op": "shader", "shader": code, "width", "height", "input": base64, "input_width",
+#   {"op": "shader", "shader": code, "width", "height", "input": file, "input_width",
 #    "input_height", "filter": "linear"|"nearest", "params": {name: number, bool or [x, y, ...]}, "frames"}
 #   {"op": "scene", "pack": path of a .pck in the engine's file system, "scene": "res://...tscn",
-#    "width", "height", "inputs": [base64 per frame of run], "input_width", "input_height", "run": [...],
+#    "width", "height", "inputs": file (float32 RGBA pictures, one per frame of run), "input_width", "input_height", "run": [...],
 #    "capture": [...], "fps", "start_time", "fit", "params"}
 extends Node
 
@@ -75,7 +76,10 @@ func _run(text: String) -> void:
 		return
 	_busy = true
 	_log.entries.clear()
+	_t0 = Time.get_ticks_msec()
+	_timings.clear()
 	var job = JSON.parse_string(text)
+	_mark("parsed")
 	var result: Dictionary
 	if typeof(job) != TYPE_DICTIONARY:
 		result = _refuse("a job must be a JSON object")
@@ -87,6 +91,7 @@ func _run(text: String) -> void:
 		result = _refuse("unknown op '%s'" % str(job.get("op")))
 	_reset()
 	_busy = false
+	result["timings"] = ", ".join(_timings)
 	_answer(result)
 
 
@@ -110,11 +115,13 @@ func _size_of(job: Dictionary, key: String, low: int) -> int:
 	return int(v)
 
 
-func _picture(data: String, w: int, h: int) -> Image:
-	var bytes := Marshalls.base64_to_raw(data)
-	if bytes.size() != w * h * 16:
+# Picture `index` of a file of float32 RGBA pictures, back to back, in the engine's file system
+# (the page copied it there), or null when the file is not that size.
+func _picture(file: PackedByteArray, index: int, count: int, w: int, h: int) -> Image:
+	var bytes := w * h * 16
+	if w <= 0 or h <= 0 or file.size() != bytes * count:
 		return null
-	return Image.create_from_data(w, h, false, Image.FORMAT_RGBAF, bytes)
+	return Image.create_from_data(w, h, false, Image.FORMAT_RGBAF, file.slice(bytes * index, bytes * (index + 1)))
 
 
 # name -> Variant type of every uniform the shader declares (empty when Godot refused the code).
@@ -197,13 +204,27 @@ func _shader_error() -> String:
 	return ""
 
 
-func _read_back(viewport: SubViewport, w: int, h: int):
+var _timings := []
+var _t0 := 0
+
+func _mark(what: String) -> void:
+	_timings.append("%s %d" % [what, Time.get_ticks_msec() - _t0])
+
+
+# Hands the viewport's picture to the page as a download (JavaScriptBridge.download_buffer: a Blob
+# Chromium saves into the driver's folder): no base64, no DevTools message carries the pixels.
+# 8-bit pictures go as they are; others as float32 RGBA. The picture's format, or -1.
+func _read_back(viewport: SubViewport, w: int, h: int, name: String) -> int:
+	_mark("drawn")
 	var image := viewport.get_texture().get_image()
 	if image == null or image.is_empty() or image.get_width() != w or image.get_height() != h:
-		return null
+		return -1
 	var format := image.get_format()
-	image.convert(Image.FORMAT_RGBAF)
-	return [Marshalls.raw_to_base64(image.get_data()), format]
+	if format != Image.FORMAT_RGBA8:
+		image.convert(Image.FORMAT_RGBAF)
+	JavaScriptBridge.download_buffer(image.get_data(), name, "application/octet-stream")
+	_mark("handed")
+	return format
 
 
 func _run_shader(job: Dictionary) -> Dictionary:
@@ -228,7 +249,7 @@ func _run_shader(job: Dictionary) -> Dictionary:
 		return _refuse(message)
 	var image: Image
 	if job.has("input"):
-		image = _picture(str(job["input"]), _size_of(job, "input_width", 1), _size_of(job, "input_height", 1))
+		image = _picture(FileAccess.get_file_as_bytes(str(job["input"])), 0, 1, _size_of(job, "input_width", 1), _size_of(job, "input_height", 1))
 		if image == null:
 			return _refuse("input is not input_width x input_height float32 RGBA pixels")
 	else:
@@ -245,10 +266,10 @@ func _run_shader(job: Dictionary) -> Dictionary:
 	error = _shader_error()
 	if error != "":
 		return _reject("Godot 4 rejected the shader: " + error)
-	var pixels = _read_back(viewport, w, h)
-	if pixels == null:
+	var format := _read_back(viewport, w, h, "%s-0.bin" % job.get("id", "job"))
+	if format < 0:
 		return _reject("the viewport gave no %dx%d picture" % [w, h])
-	return {"ok": true, "images": [pixels[0]], "format": pixels[1]}
+	return {"ok": true, "count": 1, "format": format}
 
 
 # Every ShaderMaterial of a crtforge scene's passes, or of validate's host scene.
@@ -274,9 +295,9 @@ func _run_scene(job: Dictionary) -> Dictionary:
 		run.append(int(f))
 	for f in job.get("capture", []):
 		capture.append(int(f))
-	var inputs: Array = job.get("inputs", [])
-	if run.is_empty() or inputs.size() != run.size():
-		return _refuse("run needs one entry of inputs per frame")
+	var inputs := FileAccess.get_file_as_bytes(str(job.get("inputs", "")))
+	if run.is_empty():
+		return _refuse("run names no frame")
 	var fps := float(job.get("fps", 60.0))
 	var start_time := float(job.get("start_time", 0.0))
 	if fps <= 0.0 or start_time < 0.0:
@@ -292,7 +313,7 @@ func _run_scene(job: Dictionary) -> Dictionary:
 	var scene = packed.instantiate()
 	if scene == null or scene.get("passes") == null:
 		return _reject("the scene '%s' is not a crtforge scene" % str(job.get("scene", "")))
-	var image := _picture(str(inputs[0]), iw, ih)
+	var image := _picture(inputs, 0, run.size(), iw, ih)
 	if image == null:
 		scene.free()
 		return _refuse("inputs[0] is not input_width x input_height float32 RGBA pixels")
@@ -311,12 +332,12 @@ func _run_scene(job: Dictionary) -> Dictionary:
 		var message := _apply_params(material, job.get("params", {}), true)
 		if message != "":
 			return _refuse(message)
-	var images := []
+	var count := 0
 	var format := -1
 	for i in range(run.size()):
 		var frame: int = run[i]
 		if i > 0:
-			image = _picture(str(inputs[i]), iw, ih)
+			image = _picture(inputs, i, run.size(), iw, ih)
 			if image == null:
 				return _refuse("inputs[%d] is not input_width x input_height float32 RGBA pixels" % i)
 			source.update(image)
@@ -327,15 +348,15 @@ func _run_scene(job: Dictionary) -> Dictionary:
 		for material in materials:
 			if _uniform_types(material.shader).has(PINNED_TIME):
 				material.set_shader_parameter(PINNED_TIME, fmod(start_time + frame / fps, TIME_ROLLOVER))
+		_mark("frame")
 		await RenderingServer.frame_post_draw
 		var error := _shader_error()
 		if error != "":
 			return _reject("Godot 4 rejected a shader of the scene: " + error)
 		if not frame in capture:
 			continue
-		var pixels = _read_back(viewport, w, h)
-		if pixels == null:
+		format = _read_back(viewport, w, h, "%s-%d.bin" % [job.get("id", "job"), count])
+		if format < 0:
 			return _reject("the viewport gave no %dx%d picture at frame %d" % [w, h, frame])
-		images.append(pixels[0])
-		format = pixels[1]
-	return {"ok": true, "images": images, "format": format}
+		count += 1
+	return {"ok": true, "count": count, "format": format}

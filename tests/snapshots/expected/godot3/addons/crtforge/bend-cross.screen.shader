@@ -13,14 +13,12 @@ uniform vec4 edgeColor : hint_color = vec4(0.12549019607843137, 0.18823529411764
 // taps: How much of the extra taps replaces the centre sample
 uniform float tapMix : hint_range(0.0, 1.0, 0.01) = 0.4;
 
-vec4 _1032;
-
 void fragment()
 {
     vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
     vec2 _605 = q_1.xy;
     vec2 _613 = q_1.zw * (bendAmount * dot(_605, _605) + 1.0);
-    vec4 q_2;
+    vec4 q_2 = vec4(0.0);
     q_2.z = _613.x;
     q_2.w = _613.y;
     vec2 _620 = q_2.wz * 0.5;

@@ -31,15 +31,13 @@ uniform float pulseRate : hint_range(0.5, 20.0, 0.5) = 6.0;
 // Seconds reduced exactly by the host (crtforge_pipeline.gd); negative: use TIME.
 uniform float hostTime = -1.0;
 
-vec4 _2430;
-
 void fragment()
 {
     vec2 _705 = UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))));
     vec4 q_1 = (vec4(UV.xyyx) * 2.0) - vec4(1.0);
     vec2 _1228 = q_1.xy;
     vec2 _1236 = q_1.zw * (bendAmount * dot(_1228, _1228) + 1.0);
-    vec4 q_2;
+    vec4 q_2 = vec4(0.0);
     q_2.z = _1236.x;
     q_2.w = _1236.y;
     vec2 sampleUv = (q_2.wz * 0.5) + vec2(0.5);
