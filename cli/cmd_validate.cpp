@@ -144,7 +144,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--golden-dir", a->golden, "Golden directory (default: the source tree's golden/)");
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe; see 'crtforge devices')");
     cmd->add_option("--second-device", a->second_device,
-                    "A second Vulkan driver for the Vulkan-rendered targets (spirv, hlsl*, godot4): auto (SwiftShader when "
+                    "A second Vulkan driver for the Vulkan-rendered targets (spirv, hlsl*): auto (SwiftShader when "
                     "installed), none, or a device name")
         ->capture_default_str();
     cmd->add_option("--matrix", a->matrix,

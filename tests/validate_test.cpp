@@ -105,7 +105,7 @@ TEST_CASE("every shipped preset passes on every target against every golden", "[
     auto report = run_validation(lib, request, Cache());
     REQUIRE(report.ok());
     // Per target: one compile check per shader file and pass, one render per golden of the main
-    // matrix that the target judges; the Vulkan-rendered targets (spirv, hlsl50, hlsl60, godot4)
+    // matrix that the target judges; the Vulkan-rendered targets (spirv, hlsl50, hlsl60)
     // render theirs again on SwiftShader.
     std::vector<GoldenEntry> main_goldens;
     for (const GoldenEntry& g : test::golden_plan_or_fail(lib, golden_dir()))
@@ -116,7 +116,7 @@ TEST_CASE("every shipped preset passes on every target against every golden", "[
     for (const TargetInfo& t : all_targets()) {
         size_t judged = 0;
         for (const GoldenEntry& g : main_goldens) judged += g.judged_by(t.name);
-        const bool vulkan = t.id == TargetId::Spirv || t.id == TargetId::Hlsl50 || t.id == TargetId::Hlsl60 || t.id == TargetId::Godot4;
+        const bool vulkan = t.id == TargetId::Spirv || t.id == TargetId::Hlsl50 || t.id == TargetId::Hlsl60;
         expected += t.shader_roles.size() * passes + judged * (vulkan ? 2 : 1);
     }
     CHECK(report.value().checks.size() == expected);

@@ -30,7 +30,7 @@ struct TargetInfo {
     // vertex + fragment, Godot's node + screen shaders, or WGSL's single module.
     std::vector<std::string> shader_roles;
     // The consumer that proves the output by compiling and rendering it as the target's users do
-    // (validate/consumers/: "vulkan", "gl", "gl-es", "hlsl", "godot4-shim", "godot3", "dawn").
+    // (validate/consumers/: "vulkan", "gl", "gl-es", "hlsl", "godot4", "godot3", "dawn").
     const char* consumer;
     // Turns a compiled variant into the target's files.
     Result<TargetOutput> (*generate)(const TargetInput& input);

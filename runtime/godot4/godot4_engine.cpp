@@ -165,6 +165,21 @@ struct Godot4Server::Impl {
         return Ok{};
     }
 
+    // Each job's files in a folder of their own, which the driver packs into a pack of their own.
+    Result<fs::path> write_project(const std::map<std::string, std::string>& files) {
+        const fs::path project = runner->scratch() / fmt::format("project-{}", packs++);
+        std::error_code ec;
+        fs::remove_all(project, ec);
+        for (const auto& [name, content] : files) {
+            const fs::path file = (project / name).lexically_normal();
+            if (name.empty() || name.front() == '/' || file.string().rfind(project.string() + "/", 0) != 0)
+                return job_error(fmt::format("project file '{}' is not a relative path inside the project", name), "project_files");
+            fs::create_directories(file.parent_path(), ec);
+            if (auto s = write_file(file, content.data(), content.size()); !s.ok()) return s.error();
+        }
+        return project;
+    }
+
     Result<json> request(const json& message, const char* during) {
         if (auto s = ensure_runner(); !s.ok()) return s.error();
         auto reply = runner->request(message, during, kJobSeconds, [this](const json& r) { return started(r); });
@@ -235,24 +250,15 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
     if (!params.ok()) return params.error();
     std::lock_guard lock(impl_->mutex);
     if (auto s = impl_->ensure_runner(); !s.ok()) return s.error();
+    auto project = impl_->write_project(job.project_files);
+    if (!project.ok()) return project.error();
     const fs::path dir = impl_->runner->scratch();
-    // Each job's files in a folder of their own, packed by the driver into a pack of their own.
-    const fs::path project = dir / fmt::format("project-{}", impl_->packs++);
-    std::error_code ec;
-    fs::remove_all(project, ec);
-    for (const auto& [name, content] : job.project_files) {
-        const fs::path file = (project / name).lexically_normal();
-        if (name.empty() || name.front() == '/' || file.string().rfind(project.string() + "/", 0) != 0)
-            return job_error(fmt::format("project file '{}' is not a relative path inside the project", name), "project_files");
-        fs::create_directories(file.parent_path(), ec);
-        if (auto s = write_file(file, content.data(), content.size()); !s.ok()) return s.error();
-    }
     std::vector<const Image*> pictures;
     for (const Image& image : job.inputs) pictures.push_back(&image);
     const fs::path inputs = dir / "inputs.f32", output = dir / "output.f32";
     if (auto s = write_pictures(inputs, pictures); !s.ok()) return s.error();
     json message = {{"op", "scene"},
-                    {"project", project.string()},
+                    {"project", project.value().string()},
                     {"scene", job.scene},
                     {"width", job.width},
                     {"height", job.height},
@@ -267,10 +273,35 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
                     {"output", output.string()}};
     if (!job.fit.empty()) message["fit"] = job.fit;
     auto reply = impl_->request(message, "scene");
-    fs::remove_all(project, ec);
+    std::error_code ec;
+    fs::remove_all(project.value(), ec);
     if (!reply.ok()) return reply.error();
     if (auto s = logged_errors(reply.value()); !s.ok()) return s.error();
     return read_pictures(output, job.width, job.height, job.capture.size());
+}
+
+}  // namespace crtforge
+
+namespace crtforge {
+
+Result<std::string> Godot4Server::run_project(const std::map<std::string, std::string>& files, const std::string& scene,
+                                              int width, int height, int frames) {
+    if (width < 2 || height < 2 || width > kMaxExtent || height > kMaxExtent)
+        return job_error(fmt::format("the viewport must be 2..{} pixels a side; got {}x{}", kMaxExtent, width, height), "width");
+    if (frames < 1 || frames > 1000) return job_error(fmt::format("frames must be between 1 and 1000; got {}", frames), "frames");
+    std::lock_guard lock(impl_->mutex);
+    if (auto s = impl_->ensure_runner(); !s.ok()) return s.error();
+    auto project = impl_->write_project(files);
+    if (!project.ok()) return project.error();
+    auto reply = impl_->request({{"op", "project"}, {"project", project.value().string()}, {"scene", scene},
+                                 {"width", width}, {"height", height}, {"frames", frames}}, "project");
+    std::error_code ec;
+    fs::remove_all(project.value(), ec);
+    if (!reply.ok()) return reply.error();
+    // What Godot logged as errors follows the prints, one "ERROR: " line each: a test decides.
+    std::string output = reply.value().value("output", std::string());
+    for (const json& e : reply.value().value("errors", json::array())) output += "\nERROR: " + first_godot_error(json::array({e}));
+    return output;
 }
 
 }  // namespace crtforge

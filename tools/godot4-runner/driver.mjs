@@ -17,6 +17,8 @@
 //   {"op":"scene","project":DIR,"scene":"res://...","width","height","inputs":PATH (one picture
 //    per frame of run, back to back),"input_width","input_height","run":[..],"capture":[..],
 //    "fps","start_time","fit"?,"params","output":PATH (the captured pictures, back to back)}
+//   {"op":"project","project":DIR,"scene":"res://...","width","height","frames"}: a test's scene,
+//    run until it sets `done`; the reply's "output" is what it printed
 // Replies: {"ok":true,"format":N} or {"ok":false,"kind":"request"|"validation","error":...,
 // "errors":[what Godot logged]}.
 import { spawn } from 'node:child_process';
@@ -225,6 +227,16 @@ function projectFiles(dir, prefix = '', out = {}) {
 }
 
 let packCount = 0;
+
+// The files of `dir` as a pack of their own in the engine's file system, mounted over res:// by
+// the runner.
+async function packed(dir) {
+  const packFile = path.join(scratch, `job-${packCount++}.pck`);
+  writeFileSync(packFile, packFiles(projectFiles(dir)));
+  const pack = await intoEngine(packFile);
+  rmSync(packFile, { force: true });
+  return pack;
+}
 const FORMAT_RGBA8 = 5;  // Godot's Image.FORMAT_RGBA8
 let jobCount = 0;
 
@@ -252,13 +264,12 @@ async function runJob(request) {
       job.input_width = request.input_width;
       job.input_height = request.input_height;
     }
+  } else if (request.op === 'project') {
+    job = { op: 'project', pack: await packed(request.project), scene: request.scene, width: request.width,
+            height: request.height, frames: request.frames ?? 60 };
   } else if (request.op === 'scene') {
     if (!Array.isArray(request.run)) throw new RequestError('a scene request needs run');
-    // The job's files become a pack of their own, mounted over res:// by the runner.
-    const packFile = path.join(scratch, `job-${packCount++}.pck`);
-    writeFileSync(packFile, packFiles(projectFiles(request.project)));
-    const pack = await intoEngine(packFile);
-    rmSync(packFile, { force: true });
+    const pack = await packed(request.project);
     job = {
       op: 'scene', pack, scene: request.scene, width: request.width, height: request.height,
       inputs: await intoEngine(request.inputs, pictureBytes(request.input_width, request.input_height, request.run.length)),
@@ -279,9 +290,9 @@ async function runJob(request) {
   const files = await downloaded(names);
   const images = files.map((file) => asFloat32(readFileSync(file), answer.format));
   for (const file of files) rmSync(file, { force: true });
-  writeFileSync(request.output, Buffer.concat(images));
+  if (request.output) writeFileSync(request.output, Buffer.concat(images));
   mark('  written', t0);
-  return { ok: true, format: answer.format, count: images.length, errors: answer.errors };
+  return { ok: true, format: answer.format, count: images.length, errors: answer.errors, output: answer.output ?? '' };
 }
 
 let info;

@@ -87,7 +87,6 @@ const Consumer& gl_consumer();
 const Consumer& gl_es_consumer();
 const Consumer& gl_es_plain_consumer();
 const Consumer& hlsl_consumer();
-const Consumer& godot4_shim_consumer();
 const Consumer& godot3_consumer();
 const Consumer& godot4_consumer();
 const Consumer& dawn_consumer();

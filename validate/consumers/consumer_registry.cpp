@@ -14,8 +14,7 @@ const Consumer* find_consumer(const std::string& key) {
     static const std::map<std::string, const Consumer*> consumers = {
         {"vulkan", &vulkan_consumer()},   {"gl", &gl_consumer()},          {"gl-es", &gl_es_consumer()},
         {"gl-es-plain", &gl_es_plain_consumer()},
-        {"hlsl", &hlsl_consumer()},       {"godot4-shim", &godot4_shim_consumer()},
-        {"godot4", &godot4_consumer()},
+        {"hlsl", &hlsl_consumer()},       {"godot4", &godot4_consumer()},
         {"godot3", &godot3_consumer()},   {"dawn", &dawn_consumer()},
     };
     auto it = consumers.find(key);

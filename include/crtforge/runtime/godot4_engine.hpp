@@ -66,6 +66,12 @@ public:
     Result<Image> render(const Godot4Job& job);
     // The captured frames, in capture order.
     Result<std::vector<Image>> render_scene(const Godot4SceneJob& job);
+    // A project of a test's own (files by res:// path, e.g. an export's addons/crtforge/ and a main
+    // scene) run as a game runs it: `scene` instanced in a W x H viewport until its script sets
+    // `done = true` (at most `frames` frames). What it printed, one line per print(), then one
+    // "ERROR: <message>" line per error Godot logged meanwhile.
+    Result<std::string> run_project(const std::map<std::string, std::string>& files, const std::string& scene,
+                                    int width, int height, int frames = 60);
     // "Godot 4.6-stable (official) 89cea1439, gl_compatibility on WebGL 2 ... (Chrome/...)",
     // starting the engine if needed; the reason when it cannot start.
     std::string describe();

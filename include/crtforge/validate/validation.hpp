@@ -57,7 +57,7 @@ struct ValidateRequest {
     std::string golden_dir;            // where golden/manifest.json lives
     std::string report_dir;            // when set, render/golden/diff pictures go to <report_dir>/images
     EngineOptions vulkan;              // --device
-    // A second Vulkan driver the Vulkan-rendered targets (spirv, hlsl*, godot4's shim) render on
+    // A second Vulkan driver the Vulkan-rendered targets (spirv, hlsl*) render on
     // as well, judged alike and reported as "<target>@<label>" (SwiftShader beside lavapipe: two
     // independent implementations, so undefined behaviour one computes sensibly can show).
     std::optional<EngineOptions> second_vulkan;

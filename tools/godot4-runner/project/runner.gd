@@ -11,6 +11,8 @@
 #   {"op": "scene", "pack": path of a .pck in the engine's file system, "scene": "res://...tscn",
 #    "width", "height", "inputs": file (float32 RGBA pictures, one per frame of run), "input_width", "input_height", "run": [...],
 #    "capture": [...], "fps", "start_time", "fit", "params"}
+#   {"op": "project", "pack": path, "scene": "res://...tscn", "width", "height", "frames"}: a scene
+#    of a test's own, run until it sets `done`; what it printed comes back as "output"
 extends Node
 
 const PINNED_TIME = "crtforge_validation_time"
@@ -27,9 +29,13 @@ class ErrorLog extends Logger:
 		entries.append({"function": function, "file": file, "line": line, "code": code,
 			"rationale": rationale, "type": error_type})
 
+	var printed: PackedStringArray = []
+
 	func _log_message(message: String, error: bool) -> void:
 		if error:
 			entries.append({"message": message})
+		else:
+			printed.append(message)
 
 
 var _log := ErrorLog.new()
@@ -76,6 +82,7 @@ func _run(text: String) -> void:
 		return
 	_busy = true
 	_log.entries.clear()
+	_log.printed.clear()
 	_t0 = Time.get_ticks_msec()
 	_timings.clear()
 	var job = JSON.parse_string(text)
@@ -87,6 +94,8 @@ func _run(text: String) -> void:
 		result = await _run_shader(job)
 	elif job.get("op") == "scene":
 		result = await _run_scene(job)
+	elif job.get("op") == "project":
+		result = await _run_project(job)
 	else:
 		result = _refuse("unknown op '%s'" % str(job.get("op")))
 	_reset()
@@ -272,6 +281,43 @@ func _run_shader(job: Dictionary) -> Dictionary:
 	return {"ok": true, "count": 1, "format": format}
 
 
+func _mount(pack: String) -> String:
+	if pack != "" and not _packs.has(pack):
+		if not ProjectSettings.load_resource_pack(pack, true):
+			return "Godot could not load the pack '%s'" % pack
+		_packs[pack] = true
+	return ""
+
+
+# A scene of the job's own (a test's project around exported files): instanced in the W x H
+# viewport and left running until it sets its `done` to true (at most `frames` frames); what it
+# printed comes back in "output".
+func _run_project(job: Dictionary) -> Dictionary:
+	var w := _size_of(job, "width", 2)
+	var h := _size_of(job, "height", 2)
+	var frames := _size_of(job, "frames", 1)
+	if w < 0 or h < 0 or frames < 0:
+		return _refuse("width, height and frames must be positive integers")
+	var message := _mount(str(job.get("pack", "")))
+	if message != "":
+		return _refuse(message)
+	var packed = ResourceLoader.load(str(job.get("scene", "")), "", ResourceLoader.CACHE_MODE_REPLACE_DEEP)
+	if not packed is PackedScene:
+		return _reject("cannot load the scene '%s'" % str(job.get("scene", "")))
+	var viewport: SubViewport = $Viewport
+	$Viewport/Picture.visible = false
+	viewport.size = Vector2i(w, h)
+	var scene = packed.instantiate()
+	viewport.add_child(scene)
+	for _i in range(frames):
+		await RenderingServer.frame_post_draw
+		if scene.get("done") == true:
+			break
+	if scene.get("done") != true:
+		return _reject("the scene did not set done within %d frames" % frames)
+	return {"ok": true, "count": 0, "output": "\n".join(_log.printed)}
+
+
 # Every ShaderMaterial of a crtforge scene's passes, or of validate's host scene.
 func _scene_materials(scene: Node) -> Array:
 	var out := []
@@ -302,11 +348,9 @@ func _run_scene(job: Dictionary) -> Dictionary:
 	var start_time := float(job.get("start_time", 0.0))
 	if fps <= 0.0 or start_time < 0.0:
 		return _refuse("fps must be positive and start_time not negative")
-	var pack := str(job.get("pack", ""))
-	if pack != "" and not _packs.has(pack):
-		if not ProjectSettings.load_resource_pack(pack, true):
-			return _refuse("Godot could not load the pack '%s'" % pack)
-		_packs[pack] = true
+	var mounted := _mount(str(job.get("pack", "")))
+	if mounted != "":
+		return _refuse(mounted)
 	var packed = ResourceLoader.load(str(job.get("scene", "")), "", ResourceLoader.CACHE_MODE_REPLACE_DEEP)
 	if not packed is PackedScene:
 		return _reject("cannot load the scene '%s'" % str(job.get("scene", "")))
