@@ -73,7 +73,7 @@ void annotate_for_github(const ValidationReport& report, const std::function<Sou
         }
         std::string props;
         if (!file.empty()) props = " file=" + escape_property(file) + (line > 0 ? fmt::format(",line={}", line) : "");
-        props += (props.empty() ? " " : ",") + std::string("title=") + escape_property(c.preset + " " + c.target + " " + c.check);
+        props.append(props.empty() ? " " : ",").append("title=").append(escape_property(c.preset + " " + c.target + " " + c.check));
         fmt::print("::error{}::{}\n", props, escape_data(c.message));
     }
 

@@ -23,17 +23,19 @@ struct Diagnostic {
     std::string message;  // what is wrong, and where useful, what would be right
     ErrorKind kind = ErrorKind::Input;
 
-    // "file:line:col: error: field 'x': message" — always a single line.
+    // "file:line:col: error: field 'x': message" — always a single line. Appends only: GCC 12
+    // misreports `"literal" + std::string` inlined here as an overlapping memcpy (-Wrestrict,
+    // GCC bug 105329) in every file that includes this header.
     std::string str() const {
         std::string out;
         if (!file.empty()) {
             out += file;
-            if (line > 0) out += ":" + std::to_string(line);
-            if (line > 0 && column > 0) out += ":" + std::to_string(column);
+            if (line > 0) out.append(1, ':').append(std::to_string(line));
+            if (line > 0 && column > 0) out.append(1, ':').append(std::to_string(column));
             out += ": ";
         }
         out += "error: ";
-        if (!field.empty()) out += "field '" + field + "': ";
+        if (!field.empty()) out.append("field '").append(field).append("': ");
         for (char c : message) out += (c == '\n' || c == '\r') ? ' ' : c;  // keep it one line
         return out;
     }
