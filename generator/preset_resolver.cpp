@@ -250,14 +250,18 @@ Status rescale(Pass& pass, double factor, const std::string& file, int line, con
 }
 
 // `preset` with `tier`'s changes (declared in `file`): each named pass rescaled and its stages
-// changed as a derived preset's [passes.<alias>] would change them.
-Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Preset& preset, const TierEntry& tier, const std::string& file) {
+// changed as a derived preset's [passes.<alias>] would change them. An `inherited` tier (a base
+// preset's, checked against the base's passes when the base loaded) skips the passes this preset
+// dropped (a derived preset that turns a stage off may leave a pass nothing reads).
+Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Preset& preset, const TierEntry& tier, const std::string& file,
+                                bool inherited) {
     Preset out = preset;
     out.tiers.clear();
     DeclaredTier declared{tier.name, tier.doc, {file, tier.line}, nullptr, {}};
     for (const auto& [alias, o] : tier.passes) {
         const std::string field = "tiers." + tier.name + ".passes." + alias;
         auto pass = std::find_if(out.passes.begin(), out.passes.end(), [&](const Pass& p) { return p.alias == alias; });
+        if (pass == out.passes.end() && inherited) continue;
         if (pass == out.passes.end()) return make_error("there is no pass '" + alias + "' in preset '" + preset.name + "'", file, o.line, field);
         if (o.scale) {
             declared.changes.push_back(fmt::format("pass {}: scale {} -> {}", alias, value_to_string(Value{pass->scale_x.factor}),
@@ -302,7 +306,8 @@ Result<DeclaredTier> apply_tier(const std::vector<StageSpec>& specs, const Prese
 }
 
 // Every [tiers.<name>] of the chain applied to `preset`: a base's tiers first, a derived file's
-// tier of the same name replacing the base's.
+// tier of the same name replacing the base's. An inherited tier that changes nothing left in the
+// preset (its passes were all dropped) goes with them.
 Status add_declared_tiers(const std::vector<StageSpec>& specs, Preset& preset, const std::vector<const PresetFile*>& chain) {
     std::vector<std::pair<const TierEntry*, const PresetFile*>> tiers;
     for (auto it = chain.rbegin(); it != chain.rend(); ++it)
@@ -312,8 +317,10 @@ Status add_declared_tiers(const std::vector<StageSpec>& specs, Preset& preset, c
             else tiers.emplace_back(&t, *it);
         }
     for (const auto& [tier, file] : tiers) {
-        auto declared = apply_tier(specs, preset, *tier, file->where.file);
+        const bool inherited = file != chain.front();
+        auto declared = apply_tier(specs, preset, *tier, file->where.file, inherited);
         if (!declared.ok()) return declared.error();
+        if (inherited && declared.value().changes.empty()) continue;
         preset.tiers.push_back(std::move(declared.value()));
     }
     return Ok{};

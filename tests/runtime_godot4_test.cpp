@@ -5,9 +5,14 @@
 // run.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "crtforge/files.hpp"
 #include "crtforge/runtime/godot4_engine.hpp"
@@ -96,4 +101,94 @@ TEST_CASE("real Godot 4 accepts the Godot 4 shader of every snapshot construct",
         ++compiled;
     }
     CHECK(compiled >= 16);
+}
+
+TEST_CASE("godot4: TIME is the game's scaled time modulo 3600 s, wrapped exactly (what the TIME fallback relies on)", "[godot4][time]") {
+    // A shader used without crtforge_pipeline.gd reads TIME, and the exported shaders round the
+    // angular speed to whole turns per 3600 s so that a phase stays continuous across TIME's wrap.
+    // That holds only if TIME is an exact fmod(time, 3600). Measured here: the game runs at 12000x
+    // (Engine.time_scale), so TIME wraps every 0.3 s of real time; the shader writes TIME in two
+    // 8-bit channels (whole 256 s blocks and the seconds within one), the script the time it
+    // summed from _process's delta.
+    std::map<std::string, std::string> files;
+    files["main.tscn"] = R"([gd_scene load_steps=3 format=3]
+
+[ext_resource type="Script" path="res://main.gd" id="1"]
+
+[sub_resource type="Shader" id="s"]
+code = "shader_type canvas_item;
+void fragment() {
+	COLOR = vec4(fract(TIME / 256.0), floor(TIME / 256.0) / 255.0, 0.0, 1.0);
+}"
+
+[sub_resource type="ShaderMaterial" id="m"]
+shader = SubResource("s")
+
+[node name="Main" type="Control"]
+offset_right = 4.0
+offset_bottom = 4.0
+script = ExtResource("1")
+
+[node name="Rect" type="ColorRect" parent="."]
+offset_right = 4.0
+offset_bottom = 4.0
+material = SubResource("m")
+)";
+    files["main.gd"] = R"(extends Control
+var done := false
+var summed := 0.0
+
+
+func _ready() -> void:
+	Engine.time_scale = 12000.0
+	for i in range(100):
+		await RenderingServer.frame_post_draw
+		var c := get_viewport().get_texture().get_image().get_pixel(1, 1)
+		print("T %f %f" % [summed, round(c.g * 255.0) * 256.0 + c.r * 256.0])
+	Engine.time_scale = 1.0
+	done = true
+
+
+func _process(delta: float) -> void:
+	summed += delta
+)";
+    auto log = shared_godot4_server().run_project(files, "res://main.tscn", 4, 4, 200);
+    INFO((log.ok() ? log.value() : log.error().str()));
+    REQUIRE(log.ok());
+    std::vector<std::pair<double, double>> samples;  // (summed game time, the shader's TIME)
+    std::istringstream in(log.value());
+    for (std::string line; std::getline(in, line);) {
+        double summed = 0, shader = 0;
+        if (std::sscanf(line.c_str(), "T %lf %lf", &summed, &shader) == 2) samples.emplace_back(summed, shader);
+    }
+    REQUIRE(samples.size() == 100);
+    // TIME = fmod(summed + offset, 3600): the offset (the time before the script started counting)
+    // is the same at every frame, to the 1 s the 8-bit channel resolves.
+    const double offset = samples.front().second - samples.front().first;
+    int wraps = 0;
+    for (size_t i = 0; i < samples.size(); ++i) {
+        const double expected = std::fmod(samples[i].first + offset + 3600.0 * 1000, 3600.0);
+        double d = std::fabs(samples[i].second - expected);
+        d = std::min(d, 3600.0 - d);  // either side of the wrap
+        INFO("frame " << i << ": summed " << samples[i].first << " s, TIME " << samples[i].second << " s, expected " << expected);
+        CHECK(d < 2.0);
+        if (i > 0 && samples[i].second < samples[i - 1].second) ++wraps;
+    }
+    CHECK(wraps >= 2);
+}
+
+TEST_CASE("godot4: a job that brings a different script under a path already used runs the new script", "[godot4]") {
+    // Godot keeps a GDScript it loaded for the life of the process; the engine starts a fresh one
+    // when a job's script differs from the one mounted under the same path.
+    const std::string scene = "[gd_scene load_steps=2 format=3]\n\n[ext_resource type=\"Script\" path=\"res://said.gd\" id=\"1\"]\n\n"
+                              "[node name=\"Main\" type=\"Node\"]\nscript = ExtResource(\"1\")\n";
+    auto say = [](const std::string& word) {
+        return "extends Node\nvar done := false\nfunc _ready() -> void:\n\tprint(\"SAID " + word + "\")\n\tdone = true\n";
+    };
+    for (const std::string word : {"first", "second", "second"}) {
+        auto log = shared_godot4_server().run_project({{"said.tscn", scene}, {"said.gd", say(word)}}, "res://said.tscn", 2, 2, 10);
+        INFO((log.ok() ? log.value() : log.error().str()));
+        REQUIRE(log.ok());
+        CHECK(log.value() == "SAID " + word);
+    }
 }

@@ -594,3 +594,29 @@ TEST_CASE("a supersampled pass needs stages to average and 1..4 samples a side",
     CHECK(derived.value().passes[0].supersample == 3);
     CHECK(derived.value().passes[1].supersample == 2);
 }
+
+TEST_CASE("a derived preset that drops a pass drops the base's tiers of it, and keeps its own refusal of unknown passes", "[scene][tiers]") {
+    // super-win without its bloom: bloom_down and bloom_up are read by nothing and dropped, and the
+    // quarter-bloom tier, which only changes those two passes, goes with them.
+    test::ScratchTemplates t;
+    t.write("presets/sw-nobloom.toml", "format = 2\nname = \"sw-nobloom\"\nbase = \"super-win\"\ndoc = \"no bloom\"\n"
+                                       "[passes.composite.stages.bloom_add]\nenabled = false\n");
+    auto lib = t.load();
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    const Preset* derived = lib.value()->find_preset("sw-nobloom");
+    REQUIRE(derived);
+    CHECK_FALSE(derived->find_pass("bloom_down"));
+    CHECK_FALSE(derived->find_pass("bloom_up"));
+    for (const DeclaredTier& tier : derived->tiers) CHECK(tier.name != "quarter-bloom");
+    const Preset* base = lib.value()->find_preset("super-win");
+    REQUIRE(base);
+    CHECK(std::any_of(base->tiers.begin(), base->tiers.end(), [](const DeclaredTier& d) { return d.name == "quarter-bloom"; }));
+    // A tier the derived preset declares itself still names only passes it has.
+    t.write("presets/sw-nobloom.toml", "format = 2\nname = \"sw-nobloom\"\nbase = \"super-win\"\ndoc = \"no bloom\"\n"
+                                       "[passes.composite.stages.bloom_add]\nenabled = false\n"
+                                       "[tiers.mine]\ndoc = \"d\"\n[tiers.mine.passes.bloom_up]\nscale = 0.5\n");
+    auto refused = t.load();
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().str(), Catch::Contains("sw-nobloom.toml:9") && Catch::Contains("there is no pass 'bloom_up'"));
+}

@@ -228,6 +228,15 @@ std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings) {
 
 namespace {
 
+// A colour per preset, by the preset's place among the panel's presets sorted by name: 20
+// categorical colours far enough apart to tell on white (past 20 they repeat, with the legend).
+const char* preset_colour(size_t index) {
+    static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
+                                    "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#ad494a", "#637939", "#e7ba52",
+                                    "#7b4173", "#3182bd", "#31a354", "#e6550d", "#756bb1", "#636363"};
+    return colours[index % (sizeof colours / sizeof colours[0])];
+}
+
 // One display size's plot, `top` pixels down the picture; returns its height.
 double svg_panel(const std::vector<SceneTiming>& timings, double top, std::string& out) {
     // Cost on x (ratio to a blit) and error against the supersampled reference on y, both log: the
@@ -258,6 +267,14 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     auto X = [&](double c) { return L + (W - L - R) * (std::log10(std::max(c, xmin)) - lx0) / (lx1 - lx0); };
     auto Y = [&](double e) { return T + (H - T - B) * (hi - std::log10(std::max(e, 1e-6))) / (hi - lo); };
 
+    std::vector<std::string> presets;
+    for (const SceneTiming& t : timings) presets.push_back(t.preset);
+    std::sort(presets.begin(), presets.end());
+    presets.erase(std::unique(presets.begin(), presets.end()), presets.end());
+    auto colour = [&](const std::string& preset) {
+        return preset_colour(static_cast<size_t>(std::lower_bound(presets.begin(), presets.end(), preset) - presets.begin()));
+    };
+
     std::string body;
     for (double d = std::pow(10.0, std::floor(lx0)); d <= xmax * 1.0001; d *= 10)
         for (double m : {1.0, 2.0, 5.0}) {
@@ -274,18 +291,19 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     body += fmt::format("<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" text-anchor=\"middle\">RMSE against the supersampled fp64 reference</text>\n",
                         (T + H - B) / 2);
     const std::vector<size_t> front = pareto_front(timings);
-    // Each preset's front joined, cheapest first (the front is sorted by preset, then cost).
-    std::string path;
-    for (size_t k = 0; k < front.size(); ++k) {
-        const bool starts = k == 0 || timings[front[k - 1]].preset != timings[front[k]].preset;
-        path += fmt::format("{}{:.1f},{:.1f}", starts ? (path.empty() ? "M" : " M") : " L", X(timings[front[k]].ratio()),
-                            Y(timings[front[k]].vs_supersampled->rmse));
+    // Each preset's front joined in its colour, cheapest first (the front is sorted by preset, then cost).
+    for (size_t k = 0; k < front.size();) {
+        const std::string& preset = timings[front[k]].preset;
+        std::string path;
+        for (; k < front.size() && timings[front[k]].preset == preset; ++k)
+            path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(timings[front[k]].ratio()), Y(timings[front[k]].vs_supersampled->rmse));
+        body += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", path, colour(preset));
     }
-    if (!path.empty()) body += "<path d=\"" + path + "\" fill=\"none\" stroke=\"#d33\" stroke-width=\"1.5\"/>\n";
     // A preset's tiers joined, point to filtered: what filtering buys and costs.
     for (const auto& [point, filtered] : tier_pairs(timings))
-        body += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#36c\" stroke-dasharray=\"4 3\"/>\n",
-                            X(point->ratio()), Y(point->vs_supersampled->rmse), X(filtered->ratio()), Y(filtered->vs_supersampled->rmse));
+        body += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" stroke-dasharray=\"4 3\"/>\n",
+                            X(point->ratio()), Y(point->vs_supersampled->rmse), X(filtered->ratio()), Y(filtered->vs_supersampled->rmse),
+                            colour(point->preset));
 
     // Points first (the front's last, so none of it is hidden), then labels: the front's first,
     // each at the first free spot around its point (right, left, then lines above and below,
@@ -302,8 +320,10 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     for (size_t i : order) {
         if (!timings[i].vs_supersampled) continue;
         const double x = X(timings[i].ratio()), y = Y(timings[i].vs_supersampled->rmse);
-        body += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>\n", x, y,
-                            std::find(front.begin(), front.end(), i) != front.end() ? "#d33" : "#36c");
+        // A point on its preset's front is ringed in black.
+        const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
+        body += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"{}/>\n", x, y, colour(timings[i].preset),
+                            on_front ? " stroke=\"#000\" stroke-width=\"1.5\"" : "");
         placed.push_back(Box{x - 4, x + 4, y - 4, y + 4});
     }
     std::vector<size_t> label_order(front.begin(), front.end());
@@ -345,12 +365,22 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     for (size_t k = 0; k < unplaced.size(); ++k)
         body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{}: {}</text>\n", L + (W - L - R) / kColumns * static_cast<double>(k % kColumns),
                             H + 14.0 * static_cast<double>(k / kColumns), k + 1, xml_escape(unplaced[k]));
-    const double height = H + 14.0 * rows + (rows ? 6 : 0);
+    // The legend: each preset's colour, in columns under the numbered names.
+    constexpr int kLegendColumns = 4;
+    const double legend_top = H + 14.0 * rows + (rows ? 10 : 4);
+    for (size_t k = 0; k < presets.size(); ++k) {
+        const double lx = L + (W - L - R) / kLegendColumns * static_cast<double>(k % kLegendColumns);
+        const double ly = legend_top + 16.0 * static_cast<double>(k / kLegendColumns);
+        body += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"12\" height=\"12\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{}</text>\n",
+                            lx, ly, preset_colour(k), lx + 16, ly + 10, xml_escape(presets[k]));
+    }
+    const int legend_rows = static_cast<int>((presets.size() + kLegendColumns - 1) / kLegendColumns);
+    const double height = legend_top + 16.0 * legend_rows + 4;
     out += fmt::format("<g transform=\"translate(0 {})\">\n", top);
     out += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
                        timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
                                                                      xml_escape(timings.front().device)));
-    out += fmt::format("<text x=\"{}\" y=\"36\" fill=\"#d33\">red: each preset's Pareto front (no tier of it both cheaper and closer); dashed: point tier to each other tier; error 0 at the bottom</text>\n", L);
+    out += fmt::format("<text x=\"{}\" y=\"36\">a colour per preset (legend below); solid line and ringed points: its Pareto front (no tier of it both cheaper and closer); dashed: point tier to each other tier; error 0 at the bottom</text>\n", L);
     out += body + "</g>\n";
     return height;
 }

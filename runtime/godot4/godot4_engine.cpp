@@ -135,8 +135,14 @@ struct Godot4Server::Impl {
     std::string description;
     std::string start_error;
     int packs = 0;
+    // The scripts mounted in the running engine, by res:// path. Godot keeps a GDScript it loaded
+    // for the life of the process (a later pack's different text under the same path is not
+    // reloaded, even with CACHE_MODE_REPLACE_DEEP; scenes, shaders and materials are), so a job
+    // that brings a different script under a path already used gets a fresh engine.
+    std::map<std::string, std::string> scripts;
 
     Status started(const json& r) {
+        scripts.clear();  // a fresh engine has mounted nothing
         if (!r.value("ok", false)) {
             runner->stop(false);
             return make_error("Godot 4 did not start: " + r.value("error", std::string("unknown error")));
@@ -165,8 +171,23 @@ struct Godot4Server::Impl {
         return Ok{};
     }
 
+    // After a job ran: its scripts are what the engine now holds under their paths.
+    void remember_scripts(const std::map<std::string, std::string>& files) {
+        for (const auto& [name, content] : files)
+            if (fs::path(name).extension() == ".gd") scripts[name] = content;
+    }
+
     // Each job's files in a folder of their own, which the driver packs into a pack of their own.
     Result<fs::path> write_project(const std::map<std::string, std::string>& files) {
+        for (const auto& [name, content] : files) {
+            if (fs::path(name).extension() != ".gd") continue;
+            auto mounted = scripts.find(name);
+            if (mounted != scripts.end() && mounted->second != content) {
+                runner->stop(false);
+                scripts.clear();
+                break;
+            }
+        }
         const fs::path project = runner->scratch() / fmt::format("project-{}", packs++);
         std::error_code ec;
         fs::remove_all(project, ec);
@@ -273,6 +294,7 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
                     {"output", output.string()}};
     if (!job.fit.empty()) message["fit"] = job.fit;
     auto reply = impl_->request(message, "scene");
+    if (reply.ok()) impl_->remember_scripts(job.project_files);
     std::error_code ec;
     fs::remove_all(project.value(), ec);
     if (!reply.ok()) return reply.error();
@@ -295,6 +317,7 @@ Result<std::string> Godot4Server::run_project(const std::map<std::string, std::s
     if (!project.ok()) return project.error();
     auto reply = impl_->request({{"op", "project"}, {"project", project.value().string()}, {"scene", scene},
                                  {"width", width}, {"height", height}, {"frames", frames}}, "project");
+    if (reply.ok()) impl_->remember_scripts(files);
     std::error_code ec;
     fs::remove_all(project.value(), ec);
     if (!reply.ok()) return reply.error();

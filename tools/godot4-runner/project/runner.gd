@@ -35,7 +35,7 @@ class ErrorLog extends Logger:
 		if error:
 			entries.append({"message": message})
 		else:
-			printed.append(message)
+			printed.append(message.trim_suffix("\n"))
 
 
 var _log := ErrorLog.new()

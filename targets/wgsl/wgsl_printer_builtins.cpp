@@ -1,0 +1,236 @@
+// The WGSL printer's extended and image instructions: GLSL.std.450 mapped onto WGSL builtins (with
+// GLSL's semantics kept where WGSL's differ: targets/wgsl/README.md), and sampling, fetches and
+// size queries. The rest of the printer is wgsl_printer.cpp.
+#include <algorithm>
+#include <map>
+
+#include <fmt/format.h>
+#include <spirv_cross/GLSL.std.450.h>
+
+#include "targets/wgsl/wgsl_function_printer.hpp"
+
+namespace crtforge::wgsl {
+
+namespace {
+
+// GLSL.std.450 instructions that are one WGSL builtin of the same arguments.
+const std::map<GLSLstd450, const char*>& same_builtin() {
+    static const std::map<GLSLstd450, const char*> table = {
+        {GLSLstd450Round, "round"},  // WGSL rounds half to even: a valid GLSL round()
+        {GLSLstd450RoundEven, "round"}, {GLSLstd450Trunc, "trunc"}, {GLSLstd450FAbs, "abs"},
+        {GLSLstd450FSign, "sign"}, {GLSLstd450Floor, "floor"}, {GLSLstd450Ceil, "ceil"}, {GLSLstd450Fract, "fract"},
+        {GLSLstd450Radians, "radians"}, {GLSLstd450Degrees, "degrees"}, {GLSLstd450Sin, "sin"}, {GLSLstd450Cos, "cos"},
+        {GLSLstd450Tan, "tan"}, {GLSLstd450Asin, "asin"}, {GLSLstd450Acos, "acos"}, {GLSLstd450Atan, "atan"},
+        {GLSLstd450Sinh, "sinh"}, {GLSLstd450Cosh, "cosh"}, {GLSLstd450Tanh, "tanh"}, {GLSLstd450Asinh, "asinh"},
+        {GLSLstd450Acosh, "acosh"}, {GLSLstd450Atanh, "atanh"}, {GLSLstd450Atan2, "atan2"}, {GLSLstd450Pow, "pow"},
+        {GLSLstd450Exp, "exp"}, {GLSLstd450Log, "log"}, {GLSLstd450Exp2, "exp2"}, {GLSLstd450Log2, "log2"},
+        {GLSLstd450Sqrt, "sqrt"}, {GLSLstd450InverseSqrt, "inverseSqrt"}, {GLSLstd450Determinant, "determinant"},
+        {GLSLstd450FMin, "min"}, {GLSLstd450FMax, "max"}, {GLSLstd450FMix, "mix"}, {GLSLstd450Step, "step"},
+        {GLSLstd450Fma, "fma"}, {GLSLstd450PackSnorm4x8, "pack4x8snorm"}, {GLSLstd450PackUnorm4x8, "pack4x8unorm"},
+        {GLSLstd450PackSnorm2x16, "pack2x16snorm"}, {GLSLstd450PackUnorm2x16, "pack2x16unorm"},
+        {GLSLstd450PackHalf2x16, "pack2x16float"}, {GLSLstd450UnpackSnorm2x16, "unpack2x16snorm"},
+        {GLSLstd450UnpackUnorm2x16, "unpack2x16unorm"}, {GLSLstd450UnpackHalf2x16, "unpack2x16float"},
+        {GLSLstd450UnpackSnorm4x8, "unpack4x8snorm"}, {GLSLstd450UnpackUnorm4x8, "unpack4x8unorm"},
+        {GLSLstd450Length, "length"}, {GLSLstd450Distance, "distance"}, {GLSLstd450Cross, "cross"},
+        {GLSLstd450Normalize, "normalize"}, {GLSLstd450FaceForward, "faceForward"}, {GLSLstd450Reflect, "reflect"},
+        {GLSLstd450Refract, "refract"},
+    };
+    return table;
+}
+
+// Integer GLSL.std.450 instructions: one WGSL builtin, operands in the result's signedness.
+const std::map<GLSLstd450, const char*>& same_integer_builtin() {
+    static const std::map<GLSLstd450, const char*> table = {
+        {GLSLstd450SAbs, "abs"}, {GLSLstd450SSign, "sign"}, {GLSLstd450UMin, "min"}, {GLSLstd450SMin, "min"},
+        {GLSLstd450UMax, "max"}, {GLSLstd450SMax, "max"}, {GLSLstd450UClamp, "clamp"}, {GLSLstd450SClamp, "clamp"},
+    };
+    return table;
+}
+
+}  // namespace
+
+void FunctionPrinter::ext_instruction(const Instruction& inst) {
+    const auto& o = inst.operands;
+    if (o.size() < 2) unsupported(inst, "an operand is missing");
+    auto set = m_.ext_imports.find(o[0]);
+    if (set == m_.ext_imports.end() || set->second != "GLSL.std.450")
+        unsupported(inst, "an extended instruction set other than GLSL.std.450");
+    const auto e = operand_enum(o[1], GLSLstd450Count);
+    std::vector<Expr> args;
+    for (size_t i = 2; i < o.size(); ++i) args.push_back(value(o[i]));
+    auto arg = [&](size_t i) -> const Expr& {
+        if (i >= args.size()) unsupported(inst, "an operand is missing");
+        return args[i];
+    };
+    auto texts = [&]() {
+        std::vector<std::string> out;
+        for (const Expr& a : args) out.push_back(a.text);
+        return join_list(out);
+    };
+    if (auto it = same_builtin().find(e); it != same_builtin().end()) {
+        define(inst, Expr::primary(std::string(it->second) + "(" + texts() + ")"), true);
+        return;
+    }
+    if (auto it = same_integer_builtin().find(e); it != same_integer_builtin().end()) {
+        std::vector<std::string> typed_args;
+        for (size_t i = 2; i < o.size(); ++i) typed_args.push_back(typed(o[i], inst.type));
+        define(inst, Expr::primary(std::string(it->second) + "(" + join_list(typed_args) + ")"), true);
+        return;
+    }
+    auto constant_floats = [&](size_t i) -> std::optional<std::vector<float>> {
+        auto c = m_.constants.find(o[i]);
+        if (c == m_.constants.end()) return std::nullopt;
+        std::vector<uint32_t> bits;
+        if (c->second.op == spv::OpConstant) {
+            bits = c->second.words;
+        } else if (c->second.op == spv::OpConstantComposite) {
+            for (uint32_t part : c->second.words) {
+                auto p = m_.constants.find(part);
+                if (p == m_.constants.end() || p->second.words.empty()) return std::nullopt;
+                bits.push_back(p->second.words[0]);
+            }
+        } else if (c->second.op == spv::OpConstantNull) {
+            bits.assign(mod_.component_count(c->second.type), 0u);
+        } else {
+            return std::nullopt;
+        }
+        if (bits.empty()) return std::nullopt;
+        std::vector<float> out;
+        for (uint32_t b : bits) out.push_back(std::bit_cast<float>(b));
+        return out;
+    };
+    // True when two constant operands are in the order WGSL's const-evaluation rejects.
+    auto reversed = [&](size_t lo, size_t hi, bool allow_equal) {
+        if (hi >= o.size()) return false;
+        auto a = constant_floats(lo), b = constant_floats(hi);
+        if (!a || !b) return false;
+        for (size_t i = 0; i < std::max(a->size(), b->size()); ++i) {
+            const float x = (*a)[std::min(i, a->size() - 1)], y = (*b)[std::min(i, b->size() - 1)];
+            if (allow_equal ? x > y : x >= y) return true;
+        }
+        return false;
+    };
+    switch (e) {
+        case GLSLstd450FClamp:
+            // WGSL rejects clamp() whose constant low > high; GLSL defines clamp as min(max(x, lo), hi).
+            if (reversed(3, 4, true))
+                define(inst, Expr::primary("min(max(" + arg(0).text + ", " + arg(1).text + "), " + arg(2).text + ")"), true);
+            else
+                define(inst, Expr::primary("clamp(" + texts() + ")"), true);
+            return;
+        case GLSLstd450SmoothStep:
+            // smoothstep(e0, e1, x) with constant e0 >= e1 is a WGSL error but a valid GLSL expression
+            // (Quiet Frame's vignette writes one): spell out the Hermite curve GLSL defines.
+            if (reversed(2, 3, false)) {
+                if (analysis_.use_count(inst.result) == 0) return;  // dead, and pure
+                const std::string t = "clamp((" + arg(2).text + " - " + arg(0).operand() + ") / (" + arg(1).operand() + " - " +
+                                      arg(0).operand() + "), " + mod_.type_name(inst.type) + "(0.0), " +
+                                      mod_.type_name(inst.type) + "(1.0))";
+                const std::string name = temp_name(inst.result) + "_t";
+                line("let " + name + " = " + t + ";");
+                define(inst, Expr::binary(name + " * " + name + " * (3.0 - 2.0 * " + name + ")"), true);
+            } else {
+                define(inst, Expr::primary("smoothstep(" + texts() + ")"), true);
+            }
+            return;
+        case GLSLstd450Ldexp: {
+            const uint32_t n = mod_.component_count(inst.type);
+            const std::string exp_type = n == 1 ? "i32" : fmt::format("vec{}<i32>", n);
+            define(inst, Expr::primary("ldexp(" + arg(0).text + ", bitcast<" + exp_type + ">(" + arg(1).text + "))"), true);
+            return;
+        }
+        case GLSLstd450FindILsb: case GLSLstd450FindSMsb: case GLSLstd450FindUMsb: {
+            const char* name = e == GLSLstd450FindILsb ? "firstTrailingBit" : "firstLeadingBit";
+            const bool want_signed = e == GLSLstd450FindSMsb;
+            const uint32_t n = mod_.component_count(inst.type);
+            const std::string operand_type = n == 1 ? (want_signed ? "i32" : "u32") : fmt::format("vec{}<{}>", n, want_signed ? "i32" : "u32");
+            std::string text = std::string(name) + "(bitcast<" + operand_type + ">(" + arg(0).text + "))";
+            if (m_.type(mod_.scalar_of(inst.type)).is_signed != want_signed)
+                text = "bitcast<" + mod_.type_name(inst.type) + ">(" + text + ")";
+            define(inst, Expr::primary(text), true);
+            return;
+        }
+        default: {
+            static const std::map<GLSLstd450, const char*> names = {
+                {GLSLstd450MatrixInverse, "MatrixInverse"}, {GLSLstd450Modf, "Modf"}, {GLSLstd450ModfStruct, "ModfStruct"},
+                {GLSLstd450Frexp, "Frexp"}, {GLSLstd450FrexpStruct, "FrexpStruct"},
+                {GLSLstd450InterpolateAtCentroid, "InterpolateAtCentroid"}, {GLSLstd450InterpolateAtSample, "InterpolateAtSample"},
+                {GLSLstd450InterpolateAtOffset, "InterpolateAtOffset"}, {GLSLstd450NMin, "NMin"}, {GLSLstd450NMax, "NMax"},
+                {GLSLstd450NClamp, "NClamp"}, {GLSLstd450PackDouble2x32, "PackDouble2x32"},
+                {GLSLstd450UnpackDouble2x32, "UnpackDouble2x32"}};
+            auto it = names.find(e);
+            fail(fmt::format("cannot translate OpExtInst GLSL.std.450 {} to WGSL",
+                             it != names.end() ? it->second : std::to_string(static_cast<int>(e)).c_str()),
+                 inst.line);
+        }
+    }
+}
+
+void FunctionPrinter::image_instruction(const Instruction& inst) {
+    const auto& o = inst.operands;
+    if (o.size() < 1) unsupported(inst, "an operand is missing");
+    auto image = images_.find(o[0]);
+    if (image == images_.end()) unsupported(inst, "the image does not come from a module variable");
+    const auto& [texture, sampler] = image->second;
+    switch (inst.op) {
+        case spv::OpImageQuerySizeLod: case spv::OpImageQuerySize: {
+            std::string text = "textureDimensions(" + texture +
+                               (inst.op == spv::OpImageQuerySizeLod && o.size() > 1 ? ", " + value(o[1]).text : "") + ")";
+            if (m_.type(mod_.scalar_of(inst.type)).is_signed) text = mod_.type_name(inst.type) + "(" + text + ")";
+            define(inst, Expr::primary(text), true);
+            return;
+        }
+        case spv::OpImageQueryLevels: {
+            std::string text = "textureNumLevels(" + texture + ")";
+            if (m_.type(inst.type).is_signed) text = "i32(" + text + ")";
+            define(inst, Expr::primary(text), true);
+            return;
+        }
+        default: break;
+    }
+    if (o.size() < 2) unsupported(inst, "an operand is missing");
+    const std::string coord = value(o[1]).text;
+    const uint32_t mask = o.size() > 2 ? o[2] : 0;
+    std::map<uint32_t, std::string> operands;  // image-operand bit -> text
+    size_t next = 3;
+    auto operand = [&](size_t i) {
+        if (i >= o.size()) unsupported(inst, "an image operand is missing");
+        return value(o[i]).text;
+    };
+    for (uint32_t bit : {spv::ImageOperandsBiasMask, spv::ImageOperandsLodMask, spv::ImageOperandsGradMask,
+                         spv::ImageOperandsConstOffsetMask, spv::ImageOperandsOffsetMask, spv::ImageOperandsConstOffsetsMask,
+                         spv::ImageOperandsSampleMask, spv::ImageOperandsMinLodMask}) {
+        if (!(mask & bit)) continue;
+        if (bit == spv::ImageOperandsGradMask) {
+            operands[bit] = operand(next) + ", " + operand(next + 1);
+            next += 2;
+        } else {
+            operands[bit] = operand(next);
+            ++next;
+        }
+    }
+    const uint32_t known = spv::ImageOperandsBiasMask | spv::ImageOperandsLodMask | spv::ImageOperandsGradMask |
+                           spv::ImageOperandsConstOffsetMask;
+    if (mask & ~known) unsupported(inst, "image operands other than Bias, Lod, Grad and ConstOffset");
+    const std::string offset = operands.count(spv::ImageOperandsConstOffsetMask) ? ", " + operands[spv::ImageOperandsConstOffsetMask] : "";
+    std::string text;
+    if (inst.op == spv::OpImageFetch) {
+        const std::string lod = operands.count(spv::ImageOperandsLodMask) ? operands[spv::ImageOperandsLodMask] : "0";
+        text = "textureLoad(" + texture + ", " + coord + ", " + lod + ")";
+    } else if (inst.op == spv::OpImageSampleImplicitLod) {
+        needs_uniform_flow();
+        if (operands.count(spv::ImageOperandsBiasMask))
+            text = "textureSampleBias(" + texture + ", " + sampler + ", " + coord + ", " + operands[spv::ImageOperandsBiasMask] + offset + ")";
+        else
+            text = "textureSample(" + texture + ", " + sampler + ", " + coord + offset + ")";
+    } else if (operands.count(spv::ImageOperandsLodMask)) {
+        text = "textureSampleLevel(" + texture + ", " + sampler + ", " + coord + ", " + operands[spv::ImageOperandsLodMask] + offset + ")";
+    } else if (operands.count(spv::ImageOperandsGradMask)) {
+        text = "textureSampleGrad(" + texture + ", " + sampler + ", " + coord + ", " + operands[spv::ImageOperandsGradMask] + offset + ")";
+    } else {
+        unsupported(inst, "an explicit-LOD sample without Lod or Grad");
+    }
+    define(inst, Expr::primary(text), true);
+}
+
+}  // namespace crtforge::wgsl
