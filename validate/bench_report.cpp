@@ -380,7 +380,7 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     out += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
                        timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
                                                                      xml_escape(timings.front().device)));
-    out += fmt::format("<text x=\"{}\" y=\"36\">a colour per preset (legend below); solid line and ringed points: its Pareto front (no tier of it both cheaper and closer); dashed: point tier to each other tier; error 0 at the bottom</text>\n", L);
+    out += fmt::format("<text x=\"{}\" y=\"36\">colour: preset (legend below); line, ringed: its Pareto front; dashed: point tier to each other tier; error 0 at the bottom</text>\n", L);
     out += body + "</g>\n";
     return height;
 }
