@@ -57,23 +57,7 @@ public:
 
     Result<std::vector<Image>> render_scene(const SceneRenderRequest& r, ConsumerEngines&) const override {
         Godot4SceneJob job;
-        auto files = consumers::scene_project_files(4, TargetId::Godot4, r, job.scene);
-        if (!files.ok()) return files.error();
-        job.project_files = std::move(files.value());
-        if (r.fit) job.fit = display_fit_name(*r.fit);
-        const consumers::SceneFrames frames = consumers::scene_frames(*r.preset, r.frames);
-        for (int f : frames.run) {
-            auto input = r.source(f);
-            if (!input.ok()) return input.error();
-            job.inputs.push_back(std::move(input.value()));
-        }
-        job.run = frames.run;
-        job.capture = frames.capture;
-        job.fps = r.preset->scene.fps;
-        job.start_time = r.start_time;
-        job.width = r.width;
-        job.height = r.height;
-        job.params = r.overrides;
+        if (auto s = consumers::fill_scene_job(4, TargetId::Godot4, r, job); !s.ok()) return s.error();
         auto images = shared_godot4_server().render_scene(job);
         if (!images.ok()) return images.error();
         return consumers::in_request_order(r.frames, job.capture, images.value());

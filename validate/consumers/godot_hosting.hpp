@@ -8,6 +8,7 @@
 
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/exporter.hpp"
+#include "crtforge/preset.hpp"
 #include "crtforge/validate/target_render.hpp"
 
 namespace crtforge::consumers {
@@ -42,5 +43,30 @@ std::vector<Image> in_request_order(const std::vector<int>& frames, const std::v
 // res:// path to instance.
 Result<std::map<std::string, std::string>> scene_project_files(int version, TargetId target,
                                                                const SceneRenderRequest& request, std::string& scene);
+
+// A Godot scene job (Godot3SceneJob, Godot4SceneJob: the same fields) filled from the request:
+// the project files, the frames to draw with each frame's original, the frames to capture, time
+// and params as a game would run them.
+template <typename Job>
+Status fill_scene_job(int version, TargetId target, const SceneRenderRequest& r, Job& job) {
+    auto files = scene_project_files(version, target, r, job.scene);
+    if (!files.ok()) return files.error();
+    job.project_files = std::move(files.value());
+    if (r.fit) job.fit = display_fit_name(*r.fit);
+    const SceneFrames frames = scene_frames(*r.preset, r.frames);
+    for (int f : frames.run) {
+        auto input = r.source(f);
+        if (!input.ok()) return input.error();
+        job.inputs.push_back(std::move(input.value()));
+    }
+    job.run = frames.run;
+    job.capture = frames.capture;
+    job.fps = r.preset->scene.fps;
+    job.start_time = r.start_time;
+    job.width = r.width;
+    job.height = r.height;
+    job.params = r.overrides;
+    return Ok{};
+}
 
 }  // namespace crtforge::consumers
