@@ -3,17 +3,10 @@
 // every pass's shader and the LUTs) instanced in a game window, frame after frame. A lone pass
 // (`crtforge render` of one pass) is the node-mode shader on a TextureRect. Both shaders also
 // compile through the shim, which checks them as GLSL with Godot 3's builtins.
-#include <algorithm>
-#include <cmath>
-#include <regex>
 
 #include <fmt/format.h>
 
-#include "crtforge/exporter.hpp"
 #include "crtforge/runtime/godot3_engine.hpp"
-#include "crtforge/uniforms.hpp"
-#include "targets/godot/godot_compiler.hpp"
-#include "targets/godot/godot_scene.hpp"
 #include "validate/consumers/consumer.hpp"
 #include "validate/consumers/godot_hosting.hpp"
 #include "validate/consumers/godot_shim.hpp"
@@ -21,9 +14,6 @@
 namespace crtforge {
 
 namespace {
-
-using consumers::kPinnedTime;
-using consumers::pin_time;
 
 class Godot3Consumer final : public Consumer {
 public:
@@ -43,25 +33,8 @@ public:
     }
 
     Result<Image> render(TargetRenderRequest r, ConsumerEngines& engines) const override {
-        if (!r.textures.empty() || !r.viewport.full() || r.format != OutputFormat::Rgba16Float)
-            return make_error("this Godot 3 pass reads extra textures, draws into a viewport or stores an 8-bit "
-                              "framebuffer: Godot 3 runs such passes in the exported scene (render the preset, not the pass)");
-        auto shader = file_with_role(r, "shader");
-        if (!shader.ok()) return shader.error();
         Godot3Job job;
-        job.shader_code = shader.value()->data;
-        if (auto s = pin_time(job.shader_code); !s.ok()) return s.error();
-        if (job.shader_code != shader.value()->data) job.params[kPinnedTime] = std::fmod(r.time, consumers::kGodotTimeRollover);
-        job.input = std::move(r.input);
-        job.filter = r.filter;
-        job.width = r.width;
-        job.height = r.height;
-        for (const VariantParam* p : r.compiled->variant.uniforms()) job.params[p->spec->name] = p->value;
-        for (const auto& [name, value] : r.overrides) job.params[name] = value;
-        // What crtforge_pipeline.gd sets every frame: the time reduced exactly.
-        if (r.compiled->variant.angular_speed())
-            job.params[godot::GodotCompiler::kHostTime] =
-                shader_time(r.compiled->variant, effective_values(r.compiled->variant, r.overrides), r.time);
+        if (auto s = consumers::fill_pass_job(3, r, job); !s.ok()) return s.error();
         return engines.godot3().render(job);
     }
 

@@ -5,11 +5,8 @@
 // validate failure. A lone pass renders as the node-mode shader on a TextureRect; a scene runs as
 // its users run it, the exported <preset>.tscn with its pipeline script, frame after frame; the
 // matrix's host modes use the node shader with no param set, the .tres, or the screen shader.
-#include <cmath>
 
 #include "crtforge/runtime/godot4_engine.hpp"
-#include "crtforge/uniforms.hpp"
-#include "targets/godot/godot_compiler.hpp"
 #include "validate/consumers/consumer.hpp"
 #include "validate/consumers/godot_hosting.hpp"
 #include "validate/consumers/godot_shim.hpp"
@@ -32,26 +29,8 @@ public:
     }
 
     Result<Image> render(TargetRenderRequest r, ConsumerEngines&) const override {
-        if (!r.textures.empty() || !r.viewport.full() || r.format != OutputFormat::Rgba16Float)
-            return make_error("this Godot 4 pass reads extra textures, draws into a viewport or stores an 8-bit "
-                              "framebuffer: Godot 4 runs such passes in the exported scene (render the preset, not the pass)");
-        auto shader = file_with_role(r, "shader");
-        if (!shader.ok()) return shader.error();
         Godot4Job job;
-        job.shader_code = shader.value()->data;
-        if (auto s = consumers::pin_time(job.shader_code); !s.ok()) return s.error();
-        if (job.shader_code != shader.value()->data)
-            job.params[consumers::kPinnedTime] = std::fmod(r.time, consumers::kGodotTimeRollover);
-        job.input = std::move(r.input);
-        job.filter = r.filter;
-        job.width = r.width;
-        job.height = r.height;
-        for (const VariantParam* p : r.compiled->variant.uniforms()) job.params[p->spec->name] = p->value;
-        for (const auto& [name, value] : r.overrides) job.params[name] = value;
-        // What crtforge_pipeline.gd sets every frame: the time reduced exactly.
-        if (r.compiled->variant.angular_speed())
-            job.params[godot::GodotCompiler::kHostTime] =
-                shader_time(r.compiled->variant, effective_values(r.compiled->variant, r.overrides), r.time);
+        if (auto s = consumers::fill_pass_job(4, r, job); !s.ok()) return s.error();
         return shared_godot4_server().render(job);
     }
 

@@ -3,13 +3,20 @@
 // crtforge_pipeline.gd (the matrix's host modes), and the frames a scene runs.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/exporter.hpp"
 #include "crtforge/preset.hpp"
+#include "crtforge/uniforms.hpp"
 #include "crtforge/validate/target_render.hpp"
+#include "targets/godot/godot_compiler.hpp"
+#include "validate/consumers/consumer.hpp"
+#include "validate/consumers/godot_shim.hpp"
 
 namespace crtforge::consumers {
 
@@ -43,6 +50,33 @@ std::vector<Image> in_request_order(const std::vector<int>& frames, const std::v
 // res:// path to instance.
 Result<std::map<std::string, std::string>> scene_project_files(int version, TargetId target,
                                                                const SceneRenderRequest& request, std::string& scene);
+
+// A lone pass's job (Godot3Job, Godot4Job: the same fields): the node-mode shader with TIME
+// pinned, the request's picture, and every param the host sets, as crtforge_pipeline.gd would set
+// them (the time reduced exactly as hostTime). Only a pass that reads nothing but its picture
+// into a full float viewport runs alone; the others run in the exported scene.
+template <typename Job>
+Status fill_pass_job(int version, TargetRenderRequest& r, Job& job) {
+    if (!r.textures.empty() || !r.viewport.full() || r.format != OutputFormat::Rgba16Float)
+        return make_error(fmt::format("this Godot {0} pass reads extra textures, draws into a viewport or stores an 8-bit "
+                                      "framebuffer: Godot {0} runs such passes in the exported scene (render the preset, not the pass)",
+                                      version));
+    auto shader = file_with_role(r, "shader");
+    if (!shader.ok()) return shader.error();
+    job.shader_code = shader.value()->data;
+    if (auto s = pin_time(job.shader_code); !s.ok()) return s.error();
+    if (job.shader_code != shader.value()->data) job.params[kPinnedTime] = std::fmod(r.time, kGodotTimeRollover);
+    job.input = std::move(r.input);
+    job.filter = r.filter;
+    job.width = r.width;
+    job.height = r.height;
+    for (const VariantParam* p : r.compiled->variant.uniforms()) job.params[p->spec->name] = p->value;
+    for (const auto& [name, value] : r.overrides) job.params[name] = value;
+    if (r.compiled->variant.angular_speed())
+        job.params[godot::GodotCompiler::kHostTime] =
+            shader_time(r.compiled->variant, effective_values(r.compiled->variant, r.overrides), r.time);
+    return Ok{};
+}
 
 // A Godot scene job (Godot3SceneJob, Godot4SceneJob: the same fields) filled from the request:
 // the project files, the frames to draw with each frame's original, the frames to capture, time
