@@ -53,6 +53,22 @@ Result<VariantOptions> VariantFlags::parse() const {
 
 }  // namespace crtforge::cli
 
+namespace {
+
+// The first option, of `app` or the subcommands it parsed, that was given an empty value ("" if none).
+std::string empty_option_value(const CLI::App& app) {
+    for (const CLI::Option* option : app.get_options()) {
+        if (option->get_type_size() == 0 || option->count() == 0) continue;  // a flag, or not given
+        for (const std::string& value : option->results())
+            if (value.empty()) return option->get_name();
+    }
+    for (const CLI::App* sub : app.get_subcommands())
+        if (const std::string name = empty_option_value(*sub); !name.empty()) return name;
+    return {};
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     crtforge::keep_freed_memory();  // before anything allocates an image
     using namespace crtforge::cli;
@@ -89,6 +105,12 @@ int main(int argc, char** argv) {
         std::string msg = e.what();
         for (char& c : msg) if (c == '\n') c = ' ';
         std::fprintf(stderr, "crtforge: error: %s (see 'crtforge --help')\n", msg.c_str());
+        return kExitUsage;
+    }
+    // An option given with an empty value (--templates "", --size "") is a mistake, not the
+    // option left out: refused, naming the option, before any command runs.
+    if (const std::string empty = empty_option_value(app); !empty.empty()) {
+        std::fprintf(stderr, "crtforge: error: %s has an empty value (give a value, or leave the option out)\n", empty.c_str());
         return kExitUsage;
     }
     // Every failure is meant to arrive as a Diagnostic; this is the last line of defence, so an

@@ -111,6 +111,8 @@ Result<std::string> TomlReader::string(const toml::table& owner, const std::stri
     }
     if (!node->is_string()) return error(node, join_field(prefix, key), "must be a string");
     std::string text(node->as_string()->get());
+    // An empty string is a mistake, not the key left out (`base = ""` once meant "no base").
+    if (text.empty()) return error(node, join_field(prefix, key), "is empty (leave the key out instead)");
     if (const std::string bad = unsafe_text(text); !bad.empty())
         return error(node, join_field(prefix, key), "has a " + bad + " (text reaches generated code's comments; one plain line only)");
     return text;

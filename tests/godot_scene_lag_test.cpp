@@ -35,9 +35,8 @@ std::function<Result<Image>(int)> moving_edge() {
     };
 }
 
-std::vector<Image> render(const Preset& preset, const std::vector<CompiledVariant>& passes, TargetId target,
+std::vector<Image> render(TargetRenderer& renderer, const Preset& preset, const std::vector<CompiledVariant>& passes, TargetId target,
                           const std::vector<TargetOutput>* outputs, const std::vector<int>& frames) {
-    static TargetRenderer renderer;
     SceneRenderRequest r;
     r.preset = &preset;
     r.passes = &passes;
@@ -69,6 +68,7 @@ double rmse(const Image& godot, const Image& vulkan) {
 void check_no_lag(TargetId target) {
     const TemplateLibrary& lib = test::shipped_library();
     const std::vector<int> frames = {1, 2, 3, 4};
+    TargetRenderer renderer;
     size_t scenes = 0;
     for (const Preset& preset : lib.presets()) {
         if (preset.single_pass()) continue;
@@ -83,8 +83,8 @@ void check_no_lag(TargetId target) {
             outputs.push_back(std::move(out.value()));
         }
         // Vulkan from frame 0, so frame f - 1 is there to compare with.
-        const std::vector<Image> vulkan = render(preset, passes.value(), TargetId::Spirv, nullptr, {0, 1, 2, 3, 4});
-        const std::vector<Image> godot = render(preset, passes.value(), target, &outputs, frames);
+        const std::vector<Image> vulkan = render(renderer, preset, passes.value(), TargetId::Spirv, nullptr, {0, 1, 2, 3, 4});
+        const std::vector<Image> godot = render(renderer, preset, passes.value(), target, &outputs, frames);
         for (size_t i = 0; i < frames.size(); ++i) {
             const int f = frames[i];
             const double same = rmse(godot[i], vulkan[static_cast<size_t>(f)]);

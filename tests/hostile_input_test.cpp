@@ -1,5 +1,6 @@
 // Issue 13's hostile and careless inputs: a cache that cannot lie, bounded inputs, exceptions that
 // stay Diagnostics. Each case here failed on main before its fix.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -459,4 +460,25 @@ TEST_CASE("a preset without goldens is reported as not rendered, never as a meas
     auto strict = test::run_crtforge("--templates " + scratch.dir() + " validate --preset newlook --target spirv --strict");
     CHECK(strict.exit_code == 1);
     CHECK_THAT(strict.out, Catch::Contains("failed under --strict"));
+}
+
+TEST_CASE("an empty value is refused, not taken as the option or key left out", "[hostile][cli]") {
+    // Options: one line naming the option, exit 2, nothing written.
+    test::TempDir out;
+    for (const std::string& args : std::vector<std::string>{"--templates '' list presets",
+                                   "render --preset classic --input color_bars --size '' --output " + (out / "x.png"),
+                                   "export --preset '' --target spirv --out " + (out / "export")}) {
+        INFO(args);
+        auto run = test::run_crtforge(args);
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("has an empty value"));
+        CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    }
+    CHECK(std::filesystem::is_empty(out.path()));
+    // Keys: `base = ""` once meant "no base"; now the file, line and field of the empty value.
+    test::ScratchTemplates t;
+    t.write("presets/empty-base.toml", "format = 2\nname = \"empty-base\"\nbase = \"\"\ndoc = \"d\"\n");
+    auto lib = t.load();
+    REQUIRE_FALSE(lib.ok());
+    CHECK_THAT(lib.error().str(), Catch::Contains("empty-base.toml:3") && Catch::Contains("field 'base'") && Catch::Contains("is empty"));
 }

@@ -42,9 +42,16 @@ Result<GlEngine*> ConsumerEngines::gl(bool es) {
 
 namespace {
 
+// Whether the pool below still exists: a ConsumerEngines that outlives it (a static one, made
+// before the pool's first use, is destroyed after it at exit) stops its own Godot instead. A
+// trivially destructible flag, so reading it during exit is defined.
+bool godot3_pool_alive = false;
+
 // Started Godot 3 servers no ConsumerEngines holds; destroyed (Godot stopped) at exit.
 class Godot3Pool {
 public:
+    Godot3Pool() { godot3_pool_alive = true; }
+    ~Godot3Pool() { godot3_pool_alive = false; }
     std::unique_ptr<Godot3Server> take() {
         std::lock_guard<std::mutex> lock(mutex_);
         if (idle_.empty()) return std::make_unique<Godot3Server>();
@@ -70,7 +77,7 @@ Godot3Pool& godot3_pool() {
 }  // namespace
 
 ConsumerEngines::~ConsumerEngines() {
-    if (godot3_) godot3_pool().give(std::move(godot3_));
+    if (godot3_ && godot3_pool_alive) godot3_pool().give(std::move(godot3_));
 }
 
 Godot3Server& ConsumerEngines::godot3() {
