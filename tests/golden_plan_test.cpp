@@ -52,7 +52,7 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
         past_2_24 += e.frame > (1 << 24);
     }
     for (const char* c : {"bezel", "draw1", "draw3", "uniforms-all", "uniforms-none", "medium", "mediump", "t1", "t1000", "t3599",
-                          "t3601", "t100000", "t1e7", "mediump-t100000", "row8k", "col8k", "px1", "line", "odd", "portrait", "tiny",
+                          "t3601", "t100000", "t1e7", "mediump-t100000", "row8k", "col8k", "px1", "line", "odd", "portrait", "tiny", "colour",
                           "godot-defaults", "godot-material", "godot-screen"})
         CHECK(configs.count(c));
     CHECK(hosts == std::set<std::string>{"defaults", "material", "screen"});
@@ -61,12 +61,13 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     CHECK(portrait > 0);
     CHECK(odd > 0);
     CHECK(k4 > 0);
-    // Every stage-isolation preset on flat grey and the ramp, the downsampling blur once more on a
-    // picture four times its output's size, and the supersampled palette at 1.5 pixels a texel.
+    // Every stage-isolation preset on flat grey, the ramp and the colour bars, the downsampling blur
+    // once more on a picture four times its output's size, and the supersampled palette at 1.5
+    // pixels a texel.
     size_t isolation_presets = 0;
     for (const Preset& p : test::validation_library().presets()) isolation_presets += p.test_only;
     CHECK(isolation_presets >= 20);
-    CHECK(stages == 2 * isolation_presets + 2);
+    CHECK(stages == 3 * isolation_presets + 2);
     // Frame counters past 2^24, on the stage that reads frameCount.
     CHECK(past_2_24 == 2);
 }
