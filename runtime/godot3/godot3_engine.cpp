@@ -36,6 +36,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/paths.hpp"
+#include "runtime/common/godot_params.hpp"
 #include "runtime/common/job_checks.hpp"
 #include "runtime/common/process_util.hpp"
 
@@ -235,27 +236,11 @@ Result<XServer> start_xvfb(const std::string& xvfb, const fs::path& scratch) {
 
 // ---- job files --------------------------------------------------------------------------------
 
-// The params file the runner reads: uniform name -> number, bool or [r, g, b].
+// The params file the runner reads (godot_params_json, pretty-printed).
 Result<std::string> params_json(const std::map<std::string, Value>& params) {
-    nlohmann::ordered_json json = nlohmann::ordered_json::object();
-    for (const auto& [name, value] : params) {
-        if (const double* d = std::get_if<double>(&value)) {
-            if (!std::isfinite(*d)) return job_error(fmt::format("param '{}' is not finite", name), "params");
-            json[name] = *d;
-        } else if (const int64_t* i = std::get_if<int64_t>(&value)) {
-            json[name] = *i;
-        } else if (const bool* b = std::get_if<bool>(&value)) {
-            json[name] = *b;
-        } else if (const Color* c = std::get_if<Color>(&value)) {
-            for (double v : *c)
-                if (!std::isfinite(v)) return job_error(fmt::format("param '{}' has a colour channel that is not finite", name), "params");
-            json[name] = {(*c)[0], (*c)[1], (*c)[2]};
-        } else {
-            return job_error(fmt::format("param '{}' is an enum name; Godot uniforms take the enum's index as an int", name),
-                             "params");
-        }
-    }
-    return json.dump(2) + "\n";
+    auto json = detail::godot_params_json(params);
+    if (!json.ok()) return json.error();
+    return json.value().dump(2) + "\n";
 }
 
 // Copies the runner project's files (not its folders) so Godot runs on a private copy.

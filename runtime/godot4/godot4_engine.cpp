@@ -3,6 +3,7 @@
 // Pictures travel as raw float32 files in the runner's private directory, as the Dawn engine's do.
 #include "crtforge/runtime/godot4_engine.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <mutex>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/paths.hpp"
+#include "runtime/common/godot_params.hpp"
 #include "runtime/common/job_checks.hpp"
 #include "runtime/common/node_runner.hpp"
 #include "runtime/common/process_util.hpp"
@@ -32,27 +34,6 @@ constexpr int kJobSeconds = 240;
 constexpr int kMaxExtent = kMaxImageDimension;
 
 fs::path runner_dir() { return fs::path(data_path("tools/godot4-runner")).lexically_normal(); }
-
-Result<json> params_json(const std::map<std::string, Value>& params) {
-    json out = json::object();
-    for (const auto& [name, value] : params) {
-        if (const double* d = std::get_if<double>(&value)) {
-            if (!std::isfinite(*d)) return job_error(fmt::format("param '{}' is not finite", name), "params");
-            out[name] = *d;
-        } else if (const int64_t* i = std::get_if<int64_t>(&value)) {
-            out[name] = *i;
-        } else if (const bool* b = std::get_if<bool>(&value)) {
-            out[name] = *b;
-        } else if (const Color* c = std::get_if<Color>(&value)) {
-            for (double v : *c)
-                if (!std::isfinite(v)) return job_error(fmt::format("param '{}' has a colour channel that is not finite", name), "params");
-            out[name] = {(*c)[0], (*c)[1], (*c)[2]};
-        } else {
-            return job_error(fmt::format("param '{}' is a string: pass an enum as its index", name), "params");
-        }
-    }
-    return out;
-}
 
 Status write_pictures(const fs::path& path, const std::vector<const Image*>& pictures) {
     static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
@@ -80,29 +61,20 @@ Result<std::vector<Image>> read_pictures(const fs::path& path, int width, int he
     return out;
 }
 
-// The first thing Godot logged, in one line: "line N: <message>" for a shader error.
-std::string first_godot_error(const json& errors) {
-    for (const json& e : errors) {
-        if (!e.is_object()) continue;
-        if (e.contains("message")) return e.value("message", "");
-        const std::string code = e.value("code", ""), rationale = e.value("rationale", "");
-        return fmt::format("{}{}{}", code, rationale.empty() ? "" : ": ", rationale);
-    }
-    return {};
+// One entry of what Godot logged (runner.gd's ErrorLog), in one line.
+std::string logged_text(const json& entry) {
+    if (!entry.is_object()) return {};
+    if (entry.contains("message")) return entry.value("message", "");
+    const std::string code = entry.value("code", ""), rationale = entry.value("rationale", "");
+    return fmt::format("{}{}{}", code, rationale.empty() ? "" : ": ", rationale);
 }
 
-// A refused job as a Diagnostic: the runner's own words, its "line N:" as the line.
+// A refused job as a Diagnostic: the runner's own words, and the shader's line where it gave one.
 Diagnostic job_failure(const json& r) {
     const std::string error = r.value("error", std::string("unknown error"));
     if (r.value("kind", "") == "request") return make_error("the Godot 4 runner refused the job: " + error);
     Diagnostic d = make_validation_error(error);
-    const std::size_t at = error.find("line ");
-    if (at != std::string::npos) {
-        int line = 0;
-        for (std::size_t i = at + 5; i < error.size() && std::isdigit(static_cast<unsigned char>(error[i])); ++i)
-            line = line * 10 + (error[i] - '0');
-        if (line > 0) d.line = line;
-    }
+    d.line = std::max(0, r.value("line", 0));
     return d;
 }
 
@@ -111,7 +83,7 @@ Diagnostic job_failure(const json& r) {
 Status logged_errors(const json& r) {
     const json errors = r.value("errors", json::array());
     if (!errors.is_array() || errors.empty()) return Ok{};
-    return make_validation_error("Godot 4 reported an error while rendering: " + first_godot_error(errors));
+    return make_validation_error("Godot 4 reported an error while rendering: " + logged_text(errors.front()));
 }
 
 }  // namespace
@@ -234,7 +206,7 @@ Result<Image> Godot4Server::render(const Godot4Job& job) {
     const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Godot 4", "the Godot 4 runner's limit"};
     if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s.error();
     if (job.frames < 1 || job.frames > 1000) return job_error(fmt::format("frames must be between 1 and 1000; got {}", job.frames), "frames");
-    auto params = params_json(job.params);
+    auto params = detail::godot_params_json(job.params);
     if (!params.ok()) return params.error();
     std::lock_guard lock(impl_->mutex);
     if (auto s = impl_->ensure_runner(); !s.ok()) return s.error();
@@ -267,7 +239,7 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
         if (image.empty() || image.width != job.inputs.front().width || image.height != job.inputs.front().height)
             return job_error("the inputs must be pictures of one size", "inputs");
     if (!(job.fps > 0) || !(job.start_time >= 0)) return job_error("fps must be positive and start_time not negative", "fps");
-    auto params = params_json(job.params);
+    auto params = detail::godot_params_json(job.params);
     if (!params.ok()) return params.error();
     std::lock_guard lock(impl_->mutex);
     if (auto s = impl_->ensure_runner(); !s.ok()) return s.error();
@@ -323,7 +295,7 @@ Result<std::string> Godot4Server::run_project(const std::map<std::string, std::s
     if (!reply.ok()) return reply.error();
     // What Godot logged as errors follows the prints, one "ERROR: " line each: a test decides.
     std::string output = reply.value().value("output", std::string());
-    for (const json& e : reply.value().value("errors", json::array())) output += "\nERROR: " + first_godot_error(json::array({e}));
+    for (const json& e : reply.value().value("errors", json::array())) output += "\nERROR: " + logged_text(e);
     return output;
 }
 

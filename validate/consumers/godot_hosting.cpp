@@ -61,54 +61,45 @@ var source: Texture2D = null:
 		picture.texture_filter = CanvasItem.TEXTURE_FILTER_LINEAR if linear else CanvasItem.TEXTURE_FILTER_NEAREST
 )";
 
-Result<std::string> host_scene3(const std::string& mode, const std::string& shader, const std::string& material, bool linear) {
-    std::string resource, material_ref;
-    if (mode == "material") {
-        resource = fmt::format("[ext_resource path=\"res://{}\" type=\"Material\" id=2]\n", material);
-        material_ref = "ExtResource( 2 )";
-    } else {
-        resource = fmt::format("[ext_resource path=\"res://{}\" type=\"Shader\" id=2]\n\n"
-                               "[sub_resource type=\"ShaderMaterial\" id=1]\nshader = ExtResource( 2 )\n", shader);
-        material_ref = "SubResource( 1 )";
-    }
-    const std::string full = "anchor_right = 1.0\nanchor_bottom = 1.0\nmouse_filter = 2\n";
-    std::string nodes = fmt::format("[node name=\"host\" type=\"Control\"]\n{}script = ExtResource( 1 )\nlinear = {}\n\n"
-                                    "[node name=\"main\" type=\"Control\" parent=\".\"]\n{}\n",
-                                    full, linear ? "true" : "false", full);
-    if (mode == "screen")
-        nodes += fmt::format("[node name=\"Picture\" type=\"TextureRect\" parent=\"main\"]\n{}expand = true\n\n"
-                             "[node name=\"Pass\" type=\"ColorRect\" parent=\"main\"]\n{}material = {}\n",
-                             full, full, material_ref);
-    else
-        nodes += fmt::format("[node name=\"Pass\" type=\"TextureRect\" parent=\"main\"]\n{}expand = true\nmaterial = {}\n",
-                             full, material_ref);
-    return fmt::format("[gd_scene load_steps=3 format=2]\n\n[ext_resource path=\"res://{}\" type=\"Script\" id=1]\n{}\n{}",
-                       kHostScriptPath, resource, nodes);
-}
+// What differs between Godot 3's and Godot 4's text scenes (format 2 and 3).
+struct SceneDialect {
+    int format;
+    const char* ext_resource;  // {0} type, {1} path, {2} id
+    const char* sub_resource;  // {0} id
+    const char* reference;     // {0} "ExtResource" or "SubResource", {1} id
+    const char* full_rect;     // a Control filling its parent, input passing through
+    const char* stretch;       // a TextureRect's picture stretched over the rect
+};
 
-Result<std::string> host_scene4(const std::string& mode, const std::string& shader, const std::string& material, bool linear) {
-    std::string resource, material_ref;
+constexpr SceneDialect kScene3{2, "[ext_resource path=\"res://{1}\" type=\"{0}\" id={2}]\n", "[sub_resource type=\"ShaderMaterial\" id={0}]\n",
+                               "{0}( {1} )", "anchor_right = 1.0\nanchor_bottom = 1.0\nmouse_filter = 2\n", "expand = true\n"};
+constexpr SceneDialect kScene4{3, "[ext_resource type=\"{0}\" path=\"res://{1}\" id=\"{2}\"]\n", "[sub_resource type=\"ShaderMaterial\" id=\"{0}\"]\n",
+                               "{0}(\"{1}\")",
+                               "anchors_preset = 15\nanchor_right = 1.0\nanchor_bottom = 1.0\ngrow_horizontal = 2\ngrow_vertical = 2\nmouse_filter = 2\n",
+                               "expand_mode = 1\n"};
+
+std::string scene_text(const SceneDialect& d, const std::string& mode, const std::string& shader, const std::string& material, bool linear) {
+    auto ref = [&](const char* kind, int id) { return fmt::format(fmt::runtime(d.reference), kind, id); };
+    std::string resources = fmt::format(fmt::runtime(d.ext_resource), "Script", kHostScriptPath, 1), material_ref;
     if (mode == "material") {
-        resource = fmt::format("[ext_resource type=\"Material\" path=\"res://{}\" id=\"2\"]\n", material);
-        material_ref = "ExtResource(\"2\")";
+        resources += fmt::format(fmt::runtime(d.ext_resource), "Material", material, 2);
+        material_ref = ref("ExtResource", 2);
     } else {
-        resource = fmt::format("[ext_resource type=\"Shader\" path=\"res://{}\" id=\"2\"]\n\n"
-                               "[sub_resource type=\"ShaderMaterial\" id=\"1\"]\nshader = ExtResource(\"2\")\n", shader);
-        material_ref = "SubResource(\"1\")";
+        resources += fmt::format(fmt::runtime(d.ext_resource), "Shader", shader, 2) + "\n" + fmt::format(fmt::runtime(d.sub_resource), 1) +
+                     "shader = " + ref("ExtResource", 2) + "\n";
+        material_ref = ref("SubResource", 1);
     }
-    const std::string full = "anchors_preset = 15\nanchor_right = 1.0\nanchor_bottom = 1.0\ngrow_horizontal = 2\ngrow_vertical = 2\nmouse_filter = 2\n";
-    std::string nodes = fmt::format("[node name=\"host\" type=\"Control\"]\n{}script = ExtResource(\"1\")\nlinear = {}\n\n"
+    std::string nodes = fmt::format("[node name=\"host\" type=\"Control\"]\n{}script = {}\nlinear = {}\n\n"
                                     "[node name=\"main\" type=\"Control\" parent=\".\"]\n{}\n",
-                                    full, linear ? "true" : "false", full);
+                                    d.full_rect, ref("ExtResource", 1), linear ? "true" : "false", d.full_rect);
     if (mode == "screen")
-        nodes += fmt::format("[node name=\"Picture\" type=\"TextureRect\" parent=\"main\"]\n{}expand_mode = 1\n\n"
+        nodes += fmt::format("[node name=\"Picture\" type=\"TextureRect\" parent=\"main\"]\n{}{}\n"
                              "[node name=\"Pass\" type=\"ColorRect\" parent=\"main\"]\n{}material = {}\n",
-                             full, full, material_ref);
+                             d.full_rect, d.stretch, d.full_rect, material_ref);
     else
-        nodes += fmt::format("[node name=\"Pass\" type=\"TextureRect\" parent=\"main\"]\n{}expand_mode = 1\nmaterial = {}\n",
-                             full, material_ref);
-    return fmt::format("[gd_scene load_steps=3 format=3]\n\n[ext_resource type=\"Script\" path=\"res://{}\" id=\"1\"]\n{}\n{}",
-                       kHostScriptPath, resource, nodes);
+        nodes += fmt::format("[node name=\"Pass\" type=\"TextureRect\" parent=\"main\"]\n{}{}material = {}\n", d.full_rect, d.stretch,
+                             material_ref);
+    return fmt::format("[gd_scene load_steps=3 format={}]\n\n{}\n{}", d.format, resources, nodes);
 }
 
 }  // namespace
@@ -128,7 +119,7 @@ Result<std::string> host_scene(int version, const std::string& mode, const Targe
     if (shader.empty() || screen.empty() || material.empty())
         return make_error(fmt::format("the Godot {} export lacks the node shader, screen shader or .tres material", version));
     const std::string& used = mode == "screen" ? screen : shader;
-    return version == 3 ? host_scene3(mode, used, material, linear) : host_scene4(mode, used, material, linear);
+    return scene_text(version == 3 ? kScene3 : kScene4, mode, used, material, linear);
 }
 
 SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames) {

@@ -195,22 +195,25 @@ func _apply_params(material: ShaderMaterial, params: Dictionary, only_declared: 
 	return ""
 
 
-# The first shader error Godot reported during the job, as "line N: message", or "".
-func _shader_error() -> String:
-	var line := -1
-	var message := ""
+# The first shader error Godot reported during the job: {"text": "line N: message", "line": N}
+# (line 0 when Godot named none), or an empty Dictionary.
+func _shader_error() -> Dictionary:
 	for e in _log.entries:
-		if e.has("rationale") and e["function"] == "" and e["file"] == "" and message == "":
+		if e.has("rationale") and e["function"] == "" and e["file"] == "":
 			# ShaderLanguage's errors: no function or file, the line of the shader, the message.
-			line = e["line"]
-			message = e["code"]
-	if message != "":
-		return "line %d: %s" % [line, message]
+			return {"text": "line %d: %s" % [e["line"], e["code"]], "line": e["line"]}
 	for e in _log.entries:
 		var text: String = e.get("rationale", e.get("message", ""))
 		if text.contains("compilation failed") or text.contains("shader") or e.get("code", "").contains("shader"):
-			return "%s %s" % [e.get("code", ""), text]
-	return ""
+			return {"text": "%s %s" % [e.get("code", ""), text], "line": 0}
+	return {}
+
+
+# A job refused because of a shader error: the error's line travels as a field of its own.
+func _reject_shader(what: String, error: Dictionary) -> Dictionary:
+	var result := _reject(what + error["text"])
+	result["line"] = error["line"]
+	return result
 
 
 var _timings := []
@@ -247,8 +250,8 @@ func _run_shader(job: Dictionary) -> Dictionary:
 	var shader := Shader.new()
 	shader.code = str(job.get("shader", ""))
 	var error := _shader_error()
-	if error != "":
-		return _reject("Godot 4 rejected the shader: " + error)
+	if not error.is_empty():
+		return _reject_shader("Godot 4 rejected the shader: ", error)
 	if shader.get_mode() != Shader.MODE_CANVAS_ITEM:
 		return _reject("the shader is not a canvas_item shader (Godot reads its mode as %d)" % shader.get_mode())
 	var material := ShaderMaterial.new()
@@ -273,20 +276,26 @@ func _run_shader(job: Dictionary) -> Dictionary:
 	for _i in range(frames):
 		await RenderingServer.frame_post_draw
 	error = _shader_error()
-	if error != "":
-		return _reject("Godot 4 rejected the shader: " + error)
+	if not error.is_empty():
+		return _reject_shader("Godot 4 rejected the shader: ", error)
 	var format := _read_back(viewport, w, h, "%s-0.bin" % job.get("id", "job"))
 	if format < 0:
 		return _reject("the viewport gave no %dx%d picture" % [w, h])
 	return {"ok": true, "count": 1, "format": format}
 
 
-func _mount(pack: String) -> String:
+# The job's pack mounted over res:// (once per pack) and its scene loaded afresh (a later pack may
+# bring new content under the same path): the PackedScene, or the refusal as a result Dictionary.
+func _load_job_scene(job: Dictionary):
+	var pack := str(job.get("pack", ""))
 	if pack != "" and not _packs.has(pack):
 		if not ProjectSettings.load_resource_pack(pack, true):
-			return "Godot could not load the pack '%s'" % pack
+			return _refuse("Godot could not load the pack '%s'" % pack)
 		_packs[pack] = true
-	return ""
+	var packed = ResourceLoader.load(str(job.get("scene", "")), "", ResourceLoader.CACHE_MODE_REPLACE_DEEP)
+	if not packed is PackedScene:
+		return _reject("cannot load the scene '%s'" % str(job.get("scene", "")))
+	return packed
 
 
 # A scene of the job's own (a test's project around exported files): instanced in the W x H
@@ -298,12 +307,9 @@ func _run_project(job: Dictionary) -> Dictionary:
 	var frames := _size_of(job, "frames", 1)
 	if w < 0 or h < 0 or frames < 0:
 		return _refuse("width, height and frames must be positive integers")
-	var message := _mount(str(job.get("pack", "")))
-	if message != "":
-		return _refuse(message)
-	var packed = ResourceLoader.load(str(job.get("scene", "")), "", ResourceLoader.CACHE_MODE_REPLACE_DEEP)
-	if not packed is PackedScene:
-		return _reject("cannot load the scene '%s'" % str(job.get("scene", "")))
+	var packed = _load_job_scene(job)
+	if packed is Dictionary:
+		return packed
 	var viewport: SubViewport = $Viewport
 	$Viewport/Picture.visible = false
 	viewport.size = Vector2i(w, h)
@@ -348,12 +354,9 @@ func _run_scene(job: Dictionary) -> Dictionary:
 	var start_time := float(job.get("start_time", 0.0))
 	if fps <= 0.0 or start_time < 0.0:
 		return _refuse("fps must be positive and start_time not negative")
-	var mounted := _mount(str(job.get("pack", "")))
-	if mounted != "":
-		return _refuse(mounted)
-	var packed = ResourceLoader.load(str(job.get("scene", "")), "", ResourceLoader.CACHE_MODE_REPLACE_DEEP)
-	if not packed is PackedScene:
-		return _reject("cannot load the scene '%s'" % str(job.get("scene", "")))
+	var packed = _load_job_scene(job)
+	if packed is Dictionary:
+		return packed
 	var scene = packed.instantiate()
 	if scene == null or scene.get("passes") == null:
 		return _reject("the scene '%s' is not a crtforge scene" % str(job.get("scene", "")))
@@ -395,8 +398,8 @@ func _run_scene(job: Dictionary) -> Dictionary:
 		_mark("frame")
 		await RenderingServer.frame_post_draw
 		var error := _shader_error()
-		if error != "":
-			return _reject("Godot 4 rejected a shader of the scene: " + error)
+		if not error.is_empty():
+			return _reject_shader("Godot 4 rejected a shader of the scene: ", error)
 		if not frame in capture:
 			continue
 		format = _read_back(viewport, w, h, "%s-%d.bin" % [job.get("id", "job"), count])
