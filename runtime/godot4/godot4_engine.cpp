@@ -105,7 +105,6 @@ struct Godot4Server::Impl {
     std::mutex mutex;  // one job at a time: the page runs one
     std::unique_ptr<detail::NodeRunner> runner;
     std::string description;
-    std::string start_error;
     int packs = 0;
     // The scripts mounted in the running engine, by res:// path. Godot keeps a GDScript it loaded
     // for the life of the process (a later pack's different text under the same path is not
