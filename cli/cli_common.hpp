@@ -51,6 +51,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g);
 Runner add_golden_command(CLI::App& app, const GlobalOptions& g);
 Runner add_devices_command(CLI::App& app, const GlobalOptions& g);
 Runner add_bench_command(CLI::App& app, const GlobalOptions& g);
+Runner add_import_command(CLI::App& app, const GlobalOptions& g);
 
 // TemplateLibrary::lookup_preset, for symmetry with crtforge::lookup_target.
 Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name);

@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
     track(add_golden_command(app, g));
     track(add_devices_command(app, g));
     track(add_bench_command(app, g));
+    track(add_import_command(app, g));
 
     try {
         app.parse(argc, argv);

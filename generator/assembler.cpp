@@ -18,31 +18,37 @@ std::string line_directive(int line, const std::string& file) {
     return fmt::format("#line {} \"{}\"\n", line, inert_quoted(file));
 }
 
-const char* builtin_comment(Builtin b) {
-    switch (b) {
-        case Builtin::OutputSize: return "output size in pixels";
-        case Builtin::SourceSize: return "source texture size in texels";
-        case Builtin::Time: return "seconds since start";
-        case Builtin::FrameCount: return "frames since start (modulo the pass's frame_count_mod)";
-    }
-    return "";
+
+// Whether `name` occurs in `text` as a whole identifier.
+bool mentions(const std::string& text, const std::string& name) {
+    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1))
+        if ((at == 0 || !ident(text[at - 1])) && (at + name.size() == text.size() || !ident(text[at + name.size()]))) return true;
+    return false;
 }
 
-std::string declarations(const Variant& variant) {
+// The uniform block, baked constants and samplers. A snippet's fragment shader also gets its
+// input and output; a program declares its own. `program_stage`: the text of a program's stage,
+// which gets only the samplers it names (a vertex shader rarely samples).
+std::string declarations(const Variant& variant, const std::string* program_stage = nullptr) {
     std::string out;
-    out += fmt::format("layout(location = 0) in vec2 {};\n", kTexCoordName);
-    out += "layout(location = 0) out vec4 fragColor;\n";
-    out += fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};\n", kDescriptorSet,
-                       kTextureBinding, kSourceTextureName);
-    for (size_t i = 0; i < variant.textures.size(); ++i)
+    if (!program_stage) {
+        out += fmt::format("layout(location = 0) in vec2 {};\n", kTexCoordName);
+        out += "layout(location = 0) out vec4 fragColor;\n";
+    }
+    if (!program_stage || mentions(*program_stage, kSourceTextureName))
         out += fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};\n", kDescriptorSet,
-                           kTextureBinding + 1 + i, variant.textures[i]);
+                           kTextureBinding, kSourceTextureName);
+    for (size_t i = 0; i < variant.textures.size(); ++i)
+        if (!program_stage || mentions(*program_stage, variant.textures[i]))
+            out += fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};\n", kDescriptorSet,
+                               kTextureBinding + 1 + i, variant.textures[i]);
     if (variant.has_uniform_block()) {
         out += fmt::format("\nlayout(std140, set = {}, binding = {}) uniform {} {{\n", kDescriptorSet,
                            kUniformBinding, kUniformBlockName);
         for (Builtin b : variant.builtins) {
-            const char* type = b == Builtin::Time ? "float" : b == Builtin::FrameCount ? "int" : "vec2";
-            out += fmt::format("    {} {};  // builtin: {}\n", type, builtin_name(b), builtin_comment(b));
+            const char* type = builtin_glsl_type(b);
+            out += fmt::format("    {} {};  // builtin: {}\n", type, builtin_name(b), builtin_doc(b));
         }
         for (const VariantParam* p : variant.uniforms()) {
             std::string range;
@@ -174,7 +180,21 @@ std::string main_body(const Variant& variant) {
     return finite + shade + "void main() {\n" + fmt::format("    fragColor = ({}) / {}.0;\n}}\n", sum, n * n);
 }
 
+// A program form: its two files after the declarations, each with #line back to its file.
+AssembledShader assemble_program(const std::string& header, const Variant& variant, const FormSpec& form) {
+    AssembledShader out;
+    out.fragment = header + declarations(variant, &form.fragment_source) + "\n" + line_directive(1, form.fragment_path) +
+                   form.fragment_source;
+    out.vertex = header + declarations(variant, &form.vertex_source) + "\n" + line_directive(1, form.vertex_path) +
+                 form.vertex_source;
+    return out;
+}
+
 }  // namespace
+
+const char* builtin_glsl_type(Builtin builtin) {
+    return builtin == Builtin::Time ? "float" : builtin == Builtin::FrameCount ? "int" : "vec2";
+}
 
 AssembledShader assemble(const TemplateLibrary& library, const Variant& variant) {
     const Preset& preset = *variant.preset;
@@ -191,6 +211,8 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
     if (variant.options.precision == Precision::Medium) src += "precision mediump float;\n";
     for (const VariantStage& ss : variant.stages)
         for (const FormSpec* form : ss.forms) src += fmt::format("#define CRT_FORM_{}_{} 1\n", ss.stage->name, form->name);
+    if (variant.stages.size() == 1 && variant.stages.front().forms.front()->program())
+        return assemble_program(src, variant, *variant.stages.front().forms.front());
     src += declarations(variant);
 
     // Each included file starts on its own line with a #line directive naming it, so glslang

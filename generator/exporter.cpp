@@ -3,6 +3,7 @@
 #include "crtforge/exporter.hpp"
 #include "crtforge/version.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <atomic>
 #include <filesystem>
@@ -203,6 +204,18 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
     auto reflection = reflect(out.fragment);
     if (!reflection.ok()) return reflection.error();
     out.reflection = std::move(reflection.value());
+    // A program's vertex shader may read the block or a texture the fragment shader does not: the
+    // host binds what either stage declares (the assembler gives both stages the same block).
+    auto vertex_reflection = reflect(out.vertex);
+    if (!vertex_reflection.ok()) return vertex_reflection.error();
+    for (ReflectedBlock& block : vertex_reflection.value().uniform_blocks)
+        if (std::none_of(out.reflection.uniform_blocks.begin(), out.reflection.uniform_blocks.end(),
+                         [&](const ReflectedBlock& b) { return b.binding == block.binding; }))
+            out.reflection.uniform_blocks.push_back(std::move(block));
+    for (ReflectedTexture& texture : vertex_reflection.value().textures)
+        if (std::none_of(out.reflection.textures.begin(), out.reflection.textures.end(),
+                         [&](const ReflectedTexture& t) { return t.binding == texture.binding; }))
+            out.reflection.textures.push_back(std::move(texture));
     return out;
 }
 

@@ -44,9 +44,7 @@ json uniform_block(const CompiledVariant& compiled) {
         Builtin builtin{};
         if (parse_builtin(m.name, builtin)) {
             member["builtin"] = true;
-            member["doc"] = builtin == Builtin::OutputSize ? "output size in pixels (width, height)"
-                          : builtin == Builtin::SourceSize ? "source texture size in texels (width, height)"
-                                                           : "seconds since start; keep it continuous";
+            member["doc"] = builtin_doc(builtin);
             // How hosts reduce the seconds (shader_time()): fmod(seconds * |S|, 2 pi) / |S| in double
             // precision, S the named uniform's value or the baked number.
             if (builtin == Builtin::Time && compiled.variant.angular_speed()) {

@@ -14,12 +14,6 @@
 
 namespace crtforge {
 
-using detail::TomlReader;
-using detail::migrate_glitch_preset;
-using detail::preset_format;
-
-namespace {
-
 bool is_preset_name(const std::string& name) {
     if (name.empty() || name.size() > 64 || !std::isalnum(static_cast<unsigned char>(name[0]))) return false;
     for (char c : name)
@@ -27,6 +21,13 @@ bool is_preset_name(const std::string& name) {
             return false;
     return true;
 }
+
+using detail::TomlReader;
+using detail::migrate_glitch_preset;
+using detail::preset_format;
+
+namespace {
+
 
 }  // namespace
 
@@ -188,10 +189,30 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
         const toml::table* tt = textures->as_table();
         if (!tt) return r.error(textures, field + ".textures", "must be a table of name = \"source\"");
         for (const auto& [name, node] : *tt) {
-            if (!node.is_string())
-                return r.error(&node, field + ".textures." + std::string(name.str()), "must be a string naming a source");
-            pass.textures[std::string(name.str())] = std::string(node.as_string()->get());
-            pass.texture_lines[std::string(name.str())] = r.line_of(node);
+            const std::string key(name.str()), tfield = field + ".textures." + key;
+            pass.texture_lines[key] = r.line_of(node);
+            if (node.is_string()) {
+                pass.textures[key] = std::string(node.as_string()->get());
+                continue;
+            }
+            // { from = "source", filter = ..., wrap = ..., mipmap = ... }: how this texture is sampled.
+            const toml::table* entry = node.as_table();
+            if (!entry) return r.error(&node, tfield, "must be a string naming a source, or { from = \"source\", filter, wrap, mipmap }");
+            if (auto k = r.only_keys(*entry, {"from", "filter", "wrap", "mipmap"}, tfield); !k.ok()) return k.error();
+            auto from = r.string(*entry, "from", tfield, true);
+            if (!from.ok()) return from.error();
+            pass.textures[key] = from.value();
+            TextureSampling sampling;
+            auto tf = r.choice(*entry, "filter", tfield, kFilters);
+            if (!tf.ok()) return tf.error();
+            if (tf.value()) sampling.filter = static_cast<Filter>(*tf.value());
+            auto tw = r.choice(*entry, "wrap", tfield, kWraps);
+            if (!tw.ok()) return tw.error();
+            if (tw.value()) sampling.wrap = static_cast<Wrap>(*tw.value());
+            auto tm = r.boolean(*entry, "mipmap", tfield);
+            if (!tm.ok()) return tm.error();
+            sampling.mipmap = tm.value();
+            pass.texture_sampling[key] = sampling;
         }
     }
     auto mod = r.integer(t, "frame_count_mod", field);

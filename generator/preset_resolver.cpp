@@ -126,7 +126,6 @@ bool Preset::has_feedback() const {
 namespace {
 
 // How far back a pass may read the original: RetroArch offers OriginalHistory0..15.
-constexpr int kMaxHistory = 15;
 // How deep `base` chains and `preset =` references may nest.
 constexpr size_t kMaxInheritanceDepth = 32;
 
@@ -179,6 +178,15 @@ Result<std::vector<ResolvedStage>> resolve_stages(const std::vector<StageSpec>& 
         }
         out.push_back(std::move(rs));
     }
+    // A program is the whole pass: nothing runs before or after it in the same shader.
+    for (const ResolvedStage& rs : out)
+        if (rs.stage->program && out.size() > 1) {
+            std::string others;
+            for (const ResolvedStage& o : out)
+                if (&o != &rs) others += (others.empty() ? "" : ", ") + o.stage->name;
+            return make_error("program stage '" + rs.stage->name + "' runs alone in its pass; turn off " + others, file, 0,
+                              field_prefix + rs.stage->name);
+        }
     return out;
 }
 
@@ -529,6 +537,11 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
             if (const LutSpec* lut = src.value().kind == TextureSource::Kind::Lut ? preset.find_lut(src.value().name) : nullptr) {
                 input.filter = lut->filter;
                 input.wrap = lut->wrap;
+            }
+            if (auto how = entry.texture_sampling.find(binding); how != entry.texture_sampling.end()) {
+                input.filter = how->second.filter.value_or(input.filter);
+                input.wrap = how->second.wrap.value_or(input.wrap);
+                input.mipmap = how->second.mipmap.value_or(input.mipmap);
             }
             pass.inputs.push_back(std::move(input));
         }

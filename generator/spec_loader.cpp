@@ -2,9 +2,11 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <filesystem>
 
 #include <fmt/format.h>
 
+#include "crtforge/files.hpp"
 #include "crtforge/template_library.hpp"
 #include "generator/reserved_words.hpp"
 #include "generator/toml_reader.hpp"
@@ -40,12 +42,24 @@ const char* builtin_name(Builtin builtin) {
         case Builtin::SourceSize: return "sourceSize";
         case Builtin::Time: return "time";
         case Builtin::FrameCount: return "frameCount";
+        case Builtin::ViewportSize: return "viewportSize";
+    }
+    return "?";
+}
+
+const char* builtin_doc(Builtin builtin) {
+    switch (builtin) {
+        case Builtin::OutputSize: return "output size in pixels (width, height)";
+        case Builtin::SourceSize: return "source texture size in texels (width, height)";
+        case Builtin::Time: return "seconds since start; keep it continuous";
+        case Builtin::FrameCount: return "frames since start (modulo the pass's frame_count_mod)";
+        case Builtin::ViewportSize: return "the screen's size in pixels (width, height): what the last pass draws";
     }
     return "?";
 }
 
 bool parse_builtin(const std::string& text, Builtin& out) {
-    for (Builtin b : {Builtin::OutputSize, Builtin::SourceSize, Builtin::Time, Builtin::FrameCount}) {
+    for (Builtin b : kAllBuiltins) {
         if (text == builtin_name(b)) {
             out = b;
             return true;
@@ -171,10 +185,35 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
     return p;
 }
 
+// A program form's two files, named relative to the stage's file and inside its folder.
+Result<FormSpec> parse_program_files(const TomlReader& r, const toml::table& t, const std::string& field, FormSpec f) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::path(r.path()).parent_path();
+    for (const char* key : {"vertex", "fragment"}) {
+        auto name = r.string(t, key, field, true);
+        if (!name.ok()) return name.error();
+        const fs::path relative(name.value());
+        bool inside = !relative.empty() && relative.is_relative();
+        for (const auto& part : relative) inside = inside && part != "..";
+        if (!inside)
+            return r.error(t.get(key), join_field(field, key), "'" + name.value() + "' must be a path below the stage file's folder");
+        const std::string path = (folder / relative).string();
+        auto text = read_text_file(path);
+        if (!text.ok()) return make_error(text.error().message, r.path(), r.line_of(*t.get(key)), join_field(field, key));
+        (std::string(key) == "vertex" ? f.vertex_path : f.fragment_path) = path;
+        (std::string(key) == "vertex" ? f.vertex_source : f.fragment_source) = std::move(text.value());
+    }
+    return f;
+}
+
 Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const StageSpec& stage) {
     const std::string prefix = "form";
-    if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "quality_of", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok())
+    if (stage.program) {
+        if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "vertex", "fragment"}, prefix); !s.ok())
+            return s.error();
+    } else if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "quality_of", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok()) {
         return s.error();
+    }
     FormSpec f;
     f.where = {r.path(), r.line_of(t)};
     auto name = r.string(t, "name", prefix, true);
@@ -198,7 +237,7 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
         Builtin builtin{};
         if (!parse_builtin(b, builtin))
             return r.error(t.get("builtins"), join_field(field, "builtins"),
-                           "'" + b + "' is not a builtin (outputSize, sourceSize, time, frameCount)");
+                           "'" + b + "' is not a builtin (outputSize, sourceSize, time, frameCount, viewportSize)");
         f.builtins.push_back(builtin);
     }
     auto textures = r.strings(t, "textures", field);
@@ -211,6 +250,7 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
             return r.error(t.get("textures"), join_field(field, "textures"), "'" + name + "' is listed twice");
         f.textures.push_back(name);
     }
+    if (stage.program) return parse_program_files(r, t, field, f);
     auto quality_of = r.string(t, "quality_of", field, false);
     if (!quality_of.ok()) return quality_of.error();
     f.quality_of = quality_of.value();
@@ -235,7 +275,7 @@ Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& p
     auto parsed = r.parse(text);
     if (!parsed.ok()) return parsed.error();
     const toml::table& root = parsed.value();
-    if (auto s = r.only_keys(root, {"name", "doc", "order", "selector", "common", "param", "form"}, ""); !s.ok())
+    if (auto s = r.only_keys(root, {"name", "doc", "kind", "order", "selector", "common", "param", "form"}, ""); !s.ok())
         return s.error();
 
     StageSpec stage;
@@ -248,10 +288,19 @@ Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& p
     auto doc = r.string(root, "doc", "", true);
     if (!doc.ok()) return doc.error();
     stage.doc = doc.value();
+    auto kind = r.string(root, "kind", "", false);
+    if (!kind.ok()) return kind.error();
+    if (kind.value() != "" && kind.value() != "hooks" && kind.value() != "program")
+        return r.error(root.get("kind"), "kind", "'" + kind.value() + "' is not a stage kind (hooks, program)");
+    stage.program = kind.value() == "program";
     auto order = r.integer(root, "order", "");
     if (!order.ok()) return order.error();
-    if (!order.value()) return r.error(&root, "order", "is required but missing");
-    stage.order = static_cast<int>(*order.value());
+    if (stage.program) {
+        if (order.value()) return r.error(root.get("order"), "order", "a program stage runs alone in its pass and has no order");
+    } else {
+        if (!order.value()) return r.error(&root, "order", "is required but missing");
+        stage.order = static_cast<int>(*order.value());
+    }
 
     if (const toml::node* params = root.get("param")) {
         const toml::array* a = params->as_array();

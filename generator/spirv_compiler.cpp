@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
+#include <glslang/MachineIndependent/localintermediate.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <glslang/build_info.h>
 #include <spirv-tools/libspirv.hpp>
@@ -143,6 +144,21 @@ Result<SpirvBinary> optimize_spirv(const SpirvBinary& module, const std::string&
     return optimized;
 }
 
+// Whether a global variable is initialised by code (`vec2 s = uniformValue * 2.0;` at file scope):
+// glslang runs that code at the start of main(), and its debug-info writer dereferences a null
+// scope for it (Debian's glslang 15 crashes), so such a shader is compiled without debug info.
+bool has_global_initialiser_code(const glslang::TIntermediate& intermediate) {
+    const TIntermNode* root = intermediate.getTreeRoot();
+    const glslang::TIntermAggregate* sequence = root ? const_cast<TIntermNode*>(root)->getAsAggregate() : nullptr;
+    if (!sequence) return false;
+    for (const TIntermNode* node : sequence->getSequence()) {
+        const glslang::TIntermAggregate* aggregate = const_cast<TIntermNode*>(node)->getAsAggregate();
+        const bool declaration = aggregate && (aggregate->getOp() == glslang::EOpFunction || aggregate->getOp() == glslang::EOpLinkerObjects);
+        if (!declaration) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOptions& options) {
@@ -156,17 +172,18 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     spv::SpvBuildLogger logger;
     glslang::SpvOptions spv_options;
     spv_options.disableOptimizer = true;  // SPIRV-Tools does it below, with our pass list
-    spv_options.generateDebugInfo = options.debug_lines;
+    const glslang::TIntermediate& intermediate = *parsed.value()->program->getIntermediate(to_glslang(options.stage));
+    const bool debug_info_safe = !has_global_initialiser_code(intermediate);
+    spv_options.generateDebugInfo = options.debug_lines && debug_info_safe;
     // Readable output: the template's local names ride through the optimiser as NonSemantic debug
     // info and become OpNames of the SSA values afterwards (spirv_debug_names.cpp).
     const bool carry_names = options.local_names && options.optimize && !options.debug_lines &&
-                             options.language == SourceLanguage::Glsl;
+                             options.language == SourceLanguage::Glsl && debug_info_safe;
     if (carry_names) {
         spv_options.generateDebugInfo = true;
         spv_options.emitNonSemanticShaderDebugInfo = true;
     }
-    glslang::GlslangToSpv(*parsed.value()->program->getIntermediate(to_glslang(options.stage)), spirv,
-                          &logger, &spv_options);
+    glslang::GlslangToSpv(intermediate, spirv, &logger, &spv_options);
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
 
     if (options.optimize) {

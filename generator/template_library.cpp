@@ -19,7 +19,7 @@ namespace {
 const std::set<std::string>& reserved_names() {
     static const std::set<std::string> names = {
         "main", "source", "fragColor", "vTexCoord", "crt", "CrtParams", "CrtFrag", "color", "frag",
-        "inside", "sampleUv", "outputSize", "sourceSize", "time", "frameCount", "hostTime", "crt_warp", "crt_source_uv", "PI", "TAU"};
+        "inside", "sampleUv", "outputSize", "sourceSize", "time", "frameCount", "viewportSize", "hostTime", "crt_warp", "crt_source_uv", "PI", "TAU"};
     return names;
 }
 
@@ -143,16 +143,21 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
         if (s.name != file_stem(path))
             return make_error("stage name '" + s.name + "' must match the file name '" + file_stem(path) + "'", path, 1, "name");
         for (const auto& other : lib->stages_)
-            if (other.order == s.order)
+            if (!s.program && !other.program && other.order == s.order)
                 return make_error("order " + std::to_string(s.order) + " is already used by stage '" + other.name +
                                   "' (the pass order must be unambiguous)", path, 1, "order");
         for (const auto& p : s.params) {
             if (reserved_names().count(p.name))
                 return make_error("'" + p.name + "' is reserved by the generated code", path, p.where.line, "param." + p.name);
+            if (s.program) continue;  // a program's params are its own: it never shares a shader
             auto [it, fresh] = param_owner.emplace(p.name, p.where.file + ":" + std::to_string(p.where.line));
             if (!fresh)
                 return make_error("param names are global (they become uniform names); already declared at " + it->second,
                                   path, p.where.line, "param." + p.name);
+        }
+        if (s.program) {  // its forms carry their own files
+            lib->stages_.push_back(std::move(s));
+            continue;
         }
         s.glsl_path = std::filesystem::path(path).parent_path().string() + "/" + s.name + ".glsl";
         auto glsl = read_text_file(s.glsl_path);
@@ -166,7 +171,7 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
         lib->stages_.push_back(std::move(s));
     }
     std::sort(lib->stages_.begin(), lib->stages_.end(),
-              [](const StageSpec& a, const StageSpec& b) { return a.order < b.order; });
+              [](const StageSpec& a, const StageSpec& b) { return a.order != b.order ? a.order < b.order : a.name < b.name; });
 
     auto preset_files = layered_files(layers, "presets", ".toml");
     if (!preset_files.ok()) return preset_files.error();

@@ -68,6 +68,9 @@ Result<std::vector<uint8_t>> pack_uniforms(const CompiledVariant& compiled, cons
             return MemberData{std::vector<float>{static_cast<float>(frame.output_width), static_cast<float>(frame.output_height)}};
         if (m.name == "sourceSize")
             return MemberData{std::vector<float>{static_cast<float>(frame.source_width), static_cast<float>(frame.source_height)}};
+        if (m.name == "viewportSize")
+            return MemberData{std::vector<float>{static_cast<float>(frame.viewport_width ? frame.viewport_width : frame.output_width),
+                                                 static_cast<float>(frame.viewport_height ? frame.viewport_height : frame.output_height)}};
         if (m.name == "time") return MemberData{std::vector<float>{static_cast<float>(shader_time(compiled.variant, values, frame.time))}};
         // An int: a 32-bit counter wraps after ~2.3 years of 60 Hz frames; hosts reduce it by the pass's modulo first.
         if (m.name == "frameCount") return MemberData{static_cast<int32_t>(frame.frame_count & 0x7fffffff)};

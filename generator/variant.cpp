@@ -98,6 +98,7 @@ bool contains(const std::vector<std::string>& list, const std::string& name) {
 // Selectors are left out: the switch does their work.
 void add_uber_stages(const TemplateLibrary& library, Variant& variant) {
     for (const StageSpec& stage : library.stages()) {
+        if (stage.program) continue;  // a whole program is not a switchable stage
         VariantStage ss{&stage, {}, true};
         for (const FormSpec& form : stage.forms) {
             bool bound = true;
@@ -173,14 +174,9 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
     std::set<std::string> used;
     if (variant.uber()) add_uber_stages(library, variant);
     else add_pass_stages(variant, used);
-    bool needs_time = false, needs_source_size = false, needs_frame_count = false;
+    std::set<Builtin> needs;
     for (const VariantStage& ss : variant.stages)
-        for (const FormSpec* form : ss.forms)
-            for (Builtin b : form->builtins) {
-                needs_time = needs_time || b == Builtin::Time;
-                needs_source_size = needs_source_size || b == Builtin::SourceSize;
-                needs_frame_count = needs_frame_count || b == Builtin::FrameCount;
-            }
+        for (const FormSpec* form : ss.forms) needs.insert(form->builtins.begin(), form->builtins.end());
 
     if (options.uniforms.mode == UniformSelection::Mode::Names) {
         for (const auto& name : options.uniforms.names) {
@@ -212,10 +208,10 @@ Result<Variant> make_variant(const TemplateLibrary& library, const Preset& prese
     }
 
     // outputSize is always present when any stage runs: the pixel grid every stage works on.
-    if (!variant.stages.empty()) variant.builtins.push_back(Builtin::OutputSize);
-    if (needs_source_size) variant.builtins.push_back(Builtin::SourceSize);
-    if (needs_time) variant.builtins.push_back(Builtin::Time);
-    if (needs_frame_count) variant.builtins.push_back(Builtin::FrameCount);
+    // The others in declaration order, so a block's layout does not depend on the forms' lists.
+    for (Builtin b : kAllBuiltins)
+        if ((b == Builtin::OutputSize && !variant.stages.empty()) || (b != Builtin::OutputSize && needs.count(b)))
+            variant.builtins.push_back(b);
     return variant;
 }
 

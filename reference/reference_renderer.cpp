@@ -166,6 +166,7 @@ WrapMode wrap_mode(Wrap w) {
     switch (w) {
         case Wrap::Repeat: return WrapMode::Repeat;
         case Wrap::MirroredRepeat: return WrapMode::MirroredRepeat;
+        case Wrap::ClampToBorder: return WrapMode::ClampToBorder;
         default: return WrapMode::ClampToEdge;
     }
 }

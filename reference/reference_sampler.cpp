@@ -15,6 +15,7 @@ int address(int i, int size, WrapMode wrap) {
             const int m = ((i % period) + period) % period;
             return m < size ? m : period - 1 - m;
         }
+        case WrapMode::ClampToBorder: return i < 0 || i >= size ? -1 : i;  // -1: the border
     }
     return std::clamp(i, 0, size - 1);
 }
@@ -24,6 +25,7 @@ int address(int i, int size, WrapMode wrap) {
 Rgba Sampler::texel(int x, int y) const {
     x = address(x, image_.width, wrap_);
     y = address(y, image_.height, wrap_);
+    if (x < 0 || y < 0) return {0, 0, 0, 0};  // clamp_to_border: transparent black
     const float* p = image_.rgba.data() + (static_cast<size_t>(y) * image_.width + x) * 4;
     return {p[0], p[1], p[2], p[3]};
 }

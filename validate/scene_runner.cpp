@@ -27,9 +27,9 @@ Result<WrapMode> to_wrap(Wrap w, const std::string& where) {
         case Wrap::ClampToEdge: return WrapMode::ClampToEdge;
         case Wrap::Repeat: return WrapMode::Repeat;
         case Wrap::MirroredRepeat: return WrapMode::MirroredRepeat;
-        case Wrap::ClampToBorder: break;
+        case Wrap::ClampToBorder: return WrapMode::ClampToBorder;  // engines without a border colour refuse it
     }
-    return make_error("clamp_to_border is not supported by crtforge's consumers (WebGPU and Godot lack it)", {}, 0, where);
+    return make_error("unknown wrap mode", {}, 0, where);
 }
 
 }  // namespace
@@ -122,6 +122,8 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             pr.time = r.start_time + frame / preset.scene.fps;
             pr.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
             pr.overrides = r.overrides;
+            pr.screen_width = screen.width;
+            pr.screen_height = screen.height;
             if (last) {  // the display: the screen's rectangle over opaque black
                 pr.width = r.width;
                 pr.height = r.height;

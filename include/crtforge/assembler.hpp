@@ -24,6 +24,11 @@ struct AssembledShader {
     std::string vertex;    // the full-screen triangle
 };
 
+// A snippet stage's forms run in the generated main(); a program form (FormSpec::program()) is the
+// pass's whole vertex and fragment shader, after the same declarations.
 AssembledShader assemble(const TemplateLibrary& library, const Variant& variant);
+
+// The GLSL type of a builtin's uniform member: vec2, float (time) or int (frameCount).
+const char* builtin_glsl_type(Builtin builtin);
 
 }  // namespace crtforge

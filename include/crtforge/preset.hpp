@@ -22,6 +22,11 @@ namespace crtforge {
 
 // Largest source or pass size a preset may name (the engines' largest image).
 inline constexpr int kMaxSceneDimension = 16384;
+// A preset's name: 1..64 of lower-case letters, digits, '-' and '_', starting with a letter or digit.
+bool is_preset_name(const std::string& name);
+
+// Deepest history of the original a pass may read (original@N).
+inline constexpr int kMaxHistory = 15;
 
 enum class Filter { Linear, Nearest };
 const char* filter_name(Filter filter);
@@ -71,6 +76,14 @@ struct PresetStageEntry {
     std::map<std::string, int> value_lines;  // param name -> line in the preset file
 };
 
+// How a pass samples one of its textures, where the preset says so ({ from, filter, wrap, mipmap }):
+// an imported RetroArch pass samples another pass's output as that pass's producer declares.
+struct TextureSampling {
+    std::optional<Filter> filter;
+    std::optional<Wrap> wrap;
+    std::optional<bool> mipmap;
+};
+
 // One [[pass]] as written.
 struct PassEntry {
     std::string alias;
@@ -84,6 +97,7 @@ struct PassEntry {
     std::optional<bool> mipmap;
     std::map<std::string, std::string> textures;  // binding -> source, as written
     std::map<std::string, int> texture_lines;
+    std::map<std::string, TextureSampling> texture_sampling;  // binding -> as written in its inline table
     std::optional<int> frame_count_mod;
     std::optional<int> supersample;
     int line = 0;

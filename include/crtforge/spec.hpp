@@ -61,8 +61,12 @@ constexpr int kHookCount = 6;
 //   sourceSize  vec2   the main input's size in texels
 //   time        float  seconds since the first frame: frame / fps
 //   frameCount  int    frames since the first, modulo the pass's frame_count_mod when it has one
-enum class Builtin { OutputSize, SourceSize, Time, FrameCount };
-const char* builtin_name(Builtin builtin);  // the uniform member name: outputSize, sourceSize, time, frameCount
+//   viewportSize vec2  the screen's rectangle in the display, in pixels: what the last pass draws
+//                      (RetroArch's FinalViewportSize), the same in every pass
+enum class Builtin { OutputSize, SourceSize, Time, FrameCount, ViewportSize };
+constexpr Builtin kAllBuiltins[] = {Builtin::OutputSize, Builtin::SourceSize, Builtin::Time, Builtin::FrameCount, Builtin::ViewportSize};
+const char* builtin_name(Builtin builtin);  // the uniform member name: outputSize, sourceSize, time, frameCount, viewportSize
+const char* builtin_doc(Builtin builtin);   // one line for generated code and the manifest
 bool parse_builtin(const std::string& text, Builtin& out);
 
 struct FormSpec {
@@ -78,6 +82,12 @@ struct FormSpec {
     // meaning the same picture, averaged over each output pixel's footprint so that fine patterns do
     // not alias. Presets select it like any form; bench and budget mode offer it as the "filtered" tier.
     std::string quality_of;
+    // A program form (its stage's `kind = "program"`): a whole vertex + fragment program instead of
+    // hook functions, each file GLSL 450 without #version, declaring its own inputs and outputs and
+    // reading the pass's uniform block, constants and samplers as a snippet does (the assembler
+    // declares them). An imported RetroArch pass is one (crtforge import).
+    std::string vertex_path, vertex_source, fragment_path, fragment_source;
+    bool program() const { return !fragment_path.empty(); }
     SourceLocation where;
 };
 
@@ -89,6 +99,10 @@ struct StageSpec {
     std::vector<std::string> common_params;  // params every form of this stage reads
     std::vector<ParamSpec> params;
     std::vector<FormSpec> forms;
+    // "program": each form is a whole program (FormSpec::vertex_source/fragment_source), a pass
+    // runs it alone, and the stage has no place in the pass order (`order` 0). Its params are its
+    // own namespace (another program stage may use the same names: they never share a shader).
+    bool program = false;
     std::string glsl_path;        // the snippet file
     std::string glsl_source;      // its text
     SourceLocation where;

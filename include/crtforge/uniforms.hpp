@@ -19,6 +19,7 @@ struct FrameInfo {
     int source_width = 0, source_height = 0;  // its main input
     double time = 0.0;                        // seconds
     long long frame_count = 0;                // already reduced by the pass's frame_count_mod
+    int viewport_width = 0, viewport_height = 0;  // the screen's rectangle in the display (0: the output's)
     static double time_of_frame(int frame, double fps = 60.0) { return frame / fps; }
 };
 

@@ -24,6 +24,7 @@ const char* wrap_mode_name(WrapMode wrap) {
         case WrapMode::ClampToEdge: return "ClampToEdge";
         case WrapMode::Repeat: return "Repeat";
         case WrapMode::MirroredRepeat: return "MirroredRepeat";
+        case WrapMode::ClampToBorder: return "ClampToBorder";
     }
     return "?";
 }

@@ -103,6 +103,7 @@ const char* wrap_name(WrapMode wrap) {
         case WrapMode::ClampToEdge: return "clamp-to-edge";
         case WrapMode::Repeat: return "repeat";
         case WrapMode::MirroredRepeat: return "mirror-repeat";
+        case WrapMode::ClampToBorder: break;  // refused by check_job: WebGPU has no border colour
     }
     return "?";
 }
@@ -120,6 +121,11 @@ Status check_job(const DawnJob& job) {
     if (job.format != OutputFormat::Rgba8Unorm && job.format != OutputFormat::Rgba8Srgb &&
         job.format != OutputFormat::Rgba16Float)
         return job_error("unknown output format", "format");
+    // WebGPU has no border colour: clamp_to_border must be emulated by the shader, not asked of Dawn.
+    if (job.wrap == WrapMode::ClampToBorder) return job_error("WebGPU has no clamp-to-border address mode", "wrap");
+    for (std::size_t i = 0; i < job.textures.size(); ++i)
+        if (job.textures[i].wrap == WrapMode::ClampToBorder)
+            return job_error("WebGPU has no clamp-to-border address mode", detail::texture_field(i, "wrap"));
     std::vector<detail::BindingUse> used;
     if (!job.uniform_data.empty()) used.push_back({job.uniform_binding, "uniform_binding"});
     if (job.uses_texture) {

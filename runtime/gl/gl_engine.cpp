@@ -112,6 +112,7 @@ GLint gl_wrap(WrapMode wrap) {
         case WrapMode::ClampToEdge: return GL_CLAMP_TO_EDGE;
         case WrapMode::Repeat: return GL_REPEAT;
         case WrapMode::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        case WrapMode::ClampToBorder: return GL_CLAMP_TO_BORDER;  // border colour (0, 0, 0, 0): GL's default
     }
     return GL_CLAMP_TO_EDGE;
 }

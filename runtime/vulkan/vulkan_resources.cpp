@@ -152,6 +152,7 @@ Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter
     VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     if (wrap == WrapMode::Repeat) address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     if (wrap == WrapMode::MirroredRepeat) address = VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    if (wrap == WrapMode::ClampToBorder) address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;  // transparent black, below
     VkSamplerCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
     info.magFilter = vk_filter;

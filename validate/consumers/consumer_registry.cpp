@@ -1,4 +1,5 @@
 // Consumer keys (as TargetInfo::consumer names them) -> consumers, and what the consumers share.
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -112,7 +113,7 @@ Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, con
 Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& r) {
     // The pass works on the pixels it draws: the viewport's when it has one.
     const int width = r.viewport.full() ? r.width : r.viewport.width, height = r.viewport.full() ? r.height : r.viewport.height;
-    FrameInfo frame{width, height, r.input.width, r.input.height, r.time, r.frame_count};
+    FrameInfo frame{width, height, r.input.width, r.input.height, r.time, r.frame_count, r.screen_width, r.screen_height};
     return pack_uniforms(*r.compiled, frame, r.overrides);
 }
 
@@ -121,6 +122,10 @@ Result<std::vector<TextureInput>> engine_textures(TargetRenderRequest& r,
                                                   const std::function<Result<uint32_t>(const std::string&)>& sampler_binding_of) {
     std::vector<TextureInput> out;
     for (PassTexture& t : r.textures) {
+        // A texture the optimiser removed (a program declares it and never samples it) binds nothing.
+        if (r.compiled && std::none_of(r.compiled->reflection.textures.begin(), r.compiled->reflection.textures.end(),
+                                       [&](const ReflectedTexture& rt) { return rt.name == t.name; }))
+            continue;
         TextureInput input;
         input.name = t.name;
         auto binding = binding_of(t.name);

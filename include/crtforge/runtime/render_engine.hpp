@@ -35,8 +35,10 @@ enum class OutputFormat {
 enum class SamplerFilter { Nearest, Linear };
 
 // Texture addressing outside [0, 1], on both axes (Vulkan CLAMP_TO_EDGE / REPEAT /
-// MIRRORED_REPEAT, GL the same, WebGPU clamp-to-edge / repeat / mirror-repeat).
-enum class WrapMode { ClampToEdge, Repeat, MirroredRepeat };
+// MIRRORED_REPEAT / CLAMP_TO_BORDER, GL the same, WebGPU clamp-to-edge / repeat / mirror-repeat).
+// ClampToBorder reads transparent black outside the texture (RetroArch's default wrap); WebGPU has
+// no border colour, so the Dawn engine refuses it.
+enum class WrapMode { ClampToEdge, Repeat, MirroredRepeat, ClampToBorder };
 
 // A texture a pass reads besides its main input (a previous pass's output, a lookup table, ...).
 // Uploaded exactly as the main input is (RGBA32F, or RGBA16F where the device cannot filter

@@ -52,6 +52,8 @@ struct TargetRenderRequest {
     std::vector<PassTexture> textures;  // the pass's other textures
     int width = 0, height = 0;           // the target's size
     Viewport viewport;                   // where the pass draws (default: the whole target)
+    // The screen's size in the display (the viewportSize builtin); 0: where this pass draws.
+    int screen_width = 0, screen_height = 0;
     std::array<float, 4> clear_color = {0, 0, 0, 0};
     double time = 0.0;
     long long frame_count = 0;

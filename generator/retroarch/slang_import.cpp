@@ -1,0 +1,426 @@
+// A RetroArch preset as a crtforge overlay: the program stage, the pass programs, the scene, the
+// LUT images. docs/retroarch.md is the mapping this writes.
+#include "crtforge/slang_import.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "crtforge/files.hpp"
+#include "generator/reserved_words.hpp"
+#include "generator/retroarch/slang_program.hpp"
+#include "generator/retroarch/slangp_file.hpp"
+#include "generator/toml_reader.hpp"
+
+namespace crtforge {
+
+namespace fs = std::filesystem;
+using retroarch::SlangParameter;
+using retroarch::SlangpPass;
+using retroarch::SlangSource;
+
+namespace {
+
+// A TOML basic string.
+std::string toml_string(const std::string& text) {
+    std::string out = "\"";
+    for (unsigned char c : text) {
+        if (c == '"' || c == '\\') out += '\\';
+        if (c < 0x20 || c == 0x7f) out += fmt::format("\\u{:04X}", c);
+        else out += static_cast<char>(c);
+    }
+    return out + "\"";
+}
+
+// A TOML float that reads back as the same double.
+std::string toml_float(double v) {
+    std::string text = fmt::format("{}", v);
+    if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+    return text;
+}
+
+// One line of plain text for a doc: control characters become spaces, a trailing backslash goes.
+std::string doc_line(std::string text, const std::string& fallback) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\\')) text.pop_back();
+    while (!text.empty() && text.front() == ' ') text.erase(text.begin());
+    if (!detail::unsafe_text(text).empty()) text.clear();
+    return text.empty() ? fallback : text;
+}
+
+std::string identifier_from(const std::string& text) {
+    std::string out;
+    for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    if (out.empty() || std::isdigit(static_cast<unsigned char>(out.front()))) out = "_" + out;
+    return out;
+}
+
+std::string relative_to(const std::string& path, const std::string& base) {
+    std::error_code ec;
+    const fs::path rel = fs::relative(path, base, ec);
+    return ec || rel.empty() ? path : rel.generic_string();
+}
+
+const char* wrap_of(const std::optional<std::string>& mode) { return mode ? mode->c_str() : "clamp_to_border"; }
+
+// RetroArch's framebuffer formats onto crtforge's: exact where crtforge has the format, else the
+// nearest with a warning.
+std::pair<const char*, bool> pixel_format(const SlangpPass& pass, const std::string& pragma) {
+    if (pass.float_framebuffer.value_or(false)) return {"rgba16f", true};
+    if (pass.srgb_framebuffer.value_or(false)) return {"rgba8_srgb", true};
+    if (pragma.empty() || pragma == "R8G8B8A8_UNORM") return {"rgba8", true};
+    if (pragma == "R8G8B8A8_SRGB") return {"rgba8_srgb", true};
+    if (pragma == "R16G16B16A16_SFLOAT") return {"rgba16f", true};
+    if (pragma.find("FLOAT") != std::string::npos || pragma.find("A2B10G10R10") != std::string::npos) return {"rgba16f", false};
+    return {"rgba8", false};
+}
+
+struct PassPlan {
+    std::string alias;        // crtforge's
+    const SlangSource* source = nullptr;
+    retroarch::TranslatedProgram program;
+};
+
+class Importer {
+public:
+    Importer(const retroarch::SlangpPreset& preset, const SlangImportOptions& options) : preset_(preset), options_(options) {}
+
+    Result<ImportedPreset> run(const std::string& path) {
+        out_.name = options_.name.empty() ? imported_preset_name(path) : options_.name;
+        out_.stage = "ra_" + identifier_from(out_.name);
+        out_.inputs = preset_.files;
+        for (const Diagnostic& w : preset_.warnings) out_.warnings.push_back(warning(w));
+        if (auto s = load_sources(); !s.ok()) return s.error();
+        if (auto s = collect_params(); !s.ok()) return s.error();
+        name_passes();
+        for (size_t i = 0; i < passes_.size(); ++i) {
+            retroarch::ProgramContext context;
+            context.provides_texture = [this](const std::string& name) { return textures_.count(name) != 0; };
+            context.is_param = [this](const std::string& id) { return params_.count(id) != 0; };
+            context.param_name = [this](const std::string& id) { return param_names_.at(id); };
+            context.fps = options_.fps;
+            context.opaque_output = i + 1 == passes_.size();
+            auto program = retroarch::translate_program(*passes_[i].source, context);
+            if (!program.ok()) return program.error();
+            passes_[i].program = std::move(program.value());
+        }
+        if (auto s = write_luts(); !s.ok()) return s.error();
+        write_stage();
+        write_preset();
+        return std::move(out_);
+    }
+
+private:
+    static std::string warning(const Diagnostic& d) {
+        std::string text = d.str();
+        const size_t at = text.find("error: ");
+        if (at != std::string::npos) text.replace(at, 7, "warning: ");
+        return text;
+    }
+
+    Status load_sources() {
+        for (const SlangpPass& pass : preset_.passes) {
+            if (!sources_.count(pass.shader)) {
+                auto source = retroarch::load_slang_source(pass.shader, options_.root);
+                if (!source.ok()) return source.error();
+                for (const std::string& f : source.value().files) out_.inputs.push_back(f);
+                sources_.emplace(pass.shader, std::move(source.value()));
+            }
+            passes_.push_back({"", &sources_.at(pass.shader), {}});
+        }
+        return Ok{};
+    }
+
+    // One namespace for the whole preset: an id declared by several passes is one value, and must
+    // be declared alike.
+    Status collect_params() {
+        std::set<std::string> used_names;
+        for (const PassPlan& pass : passes_)
+            for (const SlangParameter& p : pass.source->parameters) {
+                auto [it, fresh] = params_.emplace(p.id, p);
+                if (!fresh) {
+                    const SlangParameter& first = it->second;
+                    if (static_cast<float>(first.initial) != static_cast<float>(p.initial) ||
+                        static_cast<float>(first.minimum) != static_cast<float>(p.minimum) ||
+                        static_cast<float>(first.maximum) != static_cast<float>(p.maximum))
+                        return make_error(fmt::format("parameter '{}' is declared again with other values (first at {}:{})", p.id,
+                                                      first.where.file, first.where.line),
+                                          p.where.file, p.where.line, "pragma parameter");
+                    continue;
+                }
+                // A name no target reserves and crtforge's own code does not use.
+                std::string name = detail::is_identifier(p.id) ? p.id : identifier_from(p.id);
+                if (!detail::reserving_language(name).empty() || name.rfind("crtStage_", 0) == 0 || name == out_.stage + "_pass" ||
+                    reserved_by_program(name))
+                    name = "ra_" + name;
+                while (used_names.count(name)) name += "_";
+                used_names.insert(name);
+                param_names_[p.id] = name;
+            }
+        for (const auto& [id, value] : preset_.parameters)
+            if (params_.count(id)) values_[id] = value;
+        return Ok{};
+    }
+
+    static bool reserved_by_program(const std::string& name) {
+        static const std::set<std::string> words = {"source", "sourceSize", "outputSize", "viewportSize", "frameCount", "time",
+                                                    "CrtParams", "fragColor", "vTexCoord", "crtCorner", "MVP"};
+        return words.count(name) != 0;
+    }
+
+    // crtforge aliases (identifiers, unique, not `original`), and the textures each name reaches.
+    void name_passes() {
+        std::set<std::string> taken{"original", "source"};
+        for (size_t i = 0; i < passes_.size(); ++i) {
+            const SlangpPass& pass = preset_.passes[i];
+            std::string alias = !pass.alias.empty() ? pass.alias : passes_[i].source->name;
+            std::string ours = alias.empty() ? "pass" + std::to_string(i) : identifier_from(alias);
+            while (taken.count(ours)) ours += "_" + std::to_string(i);
+            taken.insert(ours);
+            passes_[i].alias = ours;
+            textures_["PassOutput" + std::to_string(i)] = ours;
+            textures_["PassFeedback" + std::to_string(i)] = ours + "@previous";
+            if (!alias.empty()) {
+                textures_.emplace(alias, ours);
+                textures_.emplace(alias + "Feedback", ours + "@previous");
+            }
+        }
+        textures_["Original"] = "original";
+        textures_["OriginalHistory0"] = "original";
+        for (int n = 1; n <= kMaxHistory; ++n) textures_["OriginalHistory" + std::to_string(n)] = "original@" + std::to_string(n);
+        for (const auto& lut : preset_.textures) textures_[lut.name] = "lut:" + lut.name;
+    }
+
+    Status write_luts() {
+        for (const auto& lut : preset_.textures) {
+            if (!detail::is_identifier(lut.name))
+                return make_error("LUT name '" + lut.name + "' is not an identifier", lut.where.file, lut.where.line, "textures");
+            std::string data;
+            auto bytes = read_text_file(lut.path);
+            if (!bytes.ok()) return make_error(bytes.error().message, lut.where.file, lut.where.line, lut.name);
+            out_.inputs.push_back(lut.path);
+            const std::string file = out_.name + "/" + lut.name + fs::path(lut.path).extension().string();
+            out_.files.push_back({"presets/" + file, std::move(bytes.value())});
+            lut_files_[lut.name] = file;
+        }
+        return Ok{};
+    }
+
+    void write_stage() {
+        std::string t;
+        t += "# Imported by crtforge from RetroArch's " + toml_string(relative_to(preset_.path, options_.root.empty() ? "." : options_.root)) +
+             ": a program stage, one form per pass.\n";
+        t += "name = " + toml_string(out_.stage) + "\n";
+        t += "doc = " + toml_string("The passes of RetroArch's " + fs::path(preset_.path).filename().string()) + "\n";
+        t += "kind = \"program\"\n";
+        const bool several = passes_.size() > 1;
+        if (several) t += "selector = " + toml_string(out_.stage + "_pass") + "\n";
+        // Params in first-declaration order across the passes, those some pass reads.
+        std::set<std::string> read;
+        for (const PassPlan& pass : passes_) read.insert(pass.program.params.begin(), pass.program.params.end());
+        for (const PassPlan& pass : passes_)
+            for (const SlangParameter& p : pass.source->parameters) {
+                if (!read.count(p.id) || written_.count(p.id)) continue;
+                written_.insert(p.id);
+                double lo = std::min(p.minimum, p.initial), hi = std::max(p.maximum, p.initial);
+                if (!(lo < hi)) hi = lo + 1.0;
+                t += "\n[[param]]\n";
+                t += "name = " + toml_string(param_names_.at(p.id)) + "\n";
+                t += "type = \"float\"\n";
+                t += "range = [" + toml_float(lo) + ", " + toml_float(hi) + "]\n";
+                if (p.step > 0 && std::isfinite(p.step)) t += "step = " + toml_float(p.step) + "\n";
+                t += "default = " + toml_float(p.initial) + "\n";
+                t += "doc = " + toml_string(doc_line(p.description, p.id) + (param_names_.at(p.id) != p.id ? " (RetroArch: " + p.id + ")" : "")) + "\n";
+                t += "runtime = true\n";
+            }
+        if (several) {
+            t += "\n[[param]]\nname = " + toml_string(out_.stage + "_pass") + "\ntype = \"enum\"\nvalues = [";
+            for (size_t i = 0; i < passes_.size(); ++i) t += (i ? ", " : "") + toml_string("pass" + std::to_string(i));
+            t += "]\ndefault = \"pass0\"\ndoc = \"Which pass's program this pass runs\"\n";
+        }
+        for (size_t i = 0; i < passes_.size(); ++i) {
+            const PassPlan& pass = passes_[i];
+            const std::string form = "pass" + std::to_string(i);
+            t += "\n[[form]]\nname = " + toml_string(form) + "\n";
+            t += "doc = " + toml_string(doc_line(relative_to(pass.source->path, options_.root.empty() ? "." : options_.root), form)) + "\n";
+            t += "params = [";
+            for (size_t k = 0; k < pass.program.params.size(); ++k) t += (k ? ", " : "") + toml_string(param_names_.at(pass.program.params[k]));
+            t += "]\nbuiltins = [";
+            size_t k = 0;
+            for (Builtin b : pass.program.builtins) t += (k++ ? ", " : "") + toml_string(builtin_name(b));
+            t += "]\ntextures = [";
+            for (size_t n = 0; n < pass.program.textures.size(); ++n) t += (n ? ", " : "") + toml_string(pass.program.textures[n]);
+            t += "]\n";
+            t += "vertex = " + toml_string(out_.stage + "/" + form + ".vert") + "\n";
+            t += "fragment = " + toml_string(out_.stage + "/" + form + ".frag") + "\n";
+            out_.files.push_back({"stages/" + out_.stage + "/" + form + ".vert", pass.program.vertex});
+            out_.files.push_back({"stages/" + out_.stage + "/" + form + ".frag", pass.program.fragment});
+        }
+        out_.files.push_back({"stages/" + out_.stage + ".toml", t});
+    }
+
+    // How readers sample pass k's output: as the pass after it declares (filter_linear, wrap_mode,
+    // mipmap_input of pass k + 1 describe the texture pass k produces); pass 0's govern the original.
+    std::string sampling_of_output(size_t producer_plus_one) const {
+        if (producer_plus_one >= preset_.passes.size()) return sampling(std::nullopt, std::nullopt, std::nullopt);
+        const SlangpPass& p = preset_.passes[producer_plus_one];
+        return sampling(p.filter_linear, p.wrap_mode, p.mipmap_input);
+    }
+    std::string sampling(std::optional<bool> linear, const std::optional<std::string>& wrap, std::optional<bool> mipmap) const {
+        const bool lin = linear.value_or(options_.unset_filter == Filter::Linear);
+        std::string s = fmt::format("filter = \"{}\", wrap = \"{}\"", lin ? "linear" : "nearest", wrap_of(wrap));
+        if (mipmap.value_or(false)) s += ", mipmap = true";
+        return s;
+    }
+
+    std::string scale_lines(const SlangpPass& p, size_t index) {
+        auto type_of = [](const std::optional<std::string>& t) { return t.value_or("source"); };
+        std::optional<std::string> x = p.scale_type ? p.scale_type : p.scale_type_x, y = p.scale_type ? p.scale_type : p.scale_type_y;
+        if (!x && !y) return "";  // RetroArch: source x1, the last pass the viewport — crtforge's defaults
+        const double sx = p.scale ? *p.scale : p.scale_x.value_or(1.0), sy = p.scale ? *p.scale : p.scale_y.value_or(1.0);
+        (void)index;
+        return fmt::format("scale_type_x = {}\nscale_type_y = {}\nscale = [{}, {}]\n", toml_string(type_of(x)), toml_string(type_of(y)),
+                           toml_float(type_of(x) == "absolute" ? std::round(sx) : sx),
+                           toml_float(type_of(y) == "absolute" ? std::round(sy) : sy));
+    }
+
+    // Whether RetroArch draws the last pass into a framebuffer of its own size and then copies it
+    // to the viewport: an explicit scale other than the viewport x1.
+    bool last_pass_copied() const {
+        const SlangpPass& p = preset_.passes.back();
+        std::optional<std::string> x = p.scale_type ? p.scale_type : p.scale_type_x, y = p.scale_type ? p.scale_type : p.scale_type_y;
+        if (!x && !y) return false;
+        const double sx = p.scale ? *p.scale : p.scale_x.value_or(1.0), sy = p.scale ? *p.scale : p.scale_y.value_or(1.0);
+        return x.value_or("source") != "viewport" || y.value_or("source") != "viewport" || sx != 1.0 || sy != 1.0;
+    }
+
+    void write_preset() {
+        std::string t;
+        t += "# Imported by crtforge from RetroArch's " +
+             toml_string(relative_to(preset_.path, options_.root.empty() ? "." : options_.root)) + ".\n";
+        t += "name = " + toml_string(out_.name) + "\n";
+        t += "doc = " + toml_string("RetroArch's " + fs::path(preset_.path).filename().string() + ", imported") + "\n";
+        if (options_.source_width > 0) t += fmt::format("\n[source]\nsize = [{}, {}]\n", options_.source_width, options_.source_height);
+        t += fmt::format("\n[display]\nfit = {}\n", toml_string(display_fit_name(options_.fit)));
+        t += "\n[time]\nfps = " + toml_float(options_.fps) + "\n";
+        for (const auto& lut : preset_.textures) {
+            t += "\n[lut." + lut.name + "]\n";
+            t += "file = " + toml_string(lut_files_.at(lut.name)) + "\n";
+            t += fmt::format("filter = \"{}\"\n", lut.linear.value_or(options_.unset_filter == Filter::Linear) ? "linear" : "nearest");
+            t += fmt::format("wrap = \"{}\"\n", wrap_of(lut.wrap_mode));
+        }
+        for (size_t i = 0; i < passes_.size(); ++i) {
+            const SlangpPass& p = preset_.passes[i];
+            const PassPlan& plan = passes_[i];
+            t += "\n[[pass]]\nalias = " + toml_string(plan.alias) + "\n";
+            t += scale_lines(p, i);
+            auto [format, exact] = pixel_format(p, plan.source->format);
+            if (!exact)
+                out_.warnings.push_back(fmt::format("{}:{}: warning: pass {}: framebuffer format {} is stored as {} (crtforge has no {} yet)",
+                                                    p.where.file, p.where.line, i, plan.source->format, format, plan.source->format));
+            if (std::string(format) != "rgba8") t += fmt::format("format = \"{}\"\n", format);
+            t += sampling_line_keys(p.filter_linear, p.wrap_mode, p.mipmap_input);
+            if (p.frame_count_mod && *p.frame_count_mod > 0) t += fmt::format("frame_count_mod = {}\n", *p.frame_count_mod);
+            if (!plan.program.textures.empty()) {
+                t += "[pass.textures]\n";
+                for (const std::string& name : plan.program.textures) {
+                    const std::string& from = textures_.at(name);
+                    std::string how;
+                    if (from.rfind("original", 0) == 0) how = sampling(preset_.passes[0].filter_linear, preset_.passes[0].wrap_mode, preset_.passes[0].mipmap_input);
+                    else if (from.rfind("lut:", 0) == 0) {
+                        const auto* lut = &*std::find_if(preset_.textures.begin(), preset_.textures.end(), [&](const auto& l) { return l.name == name; });
+                        how = lut->mipmap.value_or(false) ? "mipmap = true" : "";
+                    } else {
+                        const std::string alias = from.substr(0, from.find('@'));
+                        const size_t producer = static_cast<size_t>(std::find_if(passes_.begin(), passes_.end(), [&](const PassPlan& q) { return q.alias == alias; }) - passes_.begin());
+                        how = sampling_of_output(producer + 1);
+                    }
+                    t += name + " = { from = " + toml_string(from) + (how.empty() ? "" : ", " + how) + " }\n";
+                }
+            }
+            t += "[pass.stages." + out_.stage + "]\n";
+            if (passes_.size() > 1) t += out_.stage + "_pass = " + toml_string("pass" + std::to_string(i)) + "\n";
+            for (const std::string& id : plan.program.params)
+                if (auto v = values_.find(id); v != values_.end()) t += param_names_.at(id) + " = " + toml_float(v->second) + "\n";
+        }
+        if (last_pass_copied()) {
+            // RetroArch draws the last pass at its own scale, then copies that picture to the viewport.
+            t += "\n# RetroArch's copy of the last pass's framebuffer onto the viewport.\n";
+            t += "[[pass]]\nalias = \"retroarch_viewport\"\n";
+            t += fmt::format("filter = \"{}\"\n", options_.unset_filter == Filter::Linear ? "linear" : "nearest");
+            t += "wrap = \"clamp_to_border\"\n";
+        }
+        out_.files.push_back({"presets/" + out_.name + ".toml", t});
+    }
+
+    std::string sampling_line_keys(std::optional<bool> linear, const std::optional<std::string>& wrap, std::optional<bool> mipmap) const {
+        const bool lin = linear.value_or(options_.unset_filter == Filter::Linear);
+        std::string s = fmt::format("filter = \"{}\"\nwrap = \"{}\"\n", lin ? "linear" : "nearest", wrap_of(wrap));
+        if (mipmap.value_or(false)) s += "mipmap = true\n";
+        return s;
+    }
+
+    const retroarch::SlangpPreset& preset_;
+    const SlangImportOptions& options_;
+    ImportedPreset out_;
+    std::map<std::string, SlangSource> sources_;
+    std::vector<PassPlan> passes_;
+    std::map<std::string, SlangParameter> params_;
+    std::map<std::string, std::string> param_names_;
+    std::map<std::string, double> values_;
+    std::map<std::string, std::string> textures_;   // RetroArch sampler name -> crtforge source
+    std::map<std::string, std::string> lut_files_;  // LUT -> file relative to the preset file
+    std::set<std::string> written_;
+};
+
+}  // namespace
+
+std::string imported_preset_name(const std::string& slangp_path) {
+    std::string out;
+    for (char c : fs::path(slangp_path).stem().string()) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        out += std::isalnum(u) ? static_cast<char>(std::tolower(u)) : c == '_' ? '_' : '-';
+    }
+    while (!out.empty() && !std::isalnum(static_cast<unsigned char>(out.front()))) out.erase(out.begin());
+    if (out.size() > 64) out.resize(64);
+    return out.empty() ? "imported" : out;
+}
+
+Result<ImportedPreset> import_slangp(const std::string& slangp_path, const SlangImportOptions& options) {
+    auto preset = retroarch::load_slangp(slangp_path, options.root);
+    if (!preset.ok()) return preset.error();
+    if (preset.value().passes.empty()) return make_error("has no passes", slangp_path, 0, "shaders");
+    return Importer(preset.value(), options).run(slangp_path);
+}
+
+Status write_imported_preset(const ImportedPreset& preset, const std::string& dir) {
+    std::error_code ec;
+    const fs::path staging = fs::path(dir) / (".crtforge-import-" + preset.name + "-" + std::to_string(::getpid()));
+    fs::remove_all(staging, ec);
+    // Every file staged first (where a full disk shows), then each moved into place.
+    for (const ImportedFile& f : preset.files)
+        if (auto s = write_file_atomic((staging / f.path).string(), f.data); !s.ok()) {
+            fs::remove_all(staging, ec);
+            return s;
+        }
+    for (const ImportedFile& f : preset.files) {
+        const fs::path to = fs::path(dir) / f.path;
+        fs::create_directories(to.parent_path(), ec);
+        fs::rename(staging / f.path, to, ec);
+        if (ec) {
+            fs::remove_all(staging, ec);
+            return make_error("cannot move the imported file into place: " + ec.message(), to.string(), 0, "--out");
+        }
+    }
+    fs::remove_all(staging, ec);
+    return Ok{};
+}
+
+}  // namespace crtforge

@@ -1,0 +1,397 @@
+#include "generator/retroarch/slang_program.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "generator/retroarch/glsl_tokens.hpp"
+
+namespace crtforge::retroarch {
+
+namespace {
+
+using Kind = GlslToken::Kind;
+using Tokens = std::vector<GlslToken>;
+
+// What the rewrite adds in front of each stage: the defines RetroArch 1.20 sets for the uniforms it
+// provides (crtforge provides them too), and the size of a texture as RetroArch's vec4.
+constexpr const char* kPrologue =
+    "#define _HAS_ORIGINALASPECT_UNIFORMS\n"
+    "#define _HAS_FRAMETIME_UNIFORMS\n"
+    "#define CRT_RA_SIZE(t) vec4(vec2(textureSize(t, 0)), 1.0 / vec2(textureSize(t, 0)))\n";
+constexpr const char* kShaderMain = "crt_retroarch_main";
+// RetroArch's MVP for every pass: the orthographic projection of 0..1 onto clip space (y down in
+// Vulkan, as crtforge's full-screen triangle).
+constexpr const char* kMvp = "mat4(2.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, -1.0, 0.0, 1.0)";
+
+struct Member {
+    std::string type, name;
+    std::string array;  // "[4]" or ""
+};
+
+struct Block {
+    std::string instance;  // "" when the members are read bare
+    std::vector<Member> members;
+    size_t start = 0, end = 0;  // its tokens (an instance block's become a struct and a global)
+};
+
+struct Declarations {
+    std::vector<Block> blocks;
+    std::vector<std::string> samplers;
+    std::vector<Member> vertex_inputs;  // by location: [0] position, [1] texture coordinate
+    std::string fragment_output;        // the vec4 at location 0
+};
+
+bool is(const Tokens& t, size_t i, const char* text) { return i < t.size() && t[i].text == text; }
+
+// Replaces tokens [from, to] by their line breaks alone, so every later line keeps its number.
+void blank(Tokens& t, size_t from, size_t to) {
+    std::string lines;
+    for (size_t i = from; i <= to && i < t.size(); ++i)
+        for (char c : t[i].text)
+            if (c == '\n') lines += '\n';
+    t[from] = {Kind::Space, lines.empty() ? " " : lines};
+    for (size_t i = from + 1; i <= to && i < t.size(); ++i) t[i] = {Kind::Space, ""};
+}
+
+// The index just past a balanced (...) starting at `open`, or npos.
+size_t skip_parens(const Tokens& t, size_t open) {
+    int depth = 0;
+    for (size_t i = open; i < t.size(); ++i) {
+        if (t[i].text == "(") ++depth;
+        if (t[i].text == ")" && --depth == 0) return i;
+    }
+    return std::string::npos;
+}
+
+// Member declarations between `{` at `open` and its `}`: "[layout(...)] [precision] type name[, name];".
+Result<std::vector<Member>> parse_members(const Tokens& t, size_t open, size_t& close, const std::string& file) {
+    std::vector<Member> out;
+    size_t i = next_significant(t, open);
+    while (i < t.size() && t[i].text != "}") {
+        if (t[i].text == "layout") {
+            const size_t end = skip_parens(t, next_significant(t, i));
+            if (end == std::string::npos) return make_error("unbalanced layout( in a uniform block", file, 0, "uniform block");
+            i = next_significant(t, end);
+        }
+        while (i < t.size() && (t[i].text == "highp" || t[i].text == "mediump" || t[i].text == "lowp")) i = next_significant(t, i);
+        if (i >= t.size() || t[i].kind != Kind::Identifier) return make_error("a uniform block member without a type", file, 0, "uniform block");
+        const std::string type = t[i].text;
+        i = next_significant(t, i);
+        while (true) {
+            if (i >= t.size() || t[i].kind != Kind::Identifier)
+                return make_error("a uniform block member without a name", file, 0, "uniform block");
+            Member m{type, t[i].text, ""};
+            i = next_significant(t, i);
+            while (is(t, i, "[")) {
+                for (; i < t.size() && t[i].text != "]"; ++i) m.array += t[i].text;
+                m.array += "]";
+                i = next_significant(t, i);
+            }
+            out.push_back(m);
+            if (is(t, i, ",")) { i = next_significant(t, i); continue; }
+            if (is(t, i, ";")) { i = next_significant(t, i); break; }
+            return make_error("could not read the uniform block member '" + m.name + "'", file, 0, "uniform block");
+        }
+    }
+    if (i >= t.size()) return make_error("a uniform block without its closing }", file, 0, "uniform block");
+    close = i;
+    return out;
+}
+
+// Finds and removes the uniform blocks, the sampler declarations and (vertex) the vertex inputs.
+Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string& file) {
+    Declarations out;
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (t[i].text != "layout" && t[i].text != "uniform") continue;
+        size_t start = i, at = i;
+        std::string layout;
+        if (t[at].text == "layout") {
+            const size_t open = next_significant(t, at);
+            if (!is(t, open, "(")) continue;
+            const size_t close = skip_parens(t, open);
+            if (close == std::string::npos) continue;
+            for (size_t k = open; k <= close; ++k) layout += t[k].text;
+            at = next_significant(t, close);
+        }
+        if (is(t, at, "uniform")) {
+            const size_t type = next_significant(t, at);
+            if (type >= t.size() || t[type].kind != Kind::Identifier) continue;
+            const size_t after = next_significant(t, type);
+            if (is(t, after, "{")) {  // a block: uniform Name { members } [instance];
+                size_t close = 0;
+                auto members = parse_members(t, after, close, file);
+                if (!members.ok()) return members.error();
+                size_t end = next_significant(t, close);
+                Block block;
+                if (end < t.size() && t[end].kind == Kind::Identifier) {
+                    block.instance = t[end].text;
+                    end = next_significant(t, end);
+                }
+                if (!is(t, end, ";")) return make_error("a uniform block without its closing ;", file, 0, "uniform block");
+                block.members = std::move(members.value());
+                block.start = start;
+                block.end = end;
+                out.blocks.push_back(std::move(block));
+                blank(t, start, end);
+                i = end;
+                continue;
+            }
+            if (t[type].text.rfind("sampler", 0) == 0 && after < t.size() && t[after].kind == Kind::Identifier) {
+                const size_t end = next_significant(t, after);
+                if (!is(t, end, ";"))
+                    return make_error("sampler '" + t[after].text + "': only single sampler declarations are read", file, 0, "uniform");
+                if (t[type].text != "sampler2D")
+                    return make_error("sampler '" + t[after].text + "' is a " + t[type].text + "; RetroArch passes bind sampler2D",
+                                      file, 0, "uniform");
+                out.samplers.push_back(t[after].text);
+                blank(t, start, end);
+                i = end;
+            }
+            continue;
+        }
+        if (!vertex && is(t, at, "out") && !layout.empty()) {
+            static const std::regex location0(R"(location\s*=\s*0\b)");
+            const size_t type = next_significant(t, at), name = next_significant(t, type);
+            if (std::regex_search(layout, location0) && is(t, type, "vec4") && name < t.size() && t[name].kind == Kind::Identifier)
+                out.fragment_output = t[name].text;
+            continue;
+        }
+        if (vertex && is(t, at, "in") && !layout.empty()) {
+            static const std::regex location(R"(location\s*=\s*(\d+))");
+            std::smatch m;
+            if (!std::regex_search(layout, m, location)) continue;
+            const int index = std::stoi(m[1]);
+            const size_t type = next_significant(t, at), name = next_significant(t, type), end = next_significant(t, name);
+            if (name >= t.size() || t[name].kind != Kind::Identifier || !is(t, end, ";")) continue;
+            if (index > 1)
+                return make_error(fmt::format("vertex input '{}' at location {}: RetroArch passes have a position (0) and a "
+                                              "texture coordinate (1) only",
+                                              t[name].text, index),
+                                  file, 0, "vertex input");
+            if (out.vertex_inputs.size() < 2) out.vertex_inputs.resize(2);
+            out.vertex_inputs[static_cast<size_t>(index)] = {t[type].text, t[name].text, ""};
+            // The input becomes a global the generated main() sets.
+            std::string lines;
+            for (size_t k = start; k <= end; ++k)
+                for (char c : t[k].text)
+                    if (c == '\n') lines += '\n';
+            const Member& input = out.vertex_inputs[static_cast<size_t>(index)];
+            blank(t, start, end);
+            t[start] = {Kind::Identifier, input.type + " " + input.name + ";" + lines};
+            i = end;
+        }
+    }
+    return out;
+}
+
+bool swizzle_like(const std::string& name) {
+    static const std::regex swizzle("^([xyzw]{1,4}|[rgba]{1,4}|[stpq]{1,4})$");
+    return std::regex_match(name, swizzle);
+}
+
+// The zero of a GLSL type (and array).
+std::string zero_of(const Member& m) {
+    const std::string scalar = m.type == "bool" ? "false" : m.type + "(0)";
+    if (m.array.empty()) return scalar;
+    const int n = std::max(1, std::atoi(m.array.c_str() + 1));
+    std::string items;
+    for (int k = 0; k < n; ++k) items += (k ? ", " : "") + scalar;
+    return m.type + m.array + "(" + items + ")";
+}
+
+// A vec4 value as the member's type wants it.
+std::string as_type(const Member& m, const std::string& vec4) { return m.type == "vec4" ? vec4 : m.type + "(" + vec4 + ")"; }
+
+struct Translation {
+    const ProgramContext& context;
+    TranslatedProgram& out;
+
+    void use_texture(const std::string& name) {
+        if (std::find(out.textures.begin(), out.textures.end(), name) == out.textures.end()) out.textures.push_back(name);
+    }
+    void use_param(const std::string& id) {
+        if (std::find(out.params.begin(), out.params.end(), id) == out.params.end()) out.params.push_back(id);
+    }
+
+    // What a block member reads, as an expression.
+    std::string expression(const Member& m) {
+        static const std::regex size_of("^(.*)Size([0-9]*)$");
+        std::smatch match;
+        if (!m.array.empty()) return zero_of(m);
+        if (context.is_param(m.name)) {
+            use_param(m.name);
+            const std::string p = context.param_name(m.name);
+            return m.type == "float" ? p : m.type + "(" + p + ")";
+        }
+        if (m.name == "MVP") return kMvp;
+        if (m.name == "SourceSize") { out.builtins.insert(Builtin::SourceSize); return as_type(m, "vec4(sourceSize, 1.0 / sourceSize)"); }
+        if (m.name == "OutputSize") { out.builtins.insert(Builtin::OutputSize); return as_type(m, "vec4(outputSize, 1.0 / outputSize)"); }
+        if (m.name == "FinalViewportSize") {
+            out.builtins.insert(Builtin::ViewportSize);
+            return as_type(m, "vec4(viewportSize, 1.0 / viewportSize)");
+        }
+        if (m.name == "FrameCount") { out.builtins.insert(Builtin::FrameCount); return m.type + "(frameCount)"; }
+        if (m.name == "FrameDirection" || m.name == "CurrentSubFrame" || m.name == "TotalSubFrames") return m.type + "(1)";
+        if (m.name == "Rotation") return m.type + "(0)";
+        if (m.name == "OriginalFPS") return m.type + "(" + fmt::format("{:.6f}", context.fps) + ")";
+        if (m.name == "FrameTimeDelta") return m.type + "(" + fmt::format("{}", static_cast<long>(1e6 / context.fps + 0.5)) + ")";
+        if ((m.name == "OriginalAspect" || m.name == "OriginalAspectRotated") && context.provides_texture("Original")) {
+            use_texture("Original");
+            return m.type + "(CRT_RA_SIZE(Original).x / CRT_RA_SIZE(Original).y)";
+        }
+        if (std::regex_match(m.name, match, size_of)) {
+            const std::string texture = match[1].str() + match[2].str();
+            if (texture == "Source") { out.builtins.insert(Builtin::SourceSize); return as_type(m, "vec4(sourceSize, 1.0 / sourceSize)"); }
+            if (context.provides_texture(texture)) {
+                use_texture(texture);
+                return as_type(m, "CRT_RA_SIZE(" + texture + ")");
+            }
+        }
+        return zero_of(m);  // neither a semantic nor a parameter: RetroArch leaves it unset
+    }
+};
+
+// Every identifier of the text, to make names that are not yet taken.
+std::set<std::string> identifiers(const Tokens& t) {
+    std::set<std::string> out;
+    for (const GlslToken& token : t)
+        if (token.kind == Kind::Identifier) out.insert(token.text);
+    return out;
+}
+
+Result<std::string> translate_stage(const std::string& text, bool vertex, const std::string& file, Translation& tr) {
+    Tokens t = tokenize_glsl(text);
+    // The #version and line-directive extension lines: the assembler writes its own.
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (t[i].text != "#") continue;
+        const size_t word = next_significant(t, i);
+        if (is(t, word, "version") || (is(t, word, "extension") && is(t, next_significant(t, word), "GL_GOOGLE_cpp_style_line_directive"))) {
+            size_t end = word;
+            while (end + 1 < t.size() && t[end + 1].text.find('\n') == std::string::npos) ++end;
+            blank(t, i, end);
+        }
+    }
+    auto declared = take_declarations(t, vertex, file);
+    if (!declared.ok()) return declared.error();
+    const Declarations& d = declared.value();
+    if (vertex && (d.vertex_inputs.size() < 2 || d.vertex_inputs[0].name.empty() || d.vertex_inputs[1].name.empty()))
+        return make_error("the vertex stage must declare inputs at locations 0 (position) and 1 (texture coordinate)", file, 0,
+                          "vertex input");
+    for (const std::string& s : d.samplers) {
+        if (s == "Source") continue;
+        if (!tr.context.provides_texture(s))
+            return make_error("sampler '" + s + "' names no texture of the preset (not Original, OriginalHistory#, PassOutput#, "
+                              "PassFeedback#, a pass alias or its Feedback, or a LUT)",
+                              file, 0, "sampler " + s);
+        tr.use_texture(s);
+    }
+
+    std::map<std::string, const Member*> bare_member;
+    for (const Block& b : d.blocks)
+        for (const Member& m : b.members)
+            if (b.instance.empty()) bare_member[m.name] = &m;
+
+    // Names the rewrite brings in; where the shader has them already, its own get another name.
+    const std::set<std::string> taken = identifiers(t);
+    std::set<std::string> introduced = {"source", "sourceSize", "outputSize", "viewportSize", "frameCount", "time", "CrtParams",
+                                        "CRT_RA_SIZE", kShaderMain, "crtCorner"};
+    for (const Block& b : d.blocks)
+        for (const Member& m : b.members)
+            if (tr.context.is_param(m.name)) introduced.insert(tr.context.param_name(m.name));
+    std::map<std::string, std::string> renamed;
+    for (const std::string& name : introduced) {
+        if (!taken.count(name) || bare_member.count(name)) continue;
+        std::string fresh = name + "_ra";
+        for (int n = 2; taken.count(fresh); ++n) fresh = name + "_ra" + std::to_string(n);
+        renamed[name] = fresh;
+    }
+    auto renamed_name = [&](const std::string& name) {
+        auto r = renamed.find(name);
+        return r == renamed.end() ? name : r->second;
+    };
+    // An instance block becomes a struct and a global of it, initialised from what crtforge
+    // provides: `params.X` reads a field, also where a macro builds the access.
+    for (const Block& b : d.blocks) {
+        if (b.instance.empty()) continue;
+        std::string type = "CrtRetroArch_" + b.instance, fields, values;
+        while (taken.count(type)) type += "_";
+        for (const Member& m : b.members) {
+            fields += fmt::format(" {} {}{};", m.type, renamed_name(m.name), m.array);
+            values += (values.empty() ? "" : ", ") + tr.expression(m);
+        }
+        std::string lines;
+        for (char c : t[b.start].text)
+            if (c == '\n') lines += '\n';
+        t[b.start] = {Kind::Identifier,
+                      fmt::format("struct {0} {{{1} }}; {0} {2} = {0}({3});{4}", type, fields, renamed_name(b.instance), values, lines)};
+    }
+
+    Tokens out;
+    for (size_t i = 0; i < t.size(); ++i) {
+        GlslToken token = t[i];
+        if (token.kind != Kind::Identifier) { out.push_back(token); continue; }
+        const long before = previous_significant(t, i);
+        const bool after_dot = before >= 0 && t[static_cast<size_t>(before)].text == ".";
+        if (!after_dot && bare_member.count(token.text)) {
+            out.push_back({Kind::Identifier, "(" + tr.expression(*bare_member.at(token.text)) + ")"});
+            continue;
+        }
+        if (!after_dot && token.text == "Source") token.text = "source";
+        else if (auto r = renamed.find(token.text); r != renamed.end() && !(after_dot && swizzle_like(token.text))) token.text = r->second;
+        else if ((vertex || tr.context.opaque_output) && !after_dot && token.text == "main") token.text = kShaderMain;
+        out.push_back(token);
+    }
+    std::string result = kPrologue + join_tokens(out);
+    if (!vertex && tr.context.opaque_output) {
+        if (d.fragment_output.empty())
+            return make_error("the fragment stage declares no vec4 output at location 0", file, 0, "fragment output");
+        std::string output = d.fragment_output;
+        if (auto r = renamed.find(output); r != renamed.end()) output = r->second;
+        result += fmt::format(
+            "\n#line 1 \"<crtforge: RetroArch's display ignores alpha>\"\n"
+            "void main() {{\n"
+            "    {0}();\n"
+            "    {1}.a = 1.0;\n"
+            "}}\n",
+            kShaderMain, output);
+    }
+    if (vertex) {
+        const Member& position = d.vertex_inputs[0];
+        const Member& coord = d.vertex_inputs[1];
+        auto from_corner = [](const std::string& type, bool position_input) {
+            if (type == "vec4") return std::string(position_input ? "vec4(crtCorner, 0.0, 1.0)" : "vec4(crtCorner, 0.0, 1.0)");
+            if (type == "vec3") return std::string("vec3(crtCorner, 0.0)");
+            return type + "(crtCorner)";
+        };
+        result += fmt::format(
+            "\n#line 1 \"<crtforge: RetroArch's quad as crtforge's full-screen triangle>\"\n"
+            "void main() {{\n"
+            "    vec2 crtCorner = vec2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));\n"
+            "    {} = {};\n"
+            "    {} = {};\n"
+            "    {}();\n"
+            "}}\n",
+            position.name, from_corner(position.type, true), coord.name, from_corner(coord.type, false), kShaderMain);
+    }
+    return result;
+}
+
+}  // namespace
+
+Result<TranslatedProgram> translate_program(const SlangSource& source, const ProgramContext& context) {
+    TranslatedProgram out;
+    Translation tr{context, out};
+    auto vertex = translate_stage(source.vertex, true, source.path, tr);
+    if (!vertex.ok()) return vertex.error();
+    auto fragment = translate_stage(source.fragment, false, source.path, tr);
+    if (!fragment.ok()) return fragment.error();
+    out.vertex = std::move(vertex.value());
+    out.fragment = std::move(fragment.value());
+    return out;
+}
+
+}  // namespace crtforge::retroarch
