@@ -84,7 +84,7 @@ Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, 
 
 struct RenderArgs {
     std::string preset, tier, target = "spirv", input, output, size, device, frames, fit;
-    int frame = 0, supersample = 1;
+    int frame = 0, supersample = 1, frame_count_base = 0;
     bool reference = false;
     VariantFlags flags;
 };
@@ -132,6 +132,8 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--fit", a->fit, "How the screen fits the display: stretch, aspect or integer (default: the preset's)");
     auto* frame = cmd->add_option("--frame", a->frame, "Frame number; time = frame / the scene's fps")->check(CLI::Range(0, 1000000));
     cmd->add_option("--frames", a->frames, "Frames A:B (inclusive): one output file each")->excludes(frame);
+    cmd->add_option("--frame-count-base", a->frame_count_base, "frameCount at frame 0 (RetroArch's Vulkan driver starts at 1); not with --reference")
+        ->check(CLI::Range(0, 1000000));
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
     cmd->add_flag("--reference", a->reference, "Render with the CPU double-precision reference instead");
     cmd->add_option("--supersample", a->supersample,
@@ -194,6 +196,8 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         Cache cache = make_cache(g);
 
         if (a->supersample != 1 && !a->reference) return report(make_error("needs --reference", {}, 0, "--supersample"));
+        if (a->frame_count_base != 0 && a->reference)
+            return report(make_error("the reference counts frames from 0", {}, 0, "--frame-count-base"));
         Result<std::vector<Image>> images = make_error("not rendered");
         if (a->reference) {
             ReferenceSceneJob job;
@@ -228,6 +232,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             r.fit = fit.value();
             r.frames = frames;
             r.file_luts = file_luts;
+            r.frame_count_base = a->frame_count_base;
             images = renderer.render_scene(r);
         }
         if (!images.ok()) return report(images.error());

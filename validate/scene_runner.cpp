@@ -120,7 +120,8 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
                 pr.textures.push_back({pass.inputs[k].binding, resolve(pass.inputs[k].from), to_filter(pass.inputs[k].filter), w.value()});
             }
             pr.time = r.start_time + frame / preset.scene.fps;
-            pr.frame_count = pass.frame_count_mod ? frame % pass.frame_count_mod : frame;
+            const long long count = static_cast<long long>(r.frame_count_base) + frame;
+            pr.frame_count = pass.frame_count_mod ? count % pass.frame_count_mod : count;
             pr.overrides = r.overrides;
             pr.screen_width = screen.width;
             pr.screen_height = screen.height;

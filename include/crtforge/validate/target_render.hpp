@@ -77,6 +77,9 @@ struct SceneRenderRequest {
     std::map<std::string, Value> overrides;
     std::map<std::string, Image> file_luts;                // images of the preset's file LUTs, by name
     double start_time = 0.0;                               // seconds at frame 0 (frame n: + n / fps)
+    // frameCount at frame 0 (frame n: + n, before a pass's frame_count_mod): RetroArch's Vulkan
+    // driver runs its first frame with FrameCount 1.
+    int frame_count_base = 0;
     // How the host uses the target's files, where a target ships more than one way (Godot): empty
     // for its ready scene; "defaults" (the node-mode shader with no param set), "material" (the
     // exported .tres) or "screen" (the screen-mode shader over the drawn picture). A consumer that

@@ -7,6 +7,7 @@
   pictures.py values SHOT.png        decodes the top cell row written by values.slang
   pictures.py compare A.png B.(png|ppm|pam) [--alpha]
                                      per-channel max difference (RGB, or B's alpha against A's grey)
+  pictures.py psnr A.png B.png       PSNR in dB of B against A (RGB, 8-bit; inf when identical)
   pictures.py info SHOT.png          size and the first pixels of the first and last rows
 """
 import struct
@@ -153,6 +154,19 @@ def main(argv):
                 worst[c] = max(worst[c], d)
                 count += d != 0
         print("max |diff| per channel:", worst, "differing channel values:", count)
+    elif cmd == "psnr":
+        # PSNR (dB) of B against A over RGB, 8-bit: inf when identical.
+        import math
+        w, h, ch, pa = read_png(argv[2])
+        wb, hb, chb, pb = read_png(argv[3])
+        assert (w, h) == (wb, hb), "sizes differ: %dx%d vs %dx%d" % (w, h, wb, hb)
+        se = 0
+        for i in range(w * h):
+            for c in range(3):
+                d = pa[i * ch + c] - pb[i * chb + c]
+                se += d * d
+        mse = se / (w * h * 3)
+        print("inf" if mse == 0 else "%.2f" % (10 * math.log10(255 * 255 / mse)))
     elif cmd == "info":
         w, h, ch, px = read_png(argv[2])
         print("%dx%d, %d channels" % (w, h, ch))

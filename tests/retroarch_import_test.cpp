@@ -1,0 +1,287 @@
+// crtforge import: RetroArch presets as crtforge overlays, rendered through crtforge's targets.
+// A preset of our own pins the mapping (semantics, aliases, feedback, LUTs, shared parameters,
+// macro-built block access, a vertex input not named TexCoord); a curated slice of the corpus
+// renders on Vulkan, GL and HLSL alike; bad input is one line and writes nothing.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/slang_import.hpp"
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+
+namespace {
+
+void write(const std::string& path, const std::string& text) {
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path) << text;
+}
+
+const char* kFirstPass = R"(#version 450
+layout(push_constant) uniform Push {
+    vec4 SourceSize;
+    float GAIN;
+} params;
+layout(std140, set = 0, binding = 0) uniform UBO {
+    mat4 MVP;
+    float SHARED;
+} global;
+#pragma parameter GAIN "Gain" 1.0 0.0 2.0 0.1
+#pragma parameter SHARED "Shared by both passes" 0.5 0.0 1.0 0.05
+#pragma name first
+#define P(x) params.x
+#pragma stage vertex
+layout(location = 0) in vec4 Position;
+layout(location = 1) in vec2 Coord;
+layout(location = 0) out vec2 vTexCoord;
+void main() {
+    gl_Position = global.MVP * Position;
+    vTexCoord = Coord;
+}
+#pragma stage fragment
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 FragColor;
+layout(set = 0, binding = 2) uniform sampler2D Source;
+void main() {
+    vec2 texel = vec2(P(SourceSize).z, 0.0);
+    vec3 c = (texture(Source, vTexCoord - texel).rgb + texture(Source, vTexCoord).rgb + texture(Source, vTexCoord + texel).rgb) / 3.0;
+    float source = 0.5 + global.SHARED;  // a local named like crtforge's main input
+    FragColor = vec4(c * P(GAIN) * source, 1.0);
+}
+)";
+
+const char* kSecondPass = R"(#version 450
+layout(push_constant) uniform Push {
+    vec4 OriginalSize;
+    vec4 OutputSize;
+    vec4 tintSize;
+    uint FrameCount;
+    float SHARED;
+    float UNKNOWN_MEMBER;
+} params;
+layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
+#pragma parameter SHARED "Shared by both passes" 0.5 0.0 1.0 0.05
+#pragma stage vertex
+layout(location = 0) in vec4 Position;
+layout(location = 1) in vec2 TexCoord;
+layout(location = 0) out vec2 vTexCoord;
+layout(location = 1) out float origWidth;
+void main() {
+    gl_Position = global.MVP * Position;
+    vTexCoord = TexCoord;
+    origWidth = params.OriginalSize.x;
+}
+#pragma stage fragment
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 1) in float origWidth;
+layout(location = 0) out vec4 FragColor;
+layout(set = 0, binding = 2) uniform sampler2D first;
+layout(set = 0, binding = 3) uniform sampler2D firstFeedback;
+layout(set = 0, binding = 4) uniform sampler2D tint;
+layout(set = 0, binding = 5) uniform sampler2D Original;
+void main() {
+    vec3 c = texture(first, vTexCoord).rgb * texture(tint, vec2(0.5)).rgb;
+    // Wrong sizes or a garbage member light the pixel up.
+    float wrong = float(origWidth != 64.0) + float(params.tintSize.x != 2.0) + float(params.OutputSize.x != 160.0) +
+                  abs(params.UNKNOWN_MEMBER);
+    vec3 previous = texture(firstFeedback, vTexCoord).rgb;
+    FragColor = vec4(c + wrong + 0.0 * previous + 0.0 * texture(Original, vTexCoord).rgb + 0.0 * params.SHARED, 0.0);
+}
+)";
+
+// The test preset in `dir`, with a 2x1 LUT.
+std::string write_test_preset(const test::TempDir& dir) {
+    write(dir / "shaders/first.slang", kFirstPass);
+    write(dir / "shaders/second.slang", kSecondPass);
+    Image lut = Image::make(2, 1, {1.0f, 0.5f, 0.25f, 1.0f});
+    std::filesystem::create_directories(dir / "luts");
+    REQUIRE(write_png(dir / "luts/tint.png", lut).ok());
+    write(dir / "presets/test.slangp",
+          "shaders = 2\n"
+          "shader0 = ../shaders/first.slang\n"
+          "filter_linear0 = false\n"
+          "wrap_mode0 = clamp_to_edge\n"
+          "shader1 = ../shaders/second.slang\n"
+          "scale_type1 = viewport\n"
+          "filter_linear1 = true\n"
+          "textures = tint\n"
+          "tint = ../luts/tint.png\n"
+          "tint_linear = false\n"
+          "SHARED = 0.25\n");
+    return dir / "presets/test.slangp";
+}
+
+Result<std::shared_ptr<TemplateLibrary>> import_into(const std::string& slangp, const std::string& overlay,
+                                                     const std::string& root, const std::string& name = "") {
+    SlangImportOptions options;
+    options.root = root;
+    options.name = name;
+    auto imported = import_slangp(slangp, options);
+    if (!imported.ok()) return imported.error();
+    if (auto s = write_imported_preset(imported.value(), overlay); !s.ok()) return s.error();
+    return TemplateLibrary::load(overlay);
+}
+
+// The preset's display through `target`'s consumer at `width` x `height`.
+Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const TemplateLibrary& lib, const Preset& preset, TargetId target,
+                                           const Image& input, int width, int height, std::vector<int> frames) {
+    auto compiled = compile_scene(lib, preset, {}, Cache());
+    if (!compiled.ok()) return compiled.error();
+    std::vector<TargetOutput> outputs;
+    for (const CompiledVariant& pass : compiled.value()) {
+        auto out = emit_target(pass, target, Cache());
+        if (!out.ok()) return out.error();
+        outputs.push_back(std::move(out.value()));
+    }
+    std::map<std::string, Image> luts;
+    for (const LutSpec& lut : preset.luts) {
+        auto image = read_image(lut_file_path(lut));
+        if (!image.ok()) return image.error();
+        luts[lut.name] = std::move(image.value());
+    }
+    SceneRenderRequest r;
+    r.preset = &preset;
+    r.passes = &compiled.value();
+    r.target = target;
+    r.outputs = &outputs;
+    r.source = [&](int) -> Result<Image> { return input; };
+    r.width = width;
+    r.height = height;
+    r.frames = std::move(frames);
+    r.file_luts = luts;
+    r.frame_count_base = 1;
+    return renderer.render_scene(r);
+}
+
+}  // namespace
+
+TEST_CASE("an imported RetroArch preset maps its passes, textures, semantics and shared parameters onto a crtforge scene",
+          "[retroarch][import]") {
+    test::TempDir dir;
+    const std::string slangp = write_test_preset(dir);
+    auto lib = import_into(slangp, dir / "overlay", dir.path());
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    const Preset* preset = lib.value()->find_preset("test");
+    REQUIRE(preset);
+    REQUIRE(preset->passes.size() == 2);
+    CHECK(preset->passes[0].alias == "first");
+    CHECK(preset->passes[0].inputs.front().filter == Filter::Nearest);
+    CHECK(preset->passes[0].inputs.front().wrap == Wrap::ClampToEdge);
+    const Pass& second = preset->passes[1];
+    CHECK(second.inputs.front().wrap == Wrap::ClampToBorder);  // RetroArch's default
+    auto source_of = [&](const std::string& binding) {
+        const PassInput* input = second.find_input(binding);
+        return input ? input->from.str() : std::string("<unbound>");
+    };
+    CHECK(source_of("first") == "first");
+    CHECK(source_of("firstFeedback") == "first@previous");
+    CHECK(source_of("Original") == "original");
+    CHECK(source_of("tint") == "lut:tint");
+    // Readers of pass 0's output sample it as pass 1 declares (filter_linear1 = true).
+    CHECK(second.find_input("first")->filter == Filter::Linear);
+    CHECK(second.find_input("tint")->filter == Filter::Nearest);
+    // One parameter namespace: SHARED is one value, the preset's 0.25, in both passes.
+    CHECK(std::get<double>(preset->passes[0].stages.front().values.at("SHARED")) == 0.25);
+    CHECK(std::get<double>(preset->passes[1].stages.front().values.at("SHARED")) == 0.25);
+    CHECK(std::get<double>(preset->passes[0].stages.front().values.at("GAIN")) == 1.0);
+
+    // Flat grey 0.4 through both passes: 0.4 * GAIN 1 * (0.5 + 0.25), stored as 8 bits, times the
+    // LUT's (1, 0.5, 0.25); any wrong size or unset member adds 1.
+    const Image input = Image::make(64, 48, {0.4f, 0.4f, 0.4f, 1.0f});
+    TargetRenderer renderer;
+    const float first = std::round(0.3f * 255.0f) / 255.0f;
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50}) {
+        INFO(target_info(target).name);
+        auto images = render_imported(renderer, *lib.value(), *preset, target, input, 160, 120, {0, 2});
+        INFO((images.ok() ? std::string() : images.error().str()));
+        REQUIRE(images.ok());
+        for (const Image& image : images.value()) {
+            const float* p = image.rgba.data() + (60 * 160 + 80) * 4;
+            CHECK(p[0] == Approx(first).margin(1.5 / 255));
+            CHECK(p[1] == Approx(first * 0.5f).margin(1.5 / 255));
+            CHECK(p[2] == Approx(first * 0.25f).margin(1.5 / 255));
+            CHECK(p[3] == 1.0f);  // RetroArch's display ignores the last pass's alpha
+        }
+    }
+}
+
+TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad presets in one line with nothing written",
+          "[retroarch][import][cli]") {
+    test::TempDir dir;
+    const std::string slangp = write_test_preset(dir);
+    auto ok = test::run_crtforge("import '" + slangp + "' --out '" + (dir / "out") + "' --root '" + dir.path() + "' --name mine");
+    INFO(ok.err);
+    REQUIRE(ok.exit_code == 0);
+    auto listed = test::run_crtforge("--templates '" + (dir / "out") + "' list");
+    CHECK(listed.out.find("mine") != std::string::npos);
+
+    struct Bad {
+        const char* what;
+        std::string text;
+        const char* expect;
+    };
+    const std::vector<Bad> cases = {
+        {"a missing shader", "shaders = 1\nshader0 = ../shaders/none.slang\n", "none.slang"},
+        {"a malformed line", "shaders = 1\nshader0 = ../shaders/first.slang\nthis is not a key value\n", "bad.slangp:3"},
+        {"a path escaping the root", "shaders = 1\nshader0 = ../../../../../../etc/hostname\n", "shader0"},
+        {"a parameter declared again with other values", "shaders = 2\nshader0 = ../shaders/first.slang\nshader1 = ../shaders/clash.slang\n",
+         "SHARED"},
+        {"a sampler naming no texture", "shaders = 1\nshader0 = ../shaders/stray.slang\n", "sampler 'nowhere'"},
+    };
+    std::string clash = kSecondPass;
+    clash.replace(clash.find("0.5 0.0 1.0 0.05"), 16, "0.5 0.0 2.0 0.05");
+    write(dir / "shaders/clash.slang", clash);
+    std::string stray = kFirstPass;
+    stray.replace(stray.find("uniform sampler2D Source;"), 25, "uniform sampler2D Source;\nlayout(set = 0, binding = 3) uniform sampler2D nowhere;");
+    write(dir / "shaders/stray.slang", stray);
+    for (const Bad& bad : cases) {
+        INFO(bad.what);
+        write(dir / "presets/bad.slangp", bad.text);
+        const std::string out = dir / "bad-out";
+        auto r = test::run_crtforge("import '" + (dir / "presets/bad.slangp") + "' --out '" + out + "' --root '" + dir.path() + "'");
+        INFO(r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(bad.expect) != std::string::npos);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK_FALSE(std::filesystem::exists(out));
+    }
+}
+
+// A curated slice of the corpus (the whole library is `tools/retroarch-runner/agreement.sh` and,
+// later, `crtforge corpus`): each preset imports and renders alike on Vulkan, GL and HLSL.
+TEST_CASE("a curated slice of RetroArch's CRT presets renders alike through Vulkan, GL and HLSL", "[retroarch][import][corpus]") {
+    const std::string corpus = std::string(CRTFORGE_SOURCE_DIR) + "/../shared/slang-shaders";
+    if (!std::filesystem::is_directory(corpus + "/crt")) {
+        WARN("no RetroArch corpus at " << corpus << ": skipped");
+        return;
+    }
+    auto input = make_test_input("pixel_art", 256, 224);
+    REQUIRE(input.ok());
+    TargetRenderer renderer;
+    for (const char* file : {"crt/zfast-crt.slangp", "crt/crt-easymode.slangp", "crt/crt-lottes.slangp", "crt/crt-pi.slangp"}) {
+        INFO(file);
+        test::TempDir dir;
+        auto lib = import_into(corpus + "/" + file, dir / "overlay", corpus, "imported");
+        INFO((lib.ok() ? std::string() : lib.error().str()));
+        REQUIRE(lib.ok());
+        const Preset* preset = lib.value()->find_preset("imported");
+        REQUIRE(preset);
+        auto vulkan = render_imported(renderer, *lib.value(), *preset, TargetId::Spirv, input.value(), 512, 448, {1});
+        INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
+        REQUIRE(vulkan.ok());
+        for (TargetId target : {TargetId::Glsl330, TargetId::Hlsl50}) {
+            INFO(target_info(target).name);
+            auto other = render_imported(renderer, *lib.value(), *preset, target, input.value(), 512, 448, {1});
+            INFO((other.ok() ? std::string() : other.error().str()));
+            REQUIRE(other.ok());
+            auto m = compare_images(other.value().front(), vulkan.value().front());
+            REQUIRE(m.ok());
+            CHECK(m.value().psnr >= 40.0);
+        }
+    }
+}

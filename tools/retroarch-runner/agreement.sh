@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# RetroArch agreement: each listed .slangp rendered by RetroArch 1.20 (Vulkan, lavapipe) and by
+# crtforge's import of it (its Vulkan target, or --target T), at the same viewport, frames and
+# input, judged by PSNR. Needs scripts/setup-retroarch.sh's root and a built crtforge.
+#
+#   agreement.sh [--corpus DIR] [--viewport WxH] [--frames "1 3 9"] [--target spirv] [--out DIR]
+#                [--min-psnr 40] PRESET.slangp...      (paths relative to --corpus)
+#
+# Prints one line per preset and frame: "psnr  preset  frame", then a summary; exits 1 when any
+# PSNR is below --min-psnr. Frames: RetroArch's `--max-frames N` shows the frame its Vulkan driver
+# drew with FrameCount N + 1 after N + 1 runs of the chain (README.md, measured); crtforge draws
+# frames 0..N with frameCount starting at 1 (render --frame-count-base 1): the same sequence.
+set -euo pipefail
+
+here=$(cd "$(dirname "$0")" && pwd)
+project=$(cd "$here/../.." && pwd)
+corpus="$project/../shared/slang-shaders"
+viewport=640x480
+frames="1 3 9"
+target=spirv
+out=""
+min_psnr=40
+crtforge="${CRTFORGE:-$project/build/crtforge}"
+presets=()
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --corpus) corpus=$2; shift 2 ;;
+        --viewport) viewport=$2; shift 2 ;;
+        --frames) frames=$2; shift 2 ;;
+        --target) target=$2; shift 2 ;;
+        --out) out=$2; shift 2 ;;
+        --min-psnr) min_psnr=$2; shift 2 ;;
+        -*) echo "agreement.sh: unknown option $1" >&2; exit 2 ;;
+        *) presets+=("$1"); shift ;;
+    esac
+done
+[ ${#presets[@]} -gt 0 ] || { echo "agreement.sh: name at least one preset" >&2; exit 2; }
+[ -x "$crtforge" ] || { echo "agreement.sh: no crtforge at $crtforge (build it, or set CRTFORGE)" >&2; exit 2; }
+corpus=$(cd "$corpus" && pwd)
+work=${out:-$(mktemp -d /tmp/crtforge-agreement.XXXXXX)}
+mkdir -p "$work"
+input="$work/input.ppm"
+python3 "$here/probes/pictures.py" bars "$input" 320 240
+
+failed=0
+total=0
+below=0
+for preset in "${presets[@]}"; do
+    name=$(basename "$preset" .slangp)
+    overlay="$work/$name.overlay"
+    rm -rf "$overlay"
+    if ! "$crtforge" import "$corpus/$preset" --out "$overlay" --root "$corpus" --name "ra-$(echo "$name" | tr 'A-Z' 'a-z' | tr -c 'a-z0-9_\n' '-')" -q 2>"$work/$name.import.log"; then
+        echo "import-failed  $preset  $(tail -1 "$work/$name.import.log")"
+        failed=$((failed + 1))
+        continue
+    fi
+    crt_name=$(basename "$overlay"/presets/*.toml .toml)
+    for n in $frames; do
+        total=$((total + 1))
+        ra="$work/$name.ra.$n.png"
+        cf="$work/$name.cf.$n.png"
+        if ! "$here/render.sh" --preset "$corpus/$preset" --input "$input" --viewport "$viewport" --frames "$n" --out "$ra" \
+            --log "$work/$name.ra.$n.log" >/dev/null 2>&1; then
+            echo "retroarch-failed  $preset  $n"
+            failed=$((failed + 1))
+            continue
+        fi
+        if ! "$crtforge" --templates "$overlay" render --preset "$crt_name" --target "$target" --input "$input" --output "$cf" \
+            --size "$viewport" --fit stretch --frame "$n" --frame-count-base 1 >/dev/null 2>"$work/$name.cf.$n.log"; then
+            echo "crtforge-failed  $preset  $n  $(tail -1 "$work/$name.cf.$n.log")"
+            failed=$((failed + 1))
+            continue
+        fi
+        psnr=$(python3 "$here/probes/pictures.py" psnr "$ra" "$cf")
+        echo "$psnr  $preset  $n"
+        if [ "$psnr" != inf ] && awk "BEGIN { exit !($psnr < $min_psnr) }"; then below=$((below + 1)); fi
+    done
+done
+echo "agreement: $((total - failed - below)) of $total renders at >= $min_psnr dB; $below below, $failed failed (pictures in $work)"
+[ $failed -eq 0 ] && [ $below -eq 0 ]
