@@ -148,6 +148,14 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
 
 Result<TargetOutput> generate(const TargetInput& input, int version) {
     const std::string preset = input.variant->file_stem();
+    // A program pass (an imported RetroArch shader) computes its varyings in its own vertex stage,
+    // which the canvas_item emitter does not translate yet: refused, never emitted wrong.
+    for (const VariantStage& stage : input.variant->stages)
+        for (const FormSpec* form : stage.forms)
+            if (form->program())
+                return make_error("pass '" + input.variant->pass->alias + "' is a whole program (" + form->vertex_path +
+                                      "): Godot's canvas_item shaders do not run its vertex stage yet",
+                                  form->where.file, form->where.line, "form." + form->name);
     const std::string ext = shader_extension(version);
     TargetOutput out;
     auto node = generate_shader(input, {version, Mode::NodeTexture});
