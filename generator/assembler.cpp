@@ -13,6 +13,19 @@ namespace crtforge {
 
 namespace {
 
+// The comment beside each builtin in the generated block (part of every golden's inputs hash:
+// changing a word here makes them stale).
+const char* builtin_comment(Builtin b) {
+    switch (b) {
+        case Builtin::OutputSize: return "output size in pixels";
+        case Builtin::SourceSize: return "source texture size in texels";
+        case Builtin::Time: return "seconds since start";
+        case Builtin::FrameCount: return "frames since start (modulo the pass's frame_count_mod)";
+        case Builtin::ViewportSize: return "the screen's size in pixels (what the last pass draws)";
+    }
+    return "";
+}
+
 
 std::string line_directive(int line, const std::string& file) {
     return fmt::format("#line {} \"{}\"\n", line, inert_quoted(file));
@@ -48,7 +61,7 @@ std::string declarations(const Variant& variant, const std::string* program_stag
                            kUniformBinding, kUniformBlockName);
         for (Builtin b : variant.builtins) {
             const char* type = builtin_glsl_type(b);
-            out += fmt::format("    {} {};  // builtin: {}\n", type, builtin_name(b), builtin_doc(b));
+            out += fmt::format("    {} {};  // builtin: {}\n", type, builtin_name(b), builtin_comment(b));
         }
         for (const VariantParam* p : variant.uniforms()) {
             std::string range;
