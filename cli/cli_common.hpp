@@ -58,6 +58,8 @@ Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::strin
 
 // Shared parsing helpers.
 Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"
+// --fit: stretch, aspect or integer; empty: none given.
+Result<std::optional<DisplayFit>> parse_fit(const std::string& text);
 
 // Repeated --preset / --target entries name one thing once: the first of each is kept, in order.
 template <typename T>

@@ -160,12 +160,9 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
         // Every pass of the scene (one for a single-pass preset), as export writes them.
         auto compiled = compile_scene(*lib, *preset, options.value(), cache);
         if (!compiled.ok()) return report(compiled.error());
-        std::vector<TargetOutput> outputs;
-        for (const CompiledVariant& pass : compiled.value()) {
-            auto out = emit_target(pass, target->id, cache);
-            if (!out.ok()) return report(out.error());
-            outputs.push_back(std::move(out.value()));
-        }
+        auto emitted = emit_scene(compiled.value(), target->id, cache);
+        if (!emitted.ok()) return report(emitted.error());
+        const std::vector<TargetOutput>& outputs = emitted.value();
         const bool several = outputs.size() > 1;
         if (args->out.empty()) {
             for (size_t i = 0; i < outputs.size(); ++i) {

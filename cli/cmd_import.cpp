@@ -12,8 +12,6 @@ struct ImportArgs {
     std::string file, out, root, name, source_size, fit = "aspect";
     bool smooth = false, quiet = false;
 };
-}  // namespace
-
 Result<SlangImportOptions> slang_import_options(const std::string& root, const std::string& name, bool smooth,
                                                 const std::string& source_size, const std::string& fit) {
     SlangImportOptions options;
@@ -28,12 +26,13 @@ Result<SlangImportOptions> slang_import_options(const std::string& root, const s
         options.source_width = size.value().first;
         options.source_height = size.value().second;
     }
-    if (fit == "stretch") options.fit = DisplayFit::Stretch;
-    else if (fit == "aspect") options.fit = DisplayFit::Aspect;
-    else if (fit == "integer") options.fit = DisplayFit::Integer;
-    else return make_error("'" + fit + "' is not a display fit (stretch, aspect, integer)", {}, 0, "--fit");
+    auto parsed_fit = parse_fit(fit);
+    if (!parsed_fit.ok()) return parsed_fit.error();
+    options.fit = parsed_fit.value().value_or(DisplayFit::Aspect);
     return options;
 }
+
+}  // namespace
 
 Runner add_import_command(CLI::App& app, const GlobalOptions&) {
     auto args = std::make_shared<ImportArgs>();
@@ -55,9 +54,7 @@ Runner add_import_command(CLI::App& app, const GlobalOptions&) {
         if (auto s = write_imported_preset(imported.value(), args->out); !s.ok()) return report(s.error());
         if (!args->quiet)
             fmt::print("imported {} as preset '{}' ({} passes, {} files) into {}: use --templates {} --preset {}\n", args->file,
-                       imported.value().name, std::count_if(imported.value().files.begin(), imported.value().files.end(),
-                                                            [](const ImportedFile& f) { return f.path.size() > 5 && f.path.compare(f.path.size() - 5, 5, ".frag") == 0; }),
-                       imported.value().files.size(), args->out, args->out, imported.value().name);
+                       imported.value().name, imported.value().passes, imported.value().files.size(), args->out, args->out, imported.value().name);
         return kExitOk;
     };
 }

@@ -14,6 +14,13 @@
 
 namespace crtforge::cli {
 
+Result<std::optional<DisplayFit>> parse_fit(const std::string& text) {
+    if (text.empty()) return std::optional<DisplayFit>{};
+    for (DisplayFit f : {DisplayFit::Stretch, DisplayFit::Aspect, DisplayFit::Integer})
+        if (text == display_fit_name(f)) return std::optional<DisplayFit>{f};
+    return make_error("'" + text + "' must be stretch, aspect or integer", {}, 0, "--fit");
+}
+
 Result<std::pair<int, int>> parse_size(const std::string& text) {
     const auto size = parse_int_pair(text, 'x', 'X');
     if (!size || size->first < 1 || size->second < 1 || size->first > kMaxImageDimension || size->second > kMaxImageDimension)
@@ -107,13 +114,6 @@ Result<std::vector<int>> parse_frames(const std::string& text) {
     return frames;
 }
 
-Result<std::optional<DisplayFit>> parse_fit(const std::string& text) {
-    if (text.empty()) return std::optional<DisplayFit>{};
-    for (DisplayFit f : {DisplayFit::Stretch, DisplayFit::Aspect, DisplayFit::Integer})
-        if (text == display_fit_name(f)) return std::optional<DisplayFit>{f};
-    return make_error("'" + text + "' must be stretch, aspect or integer", {}, 0, "--fit");
-}
-
 }  // namespace
 
 Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
@@ -186,13 +186,9 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             if (!first.ok()) return report(first.error());
             if (!size) std::tie(w, h) = std::make_pair(first.value().width, first.value().height);
         }
-        std::map<std::string, Image> file_luts;
-        for (const LutSpec& lut : preset->luts) {
-            if (!lut.generator.empty()) continue;
-            auto image = read_image(lut_file_path(lut));
-            if (!image.ok()) return report(image.error());
-            file_luts[lut.name] = std::move(image.value());
-        }
+        auto luts = read_file_luts(*preset);
+        if (!luts.ok()) return report(luts.error());
+        const std::map<std::string, Image>& file_luts = luts.value();
         Cache cache = make_cache(g);
 
         if (a->supersample != 1 && !a->reference) return report(make_error("needs --reference", {}, 0, "--supersample"));
@@ -214,18 +210,14 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         } else {
             auto compiled = compile_scene(*lib, *preset, options.value(), cache);
             if (!compiled.ok()) return report(compiled.error());
-            std::vector<TargetOutput> outputs;
-            for (const CompiledVariant& pass : compiled.value()) {
-                auto out = emit_target(pass, target->id, cache);
-                if (!out.ok()) return report(out.error());
-                outputs.push_back(std::move(out.value()));
-            }
+            auto outputs = emit_scene(compiled.value(), target->id, cache);
+            if (!outputs.ok()) return report(outputs.error());
             TargetRenderer renderer(EngineOptions{a->device, false});
             SceneRenderRequest r;
             r.preset = preset;
             r.passes = &compiled.value();
             r.target = target->id;
-            r.outputs = &outputs;
+            r.outputs = &outputs.value();
             r.source = source.value();
             r.width = w;
             r.height = h;

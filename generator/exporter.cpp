@@ -247,6 +247,16 @@ Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId targe
     return out;
 }
 
+Result<std::vector<TargetOutput>> emit_scene(const std::vector<CompiledVariant>& passes, TargetId target, const Cache& cache) {
+    std::vector<TargetOutput> outputs;
+    for (const CompiledVariant& pass : passes) {
+        auto out = emit_target(pass, target, cache);
+        if (!out.ok()) return out.error();
+        outputs.push_back(std::move(out.value()));
+    }
+    return outputs;
+}
+
 std::string export_path(const std::string& stem, TargetId target, const std::string& suffix) {
     return std::string(target_info(target).name) + "/" + stem + suffix;
 }

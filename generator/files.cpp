@@ -13,14 +13,23 @@ namespace fs = std::filesystem;
 
 namespace crtforge {
 
-Result<std::string> read_text_file(const std::string& path) {
+Result<std::string> read_text_file(const std::string& path, std::uintmax_t max_bytes) {
     std::error_code ec;
-    if (fs::is_directory(path, ec)) return make_error("is a directory, expected a file", path);
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::is_directory(status)) return make_error("is a directory, expected a file", path);
+    if (!ec && fs::exists(status) && !fs::is_regular_file(status)) return make_error("is not a regular file", path);
+    if (max_bytes) {
+        const std::uintmax_t size = fs::file_size(path, ec);
+        if (!ec && size > max_bytes)
+            return make_error("is " + std::to_string(size) + " bytes; at most " + std::to_string(max_bytes) + " are read", path);
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) return make_error(std::string("cannot open: ") + std::strerror(errno), path);
     std::ostringstream out;
     out << in.rdbuf();
     if (in.bad()) return make_error("read failed", path);
+    // A file that grew after the size check is still bounded.
+    if (max_bytes && out.str().size() > max_bytes) return make_error("is over " + std::to_string(max_bytes) + " bytes", path);
     return out.str();
 }
 

@@ -20,7 +20,7 @@ bool glitch_keeps(const std::string& key) {
 }
 
 std::string warning(const TomlReader& r, const toml::node* node, const std::string& field, const std::string& message) {
-    return r.path() + ":" + std::to_string(node ? r.line_of(*node) : 0) + ": warning: field '" + field + "': " + message;
+    return make_error(message, r.path(), node ? r.line_of(*node) : 0, field).warning();
 }
 
 // A stage entry set from the legacy keys; values are checked against the stage's spec (range,

@@ -76,15 +76,11 @@ void check_no_lag(TargetId target) {
         INFO(preset.name << " on " << target_info(target).name);
         auto passes = compile_scene(lib, preset, {}, Cache());
         REQUIRE(passes.ok());
-        std::vector<TargetOutput> outputs;
-        for (const CompiledVariant& pass : passes.value()) {
-            auto out = emit_target(pass, target, Cache());
-            REQUIRE(out.ok());
-            outputs.push_back(std::move(out.value()));
-        }
+        auto outputs = emit_scene(passes.value(), target, Cache());
+        REQUIRE(outputs.ok());
         // Vulkan from frame 0, so frame f - 1 is there to compare with.
         const std::vector<Image> vulkan = render(renderer, preset, passes.value(), TargetId::Spirv, nullptr, {0, 1, 2, 3, 4});
-        const std::vector<Image> godot = render(renderer, preset, passes.value(), target, &outputs, frames);
+        const std::vector<Image> godot = render(renderer, preset, passes.value(), target, &outputs.value(), frames);
         for (size_t i = 0; i < frames.size(); ++i) {
             const int f = frames[i];
             const double same = rmse(godot[i], vulkan[static_cast<size_t>(f)]);

@@ -43,17 +43,13 @@ Image reference_frame(const Preset& preset, const Image& input, int width, int h
 Image target_frame(const Preset& preset, const std::vector<CompiledVariant>& passes, TargetId target, const Image& input,
                    int width, int height, const std::map<std::string, Value>& overrides = {}) {
     static TargetRenderer renderer;
-    std::vector<TargetOutput> outputs;
-    for (const CompiledVariant& pass : passes) {
-        auto out = emit_target(pass, target, Cache());
-        REQUIRE(out.ok());
-        outputs.push_back(std::move(out.value()));
-    }
+    auto outputs = emit_scene(passes, target, Cache());
+    REQUIRE(outputs.ok());
     SceneRenderRequest r;
     r.preset = &preset;
     r.passes = &passes;
     r.target = target;
-    r.outputs = &outputs;
+    r.outputs = &outputs.value();
     r.overrides = overrides;
     r.source = [&](int) -> Result<Image> { return input; };
     r.width = width;

@@ -131,28 +131,20 @@ Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const Templ
                                            const Image& input, int width, int height, std::vector<int> frames) {
     auto compiled = compile_scene(lib, preset, {}, Cache());
     if (!compiled.ok()) return compiled.error();
-    std::vector<TargetOutput> outputs;
-    for (const CompiledVariant& pass : compiled.value()) {
-        auto out = emit_target(pass, target, Cache());
-        if (!out.ok()) return out.error();
-        outputs.push_back(std::move(out.value()));
-    }
-    std::map<std::string, Image> luts;
-    for (const LutSpec& lut : preset.luts) {
-        auto image = read_image(lut_file_path(lut));
-        if (!image.ok()) return image.error();
-        luts[lut.name] = std::move(image.value());
-    }
+    auto outputs = emit_scene(compiled.value(), target, Cache());
+    if (!outputs.ok()) return outputs.error();
+    auto luts = read_file_luts(preset);
+    if (!luts.ok()) return luts.error();
     SceneRenderRequest r;
     r.preset = &preset;
     r.passes = &compiled.value();
     r.target = target;
-    r.outputs = &outputs;
+    r.outputs = &outputs.value();
     r.source = [&](int) -> Result<Image> { return input; };
     r.width = width;
     r.height = height;
     r.frames = std::move(frames);
-    r.file_luts = luts;
+    r.file_luts = std::move(luts.value());
     r.frame_count_base = 1;
     return renderer.render_scene(r);
 }
@@ -250,6 +242,20 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
         CHECK_FALSE(std::filesystem::exists(out));
     }
+
+    // The error names the line that declares the stray sampler, in the .slang itself.
+    const int stray_line = 1 + static_cast<int>(std::count(stray.begin(), stray.begin() + stray.find("nowhere"), '\n'));
+    write(dir / "presets/bad.slangp", "shaders = 1\nshader0 = ../shaders/stray.slang\n");
+    auto located = test::run_crtforge("import '" + (dir / "presets/bad.slangp") + "' --out '" + (dir / "bad-out") + "'");
+    CHECK(located.err.find("stray.slang:" + std::to_string(stray_line) + ": error: field 'sampler nowhere'") != std::string::npos);
+
+    // A FIFO where a preset should be is refused, not read until someone writes to it.
+    REQUIRE(test::run_command("mkfifo '" + (dir / "presets/fifo.slangp") + "'").exit_code == 0);
+    auto fifo = test::run_command("timeout 20 '" CRTFORGE_BINARY "' import '" + (dir / "presets/fifo.slangp") + "' --out '" +
+                                  (dir / "fifo-out") + "'");
+    CHECK(fifo.exit_code == 2);
+    CHECK(fifo.err.find("not a regular file") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir / "fifo-out"));
 }
 
 // A curated slice of the corpus (the whole library is `tools/retroarch-runner/agreement.sh` and,

@@ -449,18 +449,14 @@ TEST_CASE("the exported Godot 3 scene keeps the previous frame: the trail decays
     const auto source = falling_bar(kSize, kBar);
     auto compiled = compile_scene(test::shipped_library(), preset, {}, Cache());
     REQUIRE(compiled.ok());
-    std::vector<TargetOutput> outputs;
-    for (const CompiledVariant& pass : compiled.value()) {
-        auto out = emit_target(pass, TargetId::Godot3, Cache());
-        REQUIRE(out.ok());
-        outputs.push_back(std::move(out.value()));
-    }
+    auto outputs = emit_scene(compiled.value(), TargetId::Godot3, Cache());
+    REQUIRE(outputs.ok());
     TargetRenderer renderer;
     SceneRenderRequest r;
     r.preset = &preset;
     r.passes = &compiled.value();
     r.target = TargetId::Godot3;
-    r.outputs = &outputs;
+    r.outputs = &outputs.value();
     r.source = source;
     r.width = kSize;
     r.height = kSize;

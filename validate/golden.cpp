@@ -517,12 +517,9 @@ Result<GoldenUpdate> approve_goldens(const TemplateLibrary& library, const std::
         auto passes = compile_scene(library, *preset, first.variant_options(), cache);
         if (!passes.ok()) return passes.error();
         SceneRenderRequest request = golden_scene_request(sequence, *preset, passes.value(), TargetId::Spirv);
-        for (const LutSpec& lut : preset->luts) {
-            if (!lut.generator.empty()) continue;
-            auto image = read_image(lut_file_path(lut));
-            if (!image.ok()) return image.error();
-            request.file_luts[lut.name] = std::move(image.value());
-        }
+        auto luts = read_file_luts(*preset);
+        if (!luts.ok()) return luts.error();
+        request.file_luts = std::move(luts.value());
         auto rendered = renderer.render_scene(request);
         if (!rendered.ok()) return rendered.error();
         for (size_t i = 0; i < sequence.size(); ++i) images.emplace_back(sequence[i], std::move(rendered.value()[i]));

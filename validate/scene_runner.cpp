@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <deque>
 
+#include "crtforge/exporter.hpp"
 #include "crtforge/luts.hpp"
+#include "crtforge/runtime/image_io.hpp"
 #include "crtforge/scene.hpp"
 
 namespace crtforge {
@@ -33,6 +35,17 @@ Result<WrapMode> to_wrap(Wrap w, const std::string& where) {
 }
 
 }  // namespace
+
+Result<std::map<std::string, Image>> read_file_luts(const Preset& preset) {
+    std::map<std::string, Image> out;
+    for (const LutSpec& lut : preset.luts) {
+        if (!lut.generator.empty()) continue;
+        auto image = read_image(lut_file_path(lut));
+        if (!image.ok()) return image.error();
+        out[lut.name] = std::move(image.value());
+    }
+    return out;
+}
 
 Result<Image> scene_lut_image(const LutSpec& lut, const std::map<std::string, Image>& file_luts) {
     if (lut.generator.empty()) {

@@ -163,12 +163,9 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         for (const GoldenData* d : job.work->goldens) options.push_back(d->entry->variant_options());
         for (const VariantOptions& o : options)
             if (!job.work->compiled.count(options_key(o))) job.work->compiled.emplace(options_key(o), compile_scene(library, *preset, o, cache));
-        for (const LutSpec& lut : preset->luts) {
-            if (!lut.generator.empty()) continue;
-            auto image = read_image(lut_file_path(lut));
-            if (!image.ok()) job.work->lut_error = image.error();
-            else job.work->file_luts[lut.name] = std::move(image.value());
-        }
+        auto luts = read_file_luts(*preset);
+        if (!luts.ok()) job.work->lut_error = luts.error();
+        else job.work->file_luts = std::move(luts.value());
     });
     const auto& compiled = job.work->compiled.at(options_key({}));
     if (!compiled.ok()) return fail_all(compiled.error().str());
@@ -179,13 +176,8 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         const std::string key = options_key(o);
         if (auto it = emitted.find(key); it != emitted.end()) return it->second;
         const auto& passes = job.work->compiled.at(key);
-        Result<std::vector<TargetOutput>> out = std::vector<TargetOutput>{};
-        if (!passes.ok()) out = passes.error();
-        for (size_t i = 0; out.ok() && i < passes.value().size(); ++i) {
-            auto files = emit_target(passes.value()[i], job.target, cache);
-            if (!files.ok()) out = files.error();
-            else out.value().push_back(std::move(files.value()));
-        }
+        Result<std::vector<TargetOutput>> out = passes.ok() ? emit_scene(passes.value(), job.target, cache)
+                                                            : Result<std::vector<TargetOutput>>(passes.error());
         return emitted.emplace(key, std::move(out)).first->second;
     };
     if (!outputs_for({}).ok()) return fail_all(outputs_for({}).error().str());

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/files.hpp"
 
 namespace crtforge::retroarch::detail {
 
@@ -77,32 +78,15 @@ inline std::string file_identity(const std::string& path) {
     return ec ? std::filesystem::path(path).lexically_normal().string() : c.lexically_normal().string();
 }
 
-// The whole file, refused when missing, not a regular file or over kMaxRetroArchFileBytes. Errors
-// are located at (at_file, at_line, field) — the line that named the file — or at the file itself.
+// The whole file (read_text_file: a regular file, at most kMaxRetroArchFileBytes), its error located
+// at (at_file, at_line, field) — the line that named the file — or at the file itself.
 inline Result<std::string> read_bounded(const std::string& path, const std::string& at_file, int at_line,
                                         const std::string& field, const std::string& what) {
     std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
     const std::string& where = at_file.empty() ? path : at_file;
-    if (ec || !std::filesystem::exists(status))
-        return make_error(what + " '" + path + "' does not exist", where, at_line, field);
-    if (!std::filesystem::is_regular_file(status))
-        return make_error(what + " '" + path + "' is not a regular file", where, at_line, field);
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) return make_error(what + " '" + path + "' cannot be read: " + ec.message(), where, at_line, field);
-    if (size > kMaxRetroArchFileBytes)
-        return make_error(what + " '" + path + "' is " + std::to_string(size) + " bytes; at most " +
-                              std::to_string(kMaxRetroArchFileBytes) + " are read",
-                          where, at_line, field);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return make_error(what + " '" + path + "' cannot be opened", where, at_line, field);
-    std::ostringstream out;
-    out << in.rdbuf();
-    if (in.bad()) return make_error(what + " '" + path + "' cannot be read", where, at_line, field);
-    std::string text = out.str();
-    if (text.size() > kMaxRetroArchFileBytes)
-        return make_error(what + " '" + path + "' is over " + std::to_string(kMaxRetroArchFileBytes) + " bytes",
-                          where, at_line, field);
+    if (!std::filesystem::exists(path, ec)) return make_error(what + " '" + path + "' does not exist", where, at_line, field);
+    auto text = read_text_file(path, kMaxRetroArchFileBytes);
+    if (!text.ok()) return make_error(what + " '" + path + "' " + text.error().message, where, at_line, field);
     return text;
 }
 

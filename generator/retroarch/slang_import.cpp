@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "crtforge/files.hpp"
+#include "crtforge/inert_text.hpp"
 #include "generator/reserved_words.hpp"
 #include "generator/retroarch/slang_program.hpp"
 #include "generator/retroarch/slangp_file.hpp"
@@ -45,14 +46,13 @@ std::string toml_float(double v) {
     return text;
 }
 
-// One line of plain text for a doc: control characters become spaces, a trailing backslash goes.
-std::string doc_line(std::string text, const std::string& fallback) {
-    for (char& c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
-    while (!text.empty() && (text.back() == ' ' || text.back() == '\\')) text.pop_back();
-    while (!text.empty() && text.front() == ' ') text.erase(text.begin());
-    if (!detail::unsafe_text(text).empty()) text.clear();
-    return text.empty() ? fallback : text;
+// One line of plain text for a doc (inert_comment: no control characters, line separators or
+// backslashes), `fallback` when nothing is left.
+std::string doc_line(const std::string& text, const std::string& fallback) {
+    std::string line = inert_comment(text);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    while (!line.empty() && line.front() == ' ') line.erase(line.begin());
+    return line.empty() ? fallback : line;
 }
 
 std::string identifier_from(const std::string& text) {
@@ -95,18 +95,14 @@ public:
     Result<ImportedPreset> run(const std::string& path) {
         out_.name = options_.name.empty() ? imported_preset_name(path) : options_.name;
         out_.stage = "ra_" + identifier_from(out_.name);
+        out_.passes = preset_.passes.size();
         out_.inputs = preset_.files;
-        for (const Diagnostic& w : preset_.warnings) out_.warnings.push_back(warning(w));
+        for (const Diagnostic& w : preset_.warnings) out_.warnings.push_back(w.warning());
         if (auto s = load_sources(); !s.ok()) return s.error();
         if (auto s = collect_params(); !s.ok()) return s.error();
         name_passes();
         for (size_t i = 0; i < passes_.size(); ++i) {
-            retroarch::ProgramContext context;
-            context.provides_texture = [this](const std::string& name) { return textures_.count(name) != 0; };
-            context.is_param = [this](const std::string& id) { return params_.count(id) != 0; };
-            context.param_name = [this](const std::string& id) { return param_names_.at(id); };
-            context.fps = options_.fps;
-            context.opaque_output = i + 1 == passes_.size();
+            const retroarch::ProgramContext context{textures_, param_names_, options_.fps, i + 1 == passes_.size()};
             auto program = retroarch::translate_program(*passes_[i].source, context);
             if (!program.ok()) return program.error();
             passes_[i].program = std::move(program.value());
@@ -118,13 +114,6 @@ public:
     }
 
 private:
-    static std::string warning(const Diagnostic& d) {
-        std::string text = d.str();
-        const size_t at = text.find("error: ");
-        if (at != std::string::npos) text.replace(at, 7, "warning: ");
-        return text;
-    }
-
     Status load_sources() {
         for (const SlangpPass& pass : preset_.passes) {
             if (!sources_.count(pass.shader)) {
@@ -185,6 +174,7 @@ private:
             while (taken.count(ours)) ours += "_" + std::to_string(i);
             taken.insert(ours);
             passes_[i].alias = ours;
+            pass_index_[ours] = i;
             textures_["PassOutput" + std::to_string(i)] = ours;
             textures_["PassFeedback" + std::to_string(i)] = ours + "@previous";
             if (!alias.empty()) {
@@ -195,7 +185,10 @@ private:
         textures_["Original"] = "original";
         textures_["OriginalHistory0"] = "original";
         for (int n = 1; n <= kMaxHistory; ++n) textures_["OriginalHistory" + std::to_string(n)] = "original@" + std::to_string(n);
-        for (const auto& lut : preset_.textures) textures_[lut.name] = "lut:" + lut.name;
+        for (const auto& lut : preset_.textures) {
+            textures_[lut.name] = "lut:" + lut.name;
+            luts_[lut.name] = &lut;
+        }
     }
 
     Status write_luts() {
@@ -223,12 +216,11 @@ private:
         const bool several = passes_.size() > 1;
         if (several) t += "selector = " + toml_string(out_.stage + "_pass") + "\n";
         // Params in first-declaration order across the passes, those some pass reads.
-        std::set<std::string> read;
+        std::set<std::string> read, written;
         for (const PassPlan& pass : passes_) read.insert(pass.program.params.begin(), pass.program.params.end());
         for (const PassPlan& pass : passes_)
             for (const SlangParameter& p : pass.source->parameters) {
-                if (!read.count(p.id) || written_.count(p.id)) continue;
-                written_.insert(p.id);
+                if (!read.count(p.id) || !written.insert(p.id).second) continue;
                 double lo = std::min(p.minimum, p.initial), hi = std::max(p.maximum, p.initial);
                 if (!(lo < hi)) hi = lo + 1.0;
                 t += "\n[[param]]\n";
@@ -266,39 +258,53 @@ private:
         out_.files.push_back({"stages/" + out_.stage + ".toml", t});
     }
 
+    // How a texture is sampled, as `key = value` pairs: RetroArch's filter (unset: --smooth), wrap
+    // (unset: clamp_to_border) and mipmaps.
+    std::vector<std::string> sampling(std::optional<bool> linear, const std::optional<std::string>& wrap,
+                                      std::optional<bool> mipmap) const {
+        const bool lin = linear.value_or(options_.unset_filter == Filter::Linear);
+        std::vector<std::string> keys{fmt::format("filter = \"{}\"", lin ? "linear" : "nearest"),
+                                      fmt::format("wrap = \"{}\"", wrap_of(wrap))};
+        if (mipmap.value_or(false)) keys.push_back("mipmap = true");
+        return keys;
+    }
     // How readers sample pass k's output: as the pass after it declares (filter_linear, wrap_mode,
     // mipmap_input of pass k + 1 describe the texture pass k produces); pass 0's govern the original.
-    std::string sampling_of_output(size_t producer_plus_one) const {
+    std::vector<std::string> sampling_of_output(size_t producer_plus_one) const {
         if (producer_plus_one >= preset_.passes.size()) return sampling(std::nullopt, std::nullopt, std::nullopt);
         const SlangpPass& p = preset_.passes[producer_plus_one];
         return sampling(p.filter_linear, p.wrap_mode, p.mipmap_input);
     }
-    std::string sampling(std::optional<bool> linear, const std::optional<std::string>& wrap, std::optional<bool> mipmap) const {
-        const bool lin = linear.value_or(options_.unset_filter == Filter::Linear);
-        std::string s = fmt::format("filter = \"{}\", wrap = \"{}\"", lin ? "linear" : "nearest", wrap_of(wrap));
-        if (mipmap.value_or(false)) s += ", mipmap = true";
-        return s;
+
+    // A pass's scale as RetroArch reads it: scale_typeN sets both axes and hides _x/_y, scaleN hides
+    // scale_xN/_yN; no scale type at all: none (RetroArch: source x1, the last pass the viewport).
+    struct Scale {
+        std::string type_x, type_y;
+        double x = 1.0, y = 1.0;
+    };
+    static std::optional<Scale> scale_of(const SlangpPass& p) {
+        const std::optional<std::string> x = p.scale_type ? p.scale_type : p.scale_type_x;
+        const std::optional<std::string> y = p.scale_type ? p.scale_type : p.scale_type_y;
+        if (!x && !y) return std::nullopt;
+        Scale scale{x.value_or("source"), y.value_or("source"), p.scale ? *p.scale : p.scale_x.value_or(1.0),
+                    p.scale ? *p.scale : p.scale_y.value_or(1.0)};
+        if (scale.type_x == "absolute") scale.x = std::round(scale.x);
+        if (scale.type_y == "absolute") scale.y = std::round(scale.y);
+        return scale;
     }
 
-    std::string scale_lines(const SlangpPass& p, size_t index) {
-        auto type_of = [](const std::optional<std::string>& t) { return t.value_or("source"); };
-        std::optional<std::string> x = p.scale_type ? p.scale_type : p.scale_type_x, y = p.scale_type ? p.scale_type : p.scale_type_y;
-        if (!x && !y) return "";  // RetroArch: source x1, the last pass the viewport — crtforge's defaults
-        const double sx = p.scale ? *p.scale : p.scale_x.value_or(1.0), sy = p.scale ? *p.scale : p.scale_y.value_or(1.0);
-        (void)index;
-        return fmt::format("scale_type_x = {}\nscale_type_y = {}\nscale = [{}, {}]\n", toml_string(type_of(x)), toml_string(type_of(y)),
-                           toml_float(type_of(x) == "absolute" ? std::round(sx) : sx),
-                           toml_float(type_of(y) == "absolute" ? std::round(sy) : sy));
+    static std::string scale_lines(const SlangpPass& p) {
+        const std::optional<Scale> scale = scale_of(p);
+        if (!scale) return "";  // crtforge's defaults are RetroArch's
+        return fmt::format("scale_type_x = {}\nscale_type_y = {}\nscale = [{}, {}]\n", toml_string(scale->type_x),
+                           toml_string(scale->type_y), toml_float(scale->x), toml_float(scale->y));
     }
 
     // Whether RetroArch draws the last pass into a framebuffer of its own size and then copies it
     // to the viewport: an explicit scale other than the viewport x1.
     bool last_pass_copied() const {
-        const SlangpPass& p = preset_.passes.back();
-        std::optional<std::string> x = p.scale_type ? p.scale_type : p.scale_type_x, y = p.scale_type ? p.scale_type : p.scale_type_y;
-        if (!x && !y) return false;
-        const double sx = p.scale ? *p.scale : p.scale_x.value_or(1.0), sy = p.scale ? *p.scale : p.scale_y.value_or(1.0);
-        return x.value_or("source") != "viewport" || y.value_or("source") != "viewport" || sx != 1.0 || sy != 1.0;
+        const std::optional<Scale> scale = scale_of(preset_.passes.back());
+        return scale && (scale->type_x != "viewport" || scale->type_y != "viewport" || scale->x != 1.0 || scale->y != 1.0);
     }
 
     void write_preset() {
@@ -313,36 +319,36 @@ private:
         for (const auto& lut : preset_.textures) {
             t += "\n[lut." + lut.name + "]\n";
             t += "file = " + toml_string(lut_files_.at(lut.name)) + "\n";
-            t += fmt::format("filter = \"{}\"\n", lut.linear.value_or(options_.unset_filter == Filter::Linear) ? "linear" : "nearest");
-            t += fmt::format("wrap = \"{}\"\n", wrap_of(lut.wrap_mode));
+            t += join_list(sampling(lut.linear, lut.wrap_mode, std::nullopt), "\n") + "\n";  // mipmaps: on the readers
         }
         for (size_t i = 0; i < passes_.size(); ++i) {
             const SlangpPass& p = preset_.passes[i];
             const PassPlan& plan = passes_[i];
             t += "\n[[pass]]\nalias = " + toml_string(plan.alias) + "\n";
-            t += scale_lines(p, i);
+            t += scale_lines(p);
             auto [format, exact] = pixel_format(p, plan.source->format);
             if (!exact)
-                out_.warnings.push_back(fmt::format("{}:{}: warning: pass {}: framebuffer format {} is stored as {} (crtforge has no {} yet)",
-                                                    p.where.file, p.where.line, i, plan.source->format, format, plan.source->format));
+                out_.warnings.push_back(make_error(fmt::format("pass {}: framebuffer format {} is stored as {} (crtforge has no {} yet)", i,
+                                                               plan.source->format, format, plan.source->format),
+                                                   p.where.file, p.where.line, "shader" + std::to_string(i))
+                                            .warning());
             if (std::string(format) != "rgba8") t += fmt::format("format = \"{}\"\n", format);
-            t += sampling_line_keys(p.filter_linear, p.wrap_mode, p.mipmap_input);
+            t += join_list(sampling(p.filter_linear, p.wrap_mode, p.mipmap_input), "\n") + "\n";
             if (p.frame_count_mod && *p.frame_count_mod > 0) t += fmt::format("frame_count_mod = {}\n", *p.frame_count_mod);
             if (!plan.program.textures.empty()) {
                 t += "[pass.textures]\n";
                 for (const std::string& name : plan.program.textures) {
                     const std::string& from = textures_.at(name);
-                    std::string how;
-                    if (from.rfind("original", 0) == 0) how = sampling(preset_.passes[0].filter_linear, preset_.passes[0].wrap_mode, preset_.passes[0].mipmap_input);
-                    else if (from.rfind("lut:", 0) == 0) {
-                        const auto* lut = &*std::find_if(preset_.textures.begin(), preset_.textures.end(), [&](const auto& l) { return l.name == name; });
-                        how = lut->mipmap.value_or(false) ? "mipmap = true" : "";
+                    std::vector<std::string> how;
+                    if (from.rfind("original", 0) == 0) {
+                        const SlangpPass& first = preset_.passes.front();
+                        how = sampling(first.filter_linear, first.wrap_mode, first.mipmap_input);
+                    } else if (auto lut = luts_.find(name); lut != luts_.end()) {
+                        if (lut->second->mipmap.value_or(false)) how = {"mipmap = true"};  // filter, wrap: its [lut] section's
                     } else {
-                        const std::string alias = from.substr(0, from.find('@'));
-                        const size_t producer = static_cast<size_t>(std::find_if(passes_.begin(), passes_.end(), [&](const PassPlan& q) { return q.alias == alias; }) - passes_.begin());
-                        how = sampling_of_output(producer + 1);
+                        how = sampling_of_output(pass_index_.at(from.substr(0, from.find('@'))) + 1);
                     }
-                    t += name + " = { from = " + toml_string(from) + (how.empty() ? "" : ", " + how) + " }\n";
+                    t += name + " = { from = " + toml_string(from) + (how.empty() ? "" : ", " + join_list(how)) + " }\n";
                 }
             }
             t += "[pass.stages." + out_.stage + "]\n";
@@ -360,13 +366,6 @@ private:
         out_.files.push_back({"presets/" + out_.name + ".toml", t});
     }
 
-    std::string sampling_line_keys(std::optional<bool> linear, const std::optional<std::string>& wrap, std::optional<bool> mipmap) const {
-        const bool lin = linear.value_or(options_.unset_filter == Filter::Linear);
-        std::string s = fmt::format("filter = \"{}\"\nwrap = \"{}\"\n", lin ? "linear" : "nearest", wrap_of(wrap));
-        if (mipmap.value_or(false)) s += "mipmap = true\n";
-        return s;
-    }
-
     const retroarch::SlangpPreset& preset_;
     const SlangImportOptions& options_;
     ImportedPreset out_;
@@ -377,7 +376,8 @@ private:
     std::map<std::string, double> values_;
     std::map<std::string, std::string> textures_;   // RetroArch sampler name -> crtforge source
     std::map<std::string, std::string> lut_files_;  // LUT -> file relative to the preset file
-    std::set<std::string> written_;
+    std::map<std::string, size_t> pass_index_;       // crtforge alias -> pass
+    std::map<std::string, const retroarch::SlangpTexture*> luts_;
 };
 
 }  // namespace

@@ -40,7 +40,7 @@ struct Block {
 
 struct Declarations {
     std::vector<Block> blocks;
-    std::vector<std::string> samplers;
+    std::vector<std::pair<std::string, size_t>> samplers;  // name, its declaration's first token
     std::vector<Member> vertex_inputs;  // by location: [0] position, [1] texture coordinate
     std::string fragment_output;        // the vec4 at location 0
 };
@@ -67,6 +67,27 @@ size_t skip_parens(const Tokens& t, size_t open) {
     return std::string::npos;
 }
 
+// An error at token `i`: its file and line, read through the stage text's #line directives (the
+// line numbers count from the .slang or include the token came from).
+Diagnostic error_at(const Tokens& t, size_t i, std::string file, const std::string& field, const std::string& message) {
+    static const std::regex directive(R"re(^\s*#\s*line\s+(\d+)(?:\s+"([^"]*)")?)re");
+    std::string before;
+    for (size_t k = 0; k < i && k < t.size(); ++k) before += t[k].text;
+    int line = 1;
+    size_t start = 0;
+    for (size_t end = before.find('\n'); end != std::string::npos; start = end + 1, end = before.find('\n', start)) {
+        std::smatch m;
+        const std::string text = before.substr(start, end - start);
+        if (std::regex_search(text, m, directive)) {
+            line = std::stoi(m[1]);
+            if (m[2].matched) file = m[2];
+        } else {
+            ++line;
+        }
+    }
+    return make_error(message, file, line, field);
+}
+
 // Member declarations between `{` at `open` and its `}`: "[layout(...)] [precision] type name[, name];".
 Result<std::vector<Member>> parse_members(const Tokens& t, size_t open, size_t& close, const std::string& file) {
     std::vector<Member> out;
@@ -74,16 +95,16 @@ Result<std::vector<Member>> parse_members(const Tokens& t, size_t open, size_t& 
     while (i < t.size() && t[i].text != "}") {
         if (t[i].text == "layout") {
             const size_t end = skip_parens(t, next_significant(t, i));
-            if (end == std::string::npos) return make_error("unbalanced layout( in a uniform block", file, 0, "uniform block");
+            if (end == std::string::npos) return error_at(t, i, file, "uniform block", "unbalanced layout( in a uniform block");
             i = next_significant(t, end);
         }
         while (i < t.size() && (t[i].text == "highp" || t[i].text == "mediump" || t[i].text == "lowp")) i = next_significant(t, i);
-        if (i >= t.size() || t[i].kind != Kind::Identifier) return make_error("a uniform block member without a type", file, 0, "uniform block");
+        if (i >= t.size() || t[i].kind != Kind::Identifier) return error_at(t, i, file, "uniform block", "a uniform block member without a type");
         const std::string type = t[i].text;
         i = next_significant(t, i);
         while (true) {
             if (i >= t.size() || t[i].kind != Kind::Identifier)
-                return make_error("a uniform block member without a name", file, 0, "uniform block");
+                return error_at(t, i, file, "uniform block", "a uniform block member without a name");
             Member m{type, t[i].text, ""};
             i = next_significant(t, i);
             while (is(t, i, "[")) {
@@ -94,12 +115,20 @@ Result<std::vector<Member>> parse_members(const Tokens& t, size_t open, size_t& 
             out.push_back(m);
             if (is(t, i, ",")) { i = next_significant(t, i); continue; }
             if (is(t, i, ";")) { i = next_significant(t, i); break; }
-            return make_error("could not read the uniform block member '" + m.name + "'", file, 0, "uniform block");
+            return error_at(t, i, file, "uniform block", "could not read the uniform block member '" + m.name + "'");
         }
     }
-    if (i >= t.size()) return make_error("a uniform block without its closing }", file, 0, "uniform block");
+    if (i >= t.size()) return error_at(t, open, file, "uniform block", "a uniform block without its closing }");
     close = i;
     return out;
+}
+
+// The location a layout(...) qualifier names, if any.
+std::optional<int> location_of(const std::string& layout) {
+    static const std::regex location(R"(location\s*=\s*(\d+))");
+    std::smatch m;
+    if (!std::regex_search(layout, m, location)) return std::nullopt;
+    return std::stoi(m[1]);
 }
 
 // Finds and removes the uniform blocks, the sampler declarations and (vertex) the vertex inputs.
@@ -131,7 +160,7 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
                     block.instance = t[end].text;
                     end = next_significant(t, end);
                 }
-                if (!is(t, end, ";")) return make_error("a uniform block without its closing ;", file, 0, "uniform block");
+                if (!is(t, end, ";")) return error_at(t, start, file, "uniform block", "a uniform block without its closing ;");
                 block.members = std::move(members.value());
                 block.start = start;
                 block.end = end;
@@ -143,35 +172,31 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
             if (t[type].text.rfind("sampler", 0) == 0 && after < t.size() && t[after].kind == Kind::Identifier) {
                 const size_t end = next_significant(t, after);
                 if (!is(t, end, ";"))
-                    return make_error("sampler '" + t[after].text + "': only single sampler declarations are read", file, 0, "uniform");
+                    return error_at(t, start, file, "uniform", "sampler '" + t[after].text + "': only single sampler declarations are read");
                 if (t[type].text != "sampler2D")
-                    return make_error("sampler '" + t[after].text + "' is a " + t[type].text + "; RetroArch passes bind sampler2D",
-                                      file, 0, "uniform");
-                out.samplers.push_back(t[after].text);
+                    return error_at(t, start, file, "uniform", "sampler '" + t[after].text + "' is a " + t[type].text +
+                                                                   "; RetroArch passes bind sampler2D");
+                out.samplers.push_back({t[after].text, start});
                 blank(t, start, end);
                 i = end;
             }
             continue;
         }
-        if (!vertex && is(t, at, "out") && !layout.empty()) {
-            static const std::regex location0(R"(location\s*=\s*0\b)");
+        const std::optional<int> location = location_of(layout);
+        if (!vertex && is(t, at, "out") && location == 0) {
             const size_t type = next_significant(t, at), name = next_significant(t, type);
-            if (std::regex_search(layout, location0) && is(t, type, "vec4") && name < t.size() && t[name].kind == Kind::Identifier)
-                out.fragment_output = t[name].text;
+            if (is(t, type, "vec4") && name < t.size() && t[name].kind == Kind::Identifier) out.fragment_output = t[name].text;
             continue;
         }
-        if (vertex && is(t, at, "in") && !layout.empty()) {
-            static const std::regex location(R"(location\s*=\s*(\d+))");
-            std::smatch m;
-            if (!std::regex_search(layout, m, location)) continue;
-            const int index = std::stoi(m[1]);
+        if (vertex && is(t, at, "in") && location) {
+            const int index = *location;
             const size_t type = next_significant(t, at), name = next_significant(t, type), end = next_significant(t, name);
             if (name >= t.size() || t[name].kind != Kind::Identifier || !is(t, end, ";")) continue;
             if (index > 1)
-                return make_error(fmt::format("vertex input '{}' at location {}: RetroArch passes have a position (0) and a "
-                                              "texture coordinate (1) only",
-                                              t[name].text, index),
-                                  file, 0, "vertex input");
+                return error_at(t, start, file, "vertex input",
+                                fmt::format("vertex input '{}' at location {}: RetroArch passes have a position (0) and a "
+                                            "texture coordinate (1) only",
+                                            t[name].text, index));
             if (out.vertex_inputs.size() < 2) out.vertex_inputs.resize(2);
             out.vertex_inputs[static_cast<size_t>(index)] = {t[type].text, t[name].text, ""};
             // The input becomes a global the generated main() sets.
@@ -219,38 +244,37 @@ struct Translation {
 
     // What a block member reads, as an expression.
     std::string expression(const Member& m) {
-        static const std::regex size_of("^(.*)Size([0-9]*)$");
-        std::smatch match;
         if (!m.array.empty()) return zero_of(m);
-        if (context.is_param(m.name)) {
+        if (auto p = context.params.find(m.name); p != context.params.end()) {
             use_param(m.name);
-            const std::string p = context.param_name(m.name);
-            return m.type == "float" ? p : m.type + "(" + p + ")";
+            return m.type == "float" ? p->second : m.type + "(" + p->second + ")";
+        }
+        // Sizes crtforge's builtins hold: vec4(size, 1 / size).
+        static const std::map<std::string, Builtin> sizes = {
+            {"SourceSize", Builtin::SourceSize}, {"OutputSize", Builtin::OutputSize}, {"FinalViewportSize", Builtin::ViewportSize}};
+        if (auto size = sizes.find(m.name); size != sizes.end()) {
+            out.builtins.insert(size->second);
+            const std::string name = builtin_name(size->second);
+            return as_type(m, "vec4(" + name + ", 1.0 / " + name + ")");
         }
         if (m.name == "MVP") return kMvp;
-        if (m.name == "SourceSize") { out.builtins.insert(Builtin::SourceSize); return as_type(m, "vec4(sourceSize, 1.0 / sourceSize)"); }
-        if (m.name == "OutputSize") { out.builtins.insert(Builtin::OutputSize); return as_type(m, "vec4(outputSize, 1.0 / outputSize)"); }
-        if (m.name == "FinalViewportSize") {
-            out.builtins.insert(Builtin::ViewportSize);
-            return as_type(m, "vec4(viewportSize, 1.0 / viewportSize)");
-        }
         if (m.name == "FrameCount") { out.builtins.insert(Builtin::FrameCount); return m.type + "(frameCount)"; }
         if (m.name == "FrameDirection" || m.name == "CurrentSubFrame" || m.name == "TotalSubFrames") return m.type + "(1)";
         if (m.name == "Rotation") return m.type + "(0)";
         if (m.name == "OriginalFPS") return m.type + "(" + fmt::format("{:.6f}", context.fps) + ")";
         if (m.name == "FrameTimeDelta") return m.type + "(" + fmt::format("{}", static_cast<long>(1e6 / context.fps + 0.5)) + ")";
-        if ((m.name == "OriginalAspect" || m.name == "OriginalAspectRotated") && context.provides_texture("Original")) {
+        if ((m.name == "OriginalAspect" || m.name == "OriginalAspectRotated") && context.textures.count("Original")) {
             use_texture("Original");
             return m.type + "(CRT_RA_SIZE(Original).x / CRT_RA_SIZE(Original).y)";
         }
-        if (std::regex_match(m.name, match, size_of)) {
-            const std::string texture = match[1].str() + match[2].str();
-            if (texture == "Source") { out.builtins.insert(Builtin::SourceSize); return as_type(m, "vec4(sourceSize, 1.0 / sourceSize)"); }
-            if (context.provides_texture(texture)) {
+        // <texture>Size#: the size of that texture, which the pass then binds.
+        static const std::regex size_of("^(.*)Size([0-9]*)$");
+        std::smatch match;
+        if (std::regex_match(m.name, match, size_of))
+            if (const std::string texture = match[1].str() + match[2].str(); context.textures.count(texture)) {
                 use_texture(texture);
                 return as_type(m, "CRT_RA_SIZE(" + texture + ")");
             }
-        }
         return zero_of(m);  // neither a semantic nor a parameter: RetroArch leaves it unset
     }
 };
@@ -281,12 +305,12 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
     if (vertex && (d.vertex_inputs.size() < 2 || d.vertex_inputs[0].name.empty() || d.vertex_inputs[1].name.empty()))
         return make_error("the vertex stage must declare inputs at locations 0 (position) and 1 (texture coordinate)", file, 0,
                           "vertex input");
-    for (const std::string& s : d.samplers) {
+    for (const auto& [s, at] : d.samplers) {
         if (s == "Source") continue;
-        if (!tr.context.provides_texture(s))
-            return make_error("sampler '" + s + "' names no texture of the preset (not Original, OriginalHistory#, PassOutput#, "
-                              "PassFeedback#, a pass alias or its Feedback, or a LUT)",
-                              file, 0, "sampler " + s);
+        if (!tr.context.textures.count(s))
+            return error_at(t, at, file, "sampler " + s,
+                            "sampler '" + s + "' names no texture of the preset (not Original, OriginalHistory#, PassOutput#, "
+                            "PassFeedback#, a pass alias or its Feedback, or a LUT)");
         tr.use_texture(s);
     }
 
@@ -301,7 +325,7 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
                                         "CRT_RA_SIZE", kShaderMain, "crtCorner"};
     for (const Block& b : d.blocks)
         for (const Member& m : b.members)
-            if (tr.context.is_param(m.name)) introduced.insert(tr.context.param_name(m.name));
+            if (auto p = tr.context.params.find(m.name); p != tr.context.params.end()) introduced.insert(p->second);
     std::map<std::string, std::string> renamed;
     for (const std::string& name : introduced) {
         if (!taken.count(name) || bare_member.count(name)) continue;
@@ -362,8 +386,8 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
     if (vertex) {
         const Member& position = d.vertex_inputs[0];
         const Member& coord = d.vertex_inputs[1];
-        auto from_corner = [](const std::string& type, bool position_input) {
-            if (type == "vec4") return std::string(position_input ? "vec4(crtCorner, 0.0, 1.0)" : "vec4(crtCorner, 0.0, 1.0)");
+        auto from_corner = [](const std::string& type) {
+            if (type == "vec4") return std::string("vec4(crtCorner, 0.0, 1.0)");
             if (type == "vec3") return std::string("vec3(crtCorner, 0.0)");
             return type + "(crtCorner)";
         };
@@ -375,7 +399,7 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
             "    {} = {};\n"
             "    {}();\n"
             "}}\n",
-            position.name, from_corner(position.type, true), coord.name, from_corner(coord.type, false), kShaderMain);
+            position.name, from_corner(position.type), coord.name, from_corner(coord.type), kShaderMain);
     }
     return result;
 }

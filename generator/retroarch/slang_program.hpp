@@ -22,7 +22,7 @@
 //    shader already used them for something else.
 #pragma once
 
-#include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -34,12 +34,11 @@
 namespace crtforge::retroarch {
 
 struct ProgramContext {
-    // Whether the preset provides a texture of this name to the pass (Original, OriginalHistory#,
-    // PassOutput#, PassFeedback#, aliases, <alias>Feedback, LUTs).
-    std::function<bool(const std::string&)> provides_texture;
-    // RetroArch parameter id -> crtforge param name, for every parameter of the preset.
-    std::function<std::string(const std::string&)> param_name;
-    std::function<bool(const std::string&)> is_param;
+    // The textures the preset provides to the pass by RetroArch's names (Original, OriginalHistory#,
+    // PassOutput#, PassFeedback#, aliases, <alias>Feedback, LUTs): name -> crtforge source.
+    const std::map<std::string, std::string>& textures;
+    // Every parameter of the preset: RetroArch id -> crtforge param name.
+    const std::map<std::string, std::string>& params;
     double fps = 60.0;
     // The pass draws the picture RetroArch shows: its alpha is set to 1, as RetroArch's display
     // ignores it (crtforge's display keeps it).

@@ -26,7 +26,13 @@ struct Diagnostic {
     // "file:line:col: error: field 'x': message" — always a single line. Appends only: GCC 12
     // misreports `"literal" + std::string` inlined here as an overlapping memcpy (-Wrestrict,
     // GCC bug 105329) in every file that includes this header.
-    std::string str() const {
+    std::string str() const { return labelled("error"); }
+    // The same line as a warning: "file:line:col: warning: field 'x': message" (what a loader accepts
+    // but reports: a migrated key, a value RetroArch ignores).
+    std::string warning() const { return labelled("warning"); }
+
+private:
+    std::string labelled(const char* label) const {
         std::string out;
         if (!file.empty()) {
             out += file;
@@ -34,7 +40,7 @@ struct Diagnostic {
             if (line > 0 && column > 0) out.append(1, ':').append(std::to_string(column));
             out += ": ";
         }
-        out += "error: ";
+        out.append(label).append(": ");
         if (!field.empty()) out.append("field '").append(field).append("': ");
         for (char c : message) out += (c == '\n' || c == '\r') ? ' ' : c;  // keep it one line
         return out;

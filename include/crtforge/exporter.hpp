@@ -35,6 +35,9 @@ Result<std::vector<CompiledVariant>> compile_scene(const TemplateLibrary& librar
 Result<TargetOutput> emit_target(const CompiledVariant& compiled, TargetId target,
                                  const Cache& cache);
 
+// Every pass of a compiled scene emitted for one target, in order.
+Result<std::vector<TargetOutput>> emit_scene(const std::vector<CompiledVariant>& passes, TargetId target, const Cache& cache);
+
 struct ExportRequest {
     std::vector<std::string> presets;  // empty = all
     std::vector<TargetId> targets;     // empty = all

@@ -2,6 +2,7 @@
 // whole file, a sorted directory listing, and atomic writes (temp file + rename).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -10,7 +11,9 @@
 
 namespace crtforge {
 
-Result<std::string> read_text_file(const std::string& path);
+// The whole file. A directory, a FIFO or a device is refused before it is opened (reading one
+// would block or never end), and so is a file over `max_bytes` (0: no bound).
+Result<std::string> read_text_file(const std::string& path, std::uintmax_t max_bytes = 0);
 // Regular files in dir whose names end with `ext`, sorted by name (deterministic order).
 Result<std::vector<std::string>> list_files(const std::string& dir, const std::string& ext);
 // Writes to "<path>.tmp-<pid>" then renames, so readers never see a half-written file; creates the

@@ -38,6 +38,7 @@ struct ImportedFile {
 struct ImportedPreset {
     std::string name;                   // the crtforge preset
     std::string stage;                  // its program stage
+    size_t passes = 0;                  // RetroArch's passes (the scene may add the copy to the viewport)
     std::vector<ImportedFile> files;
     std::vector<std::string> warnings;  // "file:line: warning: ..." (what RetroArch ignores or approximates)
     std::vector<std::string> inputs;    // every file read (.slangp chain, shaders, includes, LUTs)

@@ -42,6 +42,12 @@ mkdir -p "$work"
 input="$work/input.ppm"
 python3 "$here/probes/pictures.py" bars "$input" 320 240
 
+last=0
+count=0
+for n in $frames; do
+    count=$((count + 1))
+    [ "$n" -gt "$last" ] && last=$n
+done
 failed=0
 total=0
 below=0
@@ -49,12 +55,20 @@ for preset in "${presets[@]}"; do
     name=$(basename "$preset" .slangp)
     overlay="$work/$name.overlay"
     rm -rf "$overlay"
-    if ! "$crtforge" import "$corpus/$preset" --out "$overlay" --root "$corpus" --name "ra-$(echo "$name" | tr 'A-Z' 'a-z' | tr -c 'a-z0-9_\n' '-')" -q 2>"$work/$name.import.log"; then
+    # One overlay per preset, so one name serves them all.
+    if ! "$crtforge" import "$corpus/$preset" --out "$overlay" --root "$corpus" --name imported -q 2>"$work/$name.import.log"; then
         echo "import-failed  $preset  $(tail -1 "$work/$name.import.log")"
-        failed=$((failed + 1))
+        failed=$((failed + count)); total=$((total + count))
         continue
     fi
-    crt_name=$(basename "$overlay"/presets/*.toml .toml)
+    # crtforge draws frames 0..last once; each listed frame is one of its pictures.
+    if ! "$crtforge" --templates "$overlay" render --preset imported --target "$target" --input "$input" \
+        --output "$work/$name.cf.%d.png" --size "$viewport" --fit stretch --frames "0:$last" --frame-count-base 1 \
+        >/dev/null 2>"$work/$name.cf.log"; then
+        echo "crtforge-failed  $preset  $(tail -1 "$work/$name.cf.log")"
+        failed=$((failed + count)); total=$((total + count))
+        continue
+    fi
     for n in $frames; do
         total=$((total + 1))
         ra="$work/$name.ra.$n.png"
@@ -62,12 +76,6 @@ for preset in "${presets[@]}"; do
         if ! "$here/render.sh" --preset "$corpus/$preset" --input "$input" --viewport "$viewport" --frames "$n" --out "$ra" \
             --log "$work/$name.ra.$n.log" >/dev/null 2>&1; then
             echo "retroarch-failed  $preset  $n"
-            failed=$((failed + 1))
-            continue
-        fi
-        if ! "$crtforge" --templates "$overlay" render --preset "$crt_name" --target "$target" --input "$input" --output "$cf" \
-            --size "$viewport" --fit stretch --frame "$n" --frame-count-base 1 >/dev/null 2>"$work/$name.cf.$n.log"; then
-            echo "crtforge-failed  $preset  $n  $(tail -1 "$work/$name.cf.$n.log")"
             failed=$((failed + 1))
             continue
         fi

@@ -87,6 +87,9 @@ struct SceneRenderRequest {
     std::string host;
 };
 
+// The images of a preset's file LUTs (not the generated ones), by name: SceneRenderRequest::file_luts.
+Result<std::map<std::string, Image>> read_file_luts(const Preset& preset);
+
 class ConsumerEngines;
 
 // Owns the engines of one thread, created on first use and reused.
