@@ -144,6 +144,23 @@ Result<std::optional<int>> parse_supersample(const TomlReader& r, const toml::ta
     return std::optional<int>(static_cast<int>(*n.value()));
 }
 
+// filter, wrap and (with_mipmap) mipmap of a table, each where given: a pass's main input, one of
+// its [pass.textures] written as a table, or a LUT.
+Result<TextureSampling> parse_sampling(const TomlReader& r, const toml::table& t, const std::string& field, bool with_mipmap) {
+    TextureSampling out;
+    auto filter = r.choice(t, "filter", field, kFilters);
+    if (!filter.ok()) return filter.error();
+    if (filter.value()) out.filter = static_cast<Filter>(*filter.value());
+    auto wrap = r.choice(t, "wrap", field, kWraps);
+    if (!wrap.ok()) return wrap.error();
+    if (wrap.value()) out.wrap = static_cast<Wrap>(*wrap.value());
+    if (!with_mipmap) return out;
+    auto mipmap = r.boolean(t, "mipmap", field);
+    if (!mipmap.ok()) return mipmap.error();
+    out.mipmap = mipmap.value();
+    return out;
+}
+
 Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t index, const TemplateLibrary* library) {
     const std::string prefix = "pass[" + std::to_string(index) + "]";
     if (auto s = r.only_keys(t, {"alias", "preset", "stages", "scale_type", "scale_type_x", "scale_type_y", "scale", "format",
@@ -176,15 +193,11 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
         if (!input.ok()) return input.error();
         pass.input = input.value();
     }
-    auto filter = r.choice(t, "filter", field, kFilters);
-    if (!filter.ok()) return filter.error();
-    if (filter.value()) pass.filter = static_cast<Filter>(*filter.value());
-    auto wrap = r.choice(t, "wrap", field, kWraps);
-    if (!wrap.ok()) return wrap.error();
-    if (wrap.value()) pass.wrap = static_cast<Wrap>(*wrap.value());
-    auto mipmap = r.boolean(t, "mipmap", field);
-    if (!mipmap.ok()) return mipmap.error();
-    pass.mipmap = mipmap.value();
+    auto main_sampling = parse_sampling(r, t, field, true);
+    if (!main_sampling.ok()) return main_sampling.error();
+    pass.filter = main_sampling.value().filter;
+    pass.wrap = main_sampling.value().wrap;
+    pass.mipmap = main_sampling.value().mipmap;
     if (const toml::node* textures = t.get("textures")) {
         const toml::table* tt = textures->as_table();
         if (!tt) return r.error(textures, field + ".textures", "must be a table of name = \"source\"");
@@ -202,17 +215,9 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
             auto from = r.string(*entry, "from", tfield, true);
             if (!from.ok()) return from.error();
             pass.textures[key] = from.value();
-            TextureSampling sampling;
-            auto tf = r.choice(*entry, "filter", tfield, kFilters);
-            if (!tf.ok()) return tf.error();
-            if (tf.value()) sampling.filter = static_cast<Filter>(*tf.value());
-            auto tw = r.choice(*entry, "wrap", tfield, kWraps);
-            if (!tw.ok()) return tw.error();
-            if (tw.value()) sampling.wrap = static_cast<Wrap>(*tw.value());
-            auto tm = r.boolean(*entry, "mipmap", tfield);
-            if (!tm.ok()) return tm.error();
-            sampling.mipmap = tm.value();
-            pass.texture_sampling[key] = sampling;
+            auto sampling = parse_sampling(r, *entry, tfield, true);
+            if (!sampling.ok()) return sampling.error();
+            pass.texture_sampling[key] = sampling.value();
         }
     }
     auto mod = r.integer(t, "frame_count_mod", field);
@@ -244,12 +249,10 @@ Result<LutSpec> parse_lut(const TomlReader& r, const std::string& name, const to
         return r.error(&node, field, "needs exactly one of generator = \"...\" or file = \"...\"");
     lut.generator = generator.value();
     lut.file = file.value();
-    auto filter = r.choice(*t, "filter", field, kFilters);
-    if (!filter.ok()) return filter.error();
-    if (filter.value()) lut.filter = static_cast<Filter>(*filter.value());
-    auto wrap = r.choice(*t, "wrap", field, kWraps);
-    if (!wrap.ok()) return wrap.error();
-    if (wrap.value()) lut.wrap = static_cast<Wrap>(*wrap.value());
+    auto sampling = parse_sampling(r, *t, field, false);
+    if (!sampling.ok()) return sampling.error();
+    lut.filter = sampling.value().filter.value_or(lut.filter);
+    lut.wrap = sampling.value().wrap.value_or(lut.wrap);
     const LutGenerator* gen = lut.generator.empty() ? nullptr : find_lut_generator(lut.generator);
     if (!lut.generator.empty() && !gen) {
         std::vector<std::string> names;

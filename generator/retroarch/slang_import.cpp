@@ -39,6 +39,13 @@ std::string toml_string(const std::string& text) {
     return out + "\"";
 }
 
+// A TOML array of strings.
+std::string toml_strings(const std::vector<std::string>& items) {
+    std::vector<std::string> quoted;
+    for (const std::string& item : items) quoted.push_back(toml_string(item));
+    return "[" + join_list(quoted) + "]";
+}
+
 // A TOML float that reads back as the same double.
 std::string toml_float(double v) {
     std::string text = fmt::format("{}", v);
@@ -114,6 +121,9 @@ public:
     }
 
 private:
+    // A corpus path as generated files show it: relative to --root (or the working folder).
+    std::string shown_path(const std::string& path) const { return relative_to(path, options_.root.empty() ? "." : options_.root); }
+
     Status load_sources() {
         for (const SlangpPass& pass : preset_.passes) {
             if (!sources_.count(pass.shader)) {
@@ -208,7 +218,7 @@ private:
 
     void write_stage() {
         std::string t;
-        t += "# Imported by crtforge from RetroArch's " + toml_string(relative_to(preset_.path, options_.root.empty() ? "." : options_.root)) +
+        t += "# Imported by crtforge from RetroArch's " + toml_string(shown_path(preset_.path)) +
              ": a program stage, one form per pass.\n";
         t += "name = " + toml_string(out_.stage) + "\n";
         t += "doc = " + toml_string("The passes of RetroArch's " + fs::path(preset_.path).filename().string()) + "\n";
@@ -233,23 +243,21 @@ private:
                 t += "runtime = true\n";
             }
         if (several) {
-            t += "\n[[param]]\nname = " + toml_string(out_.stage + "_pass") + "\ntype = \"enum\"\nvalues = [";
-            for (size_t i = 0; i < passes_.size(); ++i) t += (i ? ", " : "") + toml_string("pass" + std::to_string(i));
-            t += "]\ndefault = \"pass0\"\ndoc = \"Which pass's program this pass runs\"\n";
+            std::vector<std::string> forms;
+            for (size_t i = 0; i < passes_.size(); ++i) forms.push_back("pass" + std::to_string(i));
+            t += "\n[[param]]\nname = " + toml_string(out_.stage + "_pass") + "\ntype = \"enum\"\nvalues = " + toml_strings(forms) +
+                 "\ndefault = \"pass0\"\ndoc = \"Which pass's program this pass runs\"\n";
         }
         for (size_t i = 0; i < passes_.size(); ++i) {
             const PassPlan& pass = passes_[i];
             const std::string form = "pass" + std::to_string(i);
             t += "\n[[form]]\nname = " + toml_string(form) + "\n";
-            t += "doc = " + toml_string(doc_line(relative_to(pass.source->path, options_.root.empty() ? "." : options_.root), form)) + "\n";
-            t += "params = [";
-            for (size_t k = 0; k < pass.program.params.size(); ++k) t += (k ? ", " : "") + toml_string(param_names_.at(pass.program.params[k]));
-            t += "]\nbuiltins = [";
-            size_t k = 0;
-            for (Builtin b : pass.program.builtins) t += (k++ ? ", " : "") + toml_string(builtin_name(b));
-            t += "]\ntextures = [";
-            for (size_t n = 0; n < pass.program.textures.size(); ++n) t += (n ? ", " : "") + toml_string(pass.program.textures[n]);
-            t += "]\n";
+            t += "doc = " + toml_string(doc_line(shown_path(pass.source->path), form)) + "\n";
+            std::vector<std::string> params, builtins;
+            for (const std::string& id : pass.program.params) params.push_back(param_names_.at(id));
+            for (Builtin b : pass.program.builtins) builtins.push_back(builtin_name(b));
+            t += "params = " + toml_strings(params) + "\nbuiltins = " + toml_strings(builtins) + "\ntextures = " +
+                 toml_strings(pass.program.textures) + "\n";
             t += "vertex = " + toml_string(out_.stage + "/" + form + ".vert") + "\n";
             t += "fragment = " + toml_string(out_.stage + "/" + form + ".frag") + "\n";
             out_.files.push_back({"stages/" + out_.stage + "/" + form + ".vert", pass.program.vertex});
@@ -310,7 +318,7 @@ private:
     void write_preset() {
         std::string t;
         t += "# Imported by crtforge from RetroArch's " +
-             toml_string(relative_to(preset_.path, options_.root.empty() ? "." : options_.root)) + ".\n";
+             toml_string(shown_path(preset_.path)) + ".\n";
         t += "name = " + toml_string(out_.name) + "\n";
         t += "doc = " + toml_string("RetroArch's " + fs::path(preset_.path).filename().string() + ", imported") + "\n";
         if (options_.source_width > 0) t += fmt::format("\n[source]\nsize = [{}, {}]\n", options_.source_width, options_.source_height);

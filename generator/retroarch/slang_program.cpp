@@ -47,12 +47,18 @@ struct Declarations {
 
 bool is(const Tokens& t, size_t i, const char* text) { return i < t.size() && t[i].text == text; }
 
-// Replaces tokens [from, to] by their line breaks alone, so every later line keeps its number.
-void blank(Tokens& t, size_t from, size_t to) {
+// The line breaks of tokens [from, to].
+std::string line_breaks(const Tokens& t, size_t from, size_t to) {
     std::string lines;
     for (size_t i = from; i <= to && i < t.size(); ++i)
         for (char c : t[i].text)
             if (c == '\n') lines += '\n';
+    return lines;
+}
+
+// Replaces tokens [from, to] by their line breaks alone, so every later line keeps its number.
+void blank(Tokens& t, size_t from, size_t to) {
+    const std::string lines = line_breaks(t, from, to);
     t[from] = {Kind::Space, lines.empty() ? " " : lines};
     for (size_t i = from + 1; i <= to && i < t.size(); ++i) t[i] = {Kind::Space, ""};
 }
@@ -200,10 +206,7 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
             if (out.vertex_inputs.size() < 2) out.vertex_inputs.resize(2);
             out.vertex_inputs[static_cast<size_t>(index)] = {t[type].text, t[name].text, ""};
             // The input becomes a global the generated main() sets.
-            std::string lines;
-            for (size_t k = start; k <= end; ++k)
-                for (char c : t[k].text)
-                    if (c == '\n') lines += '\n';
+            const std::string lines = line_breaks(t, start, end);
             const Member& input = out.vertex_inputs[static_cast<size_t>(index)];
             blank(t, start, end);
             t[start] = {Kind::Identifier, input.type + " " + input.name + ";" + lines};
@@ -347,11 +350,8 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
             fields += fmt::format(" {} {}{};", m.type, renamed_name(m.name), m.array);
             values += (values.empty() ? "" : ", ") + tr.expression(m);
         }
-        std::string lines;
-        for (char c : t[b.start].text)
-            if (c == '\n') lines += '\n';
-        t[b.start] = {Kind::Identifier,
-                      fmt::format("struct {0} {{{1} }}; {0} {2} = {0}({3});{4}", type, fields, renamed_name(b.instance), values, lines)};
+        t[b.start] = {Kind::Identifier, fmt::format("struct {0} {{{1} }}; {0} {2} = {0}({3});{4}", type, fields,
+                                                    renamed_name(b.instance), values, line_breaks(t, b.start, b.start))};
     }
 
     Tokens out;
