@@ -28,7 +28,9 @@ struct GlobalOptions {
 int report(const Diagnostic& d);
 
 // Loads the library named by --templates (or the default); nullptr after reporting on failure.
-std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_code);
+// With `presets`, a .slangp path among them (RetroArch's preset file) is imported first into a
+// temporary overlay on the shipped templates, and replaced by the imported preset's name.
+std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_code, std::vector<std::string>* presets = nullptr);
 Cache make_cache(const GlobalOptions& g);
 
 // Shared variant options (--uniforms, --precision) for generate/export/assemble.
@@ -52,6 +54,7 @@ Runner add_golden_command(CLI::App& app, const GlobalOptions& g);
 Runner add_devices_command(CLI::App& app, const GlobalOptions& g);
 Runner add_bench_command(CLI::App& app, const GlobalOptions& g);
 Runner add_import_command(CLI::App& app, const GlobalOptions& g);
+Runner add_corpus_command(CLI::App& app, const GlobalOptions& g);
 
 // TemplateLibrary::lookup_preset, for symmetry with crtforge::lookup_target.
 Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name);

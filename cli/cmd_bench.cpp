@@ -45,7 +45,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         std::vector<std::string> uniforms{"default"};
     };
     auto o = std::make_shared<Options>();
-    cmd->add_option("--preset", o->presets, "Presets to time (repeat or comma-separate; default: all)")->delimiter(',');
+    cmd->add_option("--preset", o->presets, "Presets to time (repeat or comma-separate; a RetroArch .slangp file is imported first; default: all)")->delimiter(',');
     cmd->add_option("--size", o->sizes, "Display sizes WIDTHxHEIGHT, each timed and measured (repeat or comma-separate)")
         ->delimiter(',')
         ->capture_default_str();
@@ -70,7 +70,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
                             ->check(CLI::Range(0, 16));
     return [&g, o, draws, supersample]() {
         int code = kExitOk;
-        auto lib = load_library(g, code);
+        auto lib = load_library(g, code, &o->presets);
         if (!lib) return code;
         const bool draws_given = draws->count() > 0, supersample_given = supersample->count() > 0;
         if (o->quick) {

@@ -20,7 +20,7 @@ Runner add_export_command(CLI::App& app, const GlobalOptions& g) {
     auto args = std::make_shared<ExportArgs>();
     auto* cmd = app.add_subcommand("export", "Write every preset x target, plus manifest.json, into a directory");
     cmd->add_option("--out", args->out, "Output directory")->required();
-    cmd->add_option("--preset", args->presets, "Only these presets (repeat or comma-separate); default all")
+    cmd->add_option("--preset", args->presets, "Only these presets (repeat or comma-separate; a RetroArch .slangp file is imported first); default all")
         ->delimiter(',');
     cmd->add_option("--target", args->targets, "Only these targets (repeat or comma-separate); default all")
         ->delimiter(',');
@@ -41,7 +41,7 @@ Runner add_export_command(CLI::App& app, const GlobalOptions& g) {
         request.presets = args->presets;
         drop_repeats(request.presets);
         drop_repeats(request.targets);
-        auto lib = load_library(g, code);
+        auto lib = load_library(g, code, &request.presets);
         if (!lib) return code;
         Cache cache = make_cache(g);
         // Everything is produced in memory first: a failure leaves no partial output behind.

@@ -90,7 +90,7 @@ Result<PresetTier> choose_tier(const TemplateLibrary& lib, const Preset& preset,
 Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
     auto args = std::make_shared<GenerateArgs>();
     auto* cmd = app.add_subcommand("generate", "Generate one preset for one target");
-    cmd->add_option("--preset", args->preset, "Preset name (see 'crtforge list presets')")->required();
+    cmd->add_option("--preset", args->preset, "Preset name (see 'crtforge list presets'), or a RetroArch .slangp file (imported first)")->required();
     cmd->add_option("--target", args->target, "Target name (see 'crtforge list targets')")->required();
     cmd->add_option("--out", args->out,
                     "Write the files into this directory; without it the fragment shader is printed "
@@ -137,9 +137,10 @@ Runner add_generate_command(CLI::App& app, const GlobalOptions& g) {
         const TargetInfo* target = found.value();
         auto options = args->flags.parse();
         if (!options.ok()) return report(options.error());
-        auto lib = load_library(g, code);
+        std::vector<std::string> named{args->preset};
+        auto lib = load_library(g, code, &named);
         if (!lib) return code;
-        auto preset_found = lookup_preset(*lib, args->preset);
+        auto preset_found = lookup_preset(*lib, named.front());
         if (!preset_found.ok()) return report(preset_found.error());
         const Preset* preset = preset_found.value();
         std::optional<PresetTier> chosen;

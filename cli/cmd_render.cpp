@@ -119,7 +119,7 @@ Result<std::vector<int>> parse_frames(const std::string& text) {
 Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     auto a = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand("render", "Render a preset's scene through one target's consumer onto an image or a sequence");
-    cmd->add_option("--preset", a->preset, "Preset name")->required();
+    cmd->add_option("--preset", a->preset, "Preset name, or a RetroArch .slangp file (imported first)")->required();
     cmd->add_option("--tier", a->tier, "Render this quality tier of the preset (see generate --tier)");
     cmd->add_option("--target", a->target, "Target whose consumer renders it")->capture_default_str();
     cmd->add_option("--input", a->input,
@@ -164,9 +164,10 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             if (!parsed.ok()) return report(parsed.error());
             size = parsed.value();
         }
-        auto lib = load_library(g, code);
+        std::vector<std::string> named{a->preset};
+        auto lib = load_library(g, code, &named);
         if (!lib) return code;
-        auto preset_found = lookup_preset(*lib, a->preset);
+        auto preset_found = lookup_preset(*lib, named.front());
         if (!preset_found.ok()) return report(preset_found.error());
         const Preset* preset = preset_found.value();
         std::optional<PresetTier> tier;

@@ -136,7 +136,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
     auto* cmd = app.add_subcommand("validate",
                                    "Compile every preset x target with its real consumer, render it there and compare with the goldens");
     cmd->add_option("--report", a->report, "Write report.json, junit.xml, report.html and pictures into this directory");
-    cmd->add_option("--preset", a->presets, "Only these presets")->delimiter(',');
+    cmd->add_option("--preset", a->presets, "Only these presets (a RetroArch .slangp file is imported first)")->delimiter(',');
     cmd->add_option("--target", a->targets, "Only these targets")->delimiter(',');
     cmd->add_option("--input", a->inputs, "Only goldens of these generated inputs")->delimiter(',');
     cmd->add_option("--shard", a->shard, "Run share i of n (1-based), for CI matrices")->capture_default_str();
@@ -190,7 +190,7 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         request.strict = a->strict;
         if (!a->report.empty())
             if (auto s = prepare_report_dir(a->report); !s.ok()) return report(s.error());
-        auto lib = load_library(g, code);
+        auto lib = load_library(g, code, &request.presets);
         if (!lib) return code;
         if (auto s = add_golden_presets(*lib, request.golden_dir); !s.ok()) return report(s.error());
         Cache cache = make_cache(g);

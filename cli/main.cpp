@@ -1,10 +1,16 @@
 // crtforge: a thin command line over the crtforge library.
+#include <stdlib.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <new>
+#include <set>
 #include <iostream>
 
 #include "cli/cli_common.hpp"
 #include "crtforge/runtime/process_memory.hpp"
+#include "crtforge/slang_import.hpp"
 #include "crtforge/version.hpp"
 
 namespace crtforge::cli {
@@ -14,8 +20,64 @@ int report(const Diagnostic& d) {
     return d.kind == ErrorKind::Validation ? kExitValidation : kExitUsage;
 }
 
-std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_code) {
-    auto lib = TemplateLibrary::load(g.templates.empty() ? TemplateLibrary::default_dir() : g.templates);
+namespace {
+
+// The overlay that .slangp preset arguments are imported into: a temporary folder, removed when
+// crtforge exits (the library reads LUT files from it until then).
+struct ImportedOverlay {
+    std::string dir;
+    ~ImportedOverlay() {
+        std::error_code ec;
+        if (!dir.empty()) std::filesystem::remove_all(dir, ec);
+    }
+};
+
+bool is_slangp(const std::string& arg) {
+    return arg.size() > 7 && arg.compare(arg.size() - 7, 7, ".slangp") == 0;
+}
+
+// Imports every .slangp among `presets` (RetroArch's settings: crtforge import's defaults) into
+// one overlay and replaces each by the imported preset's name. "" when there is none.
+Result<std::string> import_preset_arguments(const GlobalOptions& g, std::vector<std::string>& presets) {
+    if (std::none_of(presets.begin(), presets.end(), is_slangp)) return std::string();
+    if (!g.templates.empty())
+        return make_error("a .slangp preset is imported on top of the shipped templates: give it without --templates", {}, 0,
+                          "--templates");
+    static ImportedOverlay overlay;
+    if (overlay.dir.empty()) {
+        std::error_code ec;
+        std::string pattern = (std::filesystem::temp_directory_path(ec) / "crtforge-slangp-XXXXXX").string();
+        if (ec || !::mkdtemp(pattern.data())) return make_error("cannot make a temporary folder for the imported preset", {}, 0, "--preset");
+        overlay.dir = pattern;
+    }
+    std::set<std::string> names;
+    for (std::string& p : presets) {
+        if (!is_slangp(p)) continue;
+        auto imported = import_slangp(p, SlangImportOptions{});
+        if (!imported.ok()) return imported.error();
+        for (const std::string& w : imported.value().warnings) std::fprintf(stderr, "crtforge: %s\n", w.c_str());
+        if (!names.insert(imported.value().name).second)
+            return make_error("two .slangp presets import as '" + imported.value().name + "'; import them with crtforge import --name", p, 0,
+                              "--preset");
+        if (auto s = write_imported_preset(imported.value(), overlay.dir); !s.ok()) return s.error();
+        p = imported.value().name;
+    }
+    return overlay.dir;
+}
+
+}  // namespace
+
+std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_code, std::vector<std::string>* presets) {
+    std::string dir = g.templates.empty() ? TemplateLibrary::default_dir() : g.templates;
+    if (presets) {
+        auto overlay = import_preset_arguments(g, *presets);
+        if (!overlay.ok()) {
+            exit_code = report(overlay.error());
+            return nullptr;
+        }
+        if (!overlay.value().empty()) dir = overlay.value();
+    }
+    auto lib = TemplateLibrary::load(dir);
     if (!lib.ok()) {
         exit_code = report(lib.error());
         return nullptr;
@@ -93,6 +155,7 @@ int main(int argc, char** argv) {
     track(add_devices_command(app, g));
     track(add_bench_command(app, g));
     track(add_import_command(app, g));
+    track(add_corpus_command(app, g));
 
     try {
         app.parse(argc, argv);

@@ -230,4 +230,21 @@ std::string compiler_versions() {
                        GLSLANG_VERSION_MINOR, GLSLANG_VERSION_PATCH, spvSoftwareVersionString());
 }
 
+Result<std::string> preprocess_vulkan_glsl(const std::string& source, ShaderStage stage, const std::string& name) {
+    ensure_glslang_initialized();
+    glslang::TShader shader(to_glslang(stage));
+    const char* text = source.c_str();
+    const char* names[] = {name.c_str()};
+    shader.setStringsWithLengthsAndNames(&text, nullptr, names, 1);
+    shader.setEnvInput(glslang::EShSourceGlsl, to_glslang(stage), glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    const auto messages = static_cast<EShMessages>(EShMsgDefault | EShMsgSpvRules | EShMsgVulkanRules);
+    glslang::TShader::ForbidIncluder no_includes;
+    std::string out;
+    if (!shader.preprocess(GetDefaultResources(), 450, ENoProfile, false, false, messages, &out, no_includes))
+        return diagnostic_from_log(shader.getInfoLog(), name, fmt::format("{} shader (preprocessor)", shader_stage_name(stage)));
+    return out;
+}
+
 }  // namespace crtforge

@@ -219,7 +219,7 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
     };
     const std::vector<Bad> cases = {
         {"a missing shader", "shaders = 1\nshader0 = ../shaders/none.slang\n", "none.slang"},
-        {"a malformed line", "shaders = 1\nshader0 = ../shaders/first.slang\nthis is not a key value\n", "bad.slangp:3"},
+        {"a malformed line", "shaders = 1\n/* a note\nshader0 = ../shaders/first.slang\n*/\n", "bad.slangp:3"},
         {"a path escaping the root", "shaders = 1\nshader0 = ../../../../../../etc/hostname\n", "shader0"},
         {"a parameter declared again with other values", "shaders = 2\nshader0 = ../shaders/first.slang\nshader1 = ../shaders/clash.slang\n",
          "SHARED"},

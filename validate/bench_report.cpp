@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "crtforge/inert_text.hpp"
 #include "crtforge/validate/bench.hpp"
 
 namespace crtforge {
@@ -87,11 +88,6 @@ json stage_costs_json(const std::vector<StageCost>& costs) {
     return out;
 }
 
-std::string xml_escape(const std::string& s) {
-    std::string out;
-    for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
-    return out;
-}
 
 }  // namespace
 
@@ -347,7 +343,7 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
                     body += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" stroke-width=\"0.5\"/>\n",
                                         x, y, tx, y + dy);
                 body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}</text>\n", tx, y + dy + 4,
-                                    right ? "start" : "end", xml_escape(t.label()));
+                                    right ? "start" : "end", html_escape(t.label()));
                 done = true;
                 break;
             }
@@ -364,7 +360,7 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
     const int rows = static_cast<int>((unplaced.size() + kColumns - 1) / kColumns);
     for (size_t k = 0; k < unplaced.size(); ++k)
         body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{}: {}</text>\n", L + (W - L - R) / kColumns * static_cast<double>(k % kColumns),
-                            H + 14.0 * static_cast<double>(k / kColumns), k + 1, xml_escape(unplaced[k]));
+                            H + 14.0 * static_cast<double>(k / kColumns), k + 1, html_escape(unplaced[k]));
     // The legend: each preset's colour, in columns under the numbered names.
     constexpr int kLegendColumns = 4;
     const double legend_top = H + 14.0 * rows + (rows ? 10 : 4);
@@ -372,14 +368,14 @@ double svg_panel(const std::vector<SceneTiming>& timings, double top, std::strin
         const double lx = L + (W - L - R) / kLegendColumns * static_cast<double>(k % kLegendColumns);
         const double ly = legend_top + 16.0 * static_cast<double>(k / kLegendColumns);
         body += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"12\" height=\"12\" fill=\"{}\"/><text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{}</text>\n",
-                            lx, ly, preset_colour(k), lx + 16, ly + 10, xml_escape(presets[k]));
+                            lx, ly, preset_colour(k), lx + 16, ly + 10, html_escape(presets[k]));
     }
     const int legend_rows = static_cast<int>((presets.size() + kLegendColumns - 1) / kLegendColumns);
     const double height = legend_top + 16.0 * legend_rows + 4;
     out += fmt::format("<g transform=\"translate(0 {})\">\n", top);
     out += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">crtforge bench: error against cost{}</text>\n", L,
                        timings.empty() ? std::string() : fmt::format(" ({}x{}, {})", timings.front().width, timings.front().height,
-                                                                     xml_escape(timings.front().device)));
+                                                                     html_escape(timings.front().device)));
     out += fmt::format("<text x=\"{}\" y=\"36\">colour: preset (legend below); line, ringed: its Pareto front; dashed: point tier to each other tier; error 0 at the bottom</text>\n", L);
     out += body + "</g>\n";
     return height;

@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "crtforge/inert_text.hpp"
+
 #include "crtforge/validate/validation.hpp"
 #include "crtforge/files.hpp"
 
@@ -15,20 +17,6 @@ namespace crtforge {
 using json = nlohmann::ordered_json;
 
 namespace {
-
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
 
 json metrics_json(const Verdict& v) {
     return json{{"maxAbs", v.metrics.max_abs}, {"rmse", v.metrics.rmse}, {"psnr", v.metrics.psnr},
@@ -77,17 +65,17 @@ std::string junit_xml(const ValidationReport& report) {
         for (const auto& c : report.checks) {
             if (c.target != t) continue;
             ++tests;
-            cases += "    <testcase classname=\"" + escape(c.target + "." + c.preset) + "\" name=\"" + escape(c.check) + "\"";
+            cases += "    <testcase classname=\"" + html_escape(c.target + "." + c.preset) + "\" name=\"" + html_escape(c.check) + "\"";
             if (c.passed && c.not_rendered) {
-                cases += ">\n      <skipped message=\"" + escape(c.message) + "\"/>\n    </testcase>\n";
+                cases += ">\n      <skipped message=\"" + html_escape(c.message) + "\"/>\n    </testcase>\n";
             } else if (c.passed) {
                 cases += "/>\n";
             } else {
                 ++failures;
-                cases += ">\n      <failure message=\"" + escape(c.message) + "\"/>\n    </testcase>\n";
+                cases += ">\n      <failure message=\"" + html_escape(c.message) + "\"/>\n    </testcase>\n";
             }
         }
-        out += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n", escape(t), tests, failures) + cases + "  </testsuite>\n";
+        out += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n", html_escape(t), tests, failures) + cases + "  </testsuite>\n";
     }
     return out + "</testsuites>\n";
 }
@@ -133,19 +121,19 @@ std::string failure_index(const ValidationReport& report) {
         }
         auto joined = [](const std::vector<std::string>& items) {
             std::string out;
-            for (const std::string& i : items) out += (out.empty() ? "" : ", ") + escape(i);
+            for (const std::string& i : items) out += (out.empty() ? "" : ", ") + html_escape(i);
             return out;
         };
         h += fmt::format("<li><b>{} check{}</b> on {} · preset {}<br><code>{}</code><br>", g.checks.size(), g.checks.size() > 1 ? "s" : "",
-                         joined(targets), joined(presets), escape(g.message));
+                         joined(targets), joined(presets), html_escape(g.message));
         size_t shown = 0;
         for (const CheckResult* c : g.checks) {
             if (++shown > 30) {
                 h += fmt::format(" … {} more", g.checks.size() - 30);
                 break;
             }
-            const std::string label = escape(c->target + " " + c->check);
-            h += c->golden_id.empty() ? label + " " : "<a href=\"#g-" + escape(c->golden_id) + "\">" + label + "</a> ";
+            const std::string label = html_escape(c->target + " " + c->check);
+            h += c->golden_id.empty() ? label + " " : "<a href=\"#g-" + html_escape(c->golden_id) + "\">" + label + "</a> ";
         }
         h += "</li>\n";
     }
@@ -187,7 +175,7 @@ std::string report_html(const ValidationReport& report) {
         for (const auto& [name, desc] : report.consumers)
             if (name == t) consumer = desc;
         h += fmt::format("<tr><td>{}</td><td>{}</td><td class=ok>{}</td><td class=\"{}\">{}</td><td>{:.5f}</td><td>{:.4f}</td></tr>\n",
-                         escape(t), escape(consumer), pass, fail ? "bad" : "ok", fail, max_rmse, min_ssim);
+                         html_escape(t), html_escape(consumer), pass, fail ? "bad" : "ok", fail, max_rmse, min_ssim);
     }
     h += "</table>\n";
     h += failure_index(report);
@@ -195,7 +183,7 @@ std::string report_html(const ValidationReport& report) {
     auto figure = [&](const GoldenEntry& g, const std::string& row, const std::string& label) {
         if (row == "input" || row == "golden")
             return fmt::format("<figure><img src=\"images/{}/{}.png\" alt=\"{}\" width=\"{}\" height=\"{}\"><figcaption style=\"max-width:{}px\">{}</figcaption></figure>\n",
-                               escape(g.id), row, row, row == "input" ? g.input_width : g.width, row == "input" ? g.input_height : g.height,
+                               html_escape(g.id), row, row, row == "input" ? g.input_width : g.width, row == "input" ? g.input_height : g.height,
                                std::max(160, g.width), label);
         auto it = render_checks.find({g.id, row});
         if (it == render_checks.end()) return std::string();
@@ -204,14 +192,14 @@ std::string report_html(const ValidationReport& report) {
         if (c.verdict)
             caption += fmt::format("<br>RMSE {:.5f} · SSIM {:.4f}<br>max {:.3f} · PSNR {:.1f} dB", c.verdict->metrics.rmse,
                                    c.verdict->metrics.ssim, c.verdict->metrics.max_abs, c.verdict->metrics.psnr);
-        if (!c.passed) caption += "<br><span class=bad>" + escape(c.message) + "</span>";
+        if (!c.passed) caption += "<br><span class=bad>" + html_escape(c.message) + "</span>";
         // 1:1 (a scaled CRT picture moirés), the caption as wide as the picture.
         std::string out = fmt::format(
             "<figure class=\"{}\"><img src=\"images/{}/{}.png\" alt=\"{}\" width=\"{}\" height=\"{}\"><figcaption style=\"max-width:{}px\">{}</figcaption></figure>\n",
-            c.passed ? "" : "fail", escape(g.id), escape(row), escape(row), g.width, g.height, std::max(160, g.width), caption);
+            c.passed ? "" : "fail", html_escape(g.id), html_escape(row), html_escape(row), g.width, g.height, std::max(160, g.width), caption);
         if (!c.passed && c.verdict)
             out += fmt::format("<figure class=fail><img src=\"images/{}/{}.diff.png\" alt=\"diff\" width=\"{}\" height=\"{}\"><figcaption>{} diff (red = tolerance)</figcaption></figure>\n",
-                               escape(g.id), escape(row), g.width, g.height, escape(row));
+                               html_escape(g.id), html_escape(row), g.width, g.height, html_escape(row));
         return out;
     };
     // Goldens of one sequence (the same scene at several frames) show as strips: a row per
@@ -245,26 +233,26 @@ std::string report_html(const ValidationReport& report) {
         }
         if (first.preset != current_preset) {
             current_preset = first.preset;
-            h += "<h2>" + escape(first.preset) + "</h2>\n";
+            h += "<h2>" + html_escape(first.preset) + "</h2>\n";
         }
-        for (const GoldenEntry* g : sequence) h += "<a id=\"g-" + escape(g->id) + "\"></a>";
+        for (const GoldenEntry* g : sequence) h += "<a id=\"g-" + html_escape(g->id) + "\"></a>";
         h += "\n";
         const std::string fit = first.fit ? std::string(", ") + display_fit_name(*first.fit) : std::string();
         if (sequence.size() == 1) {
-            h += fmt::format("<div>{} — {}×{}{}, frame {}</div>\n<div class=sheet>\n", escape(first.input), first.width, first.height, fit,
+            h += fmt::format("<div>{} — {}×{}{}, frame {}</div>\n<div class=sheet>\n", html_escape(first.input), first.width, first.height, fit,
                              first.frame);
             h += figure(first, "input", "input");
             h += figure(first, "golden", "golden (CPU fp64)");
-            for (const auto& t : targets) h += figure(first, t, escape(t));
+            for (const auto& t : targets) h += figure(first, t, html_escape(t));
             h += "</div>\n";
             continue;
         }
         std::string frames;
         for (const GoldenEntry* g : sequence) frames += (frames.empty() ? "" : ", ") + std::to_string(g->frame);
-        h += fmt::format("<div>{} — {}×{}{}, frames {} (a sequence: each row left to right in time)</div>\n", escape(first.input),
+        h += fmt::format("<div>{} — {}×{}{}, frames {} (a sequence: each row left to right in time)</div>\n", html_escape(first.input),
                          first.width, first.height, fit, frames);
         std::vector<std::pair<std::string, std::string>> rows = {{"input", "input"}, {"golden", "golden (CPU fp64)"}};
-        for (const auto& t : targets) rows.emplace_back(t, escape(t));
+        for (const auto& t : targets) rows.emplace_back(t, html_escape(t));
         for (const auto& [row, label] : rows) {
             std::string strip;
             for (const GoldenEntry* g : sequence) strip += figure(*g, row, label + fmt::format(" · frame {}", g->frame));
@@ -274,7 +262,7 @@ std::string report_html(const ValidationReport& report) {
     if (folded) h += "</details>\n";
     std::string unrendered;
     for (const auto& c : report.checks)
-        if (c.not_rendered) unrendered += "<li>" + escape(c.preset + " on " + c.target) + "</li>\n";
+        if (c.not_rendered) unrendered += "<li>" + html_escape(c.preset + " on " + c.target) + "</li>\n";
     if (!unrendered.empty())
         h += "<h2 class=bad>Not rendered: no golden</h2><p>Compiled only; nothing was rendered or measured. <code>crtforge golden update</code> "
              "makes goldens, <code>crtforge golden approve</code> stores reviewed renders; <code>--strict</code> fails these.</p><ul>\n" +

@@ -64,7 +64,12 @@ std::string doc_line(const std::string& text, const std::string& fallback) {
 
 std::string identifier_from(const std::string& text) {
     std::string out;
-    for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    // GLSL reserves names with "__": runs of '_' become one.
+    for (char c : text) {
+        const char k = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+        if (k != '_' || out.empty() || out.back() != '_') out += k;
+    }
+    while (out.size() > 1 && out.back() == '_') out.pop_back();
     if (out.empty() || std::isdigit(static_cast<unsigned char>(out.front()))) out = "_" + out;
     return out;
 }
@@ -101,7 +106,9 @@ public:
 
     Result<ImportedPreset> run(const std::string& path) {
         out_.name = options_.name.empty() ? imported_preset_name(path) : options_.name;
-        out_.stage = "ra_" + identifier_from(out_.name);
+        std::string id = identifier_from(out_.name);
+        id.erase(0, id.find_first_not_of('_'));  // "ra_" + a name that starts with a digit: no "__"
+        out_.stage = "ra_" + id;
         out_.passes = preset_.passes.size();
         out_.inputs = preset_.files;
         for (const Diagnostic& w : preset_.warnings) out_.warnings.push_back(w.warning());
@@ -109,7 +116,8 @@ public:
         if (auto s = collect_params(); !s.ok()) return s.error();
         name_passes();
         for (size_t i = 0; i < passes_.size(); ++i) {
-            const retroarch::ProgramContext context{textures_, param_names_, options_.fps, i + 1 == passes_.size()};
+            const std::map<std::string, std::string> textures = textures_before(i);
+            const retroarch::ProgramContext context{textures, param_names_, options_.fps, i + 1 == passes_.size()};
             auto program = retroarch::translate_program(*passes_[i].source, context);
             if (!program.ok()) return program.error();
             passes_[i].program = std::move(program.value());
@@ -201,6 +209,16 @@ private:
         }
     }
 
+    // The textures pass i reaches: a pass at or after it (this frame's output does not exist yet)
+    // is its previous frame's output. RetroArch refuses to sample one ("non-causal"), but reads
+    // its size, and accepts a declaration nothing uses.
+    std::map<std::string, std::string> textures_before(size_t i) const {
+        std::map<std::string, std::string> out = textures_;
+        for (auto& [name, from] : out)
+            if (auto at = pass_index_.find(from); at != pass_index_.end() && at->second >= i) from += "@previous";
+        return out;
+    }
+
     Status write_luts() {
         for (const auto& lut : preset_.textures) {
             if (!detail::is_identifier(lut.name))
@@ -231,7 +249,18 @@ private:
         for (const PassPlan& pass : passes_)
             for (const SlangParameter& p : pass.source->parameters) {
                 if (!read.count(p.id) || !written.insert(p.id).second) continue;
+                // RetroArch clamps neither the default nor a preset's value to the declared range:
+                // the range widens to hold both.
                 double lo = std::min(p.minimum, p.initial), hi = std::max(p.maximum, p.initial);
+                if (auto v = values_.find(p.id); v != values_.end()) {
+                    if (v->second < p.minimum || v->second > p.maximum)
+                        out_.warnings.push_back(make_error(fmt::format("the preset sets '{}' to {}, outside its declared range [{}, {}]: the "
+                                                                       "range is widened (RetroArch does not clamp it)",
+                                                                       p.id, toml_float(v->second), toml_float(p.minimum), toml_float(p.maximum)),
+                                                           preset_.path, 0, "parameters").warning());
+                    lo = std::min(lo, v->second);
+                    hi = std::max(hi, v->second);
+                }
                 if (!(lo < hi)) hi = lo + 1.0;
                 t += "\n[[param]]\n";
                 t += "name = " + toml_string(param_names_.at(p.id)) + "\n";
@@ -345,8 +374,9 @@ private:
             if (p.frame_count_mod && *p.frame_count_mod > 0) t += fmt::format("frame_count_mod = {}\n", *p.frame_count_mod);
             if (!plan.program.textures.empty()) {
                 t += "[pass.textures]\n";
+                const std::map<std::string, std::string> reachable = textures_before(i);
                 for (const std::string& name : plan.program.textures) {
-                    const std::string& from = textures_.at(name);
+                    const std::string& from = reachable.at(name);
                     std::vector<std::string> how;
                     if (from.rfind("original", 0) == 0) {
                         const SlangpPass& first = preset_.passes.front();

@@ -1,5 +1,7 @@
 #include "generator/retroarch/slang_program.hpp"
 
+#include "crtforge/spirv_compiler.hpp"
+
 #include <algorithm>
 #include <map>
 #include <optional>
@@ -94,6 +96,12 @@ Diagnostic error_at(const Tokens& t, size_t i, std::string file, const std::stri
     return make_error(message, file, line, field);
 }
 
+// `i`, or past the precision qualifiers that start there.
+size_t past_precision(const Tokens& t, size_t i) {
+    while (i < t.size() && (t[i].text == "highp" || t[i].text == "mediump" || t[i].text == "lowp")) i = next_significant(t, i);
+    return i;
+}
+
 // Member declarations between `{` at `open` and its `}`: "[layout(...)] [precision] type name[, name];".
 Result<std::vector<Member>> parse_members(const Tokens& t, size_t open, size_t& close, const std::string& file) {
     std::vector<Member> out;
@@ -104,7 +112,7 @@ Result<std::vector<Member>> parse_members(const Tokens& t, size_t open, size_t& 
             if (end == std::string::npos) return error_at(t, i, file, "uniform block", "unbalanced layout( in a uniform block");
             i = next_significant(t, end);
         }
-        while (i < t.size() && (t[i].text == "highp" || t[i].text == "mediump" || t[i].text == "lowp")) i = next_significant(t, i);
+        i = past_precision(t, i);
         if (i >= t.size() || t[i].kind != Kind::Identifier) return error_at(t, i, file, "uniform block", "a uniform block member without a type");
         const std::string type = t[i].text;
         i = next_significant(t, i);
@@ -153,7 +161,7 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
             at = next_significant(t, close);
         }
         if (is(t, at, "uniform")) {
-            const size_t type = next_significant(t, at);
+            const size_t type = past_precision(t, next_significant(t, at));
             if (type >= t.size() || t[type].kind != Kind::Identifier) continue;
             const size_t after = next_significant(t, type);
             if (is(t, after, "{")) {  // a block: uniform Name { members } [instance];
@@ -190,13 +198,13 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
         }
         const std::optional<int> location = location_of(layout);
         if (!vertex && is(t, at, "out") && location == 0) {
-            const size_t type = next_significant(t, at), name = next_significant(t, type);
+            const size_t type = past_precision(t, next_significant(t, at)), name = next_significant(t, type);
             if (is(t, type, "vec4") && name < t.size() && t[name].kind == Kind::Identifier) out.fragment_output = t[name].text;
             continue;
         }
         if (vertex && is(t, at, "in") && location) {
             const int index = *location;
-            const size_t type = next_significant(t, at), name = next_significant(t, type), end = next_significant(t, name);
+            const size_t type = past_precision(t, next_significant(t, at)), name = next_significant(t, type), end = next_significant(t, name);
             if (name >= t.size() || t[name].kind != Kind::Identifier || !is(t, end, ";")) continue;
             if (index > 1)
                 return error_at(t, start, file, "vertex input",
@@ -214,11 +222,6 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
         }
     }
     return out;
-}
-
-bool swizzle_like(const std::string& name) {
-    static const std::regex swizzle("^([xyzw]{1,4}|[rgba]{1,4}|[stpq]{1,4})$");
-    return std::regex_match(name, swizzle);
 }
 
 // The zero of a GLSL type (and array).
@@ -290,17 +293,30 @@ std::set<std::string> identifiers(const Tokens& t) {
     return out;
 }
 
-Result<std::string> translate_stage(const std::string& text, bool vertex, const std::string& file, Translation& tr) {
-    Tokens t = tokenize_glsl(text);
-    // The #version and line-directive extension lines: the assembler writes its own.
+Result<std::string> translate_stage(const std::string& source, bool vertex, const std::string& file, Translation& tr) {
+    // What RetroArch's compiler sees: macros expanded and only the active #if branches, so a
+    // declaration a macro names or an #ifdef leaves out reads as it does there.
+    auto preprocessed = preprocess_vulkan_glsl(source, vertex ? ShaderStage::Vertex : ShaderStage::Fragment, file);
+    if (!preprocessed.ok()) return preprocessed.error();
+    Tokens t = tokenize_glsl(preprocessed.value());
+    // What directives are left (#version, #extension, #line, #pragma) become space, so the
+    // declarations read as code: the #version and line-directive extension lines go (the
+    // assembler writes its own), the others stay as written.
     for (size_t i = 0; i < t.size(); ++i) {
         if (t[i].text != "#") continue;
         const size_t word = next_significant(t, i);
-        if (is(t, word, "version") || (is(t, word, "extension") && is(t, next_significant(t, word), "GL_GOOGLE_cpp_style_line_directive"))) {
-            size_t end = word;
-            while (end + 1 < t.size() && t[end + 1].text.find('\n') == std::string::npos) ++end;
+        size_t end = i;
+        while (end + 1 < t.size() && t[end + 1].text.find('\n') == std::string::npos) ++end;
+        const bool drop = is(t, word, "version") ||
+                          (is(t, word, "extension") && is(t, next_significant(t, word), "GL_GOOGLE_cpp_style_line_directive"));
+        if (drop) {
             blank(t, i, end);
+            continue;
         }
+        std::string line;
+        for (size_t k = i; k <= end; ++k) line += t[k].text;
+        t.erase(t.begin() + static_cast<long>(i) + 1, t.begin() + static_cast<long>(end) + 1);
+        t[i] = {Kind::Space, line};
     }
     auto declared = take_declarations(t, vertex, file);
     if (!declared.ok()) return declared.error();
@@ -347,7 +363,7 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
         std::string type = "CrtRetroArch_" + b.instance, fields, values;
         while (taken.count(type)) type += "_";
         for (const Member& m : b.members) {
-            fields += fmt::format(" {} {}{};", m.type, renamed_name(m.name), m.array);
+            fields += fmt::format(" {} {}{};", m.type, m.name, m.array);  // a field keeps its name: no rename reaches past a dot
             values += (values.empty() ? "" : ", ") + tr.expression(m);
         }
         t[b.start] = {Kind::Identifier, fmt::format("struct {0} {{{1} }}; {0} {2} = {0}({3});{4}", type, fields,
@@ -365,7 +381,7 @@ Result<std::string> translate_stage(const std::string& text, bool vertex, const 
             continue;
         }
         if (!after_dot && token.text == "Source") token.text = "source";
-        else if (auto r = renamed.find(token.text); r != renamed.end() && !(after_dot && swizzle_like(token.text))) token.text = r->second;
+        else if (auto r = renamed.find(token.text); r != renamed.end() && !after_dot) token.text = r->second;
         else if ((vertex || tr.context.opaque_output) && !after_dot && token.text == "main") token.text = kShaderMain;
         out.push_back(token);
     }

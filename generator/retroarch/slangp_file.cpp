@@ -223,13 +223,18 @@ private:
             const std::string key = line.substr(key_begin, p - key_begin);
             if (key.empty())
                 return make_error("expected 'key = value' (keys are printable ASCII)", path, number);
-            if (const size_t eq = key.find('='); eq != std::string::npos)
-                return make_error("write blanks around '=': RetroArch reads '" + key +
-                                      "' as one key without a value and drops the line",
-                                  path, number, key.substr(0, eq));
+            // Lines RetroArch's config reader drops: dropped here too, with a warning.
+            if (const size_t eq = key.find('='); eq != std::string::npos) {
+                warnings_.push_back(make_error("ignored: write blanks around '=': RetroArch reads '" + key +
+                                                   "' as one key without a value and drops the line",
+                                               path, number, key.substr(0, eq)));
+                continue;
+            }
             while (p < line.size() && is_space(line[p])) ++p;
-            if (p == line.size() || line[p] != '=')
-                return make_error("expected 'key = value' (RetroArch drops this line)", path, number, key);
+            if (p == line.size() || line[p] != '=') {
+                warnings_.push_back(make_error("ignored: expected 'key = value'; RetroArch drops this line", path, number, key));
+                continue;
+            }
             ++p;
             while (p < line.size() && is_space(line[p])) ++p;
             std::string value;

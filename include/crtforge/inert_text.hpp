@@ -20,4 +20,7 @@ std::string inert_comment(std::string_view text);
 // '"' becomes '\''.
 std::string inert_quoted(std::string_view text);
 
+// Safe as HTML or XML text and attribute values: '&', '<', '>', '"' and '\'' as entities.
+std::string html_escape(std::string_view text);
+
 }  // namespace crtforge

@@ -30,6 +30,11 @@ struct CompileOptions {
 // Every module that comes out has passed spirv-val.
 Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOptions& options);
 
+// glslang's preprocessor alone on Vulkan GLSL (as for SPIR-V: VULKAN is defined; a source without
+// #version is 450): macros expanded, inactive #if branches and comments blanked, every line kept
+// where it was and #line directives kept. Errors (#error, a malformed directive) carry file:line.
+Result<std::string> preprocess_vulkan_glsl(const std::string& source, ShaderStage stage, const std::string& name);
+
 // spirv-val on a module (Vulkan 1.0 environment).
 Status validate_spirv(const SpirvBinary& binary);
 

@@ -1,0 +1,156 @@
+// crtforge corpus DIR [--root R] [--report OUT] [--target T,...|--vulkan-only] [--shard i/n] [-j N]
+//                [--source-size WxH] [--size WxH] [--frame N] [--min-psnr DB] [--smooth] [--retroarch DIR]
+// Every .slangp under DIR through import, SPIR-V, each target's emitter and consumer, a render by
+// each consumer judged against Vulkan: the dashboard of validate/corpus_report.cpp.
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "cli/cli_common.hpp"
+#include "crtforge/validate/corpus.hpp"
+
+namespace crtforge::cli {
+
+namespace {
+
+struct CorpusArgs {
+    std::string dir, root, report, shard = "1/1", source_size = "160x120", size = "320x240", device, retroarch;
+    std::vector<std::string> targets;
+    bool vulkan_only = false, smooth = false;
+    unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+    int frame = 2;
+    double min_psnr = 40.0, fail_under = 0.0;
+};
+
+Result<std::vector<TargetId>> corpus_targets(const std::vector<std::string>& list, bool vulkan_only) {
+    if (vulkan_only && !list.empty()) return make_error("give --target or --vulkan-only, not both", {}, 0, "--vulkan-only");
+    std::vector<TargetId> out{TargetId::Spirv};  // the judge of the others, always first
+    if (vulkan_only) return out;
+    if (list.empty()) {
+        for (const TargetInfo& t : all_targets())
+            if (t.id != TargetId::Spirv) out.push_back(t.id);
+        return out;
+    }
+    for (const std::string& name : list) {
+        auto t = lookup_target(name);
+        if (!t.ok()) return t.error();
+        if (std::find(out.begin(), out.end(), t.value()->id) == out.end()) out.push_back(t.value()->id);
+    }
+    return out;
+}
+
+// An in-place bar on a terminal; a line per 2 % (and per failed import) in a log.
+CorpusProgress corpus_progress() {
+    const bool tty = ::isatty(STDOUT_FILENO);
+    const auto start = std::chrono::steady_clock::now();
+    auto failing = std::make_shared<size_t>(0);
+    return [tty, start, failing](size_t done, size_t total, const CorpusRow& row) {
+        const bool vulkan_ok = row.targets.count("spirv") && row.targets.at("spirv").status == "agrees";
+        *failing += !vulkan_ok;
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double eta = done ? secs / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+        const std::string status = fmt::format("{}/{} presets, {} not rendered on Vulkan, {:.0f} s, ~{:.0f} s left", done, total,
+                                               *failing, secs, eta);
+        if (tty) {
+            const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
+            fmt::print("\r\033[K[{}{}] {}", std::string(filled, '#'), std::string(width - filled, '.'), status);
+            if (done == total) fmt::print("\n");
+            std::fflush(stdout);
+        } else if (done == total || (done * 50 / total) != ((done - 1) * 50 / total)) {
+            fmt::print("corpus: {}\n", status);
+            std::fflush(stdout);
+        }
+    };
+}
+
+}  // namespace
+
+Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
+    auto a = std::make_shared<CorpusArgs>();
+    auto* cmd = app.add_subcommand("corpus", "Every RetroArch .slangp under a folder through import, every target and its consumer: a dashboard");
+    cmd->add_option("dir", a->dir, "The folder of .slangp presets (searched recursively)")->required();
+    cmd->add_option("--root", a->root, "No file a preset reads may lie outside this folder (default: DIR)");
+    cmd->add_option("--report", a->report, "Write corpus.json and corpus.html into this folder");
+    cmd->add_option("--target", a->targets, "Targets (repeat or comma-separate; default: all); spirv (Vulkan) always runs: it judges the others")
+        ->delimiter(',');
+    cmd->add_flag("--vulkan-only", a->vulkan_only, "Only the spirv target on Vulkan (the quick whole-library sweep)");
+    cmd->add_option("--shard", a->shard, "Run share i of n (1-based): every n-th preset")->capture_default_str();
+    cmd->add_option("-j,--jobs", a->jobs, "Worker threads")->check(CLI::Range(1, 64))->capture_default_str();
+    cmd->add_option("--source-size", a->source_size, "The generated input's size (pixel_art)")->capture_default_str();
+    cmd->add_option("--size", a->size, "The display size")->capture_default_str();
+    cmd->add_option("--frame", a->frame, "The frame judged (frames 0..N run)")->check(CLI::Range(0, 1000))->capture_default_str();
+    cmd->add_option("--min-psnr", a->min_psnr, "A target agrees with Vulkan at or above this PSNR (dB)")->check(CLI::Range(0.0, 100.0))->capture_default_str();
+    cmd->add_flag("--smooth", a->smooth, "Filter linearly where a preset leaves the filter unset (RetroArch's video_smooth)");
+    cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
+    cmd->add_option("--retroarch", a->retroarch,
+                    "A folder of RetroArch's renders (<preset path>.png, tools/retroarch-runner/corpus-renders.sh): adds the RetroArch column");
+    cmd->add_option("--fail-under", a->fail_under, "Exit 1 when fewer than this percentage of the presets render on Vulkan")
+        ->check(CLI::Range(0.0, 100.0));
+    return [&g, a]() {
+        const std::string root = a->root.empty() ? a->dir : a->root;
+        auto targets = corpus_targets(a->targets, a->vulkan_only);
+        if (!targets.ok()) return report(targets.error());
+        auto shard = Shard::parse(a->shard);
+        if (!shard.ok()) return report(shard.error());
+        auto source = parse_size(a->source_size);
+        if (!source.ok()) return report(make_error(source.error().message, {}, 0, "--source-size"));
+        auto display = parse_size(a->size);
+        if (!display.ok()) return report(display.error());
+        auto found = list_corpus_presets(a->dir);
+        if (!found.ok()) return report(found.error());
+        std::error_code ec;
+        const auto root_abs = std::filesystem::weakly_canonical(root, ec), dir_abs = std::filesystem::weakly_canonical(a->dir, ec);
+        const std::string under = std::filesystem::relative(dir_abs, root_abs, ec).generic_string();
+        if (ec || under.empty() || under.rfind("..", 0) == 0)
+            return report(make_error("DIR must lie inside --root", a->dir, 0, "--root"));
+        CorpusRequest request;
+        request.root = root;
+        for (const std::string& p : found.value()) request.presets.push_back(under == "." ? p : under + "/" + p);
+        if (request.presets.empty()) return report(make_error("has no .slangp presets", a->dir, 0, "corpus"));
+        request.targets = targets.value();
+        request.shard = shard.value();
+        request.jobs = a->jobs;
+        std::tie(request.source_width, request.source_height) = source.value();
+        std::tie(request.display_width, request.display_height) = display.value();
+        request.frame = a->frame;
+        request.min_psnr = a->min_psnr;
+        request.smooth = a->smooth;
+        request.vulkan.device = a->device;
+        request.retroarch_dir = a->retroarch;
+        if (!a->retroarch.empty() && !std::filesystem::is_directory(a->retroarch, ec))
+            return report(make_error("is not a folder", a->retroarch, 0, "--retroarch"));
+        // Check the output folder before the long run, not after it.
+        if (!a->report.empty() && std::filesystem::exists(a->report, ec) && !std::filesystem::is_directory(a->report, ec))
+            return report(make_error("exists and is not a folder", a->report, 0, "--report"));
+
+        const auto start = std::chrono::steady_clock::now();
+        Cache cache = make_cache(g);
+        auto result = run_corpus(request, cache, corpus_progress());
+        if (!result.ok()) return report(result.error());
+        const CorpusReport& r = result.value();
+        if (!a->report.empty())
+            if (auto s = write_corpus_report(r, a->report); !s.ok()) return report(s.error());
+        size_t imported = 0, vulkan = 0;
+        for (const CorpusRow& row : r.rows) {
+            imported += row.import_error.empty();
+            vulkan += row.targets.at("spirv").status == "agrees";
+        }
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const size_t n = r.rows.size();
+        fmt::print("corpus: {} presets (shard {}/{}): {} imported ({:.1f}%), {} rendered on Vulkan ({:.1f}%), {:.1f} s{}\n", n,
+                   r.shard_index, r.shard_count, imported, n ? 100.0 * imported / n : 0.0, vulkan, n ? 100.0 * vulkan / n : 0.0,
+                   secs, a->report.empty() ? "" : "; dashboard: " + a->report + "/corpus.html");
+        for (size_t t = 1; t < r.targets.size(); ++t) {
+            size_t agrees = 0;
+            for (const CorpusRow& row : r.rows) agrees += row.targets.at(r.targets[t]).status == "agrees";
+            fmt::print("  {:<10} {} agree with Vulkan ({:.1f}%)\n", r.targets[t], agrees, n ? 100.0 * agrees / n : 0.0);
+        }
+        if (a->fail_under > 0 && n && 100.0 * static_cast<double>(vulkan) / static_cast<double>(n) < a->fail_under) return kExitValidation;
+        return kExitOk;
+    };
+}
+
+}  // namespace crtforge::cli

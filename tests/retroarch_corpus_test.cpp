@@ -1,0 +1,151 @@
+// crtforge corpus: a small library of our own (a preset that draws, one that reads a sampler only a
+// macro names and one an #ifdef hides, one whose value lies outside its range, one that does not
+// import, one whose SPIR-V fails) through the corpus run on Vulkan and GL: rows, statuses, reasons,
+// shards and a byte-identical report.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "crtforge/validate/corpus.hpp"
+#include "tests/test_support.hpp"
+
+using namespace crtforge;
+
+namespace {
+
+void write(const std::string& path, const std::string& text) {
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path) << text;
+}
+
+// A pass whose fragment main() body is `body` (reads `Source` at vTexCoord as `c`).
+std::string pass(const std::string& declarations, const std::string& body) {
+    return "#version 450\n"
+           "layout(push_constant) uniform Push { vec4 SourceSize; float GAIN; } params;\n"
+           "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
+           "#pragma parameter GAIN \"Gain\" 1.0 0.5 2.0 0.1\n"
+           "#pragma stage vertex\n"
+           "layout(location = 0) in vec4 Position;\n"
+           "layout(location = 1) in vec2 TexCoord;\n"
+           "layout(location = 0) out vec2 vTexCoord;\n"
+           "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }\n"
+           "#pragma stage fragment\n"
+           "layout(location = 0) in vec2 vTexCoord;\n"
+           "layout(location = 0) out vec4 FragColor;\n" +
+           declarations + "void main() {\n" + body + "\n}\n";
+}
+
+const char* kDraw = "    FragColor = vec4(texture(Source, vTexCoord).rgb * params.GAIN, 1.0);";
+
+// The library: good/plain.slangp, good/macro.slangp (reads the first pass by a macro, an #ifdef
+// hides a sampler no texture backs), good/wide.slangp (GAIN = 3 outside [0.5, 2]),
+// bad/broken.slangp (a missing shader), bad/nospirv.slangp (a type error).
+void write_library(const test::TempDir& dir) {
+    write(dir / "shaders/plain.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", kDraw));
+    write(dir / "shaders/macro.slang",
+          pass("#define Source firstPass\n"
+               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+               "#ifdef NEVER_DEFINED\n"
+               "layout(set = 0, binding = 3) uniform sampler2D NoSuchTexture;\n"
+               "#endif\n",
+               kDraw));
+    write(dir / "shaders/typo.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", "    FragColor = 1.0;"));
+    write(dir / "good/plain.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\n");
+    write(dir / "good/macro.slangp",
+          "shaders = 2\nshader0 = ../shaders/plain.slang\nalias0 = firstPass\nshader1 = ../shaders/macro.slang\n");
+    write(dir / "good/wide.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\nGAIN = 3.0\n");
+    write(dir / "bad/broken.slangp", "shaders = 1\nshader0 = ../shaders/missing.slang\n");
+    write(dir / "bad/nospirv.slangp", "shaders = 1\nshader0 = ../shaders/typo.slang\n");
+}
+
+const CorpusRow& row_of(const CorpusReport& report, const std::string& preset) {
+    for (const CorpusRow& row : report.rows)
+        if (row.preset == preset) return row;
+    FAIL("no row for " << preset);
+    return report.rows.front();
+}
+
+}  // namespace
+
+TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each target's consumer and a judged render",
+          "[retroarch][corpus-command]") {
+    test::TempDir dir;
+    write_library(dir);
+    auto presets = list_corpus_presets(dir.path());
+    REQUIRE(presets.ok());
+    REQUIRE(presets.value() ==
+            std::vector<std::string>{"bad/broken.slangp", "bad/nospirv.slangp", "good/macro.slangp", "good/plain.slangp", "good/wide.slangp"});
+
+    CorpusRequest request;
+    request.root = dir.path();
+    request.presets = presets.value();
+    request.targets = {TargetId::Spirv, TargetId::Glsl330};
+    request.source_width = 32;
+    request.source_height = 24;
+    request.display_width = 64;
+    request.display_height = 48;
+    request.frame = 1;
+    auto run = run_corpus(request, Cache());
+    INFO((run.ok() ? std::string() : run.error().str()));
+    REQUIRE(run.ok());
+    const CorpusReport& report = run.value();
+    REQUIRE(report.rows.size() == 5);
+    REQUIRE(report.targets == std::vector<std::string>{"spirv", "glsl330"});
+
+    SECTION("presets that import render on Vulkan, and GL agrees with it") {
+        for (const char* name : {"good/plain.slangp", "good/macro.slangp", "good/wide.slangp"}) {
+            INFO(name);
+            const CorpusRow& row = row_of(report, name);
+            CHECK(row.import_error.empty());
+            CHECK(row.spirv_error.empty());
+            CHECK(row.passes_spirv == row.passes);
+            for (const char* target : {"spirv", "glsl330"}) {
+                INFO(target << ": " << row.targets.at(target).reason);
+                CHECK(row.targets.at(target).status == "agrees");
+                CHECK(row.targets.at(target).passes_compiled == row.passes);
+            }
+            CHECK(row.targets.at("glsl330").psnr >= 40.0);
+        }
+        CHECK(row_of(report, "good/macro.slangp").passes == 2);
+        // A value outside its range is kept (widened), with a warning, as RetroArch keeps it.
+        CHECK(row_of(report, "good/wide.slangp").warnings == 1);
+    }
+    SECTION("failures say which step failed and why, and skip what follows") {
+        const CorpusRow& broken = row_of(report, "bad/broken.slangp");
+        CHECK_THAT(broken.import_error, Catch::Matchers::Contains("missing.slang"));
+        CHECK(broken.targets.at("spirv").status == "skipped");
+        const CorpusRow& nospirv = row_of(report, "bad/nospirv.slangp");
+        CHECK(nospirv.import_error.empty());
+        CHECK_THAT(nospirv.spirv_error, Catch::Matchers::Contains("typo.slang"));
+        CHECK(nospirv.passes_spirv == 0);
+        for (const char* target : {"spirv", "glsl330"}) CHECK(nospirv.targets.at(target).status == "compile");
+        CHECK(corpus_reason_class(nospirv.spirv_error).find("typo.slang") == std::string::npos);
+    }
+    SECTION("the report is byte-identical run to run, and shards split the rows") {
+        auto again = run_corpus(request, Cache());
+        REQUIRE(again.ok());
+        CHECK(corpus_json(again.value()) == corpus_json(report));
+        CHECK(corpus_html(again.value()) == corpus_html(report));
+        std::vector<std::string> seen;
+        for (unsigned k = 1; k <= 2; ++k) {
+            CorpusRequest shard = request;
+            shard.targets = {TargetId::Spirv};
+            shard.shard = Shard{k, 2};
+            auto part = run_corpus(shard, Cache());
+            REQUIRE(part.ok());
+            for (const CorpusRow& row : part.value().rows) seen.push_back(row.preset);
+        }
+        std::sort(seen.begin(), seen.end());
+        CHECK(seen == presets.value());
+        const std::string html = corpus_html(report);
+        for (const std::string& p : presets.value()) CHECK(html.find(p) != std::string::npos);
+    }
+}
+
+TEST_CASE("a failure's reason class drops where it happened and what varies", "[retroarch][corpus-command]") {
+    CHECK(corpus_reason_class("/a/b.slang:12: error: frag shader: 'foo' : undeclared identifier") ==
+          "frag shader: 'X' : undeclared identifier");
+    CHECK(corpus_reason_class("x.toml:3:7: error: field 'f': preset p, target wgsl: binding 4 of 12") ==
+          "field 'X': preset p, target wgsl: binding N of N");
+    CHECK(corpus_reason_class("error: preset p, target wgsl: the stages differ") == "the stages differ");
+}

@@ -1,0 +1,310 @@
+// run_corpus(): each preset of the shard imported into a folder of its own (removed when done), its
+// passes compiled to SPIR-V one by one (a failing pass does not hide the rest), every target's
+// emitter and consumer compile per pass, the scene rendered by each target's consumer and judged
+// against the Vulkan render. Worker threads each own their engines (TargetRenderer); the heavy
+// consumers (Godot, Dawn) are the process's shared servers, started once per run.
+#include "crtforge/validate/corpus.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "crtforge/exporter.hpp"
+#include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/image_io.hpp"
+#include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/slang_import.hpp"
+#include "crtforge/template_library.hpp"
+#include "crtforge/validate/target_render.hpp"
+
+namespace crtforge {
+
+namespace fs = std::filesystem;
+
+Result<std::vector<std::string>> list_corpus_presets(const std::string& root) {
+    std::error_code ec;
+    if (!fs::is_directory(root, ec)) return make_error("is not a folder", root, 0, "corpus");
+    std::vector<std::string> found;
+    fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, ec), end;
+    for (; !ec && it != end; it.increment(ec)) {
+        const fs::directory_entry& entry = *it;
+        std::error_code e;
+        if (entry.is_symlink(e) || !entry.is_regular_file(e) || entry.path().extension() != ".slangp") continue;
+        found.push_back(fs::relative(entry.path(), root, e).generic_string());
+    }
+    if (ec) return make_error("cannot list: " + ec.message(), root, 0, "corpus");
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+namespace {
+
+// A folder of the run's own under the system's temporary folder, removed with everything in it.
+class WorkDir {
+public:
+    WorkDir() {
+        std::error_code ec;
+        std::string pattern = (fs::temp_directory_path(ec) / "crtforge-corpus-XXXXXX").string();
+        if (ec) pattern = "/tmp/crtforge-corpus-XXXXXX";
+        if (::mkdtemp(pattern.data())) path_ = pattern;
+    }
+    ~WorkDir() {
+        std::error_code ec;
+        if (!path_.empty()) fs::remove_all(path_, ec);
+    }
+    WorkDir(const WorkDir&) = delete;
+    WorkDir& operator=(const WorkDir&) = delete;
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
+
+constexpr size_t kMaxReason = 400;
+
+std::string one_line(const Diagnostic& d) {
+    std::string s = d.str();
+    if (s.size() > kMaxReason) s = s.substr(0, kMaxReason - 3) + "...";
+    return s;
+}
+
+bool all_finite(const Image& image) {
+    return std::all_of(image.rgba.begin(), image.rgba.end(), [](float v) { return std::isfinite(v); });
+}
+
+std::string folder_of(const std::string& preset) {
+    const size_t slash = preset.rfind('/');
+    if (slash == std::string::npos) return ".";
+    std::string dir = preset.substr(0, slash);
+    // At most two levels: a folder's summary gathers its sub-folders.
+    const size_t first = dir.find('/');
+    if (first != std::string::npos) {
+        const size_t second = dir.find('/', first + 1);
+        if (second != std::string::npos) dir.resize(second);
+    }
+    return dir;
+}
+
+CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const std::string& work, const Cache& cache,
+                  TargetRenderer& renderer) {
+    CorpusRow row;
+    row.preset = rel;
+    row.folder = folder_of(rel);
+    for (TargetId t : request.targets) row.targets[target_info(t).name] = {};
+    auto skip_all = [&](const std::string& why) {
+        for (auto& [name, r] : row.targets) r.reason = why;
+    };
+
+    SlangImportOptions options;
+    options.root = request.root;
+    options.unset_filter = request.smooth ? Filter::Linear : Filter::Nearest;
+    options.source_width = request.source_width;
+    options.source_height = request.source_height;
+    struct RemovedAfter {  // the preset's overlay goes however the preset ends
+        const std::string& dir;
+        ~RemovedAfter() {
+            std::error_code e;
+            fs::remove_all(dir, e);
+        }
+    } removed_after{work};
+    auto imported = import_slangp(request.root + "/" + rel, options);
+    if (!imported.ok()) {
+        row.import_error = one_line(imported.error());
+        skip_all("not imported");
+        return row;
+    }
+    row.warnings = imported.value().warnings.size();
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    auto library = [&]() -> Result<std::shared_ptr<TemplateLibrary>> {
+        if (auto s = write_imported_preset(imported.value(), work); !s.ok()) return s.error();
+        return TemplateLibrary::load(work);
+    }();
+    if (!library.ok()) {
+        row.import_error = one_line(library.error());
+        skip_all("not imported");
+        return row;
+    }
+    const TemplateLibrary& lib = *library.value();
+    const Preset* preset = lib.find_preset(imported.value().name);
+    if (!preset) {
+        row.import_error = "the imported overlay lacks preset '" + imported.value().name + "'";
+        skip_all("not imported");
+        return row;
+    }
+    row.passes = preset->passes.size();
+
+    // SPIR-V, pass by pass: every pass that compiles is still emitted for the targets.
+    std::vector<std::optional<CompiledVariant>> compiled(preset->passes.size());
+    for (size_t i = 0; i < preset->passes.size(); ++i) {
+        auto pass = compile_variant(lib, *preset, VariantOptions{}, cache, i);
+        if (pass.ok()) {
+            compiled[i] = std::move(pass.value());
+            ++row.passes_spirv;
+        } else if (row.spirv_error.empty()) {
+            row.spirv_error = one_line(pass.error());
+        }
+    }
+
+    auto luts = read_file_luts(*preset);
+    const int w = request.source_width, h = request.source_height;
+    SceneRenderRequest scene;
+    scene.preset = preset;
+    scene.source = [w, h](int frame) { return make_test_input("pixel_art", w, h, frame); };
+    scene.width = request.display_width;
+    scene.height = request.display_height;
+    scene.frames = {request.frame};
+    scene.frame_count_base = 1;  // RetroArch's Vulkan driver draws its first frame with FrameCount 1
+    // RetroArch's display is 8-bit: values clamp to 0..1 and a NaN shows as 0, as on any UNORM target.
+    scene.format = OutputFormat::Rgba8Unorm;
+    if (luts.ok()) scene.file_luts = luts.value();
+    std::vector<CompiledVariant> passes;
+    if (row.passes_spirv == preset->passes.size())
+        for (auto& c : compiled) passes.push_back(*c);
+    scene.passes = &passes;
+
+    std::optional<Image> vulkan;  // the judge of the other targets
+    for (TargetId t : request.targets) {
+        CorpusTargetResult& r = row.targets[target_info(t).name];
+        std::vector<TargetOutput> outputs;
+        std::string first_failure, status;
+        for (size_t i = 0; i < compiled.size(); ++i) {
+            if (!compiled[i]) continue;
+            auto emitted = emit_target(*compiled[i], t, cache);
+            if (!emitted.ok()) {
+                if (first_failure.empty()) first_failure = one_line(emitted.error()), status = "refused";
+                continue;
+            }
+            bool accepted = true;
+            for (const OutputFile& f : emitted.value().files) {
+                if (!f.is_shader()) continue;
+                auto consumed = renderer.compile(t, f);
+                if (consumed.ok()) continue;
+                accepted = false;
+                if (first_failure.empty())
+                    first_failure = "pass " + std::to_string(i) + " (" + preset->passes[i].alias + "), " + f.manifest_role() + ": " +
+                                    one_line(consumed.error()), status = "compile";
+                break;
+            }
+            if (accepted) ++r.passes_compiled;
+            outputs.push_back(std::move(emitted.value()));
+        }
+        if (!row.spirv_error.empty()) {
+            r.status = "compile";
+            r.reason = "SPIR-V: " + row.spirv_error;
+            continue;
+        }
+        if (!first_failure.empty()) {
+            r.status = status;
+            r.reason = first_failure;
+            continue;
+        }
+        if (!luts.ok()) {
+            r.status = "render";
+            r.reason = one_line(luts.error());
+            continue;
+        }
+        scene.target = t;
+        scene.outputs = &outputs;
+        auto images = renderer.render_scene(scene);
+        if (!images.ok() || images.value().empty()) {
+            r.status = "render";
+            r.reason = images.ok() ? "no image" : one_line(images.error());
+            continue;
+        }
+        Image& image = images.value().front();
+        if (!all_finite(image)) {
+            r.status = "render";
+            r.reason = "the render has non-finite pixels (NaN or infinity)";
+            continue;
+        }
+        if (t == TargetId::Spirv) {
+            r.status = "agrees";
+            r.psnr = 100;
+            vulkan = std::move(image);
+            continue;
+        }
+        if (!vulkan) {
+            r.status = "differs";
+            r.reason = "no Vulkan render to judge it against";
+            continue;
+        }
+        auto metrics = compare_images(image, *vulkan);
+        if (!metrics.ok()) {
+            r.status = "differs";
+            r.reason = one_line(metrics.error());
+            continue;
+        }
+        r.psnr = metrics.value().psnr;
+        r.status = r.psnr >= request.min_psnr ? "agrees" : "differs";
+        if (r.status == "differs")
+            r.reason = "PSNR " + std::to_string(r.psnr).substr(0, 5) + " dB against Vulkan (worst pixel at " +
+                       std::to_string(metrics.value().worst_x) + "," + std::to_string(metrics.value().worst_y) + ")";
+    }
+
+    if (!request.retroarch_dir.empty()) {
+        const std::string path = request.retroarch_dir + "/" + rel + ".png";
+        if (!fs::exists(path, ec)) {
+            row.retroarch = "not run";
+        } else if (!vulkan) {
+            row.retroarch = "render";
+        } else if (auto theirs = read_image(path); !theirs.ok()) {
+            row.retroarch = "differs";
+        } else if (auto m = compare_images(*vulkan, theirs.value()); !m.ok()) {
+            row.retroarch = "differs";
+        } else {
+            row.retroarch_psnr = m.value().psnr;
+            row.retroarch = row.retroarch_psnr >= request.min_psnr ? "agrees" : "differs";
+        }
+    }
+    return row;
+}
+
+}  // namespace
+
+Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache, const CorpusProgress& progress) {
+    if (request.shard.count == 0 || request.shard.index < 1 || request.shard.index > request.shard.count)
+        return make_error("shard index must be 1..count", {}, 0, "--shard");
+    CorpusReport report;
+    report.root = request.root;
+    report.shard_index = request.shard.index;
+    report.shard_count = request.shard.count;
+    report.total_presets = request.presets.size();
+    report.settings = request;
+    for (TargetId t : request.targets) report.targets.push_back(target_info(t).name);
+
+    std::vector<std::string> mine;
+    for (size_t i = 0; i < request.presets.size(); ++i)
+        if (i % request.shard.count == request.shard.index - 1) mine.push_back(request.presets[i]);
+    WorkDir work;
+    if (work.path().empty()) return make_error("cannot make a temporary folder", {}, 0, "corpus");
+
+    report.rows.resize(mine.size());
+    std::atomic<size_t> next{0};
+    size_t done = 0;
+    std::mutex progress_mutex;
+    auto worker = [&] {
+        TargetRenderer renderer(request.vulkan);
+        for (size_t i = next++; i < mine.size(); i = next++) {
+            report.rows[i] = run_one(request, mine[i], work.path() + "/" + std::to_string(i), cache, renderer);
+            std::lock_guard<std::mutex> lock(progress_mutex);
+            ++done;
+            if (progress) progress(done, mine.size(), report.rows[i]);
+        }
+    };
+    const unsigned threads = std::max(1u, std::min<unsigned>(request.jobs, static_cast<unsigned>(std::max<size_t>(mine.size(), 1))));
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    return report;
+}
+
+}  // namespace crtforge
