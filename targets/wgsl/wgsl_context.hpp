@@ -62,10 +62,27 @@ struct StageInterface {
     std::vector<Output> outputs;
 };
 
+// What one stage declared that a later stage declaring the same resource at the same binding
+// shares (a program pass's vertex and fragment stages both read crtforge's CrtParams, and may
+// sample the same texture): one declaration in the module, one name, one sampler binding.
+struct SharedUniform {
+    std::string struct_name, variable, body;  // body: the struct's declaration after its name
+};
+struct SharedTexture {
+    std::string name, type, sampler;  // sampler: the split-off sampler's name ("" if none)
+    uint32_t sampler_binding = 0;
+};
+struct SharedResources {
+    std::map<std::pair<uint32_t, uint32_t>, SharedUniform> uniforms;   // (group, binding)
+    std::map<std::pair<uint32_t, uint32_t>, SharedTexture> textures;   // (group, binding)
+    std::map<uint32_t, uint32_t> next_sampler_binding;  // group -> first binding no stage uses
+};
+using SharedUniforms = SharedResources;
+
 class ModuleEmitter {
 public:
     ModuleEmitter(const SpirvModule& module, const EmitOptions& options, NameScope& global_names,
-                  const std::string& stage_name, const std::string& entry_name);
+                  SharedUniforms& shared_uniforms, const std::string& stage_name, const std::string& entry_name);
 
     const SpirvModule& m;
     const EmitOptions& options;
@@ -100,6 +117,7 @@ public:
     StageInterface interface;
     std::map<uint32_t, const Instruction*> private_globals;  // Private-storage variables
     NameScope& global_names;  // module-scope names of the whole WGSL module
+    SharedUniforms& shared_uniforms;
     NameScope stage_names;    // those plus this stage's entry parameters and locals
     std::map<uint32_t, std::string> function_names;  // non-entry functions
     // A module-scope identifier: unique in the whole module, and reserved for this stage's locals.

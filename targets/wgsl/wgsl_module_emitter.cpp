@@ -41,9 +41,9 @@ const char* storage_class_name(spv::StorageClass s) {
 
 }  // namespace
 
-ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, NameScope& names,
+ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, NameScope& names, SharedUniforms& shared,
                              const std::string& stage, const std::string& entry)
-    : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names) {}
+    : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names), shared_uniforms(shared) {}
 
 std::string ModuleEmitter::module_scope_name(const std::string& wanted) {
     NameScope both = global_names;
@@ -244,13 +244,8 @@ Expr ModuleEmitter::constant(uint32_t id) {
 }
 
 void ModuleEmitter::declare_resources() {
-    // Samplers split off combined image samplers go after every binding the module uses.
-    std::map<uint32_t, uint32_t> next_binding;  // group -> first free binding
-    for (const auto& [id, var] : m.globals) {
-        auto d = m.decorations.find(id);
-        if (d != m.decorations.end() && d->second.binding)
-            next_binding[d->second.set.value_or(0)] = std::max(next_binding[d->second.set.value_or(0)], *d->second.binding + 1);
-    }
+    // Samplers split off combined image samplers go after every binding any stage uses.
+    std::map<uint32_t, uint32_t>& next_binding = shared_uniforms.next_sampler_binding;
     for (const auto& [id, var] : m.globals) {
         const Type& pointer = type(var.type);
         const spv::StorageClass storage = pointer.storage;
@@ -274,12 +269,25 @@ void ModuleEmitter::declare_resources() {
         b.stages = {stage_name};
         if (storage == spv::StorageClassUniform) {
             if (pointee.op != spv::OpTypeStruct) fail("a uniform variable that is not a block");
-            const std::string sname = struct_name(pointer.element);
+            std::string sname = struct_name(pointer.element);
             if (wanted.empty() || wanted == "_") {
                 auto named = options.block_instance_names.find(m.name(pointer.element));
                 wanted = named != options.block_instance_names.end() ? named->second : "params";
             }
-            const std::string name = module_scope_name(wanted);
+            // The same block at the same binding as an earlier stage's: that declaration, shared.
+            const std::string& decl = struct_decls.at(sname);
+            const std::string body = decl.substr(decl.find('{'));
+            std::string name;
+            if (auto shared = shared_uniforms.uniforms.find({group, binding});
+                shared != shared_uniforms.uniforms.end() && shared->second.body == body) {
+                struct_decls.erase(sname);
+                struct_order.erase(std::find(struct_order.begin(), struct_order.end(), sname));
+                sname = struct_names_[pointer.element] = shared->second.struct_name;
+                name = shared->second.variable;
+            } else {
+                name = module_scope_name(wanted);
+                shared_uniforms.uniforms.emplace(std::make_pair(group, binding), SharedUniform{sname, name, body});
+            }
             resource_names[id] = name;
             resource_decls[{group, binding}] =
                 fmt::format("@group({}) @binding({}) var<uniform> {}: {};\n", group, binding, name, sname);
@@ -297,19 +305,29 @@ void ModuleEmitter::declare_resources() {
         }
         // UniformConstant: a combined image sampler, a texture, or a sampler.
         if (wanted.empty()) wanted = pointee.op == spv::OpTypeSampler ? "samp" : "tex";
-        const std::string name = module_scope_name(wanted);
+        const bool is_texture = pointee.op == spv::OpTypeSampledImage || pointee.op == spv::OpTypeImage;
+        const uint32_t image = pointee.op == spv::OpTypeSampledImage ? pointee.element : pointer.element;
+        const std::string texture_type = is_texture ? type_name(image) : "";
+        const auto shared = shared_uniforms.textures.find({group, binding});
+        const bool reuse = is_texture && shared != shared_uniforms.textures.end() && shared->second.type == texture_type &&
+                           shared->second.sampler.empty() == (pointee.op != spv::OpTypeSampledImage);
+        const std::string name = reuse ? shared->second.name : module_scope_name(wanted);
         resource_names[id] = name;
-        if (pointee.op == spv::OpTypeSampledImage || pointee.op == spv::OpTypeImage) {
-            const uint32_t image = pointee.op == spv::OpTypeSampledImage ? pointee.element : pointer.element;
-            const std::string texture_type = type_name(image);
+        if (is_texture) {
             resource_decls[{group, binding}] = fmt::format("@group({}) @binding({}) var {}: {};\n", group, binding, name, texture_type);
             b.name = name;
             b.kind = "texture";
             b.wgsl_type = texture_type;
             b.sample_type = type(type(image).element).op == spv::OpTypeFloat ? "float" : type(type(image).element).is_signed ? "sint" : "uint";
+            if (!reuse) shared_uniforms.textures.emplace(std::make_pair(group, binding), SharedTexture{name, texture_type, "", 0});
             if (pointee.op == spv::OpTypeSampledImage) {
-                const uint32_t sampler_binding = next_binding[group]++;
-                const std::string sampler = module_scope_name(name + "_sampler");
+                SharedTexture& st = shared_uniforms.textures.at({group, binding});
+                if (!reuse) {
+                    st.sampler_binding = next_binding[group]++;
+                    st.sampler = module_scope_name(name + "_sampler");
+                }
+                const uint32_t sampler_binding = st.sampler_binding;
+                const std::string sampler = st.sampler;
                 sampler_names[id] = sampler;
                 resource_decls[{group, sampler_binding}] =
                     fmt::format("@group({}) @binding({}) var {}: sampler;\n", group, sampler_binding, sampler);
@@ -503,6 +521,7 @@ void ModuleEmitter::emit() {
 
 Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOptions& options) {
     NameScope global_names;
+    SharedUniforms shared_uniforms;
     std::vector<SpirvModule> modules;
     std::vector<std::unique_ptr<ModuleEmitter>> emitters;
     try {
@@ -511,9 +530,16 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
             if (!parsed.ok()) return parsed.error();
             modules.push_back(std::move(parsed.value()));
         }
+        for (const SpirvModule& module : modules)
+            for (const auto& [id, var] : module.globals) {
+                auto d = module.decorations.find(id);
+                if (d == module.decorations.end() || !d->second.binding) continue;
+                uint32_t& next = shared_uniforms.next_sampler_binding[d->second.set.value_or(0)];
+                next = std::max(next, *d->second.binding + 1);
+            }
         for (size_t i = 0; i < modules.size(); ++i) {
             const auto model = modules[i].entry_points.empty() ? spv::ExecutionModelMax : modules[i].entry_points[0].model;
-            auto emitter = std::make_unique<ModuleEmitter>(modules[i], options, global_names,
+            auto emitter = std::make_unique<ModuleEmitter>(modules[i], options, global_names, shared_uniforms,
                                                            model == spv::ExecutionModelVertex ? "vertex" : "fragment",
                                                            stages[i].entry_name);
             emitter->emit();
@@ -528,6 +554,10 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
 
     // Merge: identical declarations are shared; two different ones at one binding are an error.
     WgslModule out;
+    auto one_line = [](std::string text) {
+        std::replace(text.begin(), text.end(), '\n', ' ');
+        return text;
+    };
     std::string text;
     if (!options.header_comment.empty()) {
         std::istringstream lines(options.header_comment);
@@ -553,7 +583,8 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
             auto [it, inserted] = resources.insert({key, decl});
             if (!inserted && it->second != decl)
                 return make_validation_error(fmt::format("WGSL emitter: the stages declare different resources at "
-                                                         "@group({}) @binding({})", key.first, key.second));
+                                                         "@group({}) @binding({}): '{}' and '{}'", key.first, key.second,
+                                                         one_line(it->second), one_line(decl)));
         }
     for (const auto& [key, decl] : resources) text += decl;
     if (!resources.empty()) text += "\n";
