@@ -1,7 +1,7 @@
 // crtforge corpus: a small library of our own (a preset that draws, one that reads a sampler only a
 // macro names and one an #ifdef hides, one whose value lies outside its range, one that does not
-// import, one whose SPIR-V fails) through the corpus run on Vulkan and GL: rows, statuses, reasons,
-// shards and a byte-identical report.
+// import, one whose SPIR-V fails) through the corpus run on Vulkan, GL and Godot 3 (which refuses
+// program passes at export): rows, statuses, reasons, shards and a byte-identical report.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -79,7 +79,7 @@ TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each ta
     CorpusRequest request;
     request.root = dir.path();
     request.presets = presets.value();
-    request.targets = {TargetId::Spirv, TargetId::Glsl330};
+    request.targets = {TargetId::Spirv, TargetId::Glsl330, TargetId::Godot3};
     request.source_width = 32;
     request.source_height = 24;
     request.display_width = 64;
@@ -90,7 +90,7 @@ TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each ta
     REQUIRE(run.ok());
     const CorpusReport& report = run.value();
     REQUIRE(report.rows.size() == 5);
-    REQUIRE(report.targets == std::vector<std::string>{"spirv", "glsl330"});
+    REQUIRE(report.targets == std::vector<std::string>{"spirv", "glsl330", "godot3"});
 
     SECTION("presets that import render on Vulkan, and GL agrees with it") {
         for (const char* name : {"good/plain.slangp", "good/macro.slangp", "good/wide.slangp"}) {
@@ -105,6 +105,12 @@ TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each ta
                 CHECK(row.targets.at(target).passes_compiled == row.passes);
             }
             CHECK(row.targets.at("glsl330").psnr >= 40.0);
+            // Godot refuses program passes at export; the reason names the imported stage file
+            // without the run's temporary folder, so reports compare run to run.
+            const CorpusTargetResult& godot = row.targets.at("godot3");
+            CHECK(godot.status == "refused");
+            CHECK_THAT(godot.reason, Catch::Matchers::Contains("<imported>/stages/"));
+            CHECK(godot.reason.find("crtforge-corpus-") == std::string::npos);
         }
         CHECK(row_of(report, "good/macro.slangp").passes == 2);
         // A value outside its range is kept (widened), with a warning, as RetroArch keeps it.

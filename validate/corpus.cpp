@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <regex>
 #include <thread>
 
 #include "crtforge/exporter.hpp"
@@ -69,8 +70,11 @@ private:
 
 constexpr size_t kMaxReason = 400;
 
+// A diagnostic as one line of the report, the run's temporary folder shown as "<imported>" so
+// the same corpus gives the same report.
 std::string one_line(const Diagnostic& d) {
-    std::string s = d.str();
+    static const std::regex overlay(R"([^ :']*crtforge-corpus-[A-Za-z0-9]{6}/[0-9]+/)");
+    std::string s = std::regex_replace(d.str(), overlay, "<imported>/");
     if (s.size() > kMaxReason) s = s.substr(0, kMaxReason - 3) + "...";
     return s;
 }
