@@ -59,6 +59,10 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g);
 // TemplateLibrary::lookup_preset, for symmetry with crtforge::lookup_target.
 Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name);
 
+// On a terminal, a progress bar drawn in place: "[#####.....] text", ended by a newline once
+// done == total.
+void draw_progress_bar(size_t done, size_t total, const std::string& text);
+
 // Shared parsing helpers.
 Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"
 // --fit: stretch, aspect or integer; empty: none given.

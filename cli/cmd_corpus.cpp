@@ -55,10 +55,7 @@ CorpusProgress corpus_progress() {
         const std::string status = fmt::format("{}/{} presets, {} not rendered on Vulkan, {:.0f} s, ~{:.0f} s left", done, total,
                                                *failing, secs, eta);
         if (tty) {
-            const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
-            fmt::print("\r\033[K[{}{}] {}", std::string(filled, '#'), std::string(width - filled, '.'), status);
-            if (done == total) fmt::print("\n");
-            std::fflush(stdout);
+            draw_progress_bar(done, total, status);
         } else if (done == total || (done * 50 / total) != ((done - 1) * 50 / total)) {
             fmt::print("corpus: {}\n", status);
             std::fflush(stdout);
@@ -86,7 +83,7 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_flag("--smooth", a->smooth, "Filter linearly where a preset leaves the filter unset (RetroArch's video_smooth)");
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
     cmd->add_option("--retroarch", a->retroarch,
-                    "A folder of RetroArch's renders (<preset path>.png, tools/retroarch-runner/corpus-renders.sh): adds the RetroArch column");
+                    "A folder of RetroArch's renders of the judged frame (<dir>/<preset path>.png, at --size, from the same input): adds the RetroArch column");
     cmd->add_option("--fail-under", a->fail_under, "Exit 1 when fewer than this percentage of the presets render on Vulkan")
         ->check(CLI::Range(0.0, 100.0));
     return [&g, a]() {

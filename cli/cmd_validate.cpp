@@ -87,12 +87,7 @@ ProgressFn make_progress() {
     return [tty](size_t done, size_t total, const CheckResult& r) {
         if (!r.passed)
             fmt::print("{}FAIL {} {} {}: {}\n", tty ? "\r\033[K" : "", r.preset, r.target, r.check, r.message);
-        if (tty) {
-            const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
-            fmt::print("\r[{}{}] {}/{}", std::string(filled, '#'), std::string(width - filled, '.'), done, total);
-            if (done == total) fmt::print("\n");
-            std::fflush(stdout);
-        }
+        if (tty) draw_progress_bar(done, total, fmt::format("{}/{}", done, total));
     };
 }
 

@@ -1,14 +1,15 @@
 // crtforge: a thin command line over the crtforge library.
-#include <stdlib.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
+#include <optional>
 #include <new>
 #include <set>
 #include <iostream>
 
+#include <fmt/format.h>
+
 #include "cli/cli_common.hpp"
+#include "crtforge/files.hpp"
 #include "crtforge/runtime/process_memory.hpp"
 #include "crtforge/slang_import.hpp"
 #include "crtforge/version.hpp"
@@ -22,16 +23,6 @@ int report(const Diagnostic& d) {
 
 namespace {
 
-// The overlay that .slangp preset arguments are imported into: a temporary folder, removed when
-// crtforge exits (the library reads LUT files from it until then).
-struct ImportedOverlay {
-    std::string dir;
-    ~ImportedOverlay() {
-        std::error_code ec;
-        if (!dir.empty()) std::filesystem::remove_all(dir, ec);
-    }
-};
-
 bool is_slangp(const std::string& arg) {
     return arg.size() > 7 && arg.compare(arg.size() - 7, 7, ".slangp") == 0;
 }
@@ -43,13 +34,14 @@ Result<std::string> import_preset_arguments(const GlobalOptions& g, std::vector<
     if (!g.templates.empty())
         return make_error("a .slangp preset is imported on top of the shipped templates: give it without --templates", {}, 0,
                           "--templates");
-    static ImportedOverlay overlay;
-    if (overlay.dir.empty()) {
-        std::error_code ec;
-        std::string pattern = (std::filesystem::temp_directory_path(ec) / "crtforge-slangp-XXXXXX").string();
-        if (ec || !::mkdtemp(pattern.data())) return make_error("cannot make a temporary folder for the imported preset", {}, 0, "--preset");
-        overlay.dir = pattern;
+    // Removed when crtforge exits: the library reads the LUT files from it until then.
+    static std::optional<TemporaryFolder> overlay;
+    if (!overlay) {
+        auto made = TemporaryFolder::create("crtforge-slangp");
+        if (!made.ok()) return made.error();
+        overlay.emplace(std::move(made.value()));
     }
+    const std::string dir = (overlay->path() / "overlay").string();
     std::set<std::string> names;
     for (std::string& p : presets) {
         if (!is_slangp(p)) continue;
@@ -59,10 +51,10 @@ Result<std::string> import_preset_arguments(const GlobalOptions& g, std::vector<
         if (!names.insert(imported.value().name).second)
             return make_error("two .slangp presets import as '" + imported.value().name + "'; import them with crtforge import --name", p, 0,
                               "--preset");
-        if (auto s = write_imported_preset(imported.value(), overlay.dir); !s.ok()) return s.error();
+        if (auto s = write_imported_preset(imported.value(), dir); !s.ok()) return s.error();
         p = imported.value().name;
     }
-    return overlay.dir;
+    return dir;
 }
 
 }  // namespace
@@ -88,6 +80,13 @@ std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_
 
 Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::string& name) {
     return lib.lookup_preset(name);
+}
+
+void draw_progress_bar(size_t done, size_t total, const std::string& text) {
+    const int width = 30, filled = total ? static_cast<int>(width * done / total) : width;
+    fmt::print("\r\033[K[{}{}] {}", std::string(filled, '#'), std::string(width - filled, '.'), text);
+    if (done == total) fmt::print("\n");
+    std::fflush(stdout);
 }
 
 Cache make_cache(const GlobalOptions& g) {

@@ -76,4 +76,20 @@ Status write_file_atomic(const std::string& path, std::string_view data) {
 
 std::string file_stem(const std::string& path) { return fs::path(path).stem().string(); }
 
+Result<TemporaryFolder> TemporaryFolder::create(const std::string& prefix) {
+    std::error_code ec;
+    std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) base = "/tmp";
+    std::string pattern = (base / (prefix + "-XXXXXX")).string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+        return make_error("cannot create a temporary folder in '" + base.string() + "': " + std::strerror(errno));
+    return TemporaryFolder(std::filesystem::path(pattern));
+}
+
+TemporaryFolder::~TemporaryFolder() {
+    if (path_.empty()) return;
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+}
+
 }  // namespace crtforge

@@ -212,6 +212,23 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
     auto listed = test::run_crtforge("--templates '" + (dir / "out") + "' list");
     CHECK(listed.out.find("mine") != std::string::npos);
 
+    // A .slangp path goes where a preset name goes: imported on the way, beside shipped presets.
+    auto rendered = test::run_crtforge("render --preset '" + slangp + "' --input pixel_art --size 64x48 --output '" +
+                                       (dir / "direct.png") + "'");
+    INFO(rendered.err);
+    CHECK(rendered.exit_code == 0);
+    CHECK(std::filesystem::exists(dir / "direct.png"));
+    auto exported = test::run_crtforge("export --preset '" + slangp + "',classic --target glsl330 --out '" + (dir / "direct-export") + "'");
+    INFO(exported.err);
+    CHECK(exported.exit_code == 0);
+    CHECK(std::filesystem::exists(dir / "direct-export/glsl330/test.first.frag"));
+    CHECK(std::filesystem::exists(dir / "direct-export/glsl330/classic.frag"));
+    auto both = test::run_crtforge("--templates '" + (dir / "out") + "' render --preset '" + slangp +
+                                   "' --input pixel_art --output '" + (dir / "never.png") + "'");
+    CHECK(both.exit_code == 2);
+    CHECK(both.err.find("--templates") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir / "never.png"));
+
     struct Bad {
         const char* what;
         std::string text;

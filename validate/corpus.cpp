@@ -5,12 +5,9 @@
 // consumers (Godot, Dawn) are the process's shared servers, started once per run.
 #include "crtforge/validate/corpus.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -18,6 +15,7 @@
 #include <thread>
 
 #include "crtforge/exporter.hpp"
+#include "crtforge/files.hpp"
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -47,33 +45,12 @@ Result<std::vector<std::string>> list_corpus_presets(const std::string& root) {
 
 namespace {
 
-// A folder of the run's own under the system's temporary folder, removed with everything in it.
-class WorkDir {
-public:
-    WorkDir() {
-        std::error_code ec;
-        std::string pattern = (fs::temp_directory_path(ec) / "crtforge-corpus-XXXXXX").string();
-        if (ec) pattern = "/tmp/crtforge-corpus-XXXXXX";
-        if (::mkdtemp(pattern.data())) path_ = pattern;
-    }
-    ~WorkDir() {
-        std::error_code ec;
-        if (!path_.empty()) fs::remove_all(path_, ec);
-    }
-    WorkDir(const WorkDir&) = delete;
-    WorkDir& operator=(const WorkDir&) = delete;
-    const std::string& path() const { return path_; }
-
-private:
-    std::string path_;
-};
-
 constexpr size_t kMaxReason = 400;
 
 // A diagnostic as one line of the report, the run's temporary folder shown as "<imported>" so
 // the same corpus gives the same report.
 std::string one_line(const Diagnostic& d) {
-    static const std::regex overlay(R"([^ :']*crtforge-corpus-[A-Za-z0-9]{6}/[0-9]+/)");
+    static const std::regex overlay(R"([^ :']*crtforge-corpus-[A-Za-z0-9]{6}/overlay/)");
     std::string s = std::regex_replace(d.str(), overlay, "<imported>/");
     if (s.size() > kMaxReason) s = s.substr(0, kMaxReason - 3) + "...";
     return s;
@@ -96,8 +73,7 @@ std::string folder_of(const std::string& preset) {
     return dir;
 }
 
-CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const std::string& work, const Cache& cache,
-                  TargetRenderer& renderer) {
+CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Cache& cache, TargetRenderer& renderer) {
     CorpusRow row;
     row.preset = rel;
     row.folder = folder_of(rel);
@@ -111,13 +87,6 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const st
     options.unset_filter = request.smooth ? Filter::Linear : Filter::Nearest;
     options.source_width = request.source_width;
     options.source_height = request.source_height;
-    struct RemovedAfter {  // the preset's overlay goes however the preset ends
-        const std::string& dir;
-        ~RemovedAfter() {
-            std::error_code e;
-            fs::remove_all(dir, e);
-        }
-    } removed_after{work};
     auto imported = import_slangp(request.root + "/" + rel, options);
     if (!imported.ok()) {
         row.import_error = one_line(imported.error());
@@ -125,11 +94,13 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const st
         return row;
     }
     row.warnings = imported.value().warnings.size();
-    std::error_code ec;
-    fs::remove_all(work, ec);
+    // The preset's overlay, in a folder of its own that goes however the preset ends.
+    auto work = TemporaryFolder::create("crtforge-corpus");
     auto library = [&]() -> Result<std::shared_ptr<TemplateLibrary>> {
-        if (auto s = write_imported_preset(imported.value(), work); !s.ok()) return s.error();
-        return TemplateLibrary::load(work);
+        if (!work.ok()) return work.error();
+        const std::string overlay = (work.value().path() / "overlay").string();
+        if (auto s = write_imported_preset(imported.value(), overlay); !s.ok()) return s.error();
+        return TemplateLibrary::load(overlay);
     }();
     if (!library.ok()) {
         row.import_error = one_line(library.error());
@@ -146,11 +117,13 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const st
     row.passes = preset->passes.size();
 
     // SPIR-V, pass by pass: every pass that compiles is still emitted for the targets.
-    std::vector<std::optional<CompiledVariant>> compiled(preset->passes.size());
+    std::vector<CompiledVariant> passes(preset->passes.size());  // the scene renders them once all compiled
+    std::vector<bool> compiled(preset->passes.size(), false);
     for (size_t i = 0; i < preset->passes.size(); ++i) {
         auto pass = compile_variant(lib, *preset, VariantOptions{}, cache, i);
         if (pass.ok()) {
-            compiled[i] = std::move(pass.value());
+            passes[i] = std::move(pass.value());
+            compiled[i] = true;
             ++row.passes_spirv;
         } else if (row.spirv_error.empty()) {
             row.spirv_error = one_line(pass.error());
@@ -168,10 +141,7 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const st
     scene.frame_count_base = 1;  // RetroArch's Vulkan driver draws its first frame with FrameCount 1
     // RetroArch's display is 8-bit: values clamp to 0..1 and a NaN shows as 0, as on any UNORM target.
     scene.format = OutputFormat::Rgba8Unorm;
-    if (luts.ok()) scene.file_luts = luts.value();
-    std::vector<CompiledVariant> passes;
-    if (row.passes_spirv == preset->passes.size())
-        for (auto& c : compiled) passes.push_back(*c);
+    if (luts.ok()) scene.file_luts = std::move(luts.value());
     scene.passes = &passes;
 
     std::optional<Image> vulkan;  // the judge of the other targets
@@ -181,7 +151,7 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const st
         std::string first_failure, status;
         for (size_t i = 0; i < compiled.size(); ++i) {
             if (!compiled[i]) continue;
-            auto emitted = emit_target(*compiled[i], t, cache);
+            auto emitted = emit_target(passes[i], t, cache);
             if (!emitted.ok()) {
                 if (first_failure.empty()) first_failure = one_line(emitted.error()), status = "refused";
                 continue;
@@ -255,6 +225,7 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const st
 
     if (!request.retroarch_dir.empty()) {
         const std::string path = request.retroarch_dir + "/" + rel + ".png";
+        std::error_code ec;
         if (!fs::exists(path, ec)) {
             row.retroarch = "not run";
         } else if (!vulkan) {
@@ -287,8 +258,6 @@ Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache
     std::vector<std::string> mine;
     for (size_t i = 0; i < request.presets.size(); ++i)
         if (i % request.shard.count == request.shard.index - 1) mine.push_back(request.presets[i]);
-    WorkDir work;
-    if (work.path().empty()) return make_error("cannot make a temporary folder", {}, 0, "corpus");
 
     report.rows.resize(mine.size());
     std::atomic<size_t> next{0};
@@ -297,7 +266,7 @@ Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache
     auto worker = [&] {
         TargetRenderer renderer(request.vulkan);
         for (size_t i = next++; i < mine.size(); i = next++) {
-            report.rows[i] = run_one(request, mine[i], work.path() + "/" + std::to_string(i), cache, renderer);
+            report.rows[i] = run_one(request, mine[i], cache, renderer);
             std::lock_guard<std::mutex> lock(progress_mutex);
             ++done;
             if (progress) progress(done, mine.size(), report.rows[i]);

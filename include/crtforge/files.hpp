@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,5 +21,21 @@ Result<std::vector<std::string>> list_files(const std::string& dir, const std::s
 // parent directories.
 Status write_file_atomic(const std::string& path, std::string_view data);
 std::string file_stem(const std::string& path);  // "a/b/classic.toml" -> "classic"
+
+// A fresh folder "<system temp>/<prefix>-XXXXXX" (mkdtemp), removed with everything in it when
+// the object goes.
+class TemporaryFolder {
+public:
+    static Result<TemporaryFolder> create(const std::string& prefix);
+    TemporaryFolder(TemporaryFolder&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
+    TemporaryFolder& operator=(TemporaryFolder&&) = delete;
+    TemporaryFolder(const TemporaryFolder&) = delete;
+    ~TemporaryFolder();
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    explicit TemporaryFolder(std::filesystem::path path) : path_(std::move(path)) {}
+    std::filesystem::path path_;
+};
 
 }  // namespace crtforge

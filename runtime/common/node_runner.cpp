@@ -34,23 +34,15 @@ void close_fd(int& fd) {
 
 }  // namespace
 
-NodeRunner::NodeRunner(NodeRunnerSpec spec, fs::path scratch) : spec_(std::move(spec)), scratch_(std::move(scratch)) {}
+NodeRunner::NodeRunner(NodeRunnerSpec spec, TemporaryFolder scratch) : spec_(std::move(spec)), scratch_(std::move(scratch)) {}
 
 Result<std::unique_ptr<NodeRunner>> NodeRunner::create(NodeRunnerSpec spec, const std::string& scratch_prefix) {
-    std::error_code ec;
-    fs::path base = fs::temp_directory_path(ec);
-    if (ec) base = "/tmp";
-    std::string pattern = (base / (scratch_prefix + "-XXXXXX")).string();
-    if (::mkdtemp(pattern.data()) == nullptr)
-        return make_error(fmt::format("cannot create a temporary directory in '{}': {}", base.string(), std::strerror(errno)));
-    return std::unique_ptr<NodeRunner>(new NodeRunner(std::move(spec), fs::path(pattern)));
+    auto scratch = TemporaryFolder::create(scratch_prefix);
+    if (!scratch.ok()) return scratch.error();
+    return std::unique_ptr<NodeRunner>(new NodeRunner(std::move(spec), std::move(scratch.value())));
 }
 
-NodeRunner::~NodeRunner() {
-    stop(false);
-    std::error_code ec;
-    fs::remove_all(scratch_, ec);
-}
+NodeRunner::~NodeRunner() { stop(false); }
 
 // The last meaningful line of the runner's log: Node's error, or the library's last complaint.
 std::string NodeRunner::last_log_line() const {

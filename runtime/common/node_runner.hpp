@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/files.hpp"
 
 namespace crtforge::detail {
 
@@ -42,7 +43,7 @@ public:
     NodeRunner& operator=(const NodeRunner&) = delete;
 
     // The private directory for the files a request names; removed with the runner.
-    const std::filesystem::path& scratch() const { return scratch_; }
+    const std::filesystem::path& scratch() const { return scratch_.path(); }
     bool running() const { return pid_ > 0; }
 
     // Starts the process and returns its start-up reply (which may say ok: false; the caller
@@ -57,14 +58,14 @@ public:
     std::optional<int> stop(bool kill);
 
 private:
-    NodeRunner(NodeRunnerSpec spec, std::filesystem::path scratch);
-    std::filesystem::path log_path() const { return scratch_ / "runner.log"; }
+    NodeRunner(NodeRunnerSpec spec, TemporaryFolder scratch);
+    std::filesystem::path log_path() const { return scratch_.path() / "runner.log"; }
     std::string last_log_line() const;
     Diagnostic failed(const std::string& what);
     Result<nlohmann::json> read_reply(std::chrono::steady_clock::time_point deadline, int seconds, const char* during);
 
     NodeRunnerSpec spec_;
-    std::filesystem::path scratch_;
+    TemporaryFolder scratch_;  // removed after the runner stops (members go after the destructor's body)
     pid_t pid_ = -1;
     int request_fd_ = -1;   // our end of the runner's stdin socketpair
     int reply_fd_ = -1;     // read end of the reply pipe

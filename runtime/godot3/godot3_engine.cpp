@@ -7,6 +7,7 @@
 // leaves its Xvfb running when its own clean-up fails (seen on Debian 12), and its display-number
 // probing races between concurrent runs; `Xvfb -displayfd` picks a free display itself.
 #include "crtforge/runtime/godot3_engine.hpp"
+#include "crtforge/files.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -86,36 +87,6 @@ bool contains_nocase(const std::string& text, const std::string& needle) {
 }
 
 Status write_text(const fs::path& path, const std::string& text) { return write_file(path, text.data(), text.size()); }
-
-// A fresh directory under the system temp directory, removed with everything in it at scope exit.
-class ScratchDir {
-public:
-    static Result<ScratchDir> create() {
-        std::error_code ec;
-        fs::path base = fs::temp_directory_path(ec);
-        if (ec) base = "/tmp";
-        std::string pattern = (base / "crtforge-godot3-XXXXXX").string();
-        std::vector<char> buffer(pattern.begin(), pattern.end());
-        buffer.push_back('\0');
-        if (::mkdtemp(buffer.data()) == nullptr)
-            return make_error(fmt::format("cannot create a temporary directory in '{}': {}", base.string(),
-                                          std::strerror(errno)));
-        return ScratchDir(fs::path(buffer.data()));
-    }
-    ScratchDir(ScratchDir&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
-    ScratchDir& operator=(ScratchDir&&) = delete;
-    ScratchDir(const ScratchDir&) = delete;
-    ~ScratchDir() {
-        if (path_.empty()) return;
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    explicit ScratchDir(fs::path path) : path_(std::move(path)) {}
-    fs::path path_;
-};
 
 // ---- processes --------------------------------------------------------------------------------
 
@@ -534,7 +505,7 @@ Result<std::vector<Image>> scene_outputs(const Godot3SceneJob& job, const fs::pa
 }  // namespace
 
 Result<Image> render_godot3(const Godot3Job& job) {
-    auto scratch = ScratchDir::create();
+    auto scratch = TemporaryFolder::create("crtforge-godot3");
     if (!scratch.ok()) return scratch.error();
     const fs::path dir = scratch.value().path();
     auto args = shader_job_args(job, dir);
@@ -547,7 +518,7 @@ Result<std::string> run_godot3_project(const std::string& project_dir, int timeo
     std::error_code ec;
     if (!fs::is_regular_file(fs::path(project_dir) / "project.godot", ec))
         return job_error("no project.godot in '" + project_dir + "'", "project");
-    auto scratch = ScratchDir::create();
+    auto scratch = TemporaryFolder::create("crtforge-godot3");
     if (!scratch.ok()) return scratch.error();
     std::string log;
     if (auto s = run_godot_on(scratch.value().path(), project_dir, {}, timeout_seconds, &log); !s.ok()) return s.error();
@@ -555,7 +526,7 @@ Result<std::string> run_godot3_project(const std::string& project_dir, int timeo
 }
 
 Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
-    auto scratch = ScratchDir::create();
+    auto scratch = TemporaryFolder::create("crtforge-godot3");
     if (!scratch.ok()) return scratch.error();
     const fs::path dir = scratch.value().path();
     auto args = scene_job_args(job, dir);
@@ -567,7 +538,7 @@ Result<std::vector<Image>> render_godot3_scene(const Godot3SceneJob& job) {
 // ---- the server: one Xvfb and one Godot for many jobs -----------------------------------------
 
 struct Godot3Server::Process {
-    ScratchDir scratch;
+    TemporaryFolder scratch;
     XServer x;
     std::unique_ptr<ChildGuard> godot;
     Pipe output;
@@ -595,7 +566,7 @@ Status Godot3Server::start() {
     if (godot.empty() || xvfb.empty())
         return make_error(fmt::format("Godot 3 rendering needs {} ('{}' is not on PATH)", kPackages,
                                       godot.empty() ? "godot3" : "Xvfb"));
-    auto scratch = ScratchDir::create();
+    auto scratch = TemporaryFolder::create("crtforge-godot3");
     if (!scratch.ok()) return scratch.error();
     auto p = std::make_unique<Process>(Process{std::move(scratch.value()), {}, {}, {}, {}, 0});
     const fs::path dir = p->scratch.path();

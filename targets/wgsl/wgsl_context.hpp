@@ -77,12 +77,11 @@ struct SharedResources {
     std::map<std::pair<uint32_t, uint32_t>, SharedTexture> textures;   // (group, binding)
     std::map<uint32_t, uint32_t> next_sampler_binding;  // group -> first binding no stage uses
 };
-using SharedUniforms = SharedResources;
 
 class ModuleEmitter {
 public:
     ModuleEmitter(const SpirvModule& module, const EmitOptions& options, NameScope& global_names,
-                  SharedUniforms& shared_uniforms, const std::string& stage_name, const std::string& entry_name);
+                  SharedResources& shared_resources, const std::string& stage_name, const std::string& entry_name);
 
     const SpirvModule& m;
     const EmitOptions& options;
@@ -117,7 +116,7 @@ public:
     StageInterface interface;
     std::map<uint32_t, const Instruction*> private_globals;  // Private-storage variables
     NameScope& global_names;  // module-scope names of the whole WGSL module
-    SharedUniforms& shared_uniforms;
+    SharedResources& shared_resources;
     NameScope stage_names;    // those plus this stage's entry parameters and locals
     std::map<uint32_t, std::string> function_names;  // non-entry functions
     // A module-scope identifier: unique in the whole module, and reserved for this stage's locals.

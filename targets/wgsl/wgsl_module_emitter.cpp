@@ -41,9 +41,9 @@ const char* storage_class_name(spv::StorageClass s) {
 
 }  // namespace
 
-ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, NameScope& names, SharedUniforms& shared,
+ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts, NameScope& names, SharedResources& shared,
                              const std::string& stage, const std::string& entry)
-    : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names), shared_uniforms(shared) {}
+    : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names), shared_resources(shared) {}
 
 std::string ModuleEmitter::module_scope_name(const std::string& wanted) {
     NameScope both = global_names;
@@ -245,7 +245,7 @@ Expr ModuleEmitter::constant(uint32_t id) {
 
 void ModuleEmitter::declare_resources() {
     // Samplers split off combined image samplers go after every binding any stage uses.
-    std::map<uint32_t, uint32_t>& next_binding = shared_uniforms.next_sampler_binding;
+    std::map<uint32_t, uint32_t>& next_binding = shared_resources.next_sampler_binding;
     for (const auto& [id, var] : m.globals) {
         const Type& pointer = type(var.type);
         const spv::StorageClass storage = pointer.storage;
@@ -278,15 +278,15 @@ void ModuleEmitter::declare_resources() {
             const std::string& decl = struct_decls.at(sname);
             const std::string body = decl.substr(decl.find('{'));
             std::string name;
-            if (auto shared = shared_uniforms.uniforms.find({group, binding});
-                shared != shared_uniforms.uniforms.end() && shared->second.body == body) {
+            if (auto shared = shared_resources.uniforms.find({group, binding});
+                shared != shared_resources.uniforms.end() && shared->second.body == body) {
                 struct_decls.erase(sname);
                 struct_order.erase(std::find(struct_order.begin(), struct_order.end(), sname));
                 sname = struct_names_[pointer.element] = shared->second.struct_name;
                 name = shared->second.variable;
             } else {
                 name = module_scope_name(wanted);
-                shared_uniforms.uniforms.emplace(std::make_pair(group, binding), SharedUniform{sname, name, body});
+                shared_resources.uniforms.emplace(std::make_pair(group, binding), SharedUniform{sname, name, body});
             }
             resource_names[id] = name;
             resource_decls[{group, binding}] =
@@ -308,8 +308,8 @@ void ModuleEmitter::declare_resources() {
         const bool is_texture = pointee.op == spv::OpTypeSampledImage || pointee.op == spv::OpTypeImage;
         const uint32_t image = pointee.op == spv::OpTypeSampledImage ? pointee.element : pointer.element;
         const std::string texture_type = is_texture ? type_name(image) : "";
-        const auto shared = shared_uniforms.textures.find({group, binding});
-        const bool reuse = is_texture && shared != shared_uniforms.textures.end() && shared->second.type == texture_type &&
+        const auto shared = shared_resources.textures.find({group, binding});
+        const bool reuse = is_texture && shared != shared_resources.textures.end() && shared->second.type == texture_type &&
                            shared->second.sampler.empty() == (pointee.op != spv::OpTypeSampledImage);
         const std::string name = reuse ? shared->second.name : module_scope_name(wanted);
         resource_names[id] = name;
@@ -319,9 +319,9 @@ void ModuleEmitter::declare_resources() {
             b.kind = "texture";
             b.wgsl_type = texture_type;
             b.sample_type = type(type(image).element).op == spv::OpTypeFloat ? "float" : type(type(image).element).is_signed ? "sint" : "uint";
-            if (!reuse) shared_uniforms.textures.emplace(std::make_pair(group, binding), SharedTexture{name, texture_type, "", 0});
+            if (!reuse) shared_resources.textures.emplace(std::make_pair(group, binding), SharedTexture{name, texture_type, "", 0});
             if (pointee.op == spv::OpTypeSampledImage) {
-                SharedTexture& st = shared_uniforms.textures.at({group, binding});
+                SharedTexture& st = shared_resources.textures.at({group, binding});
                 if (!reuse) {
                     st.sampler_binding = next_binding[group]++;
                     st.sampler = module_scope_name(name + "_sampler");
@@ -521,7 +521,7 @@ void ModuleEmitter::emit() {
 
 Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOptions& options) {
     NameScope global_names;
-    SharedUniforms shared_uniforms;
+    SharedResources shared_resources;
     std::vector<SpirvModule> modules;
     std::vector<std::unique_ptr<ModuleEmitter>> emitters;
     try {
@@ -534,12 +534,12 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
             for (const auto& [id, var] : module.globals) {
                 auto d = module.decorations.find(id);
                 if (d == module.decorations.end() || !d->second.binding) continue;
-                uint32_t& next = shared_uniforms.next_sampler_binding[d->second.set.value_or(0)];
+                uint32_t& next = shared_resources.next_sampler_binding[d->second.set.value_or(0)];
                 next = std::max(next, *d->second.binding + 1);
             }
         for (size_t i = 0; i < modules.size(); ++i) {
             const auto model = modules[i].entry_points.empty() ? spv::ExecutionModelMax : modules[i].entry_points[0].model;
-            auto emitter = std::make_unique<ModuleEmitter>(modules[i], options, global_names, shared_uniforms,
+            auto emitter = std::make_unique<ModuleEmitter>(modules[i], options, global_names, shared_resources,
                                                            model == spv::ExecutionModelVertex ? "vertex" : "fragment",
                                                            stages[i].entry_name);
             emitter->emit();
