@@ -16,7 +16,8 @@ namespace {
 
 // The locations the fragment stage reads. D3D links a vertex output to a pixel input by register,
 // assigned in declaration order: an output the pixel shader does not read (the optimiser dropped
-// it there, or SPIRV-Cross left out an unread one) would shift every later one, so the vertex stage leaves it out too.
+// it there, or SPIRV-Cross left out an unread one) would shift every later one, so the vertex
+// stage leaves it out too.
 std::set<uint32_t> fragment_input_locations(const SpirvBinary& fragment) {
     std::set<uint32_t> out;
     spirv_cross::Compiler reader(fragment);
