@@ -1,10 +1,12 @@
-// crtforge corpus DIR [--root R] [--report OUT] [--target T,...|--vulkan-only] [--shard i/n] [-j N]
+// crtforge corpus DIR [--root R] [--report OUT] [--only P,...] [--target T,...|--vulkan-only] [--shard i/n] [-j N]
 //                [--source-size WxH] [--size WxH] [--frame N] [--min-psnr DB] [--smooth] [--retroarch DIR]
 // Every .slangp under DIR through import, SPIR-V, each target's emitter and consumer, a render by
 // each consumer judged against Vulkan: the dashboard of validate/corpus_report.cpp.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include <fmt/format.h>
@@ -18,7 +20,7 @@ namespace {
 
 struct CorpusArgs {
     std::string dir, root, report, shard = "1/1", source_size = "160x120", size = "320x240", device, retroarch;
-    std::vector<std::string> targets;
+    std::vector<std::string> targets, only;
     bool vulkan_only = false, smooth = false;
     unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
     int frame = 2;
@@ -73,6 +75,7 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--report", a->report, "Write corpus.json and corpus.html into this folder");
     cmd->add_option("--target", a->targets, "Targets (repeat or comma-separate; default: all); spirv (Vulkan) always runs: it judges the others")
         ->delimiter(',');
+    cmd->add_option("--only", a->only, "Only these presets (paths relative to DIR; repeat or comma-separate)")->delimiter(',');
     cmd->add_flag("--vulkan-only", a->vulkan_only, "Only the spirv target on Vulkan (the quick whole-library sweep)");
     cmd->add_option("--shard", a->shard, "Run share i of n (1-based): every n-th preset")->capture_default_str();
     cmd->add_option("-j,--jobs", a->jobs, "Worker threads")->check(CLI::Range(1, 64))->capture_default_str();
@@ -98,6 +101,18 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
         if (!display.ok()) return report(display.error());
         auto found = list_corpus_presets(a->dir);
         if (!found.ok()) return report(found.error());
+        if (!a->only.empty()) {  // a curated set: each named preset must be one the folder holds
+            std::vector<std::string> chosen;
+            for (const std::string& name : a->only) {
+                const std::string wanted = std::filesystem::path(name).lexically_normal().generic_string();
+                if (!std::binary_search(found.value().begin(), found.value().end(), wanted))
+                    return report(make_error("no preset '" + name + "' under " + a->dir, {}, 0, "--only"));
+                chosen.push_back(wanted);
+            }
+            std::sort(chosen.begin(), chosen.end());
+            chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+            found.value() = std::move(chosen);
+        }
         std::error_code ec;
         const auto root_abs = std::filesystem::weakly_canonical(root, ec), dir_abs = std::filesystem::weakly_canonical(a->dir, ec);
         const std::string under = std::filesystem::relative(dir_abs, root_abs, ec).generic_string();

@@ -22,6 +22,7 @@
 #include "crtforge/exporter.hpp"
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/runtime/image_compare.hpp"
+#include "crtforge/runtime/image_io.hpp"
 #include "crtforge/validate/target_render.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "tests/test_support.hpp"
@@ -386,4 +387,52 @@ TEST_CASE("The npm package's Babylon.js adapter renders presets like Vulkan", "[
     INFO("SwiftShader's Vulkan driver missing (Debian's chromium-common): run scripts/setup.sh");
     REQUIRE(fs::exists("/usr/lib/chromium/vk_swiftshader_icd.json"));
     check_framework_adapter("babylon", "@babylonjs/core/package.json", "Babylon.js");
+}
+
+// RetroArch's default wrap, clamp_to_border, which WebGPU lacks: an imported two-pass .slangp whose
+// passes read outside their textures, exported, rendered by the shipped host (which must sample
+// clamp-to-edge where the manifest says the WGSL fades to the border) against crtforge's Vulkan
+// render of the same .slangp.
+TEST_CASE("The WebGPU example renders an imported .slangp's clamp_to_border like Vulkan", "[wgsl][example][retroarch]") {
+    test::TempDir tmp;
+    const std::string shader =
+        "#version 450\n"
+        "layout(push_constant) uniform Push { vec4 SourceSize; } params;\n"
+        "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
+        "#pragma stage vertex\n"
+        "layout(location = 0) in vec4 Position;\n"
+        "layout(location = 1) in vec2 TexCoord;\n"
+        "layout(location = 0) out vec2 vTexCoord;\n"
+        "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }\n"
+        "#pragma stage fragment\n"
+        "layout(location = 0) in vec2 vTexCoord;\n"
+        "layout(location = 0) out vec4 FragColor;\n"
+        "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+        "void main() { FragColor = vec4(texture(Source, (vTexCoord - 0.5) * 1.35 + 0.5).rgb, 1.0); }\n";
+    std::ofstream(tmp / "zoom.slang") << shader;
+    std::ofstream(tmp / "border.slangp") << "shaders = 2\nshader0 = zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
+                                             "shader1 = zoom.slang\nfilter_linear1 = true\n";
+    const std::string slangp = tmp / "border.slangp", export_dir = tmp / "export";
+    const auto exported = test::run_crtforge("export --target wgsl --out '" + export_dir + "' --preset '" + slangp + "'");
+    INFO(exported.err);
+    REQUIRE(exported.exit_code == 0);
+    auto input = make_test_input("pixel_art", kPixelArtWidth, kPixelArtHeight, 0);
+    REQUIRE(input.ok());
+    const std::string prefix = tmp / "border-frame-";
+    run_check(tmp, from_export(export_dir), "border", {input.value()}, prefix, " --frames 0 --capture 0", kSceneWidth, kSceneHeight);
+    const Image webgpu = read_raw(prefix + "0.raw", kSceneWidth, kSceneHeight);
+
+    const std::string vulkan_png = tmp / "vulkan.png";
+    const auto rendered = test::run_crtforge(fmt::format("render --preset '{}' --input pixel_art --size {}x{} --output '{}'", slangp,
+                                                         kSceneWidth, kSceneHeight, vulkan_png));
+    INFO(rendered.err);
+    REQUIRE(rendered.exit_code == 0);
+    auto vulkan = read_image(vulkan_png);
+    REQUIRE(vulkan.ok());
+    // The corners are the border: transparent black under the display's opaque black.
+    CHECK(vulkan.value().rgba[0] == 0.0f);
+    auto metrics = compare_images(webgpu, vulkan.value());
+    REQUIRE(metrics.ok());
+    INFO("PSNR " << metrics.value().psnr << " dB, worst at (" << metrics.value().worst_x << ", " << metrics.value().worst_y << ")");
+    CHECK(metrics.value().rmse <= kTolerance);
 }

@@ -155,3 +155,66 @@ TEST_CASE("a failure's reason class drops where it happened and what varies", "[
           "field 'X': preset p, target wgsl: binding N of N");
     CHECK(corpus_reason_class("error: preset p, target wgsl: the stages differ") == "the stages differ");
 }
+
+namespace {
+
+// A pass that zooms out, so a fifth of the picture samples outside the texture, and hands the
+// zoom to the fragment stage as a matrix, an array and a flat integer (stage I/O WGSL has no form
+// for but one location per slot).
+std::string zoom_out_pass() {
+    return "#version 450\n"
+           "layout(push_constant) uniform Push { vec4 SourceSize; } params;\n"
+           "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
+           "#pragma stage vertex\n"
+           "layout(location = 0) in vec4 Position;\n"
+           "layout(location = 1) in vec2 TexCoord;\n"
+           "layout(location = 0) out vec2 vTexCoord;\n"
+           "layout(location = 1) out mat2 vZoom;\n"
+           "layout(location = 3) out vec2 vShift[2];\n"
+           "layout(location = 5) flat out int vOn;\n"
+           "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord;\n"
+           "    vZoom = mat2(1.55, 0.0, 0.0, 1.55); vShift[0] = vec2(0.5); vShift[1] = vec2(-0.5); vOn = 1; }\n"
+           "#pragma stage fragment\n"
+           "layout(location = 0) in vec2 vTexCoord;\n"
+           "layout(location = 1) in mat2 vZoom;\n"
+           "layout(location = 3) in vec2 vShift[2];\n"
+           "layout(location = 5) flat in int vOn;\n"
+           "layout(location = 0) out vec4 FragColor;\n"
+           "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+           "void main() {\n"
+           "    vec2 uv = vOn == 1 ? vZoom * (vTexCoord + vShift[1]) + vShift[0] : vTexCoord;\n"
+           "    FragColor = vec4(texture(Source, uv).rgb, 1.0);\n"
+           "}\n";
+}
+
+}  // namespace
+
+TEST_CASE("WebGPU renders RetroArch's clamp_to_border like Vulkan: the WGSL fades to the border, the host clamps to the edge",
+          "[retroarch][corpus-command][wgsl][dawn]") {
+    test::TempDir dir;
+    write(dir / "shaders/zoom.slang", zoom_out_pass());
+    write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
+    write(dir / "nearest.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\n");
+    // Two passes: the second reads the first's output (clamp_to_border by default) outside it.
+    write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nscale_type0 = source\n"
+                                "shader1 = shaders/zoom.slang\nfilter_linear1 = true\n");
+    write(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
+    CorpusRequest request;
+    request.root = dir.path();
+    request.presets = {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"};
+    request.targets = {TargetId::Spirv, TargetId::Wgsl};
+    request.source_width = 32;
+    request.source_height = 24;
+    request.display_width = 64;
+    request.display_height = 48;
+    request.frame = 0;
+    auto run = run_corpus(request, Cache());
+    INFO((run.ok() ? std::string() : run.error().str()));
+    REQUIRE(run.ok());
+    for (const CorpusRow& row : run.value().rows) {
+        INFO(row.preset << ": " << row.import_error << row.targets.at("wgsl").reason);
+        CHECK(row.targets.at("spirv").status == "agrees");
+        CHECK(row.targets.at("wgsl").status == "agrees");
+        CHECK(row.targets.at("wgsl").psnr >= 40.0);
+    }
+}

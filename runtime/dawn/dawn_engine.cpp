@@ -121,8 +121,9 @@ Status check_job(const DawnJob& job) {
     if (job.format != OutputFormat::Rgba8Unorm && job.format != OutputFormat::Rgba8Srgb &&
         job.format != OutputFormat::Rgba16Float)
         return job_error("unknown output format", "format");
-    // WebGPU has no border colour: clamp_to_border must be emulated by the shader, not asked of Dawn.
-    if (job.wrap == WrapMode::ClampToBorder) return job_error("WebGPU has no clamp-to-border address mode", "wrap");
+    // WebGPU has no border colour: clamp_to_border must be emulated by the shader, not asked of Dawn
+    // (the main input's wrap matters only where the module samples it).
+    if (job.uses_texture && job.wrap == WrapMode::ClampToBorder) return job_error("WebGPU has no clamp-to-border address mode", "wrap");
     for (std::size_t i = 0; i < job.textures.size(); ++i)
         if (job.textures[i].wrap == WrapMode::ClampToBorder)
             return job_error("WebGPU has no clamp-to-border address mode", detail::texture_field(i, "wrap"));

@@ -44,19 +44,25 @@ struct Expr {
 
 // What one stage's entry function reads and writes.
 struct StageInterface {
+    // One entry-point parameter or returned field. WGSL's stage I/O is scalars and vectors only, so
+    // a matrix or array at location N is one of these per location: column / element k at N + k.
+    struct Slot {
+        std::string attribute;  // "@location(0)", "@builtin(position)"
+        std::string name;       // the parameter's name, or the returned struct's member name
+        std::string wgsl_type;  // the slot's WGSL type
+        std::string value;      // outputs: what is returned (the local, or a column/element of it)
+    };
     struct Input {
         uint32_t variable = 0;
-        std::string param;      // the entry point's parameter name
-        std::string attribute;  // "@location(0)", "@builtin(position)"
-        std::string wgsl_type;  // the parameter's WGSL type
-        std::string read;       // how the body reads it (e.g. i32(vertex_index))
+        std::vector<Slot> params;  // the entry point's parameters for this input
+        std::string read;          // how the body reads it (e.g. i32(vertex_index), mat2x2<f32>(m_0, m_1))
     };
     struct Output {
         uint32_t variable = 0;        // a plain output variable, or a gl_PerVertex-style block
         std::string local;            // the local var the body writes
         std::string wgsl_type;
-        std::vector<std::pair<std::string, std::string>> fields;  // (attribute, name) returned
-        std::map<uint32_t, std::string> block_members;            // block member index -> local name
+        std::vector<Slot> fields;     // returned
+        std::map<uint32_t, std::string> block_members;  // block member index -> local name
     };
     std::vector<Input> inputs;
     std::vector<Output> outputs;
@@ -76,6 +82,7 @@ struct SharedResources {
     std::map<std::pair<uint32_t, uint32_t>, SharedUniform> uniforms;   // (group, binding)
     std::map<std::pair<uint32_t, uint32_t>, SharedTexture> textures;   // (group, binding)
     std::map<uint32_t, uint32_t> next_sampler_binding;  // group -> first binding no stage uses
+    std::map<std::string, std::string> helper_names;    // helper function -> its name in the module
 };
 
 class ModuleEmitter {
@@ -113,6 +120,9 @@ public:
     // Module-scope resources and the sampler each combined image sampler was split into.
     std::map<uint32_t, std::string> resource_names;      // variable id -> WGSL name
     std::map<uint32_t, std::string> sampler_names;       // combined image sampler id -> sampler name
+    std::map<std::string, bool> border_textures;          // WGSL texture name -> linear (EmitOptions::emulate_border)
+    // The name of a helper function (defined once per module, named before any function is printed).
+    std::string helper(const std::string& wanted, const std::string& definition_after_name);
     StageInterface interface;
     std::map<uint32_t, const Instruction*> private_globals;  // Private-storage variables
     NameScope& global_names;  // module-scope names of the whole WGSL module
@@ -126,6 +136,15 @@ public:
 
 private:
     void declare_resources();
+    // A scalar or vector of stage I/O at one location, reached from the whole value by `path`
+    // ("", "[2]" for a matrix column or array element, "[1][0]" for nested ones).
+    struct IoSlot {
+        uint32_t type = 0;
+        std::string path;
+    };
+    std::vector<IoSlot> io_slots(uint32_t type_id);
+    // The whole value rebuilt from its slots' parameters, params[next...] in io_slots order.
+    std::string rebuild_from_slots(uint32_t type_id, const std::vector<StageInterface::Slot>& params, size_t& next);
     void declare_interface(const EntryPoint& entry);
     std::string declare_struct(uint32_t type_id);
     void emit_entry(const EntryPoint& entry);

@@ -29,6 +29,10 @@ struct EmitOptions {
     // clip space, WebGPU has it up), so the same texture coordinate lands on the same pixel row.
     bool flip_vertex_y = true;
     std::string header_comment;  // lines printed first, each prefixed with "// "
+    // Textures (by their SPIR-V name) the host samples clamp-to-edge where the shader wants
+    // clamp-to-border with a transparent black border, which WebGPU lacks: every sample of them is
+    // multiplied by the share of its footprint inside the texture. true: sampled linearly.
+    std::map<std::string, bool> emulate_border;
 };
 
 struct WgslMember {

@@ -45,6 +45,14 @@ ModuleEmitter::ModuleEmitter(const SpirvModule& module, const EmitOptions& opts,
                              const std::string& stage, const std::string& entry)
     : m(module), options(opts), stage_name(stage), entry_name(entry), global_names(names), shared_resources(shared) {}
 
+std::string ModuleEmitter::helper(const std::string& wanted, const std::string& definition_after_name) {
+    auto named = shared_resources.helper_names.find(wanted);
+    const std::string name = named != shared_resources.helper_names.end() ? named->second : module_scope_name(wanted);
+    shared_resources.helper_names[wanted] = name;
+    helpers[name] = "fn " + name + definition_after_name;
+    return name;
+}
+
 std::string ModuleEmitter::module_scope_name(const std::string& wanted) {
     NameScope both = global_names;
     both.insert(stage_names);
@@ -313,6 +321,13 @@ void ModuleEmitter::declare_resources() {
                            shared->second.sampler.empty() == (pointee.op != spv::OpTypeSampledImage);
         const std::string name = reuse ? shared->second.name : module_scope_name(wanted);
         resource_names[id] = name;
+        if (auto border = options.emulate_border.find(m.name(id)); is_texture && border != options.emulate_border.end()) {
+            if (type(image).dim != spv::Dim2D) fail("clamp_to_border emulation on '" + m.name(id) + "', which is not a 2D texture");
+            border_textures[name] = border->second;
+            // Named now, before any function's locals, so that no local can shadow it.
+            const std::string helper = border->second ? "border_weight_linear" : "border_weight_nearest";
+            if (!shared_resources.helper_names.count(helper)) shared_resources.helper_names[helper] = module_scope_name(helper);
+        }
         if (is_texture) {
             resource_decls[{group, binding}] = fmt::format("@group({}) @binding({}) var {}: {};\n", group, binding, name, texture_type);
             b.name = name;
@@ -355,6 +370,35 @@ void ModuleEmitter::declare_resources() {
     }
 }
 
+std::vector<ModuleEmitter::IoSlot> ModuleEmitter::io_slots(uint32_t type_id) {
+    const Type& t = type(type_id);
+    std::vector<IoSlot> out;
+    switch (t.op) {
+        case spv::OpTypeFloat: case spv::OpTypeInt: case spv::OpTypeVector:
+            out.push_back({type_id, ""});
+            break;
+        case spv::OpTypeMatrix:
+            for (uint32_t j = 0; j < t.count; ++j) out.push_back({t.element, fmt::format("[{}]", j)});
+            break;
+        case spv::OpTypeArray:
+            for (uint32_t i = 0; i < t.count; ++i)
+                for (const IoSlot& s : io_slots(t.element)) out.push_back({s.type, fmt::format("[{}]{}", i, s.path)});
+            break;
+        default: fail("stage input or output of type " + type_name(type_id) + " has no WGSL form");
+    }
+    return out;
+}
+
+std::string ModuleEmitter::rebuild_from_slots(uint32_t type_id, const std::vector<StageInterface::Slot>& params, size_t& next) {
+    const Type& t = type(type_id);
+    if (t.op != spv::OpTypeMatrix && t.op != spv::OpTypeArray) return params.at(next++).name;
+    std::vector<std::string> parts;
+    for (uint32_t i = 0; i < t.count; ++i) parts.push_back(rebuild_from_slots(t.element, params, next));
+    std::string text = type_name(type_id) + "(";
+    for (size_t i = 0; i < parts.size(); ++i) text += (i ? ", " : "") + parts[i];
+    return text + ")";
+}
+
 void ModuleEmitter::declare_interface(const EntryPoint& entry) {
     const bool vertex = entry.model == spv::ExecutionModelVertex;
     for (uint32_t id : entry.interface) {
@@ -368,7 +412,10 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
         const bool integer = type(scalar_of(value_type)).op == spv::OpTypeInt;
 
         auto interpolation = [&]() -> std::string {
-            if (deco.flat || integer) return " @interpolate(flat)";
+            // `flat` alone means `flat, first`, which WebGPU's compatibility mode (GL ES backends)
+            // rejects. `either` runs everywhere; it differs from Vulkan's first provoking vertex only
+            // where a flat output varies between the triangle's vertices.
+            if (deco.flat || integer) return " @interpolate(flat, either)";
             std::string kind = deco.no_perspective ? "linear" : "perspective";
             if (deco.centroid) return " @interpolate(" + kind + ", centroid)";
             if (deco.sample) return " @interpolate(" + kind + ", sample)";
@@ -379,30 +426,38 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
             StageInterface::Input in;
             in.variable = id;
             if (deco.builtin) {
+                std::string attribute, wgsl_type;
                 switch (*deco.builtin) {
                     case spv::BuiltInFragCoord:
-                        in.attribute = "@builtin(position)"; in.wgsl_type = "vec4<f32>"; name = name.empty() ? "gl_FragCoord" : name; break;
+                        attribute = "@builtin(position)"; wgsl_type = "vec4<f32>"; name = name.empty() ? "gl_FragCoord" : name; break;
                     case spv::BuiltInFrontFacing:
-                        in.attribute = "@builtin(front_facing)"; in.wgsl_type = "bool"; name = name.empty() ? "gl_FrontFacing" : name; break;
+                        attribute = "@builtin(front_facing)"; wgsl_type = "bool"; name = name.empty() ? "gl_FrontFacing" : name; break;
                     case spv::BuiltInVertexIndex:
-                        in.attribute = "@builtin(vertex_index)"; in.wgsl_type = "u32"; name = "vertex_index"; break;
+                        attribute = "@builtin(vertex_index)"; wgsl_type = "u32"; name = "vertex_index"; break;
                     case spv::BuiltInInstanceIndex:
-                        in.attribute = "@builtin(instance_index)"; in.wgsl_type = "u32"; name = "instance_index"; break;
+                        attribute = "@builtin(instance_index)"; wgsl_type = "u32"; name = "instance_index"; break;
                     case spv::BuiltInSampleId:
-                        in.attribute = "@builtin(sample_index)"; in.wgsl_type = "u32"; name = "sample_index"; break;
+                        attribute = "@builtin(sample_index)"; wgsl_type = "u32"; name = "sample_index"; break;
                     default: fail(fmt::format("input builtin {} has no WGSL equivalent", static_cast<int>(*deco.builtin)));
                 }
+                in.params.push_back({attribute, unique_identifier(name, stage_names), wgsl_type, ""});
+                in.read = in.params.back().name;
+                // SPIR-V reads the index builtins as int; WGSL gives u32.
+                if (wgsl_type == "u32" && type(value_type).op == spv::OpTypeInt && type(value_type).is_signed)
+                    in.read = "i32(" + in.read + ")";
             } else if (deco.location) {
-                in.attribute = fmt::format("@location({}){}", *deco.location, vertex ? "" : interpolation());
-                in.wgsl_type = type_name(value_type);
+                // One parameter per location; the body reads the value rebuilt from them.
+                const std::string base = name.empty() ? "input" : name;
+                const std::vector<IoSlot> slots = io_slots(value_type);
+                for (size_t k = 0; k < slots.size(); ++k)
+                    in.params.push_back({fmt::format("@location({}){}", *deco.location + k, vertex ? "" : interpolation()),
+                                         unique_identifier(slots.size() == 1 ? base : fmt::format("{}_{}", base, k), stage_names),
+                                         type_name(slots[k].type), ""});
+                size_t next = 0;
+                in.read = rebuild_from_slots(value_type, in.params, next);
             } else {
                 fail(fmt::format("input '{}' has neither a location nor a builtin", name));
             }
-            in.param = unique_identifier(name.empty() ? "input" : name, stage_names);
-            in.read = in.param;
-            // SPIR-V reads the index builtins as int; WGSL gives u32.
-            if (in.wgsl_type == "u32" && type(value_type).op == spv::OpTypeInt && type(value_type).is_signed)
-                in.read = "i32(" + in.param + ")";
             interface.inputs.push_back(in);
             continue;
         }
@@ -418,7 +473,7 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
                 if (*md->second.builtin == spv::BuiltInPosition) {
                     const std::string local = unique_identifier("gl_Position", stage_names);
                     out.block_members[static_cast<uint32_t>(i)] = local;
-                    out.fields.push_back({"@builtin(position)", local});
+                    out.fields.push_back({"@builtin(position)", local, "vec4<f32>", local});
                 }
             }
             out.wgsl_type = "vec4<f32>";
@@ -428,13 +483,18 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
         out.wgsl_type = type_name(value_type);
         if (deco.builtin && *deco.builtin == spv::BuiltInPosition) {
             out.local = unique_identifier(name.empty() ? "gl_Position" : name, stage_names);
-            out.fields.push_back({"@builtin(position)", out.local});
+            out.fields.push_back({"@builtin(position)", out.local, out.wgsl_type, out.local});
         } else if (deco.builtin && *deco.builtin == spv::BuiltInFragDepth) {
             out.local = unique_identifier(name.empty() ? "gl_FragDepth" : name, stage_names);
-            out.fields.push_back({"@builtin(frag_depth)", out.local});
+            out.fields.push_back({"@builtin(frag_depth)", out.local, out.wgsl_type, out.local});
         } else if (deco.location) {
             out.local = unique_identifier(name.empty() ? "output" : name, stage_names);
-            out.fields.push_back({fmt::format("@location({}){}", *deco.location, vertex ? interpolation() : ""), out.local});
+            // One returned field per location: column / element k of the local.
+            const std::vector<IoSlot> slots = io_slots(value_type);
+            for (size_t k = 0; k < slots.size(); ++k)
+                out.fields.push_back({fmt::format("@location({}){}", *deco.location + k, vertex ? interpolation() : ""),
+                                      slots.size() == 1 ? out.local : fmt::format("{}_{}", out.local, k), type_name(slots[k].type),
+                                      out.local + slots[k].path});
         } else {
             fail(fmt::format("output '{}' has neither a location nor a supported builtin", name));
         }
@@ -449,25 +509,24 @@ void ModuleEmitter::emit_entry(const EntryPoint& entry) {
 
     // Every returned value, in order: (attribute, expression).
     std::vector<std::pair<std::string, std::string>> returned;
+    std::vector<const StageInterface::Slot*> fields;
     for (const auto& out : interface.outputs) {
-        for (const auto& [attribute, local] : out.fields) {
-            std::string value = local;
-            if (vertex && options.flip_vertex_y && attribute == "@builtin(position)")
-                value = local + " * vec4<f32>(1.0, -1.0, 1.0, 1.0)";  // SPIR-V clip space is y-down, WebGPU's y-up
-            returned.push_back({attribute, value});
+        for (const auto& field : out.fields) {
+            std::string value = field.value;
+            if (vertex && options.flip_vertex_y && field.attribute == "@builtin(position)")
+                value = field.value + " * vec4<f32>(1.0, -1.0, 1.0, 1.0)";  // SPIR-V clip space is y-down, WebGPU's y-up
+            returned.push_back({field.attribute, value});
+            fields.push_back(&field);
         }
     }
     std::string result_type, return_expr;
     if (returned.size() == 1) {
-        const auto& out = interface.outputs.front();
-        result_type = " -> " + returned[0].first + " " + out.wgsl_type;
+        result_type = " -> " + returned[0].first + " " + fields[0]->wgsl_type;
         return_expr = returned[0].second;
     } else if (!returned.empty()) {
         const std::string sname = module_scope_name(vertex ? "VertexOutput" : "FragmentOutput");
         std::string decl = "struct " + sname + " {\n";
-        std::vector<std::string> values;
-        for (const auto& out : interface.outputs)
-            for (const auto& [attribute, local] : out.fields) decl += "  " + attribute + " " + local + ": " + out.wgsl_type + ",\n";
+        for (const auto* field : fields) decl += "  " + field->attribute + " " + field->name + ": " + field->wgsl_type + ",\n";
         decl += "}\n";
         struct_decls[sname] = decl;
         struct_order.push_back(sname);
@@ -480,10 +539,12 @@ void ModuleEmitter::emit_entry(const EntryPoint& entry) {
     NameScope locals = stage_names;
     std::string text = vertex ? "@vertex\n" : "@fragment\n";
     text += "fn " + entry_name + "(";
-    for (size_t i = 0; i < interface.inputs.size(); ++i) {
-        const auto& in = interface.inputs[i];
-        text += (i ? ", " : "") + in.attribute + " " + in.param + ": " + in.wgsl_type;
-    }
+    bool first = true;
+    for (const auto& in : interface.inputs)
+        for (const auto& param : in.params) {
+            text += (first ? "" : ", ") + param.attribute + " " + param.name + ": " + param.wgsl_type;
+            first = false;
+        }
     text += ")" + result_type + " {\n";
     for (const auto& out : interface.outputs) {
         if (!out.local.empty()) text += "  var " + out.local + ": " + out.wgsl_type + ";\n";

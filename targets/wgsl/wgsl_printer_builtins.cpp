@@ -189,7 +189,8 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
         default: break;
     }
     if (o.size() < 2) unsupported(inst, "an operand is missing");
-    const std::string coord = value(o[1]).text;
+    const Expr coord_expr = value(o[1]);
+    const std::string coord = coord_expr.text;
     const uint32_t mask = o.size() > 2 ? o[2] : 0;
     std::map<uint32_t, std::string> operands;  // image-operand bit -> text
     size_t next = 3;
@@ -230,7 +231,38 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
     } else {
         unsupported(inst, "an explicit-LOD sample without Lod or Grad");
     }
-    define(inst, Expr::primary(text), true);
+    auto border = mod_.border_textures.find(texture);
+    if (inst.op == spv::OpImageFetch || border == mod_.border_textures.end()) {
+        define(inst, Expr::primary(text), true);
+        return;
+    }
+    // clamp_to_border on a clamp-to-edge sampler: outside the texture an edge sampler repeats the
+    // edge texel where a border one reads transparent black, so the border sample is the edge sample
+    // times the share of its footprint inside (exact for nearest, and for linear at level 0).
+    if (analysis_.use_count(inst.result) == 0) return;  // dead, and pure
+    std::string uv = coord_expr.named ? coord : temp_name(inst.result) + "_uv";
+    if (uv != coord) line("let " + uv + " = " + coord + ";");
+    const std::string size = "vec2<f32>(textureDimensions(" + texture + "))";
+    if (operands.count(spv::ImageOperandsConstOffsetMask))
+        uv = "(" + uv + " + vec2<f32>(" + operands[spv::ImageOperandsConstOffsetMask] + ") / " + size + ")";
+    std::string weight;
+    if (border->second) {
+        const std::string name = mod_.helper("border_weight_linear",
+            "(uv: vec2<f32>, size: vec2<f32>) -> f32 {\n"
+            "  // the share of a bilinear footprint's weight on texels inside the texture, per axis\n"
+            "  let inside = clamp(min(uv, vec2<f32>(1.0) - uv) * size + vec2<f32>(0.5), vec2<f32>(0.0), vec2<f32>(1.0));\n"
+            "  return inside.x * inside.y;\n"
+            "}\n");
+        weight = name + "(" + uv + ", " + size + ")";
+    } else {
+        const std::string name = mod_.helper("border_weight_nearest",
+            "(uv: vec2<f32>) -> f32 {\n"
+            "  // 1 where the nearest texel is inside the texture\n"
+            "  return select(0.0, 1.0, all(uv >= vec2<f32>(0.0)) && all(uv < vec2<f32>(1.0)));\n"
+            "}\n");
+        weight = name + "(" + uv + ")";
+    }
+    define(inst, Expr::binary(text + " * " + weight), true);
 }
 
 }  // namespace crtforge::wgsl

@@ -22,6 +22,9 @@ EmitOptions emit_options(const Variant& variant) {
         "Draw 3 vertices with no vertex buffers: {} makes a full-screen triangle, {} shades it.\n"
         "Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.",
         variant.file_stem(), inert_comment(variant.preset->doc), kVertexEntry, kFragmentEntry);
+    // WebGPU has no border colour: the hosts sample these clamp-to-edge and the shader fades.
+    for (const PassInput& in : variant.pass->inputs)
+        if (in.wrap == Wrap::ClampToBorder) options.emulate_border[in.binding] = in.filter == Filter::Linear;
     if (variant.options.precision == Precision::Medium)
         options.header_comment += "\nMedium precision: WGSL has no relaxed precision, so this is the full-precision f32 shader.";
     return options;
@@ -52,6 +55,9 @@ json manifest_extra(const WgslModule& module, const Variant& variant) {
             if (!b.paired_with.empty()) entry["pairedSampler"] = b.paired_with;
         } else {
             entry["sampler"] = json{{"type", nearest(b.paired_with) ? "non-filtering" : "filtering"}};
+            // The host samples clamp-to-edge: the shader fades to the border (EmitOptions::emulate_border).
+            if (const PassInput* in = variant.pass->find_input(b.paired_with); in && in->wrap == Wrap::ClampToBorder)
+                entry["sampler"]["borderInShader"] = true;
             if (!b.paired_with.empty()) entry["pairedTexture"] = b.paired_with;
         }
         layout.push_back(std::move(entry));

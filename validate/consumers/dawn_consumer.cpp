@@ -1,5 +1,7 @@
 // "dawn": WGSL as a WebGPU page uses it — Dawn (Chromium's WebGPU, npm webgpu) compiles the module
 // with zero errors and zero warnings, and renders it from the bind-group layout crtforge describes.
+#include <set>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -14,6 +16,7 @@ namespace {
 // gives them: a host needs nothing else to bind a pass.
 struct WgslBindings {
     std::map<std::string, uint32_t> texture, sampler;  // texture name -> its binding, its sampler's binding
+    std::set<std::string> border_in_shader;  // textures whose clamp_to_border the shader emulates
 };
 
 Result<WgslBindings> wgsl_bindings(const TargetOutput& output) {
@@ -31,6 +34,9 @@ Result<WgslBindings> wgsl_bindings(const TargetOutput& output) {
             auto s = sampler_by_name.find(e["pairedSampler"].get<std::string>());
             if (s != sampler_by_name.end()) out.sampler[e.value("name", "")] = s->second;
         }
+    for (const auto& e : manifest["bindGroupLayout"]["entries"])
+        if (e.contains("sampler") && e["sampler"].value("borderInShader", false) && e.contains("pairedTexture"))
+            out.border_in_shader.insert(e["pairedTexture"].get<std::string>());
     return out;
 }
 
@@ -65,11 +71,18 @@ public:
             r, [&](const std::string& name) { return lookup(bindings.value().texture, name); },
             [&](const std::string& name) { return lookup(bindings.value().sampler, name); });
         if (!textures.ok()) return textures.error();
+        // As the shipped JS host does: a texture whose border the shader fades to samples
+        // clamp-to-edge; any other clamp_to_border reaches Dawn, which refuses it.
+        auto edge_if_emulated = [&](const std::string& name, WrapMode& wrap) {
+            if (wrap == WrapMode::ClampToBorder && bindings.value().border_in_shader.count(name)) wrap = WrapMode::ClampToEdge;
+        };
+        for (TextureInput& t : textures.value()) edge_if_emulated(t.name, t.wrap);
         auto engine = engines.dawn();
         if (!engine.ok()) return engine.error();
         auto job = request_job<DawnJob>(r, std::move(uniforms.value()), std::move(textures.value()));
         job.wgsl = shader.value()->data;
         job.uses_texture = bindings.value().texture.count(kSourceTextureName) != 0;
+        edge_if_emulated(kSourceTextureName, job.wrap);
         if (job.uses_texture) {
             job.texture_binding = bindings.value().texture.at(kSourceTextureName);
             auto sampler = lookup(bindings.value().sampler, kSourceTextureName);

@@ -60,6 +60,9 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
   // How each texture binding is sampled: the manifest's textures (the main input is "source").
   const sampling = new Map((pass.textures ?? []).map((t) => [t.name, t]));
   const textureEntries = target.bindGroupLayout.entries.filter((e) => e.texture);
+  // clamp_to_border, which WebGPU lacks: crtforge's WGSL fades these textures' samples to the
+  // transparent black border itself (their sampler entries say borderInShader); they clamp to the edge.
+  const borderInShader = new Set(target.bindGroupLayout.entries.filter((e) => e.sampler?.borderInShader).map((e) => e.pairedTexture));
   const linear = (name) => (sampling.get(name)?.filter ?? 'linear') === 'linear';
 
   // ---- params: every non-builtin member of the uniform block ----
@@ -117,7 +120,8 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
   function samplerFor(textureName, unfilterable) {
     const t = sampling.get(textureName) ?? {};
     const filter = unfilterable || t.filter === 'nearest' ? 'nearest' : 'linear';
-    const address = ADDRESS[t.wrap ?? 'clamp_to_edge'];
+    const wrap = t.wrap ?? 'clamp_to_edge';
+    const address = wrap === 'clamp_to_border' && borderInShader.has(textureName) ? 'clamp-to-edge' : ADDRESS[wrap];
     if (!address) throw new Error(`crt-webgpu: texture '${textureName}' wraps '${t.wrap}', which WebGPU has no address mode for`);
     const key = `${filter}/${address}`;
     if (!samplers.has(key))
