@@ -338,6 +338,24 @@ TEST_CASE("wgsl: derivatives, vector shuffles and composite inserts", "[wgsl]") 
     CHECK(pixel(r.dawn)[2] == Approx(1.0f));
 }
 
+TEST_CASE("wgsl: modf and frexp write their second part through the pointer; textureGather keeps its component", "[wgsl]") {
+    Uniforms u;
+    u.a[0] = -2.75f;
+    u.a[1] = 12.5f;
+    auto r = check_construct(R"(void main() {
+        float whole;
+        float f = modf(p.a.x + vTexCoord.x, whole);
+        int e;
+        float m = frexp(p.a.y * (1.0 + vTexCoord.y), e);
+        vec4 g = textureGather(source, vTexCoord, 1) + textureGatherOffset(source, vTexCoord, ivec2(1, 0), 0);
+        fragColor = vec4(f + whole * 0.125, m * float(e) * 0.0625, g.x + g.w, g.y - g.z);
+    })", u);
+    CHECK_THAT(r.wgsl, Contains("modf("));
+    CHECK_THAT(r.wgsl, Contains("frexp("));
+    CHECK_THAT(r.wgsl, Contains("textureGather(1i, "));
+    CHECK_THAT(r.wgsl, Contains("vec2<i32>(1i, 0i))"));
+}
+
 TEST_CASE("wgsl: unoptimised glslang output (calls, pointer parameters, locals) translates too", "[wgsl]") {
     Uniforms u;
     u.a[0] = 3.0f;

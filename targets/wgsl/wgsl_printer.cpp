@@ -671,7 +671,7 @@ void FunctionPrinter::instruction(const Instruction& inst) {
             images_[inst.result] = {t->second.first, ""};
             return;
         }
-        case spv::OpImageSampleImplicitLod: case spv::OpImageSampleExplicitLod: case spv::OpImageFetch:
+        case spv::OpImageSampleImplicitLod: case spv::OpImageSampleExplicitLod: case spv::OpImageFetch: case spv::OpImageGather:
         case spv::OpImageQuerySizeLod: case spv::OpImageQuerySize: case spv::OpImageQueryLevels:
             image_instruction(inst);
             return;

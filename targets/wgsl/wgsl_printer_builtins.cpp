@@ -56,6 +56,23 @@ void FunctionPrinter::ext_instruction(const Instruction& inst) {
     if (set == m_.ext_imports.end() || set->second != "GLSL.std.450")
         unsupported(inst, "an extended instruction set other than GLSL.std.450");
     const auto e = operand_enum(o[1], GLSLstd450Count);
+    // modf / frexp: WGSL returns both parts in a struct where GLSL writes one through a pointer
+    // (Modf, Frexp) or returns its own struct (ModfStruct, FrexpStruct).
+    if (e == GLSLstd450Modf || e == GLSLstd450Frexp || e == GLSLstd450ModfStruct || e == GLSLstd450FrexpStruct) {
+        if (o.size() < 3) unsupported(inst, "an operand is missing");
+        const bool modf = e == GLSLstd450Modf || e == GLSLstd450ModfStruct;
+        const char* second = modf ? "whole" : "exp";
+        const std::string parts = temp_name(inst.result) + "_parts";
+        line("let " + parts + " = " + (modf ? "modf(" : "frexp(") + value(o[2]).text + ");");
+        if (e == GLSLstd450Modf || e == GLSLstd450Frexp) {
+            if (o.size() < 4) unsupported(inst, "an operand is missing");
+            line(ref(o[3]) + " = " + parts + "." + second + ";");
+            define(inst, Expr::primary(parts + ".fract"), true, true);
+        } else {
+            define(inst, Expr::primary(mod_.type_name(inst.type) + "(" + parts + ".fract, " + parts + "." + second + ")"), true);
+        }
+        return;
+    }
     std::vector<Expr> args;
     for (size_t i = 2; i < o.size(); ++i) args.push_back(value(o[i]));
     auto arg = [&](size_t i) -> const Expr& {
@@ -152,8 +169,7 @@ void FunctionPrinter::ext_instruction(const Instruction& inst) {
         }
         default: {
             static const std::map<GLSLstd450, const char*> names = {
-                {GLSLstd450MatrixInverse, "MatrixInverse"}, {GLSLstd450Modf, "Modf"}, {GLSLstd450ModfStruct, "ModfStruct"},
-                {GLSLstd450Frexp, "Frexp"}, {GLSLstd450FrexpStruct, "FrexpStruct"},
+                {GLSLstd450MatrixInverse, "MatrixInverse"},
                 {GLSLstd450InterpolateAtCentroid, "InterpolateAtCentroid"}, {GLSLstd450InterpolateAtSample, "InterpolateAtSample"},
                 {GLSLstd450InterpolateAtOffset, "InterpolateAtOffset"}, {GLSLstd450NMin, "NMin"}, {GLSLstd450NMax, "NMax"},
                 {GLSLstd450NClamp, "NClamp"}, {GLSLstd450PackDouble2x32, "PackDouble2x32"},
@@ -191,9 +207,11 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
     if (o.size() < 2) unsupported(inst, "an operand is missing");
     const Expr coord_expr = value(o[1]);
     const std::string coord = coord_expr.text;
-    const uint32_t mask = o.size() > 2 ? o[2] : 0;
+    // OpImageGather has its component before the image operands.
+    const size_t mask_at = inst.op == spv::OpImageGather ? 3 : 2;
+    const uint32_t mask = o.size() > mask_at ? o[mask_at] : 0;
     std::map<uint32_t, std::string> operands;  // image-operand bit -> text
-    size_t next = 3;
+    size_t next = mask_at + 1;
     auto operand = [&](size_t i) {
         if (i >= o.size()) unsupported(inst, "an image operand is missing");
         return value(o[i]).text;
@@ -224,6 +242,11 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
             text = "textureSampleBias(" + texture + ", " + sampler + ", " + coord + ", " + operands[spv::ImageOperandsBiasMask] + offset + ")";
         else
             text = "textureSample(" + texture + ", " + sampler + ", " + coord + offset + ")";
+    } else if (inst.op == spv::OpImageGather) {
+        // textureGather(component, t, s, coords): the component operand is the constant after the coordinate.
+        if (o.size() < 3) unsupported(inst, "an operand is missing");
+        const std::string component = value(o[2]).text;
+        text = "textureGather(" + component + ", " + texture + ", " + sampler + ", " + coord + offset + ")";
     } else if (operands.count(spv::ImageOperandsLodMask)) {
         text = "textureSampleLevel(" + texture + ", " + sampler + ", " + coord + ", " + operands[spv::ImageOperandsLodMask] + offset + ")";
     } else if (operands.count(spv::ImageOperandsGradMask)) {
@@ -246,7 +269,18 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
     if (operands.count(spv::ImageOperandsConstOffsetMask))
         uv = "(" + uv + " + vec2<f32>(" + operands[spv::ImageOperandsConstOffsetMask] + ") / " + size + ")";
     std::string weight;
-    if (border->second) {
+    if (inst.op == spv::OpImageGather) {
+        const std::string name = mod_.helper("border_weight_gather",
+            "(uv: vec2<f32>, size: vec2<f32>) -> vec4<f32> {\n"
+            "  // 1 for each of the four gathered texels that is inside the texture, in textureGather's order\n"
+            "  let lo = floor(uv * size - vec2<f32>(0.5));\n"
+            "  let hi = lo + vec2<f32>(1.0);\n"
+            "  let in_lo = select(vec2<f32>(0.0), vec2<f32>(1.0), (lo >= vec2<f32>(0.0)) & (lo < size));\n"
+            "  let in_hi = select(vec2<f32>(0.0), vec2<f32>(1.0), (hi >= vec2<f32>(0.0)) & (hi < size));\n"
+            "  return vec4<f32>(in_lo.x * in_hi.y, in_hi.x * in_hi.y, in_hi.x * in_lo.y, in_lo.x * in_lo.y);\n"
+            "}\n");
+        weight = name + "(" + uv + ", " + size + ")";
+    } else if (border->second) {
         const std::string name = mod_.helper("border_weight_linear",
             "(uv: vec2<f32>, size: vec2<f32>) -> f32 {\n"
             "  // the share of a bilinear footprint's weight on texels inside the texture, per axis\n"
