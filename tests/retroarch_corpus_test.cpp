@@ -1,7 +1,8 @@
 // crtforge corpus: a small library of our own (a preset that draws, one that reads a sampler only a
-// macro names and one an #ifdef hides, one whose value lies outside its range, one that does not
-// import, one whose SPIR-V fails) through the corpus run on Vulkan, GL and Godot 3 (which refuses
-// program passes at export): rows, statuses, reasons, shards and a byte-identical report.
+// macro names and one an #ifdef hides, one that counts rows by gl_FragCoord, one whose value lies
+// outside its range, one that does not import, one whose SPIR-V fails) through the corpus run on
+// Vulkan, GL, HLSL and Godot 3 (which refuses program passes at export): rows, statuses, reasons,
+// shards and a byte-identical report.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -49,6 +50,13 @@ void write_library(const test::TempDir& dir) {
                "layout(set = 0, binding = 3) uniform sampler2D NoSuchTexture;\n"
                "#endif\n",
                kDraw));
+    // Bands of three rows counted by gl_FragCoord: GL counts from the bottom and a y-up clip space
+    // draws upside down unless the host corrects both, so a mirrored count shows.
+    write(dir / "shaders/rows.slang",
+          pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n",
+               "    float band = mod(floor(gl_FragCoord.y / 3.0), 2.0);\n"
+               "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.75 * band) * params.GAIN, 1.0);"));
+    write(dir / "good/rows.slangp", "shaders = 1\nshader0 = ../shaders/rows.slang\n");
     write(dir / "shaders/typo.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", "    FragColor = 1.0;"));
     write(dir / "good/plain.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\n");
     write(dir / "good/macro.slangp",
@@ -74,12 +82,13 @@ TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each ta
     auto presets = list_corpus_presets(dir.path());
     REQUIRE(presets.ok());
     REQUIRE(presets.value() ==
-            std::vector<std::string>{"bad/broken.slangp", "bad/nospirv.slangp", "good/macro.slangp", "good/plain.slangp", "good/wide.slangp"});
+            std::vector<std::string>{"bad/broken.slangp", "bad/nospirv.slangp", "good/macro.slangp", "good/plain.slangp", "good/rows.slangp",
+                                     "good/wide.slangp"});
 
     CorpusRequest request;
     request.root = dir.path();
     request.presets = presets.value();
-    request.targets = {TargetId::Spirv, TargetId::Glsl330, TargetId::Godot3};
+    request.targets = {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Godot3};
     request.source_width = 32;
     request.source_height = 24;
     request.display_width = 64;
@@ -89,22 +98,23 @@ TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each ta
     INFO((run.ok() ? std::string() : run.error().str()));
     REQUIRE(run.ok());
     const CorpusReport& report = run.value();
-    REQUIRE(report.rows.size() == 5);
-    REQUIRE(report.targets == std::vector<std::string>{"spirv", "glsl330", "godot3"});
+    REQUIRE(report.rows.size() == 6);
+    REQUIRE(report.targets == std::vector<std::string>{"spirv", "glsl330", "hlsl50", "godot3"});
 
-    SECTION("presets that import render on Vulkan, and GL agrees with it") {
-        for (const char* name : {"good/plain.slangp", "good/macro.slangp", "good/wide.slangp"}) {
+    SECTION("presets that import render on Vulkan, and GL and HLSL agree with it") {
+        for (const char* name : {"good/plain.slangp", "good/macro.slangp", "good/rows.slangp", "good/wide.slangp"}) {
             INFO(name);
             const CorpusRow& row = row_of(report, name);
             CHECK(row.import_error.empty());
             CHECK(row.spirv_error.empty());
             CHECK(row.passes_spirv == row.passes);
-            for (const char* target : {"spirv", "glsl330"}) {
+            for (const char* target : {"spirv", "glsl330", "hlsl50"}) {
                 INFO(target << ": " << row.targets.at(target).reason);
                 CHECK(row.targets.at(target).status == "agrees");
                 CHECK(row.targets.at(target).passes_compiled == row.passes);
             }
             CHECK(row.targets.at("glsl330").psnr >= 40.0);
+            CHECK(row.targets.at("hlsl50").psnr >= 40.0);
             // Godot refuses program passes at export; the reason names the imported stage file
             // without the run's temporary folder, so reports compare run to run.
             const CorpusTargetResult& godot = row.targets.at("godot3");

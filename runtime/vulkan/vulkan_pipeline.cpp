@@ -140,6 +140,10 @@ Result<UniquePipeline> create_pipeline(VkDevice device, const RenderJob& job, co
     const Viewport area = job.viewport.full() ? Viewport{0, 0, job.width, job.height} : job.viewport;
     VkViewport viewport{static_cast<float>(area.x), static_cast<float>(area.y), static_cast<float>(area.width),
                         static_cast<float>(area.height), 0.0f, 1.0f};
+    if (job.clip_y_up) {  // D3D's clip space: NDC y = +1 on the top row (maintenance1's negative height)
+        viewport.y = static_cast<float>(area.y + area.height);
+        viewport.height = -static_cast<float>(area.height);
+    }
     VkRect2D scissor{{area.x, area.y}, {static_cast<uint32_t>(area.width), static_cast<uint32_t>(area.height)}};
     VkPipelineViewportStateCreateInfo viewport_state{};
     viewport_state.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;

@@ -17,6 +17,21 @@ namespace {
 // The instance name SPIRV-Cross gives the block while flattening: no template name can take it.
 constexpr const char* kPlainBlockMarker = "crtforge_plain_block";
 
+// Desktop GL counts gl_FragCoord's rows from the bottom, Vulkan (the SPIR-V's meaning) from the
+// top: a shader that reads it (RetroArch's masks and noise do) gets it redeclared top-down, after
+// the #version and #extension lines. GLSL ES has no such layout (docs/retroarch.md, Not yet).
+std::string with_fragcoord_from_top(const std::string& text) {
+    static const std::regex use(R"(\bgl_FragCoord\b)");
+    if (!std::regex_search(text, use)) return text;
+    size_t at = 0;
+    while (at < text.size() && text[at] == '#') {
+        const size_t end = text.find('\n', at);
+        if (end == std::string::npos) return text;
+        at = end + 1;
+    }
+    return text.substr(0, at) + "layout(origin_upper_left) in vec4 gl_FragCoord;\n" + text.substr(at);
+}
+
 }  // namespace
 
 std::string flatten_plain_uniform_block(const std::string& text, const std::string& instance) {
@@ -56,6 +71,9 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
         }, options.plain_uniforms ? kPlainBlockMarker : nullptr);
     });
     if (!out.ok()) return out;
+    if (!options.es)
+        for (OutputFile& f : out.value().files)
+            if (f.stage == ShaderStage::Fragment) f.data = with_fragcoord_from_top(f.data);
     if (options.plain_uniforms) {
         for (OutputFile& f : out.value().files) {
             f.data = flatten_plain_uniform_block(f.data, kPlainBlockMarker);
@@ -84,9 +102,9 @@ std::vector<TargetInfo> records() {
     // Bump a fingerprint whenever that target's output changes for the same SPIR-V.
     return {
         {TargetId::Glsl450, "glsl450", "GLSL 4.50 core (OpenGL 4.5)", {"vertex", "fragment"}, "gl",
-         [](const TargetInput& in) { return generate(in, {450, false}); }, "glsl450/spirv-cross-2021.01.15/v2"},
+         [](const TargetInput& in) { return generate(in, {450, false}); }, "glsl450/spirv-cross-2021.01.15/v3"},
         {TargetId::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)", {"vertex", "fragment"}, "gl",
-         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v2"},
+         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v3"},
         {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)", {"vertex", "fragment"}, "gl-es",
          [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v2"},
         {TargetId::WebGl2, "webgl2", "WebGL 2 (GLSL ES 3.00, params as plain uniforms set by name)", {"vertex", "fragment"},

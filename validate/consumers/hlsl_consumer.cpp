@@ -1,6 +1,6 @@
 // "hlsl": HLSL as a D3D host compiles it, through glslang's HLSL front end — each file must compile
 // (then pass spirv-val), and the pair compiled to SPIR-V renders on Vulkan with D3D's y-up clip
-// space emulated (rows flipped back), as a D3D-to-Vulkan layer would run it.
+// space emulated by a flipped viewport, as a D3D-to-Vulkan layer (vkd3d, DXVK) runs it.
 #include <fmt/format.h>
 
 #include "validate/consumers/consumer.hpp"
@@ -8,13 +8,6 @@
 namespace crtforge {
 
 namespace {
-
-void flip_rows(Image& image) {
-    const size_t row = static_cast<size_t>(image.width) * 4;
-    for (int y = 0; y < image.height / 2; ++y)
-        std::swap_ranges(image.rgba.begin() + y * row, image.rgba.begin() + (y + 1) * row,
-                         image.rgba.begin() + (image.height - 1 - y) * row);
-}
 
 class HlslConsumer final : public Consumer {
 public:
@@ -31,8 +24,9 @@ public:
         auto textures = engine_textures(r, [&](const std::string& name) { return spirv_texture_binding(r, name); });
         if (!textures.ok()) return textures.error();
         auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
-        // Drawn upside down and flipped back below: the viewport goes where the flip brings it home.
-        if (!job.viewport.full()) job.viewport.y = job.height - job.viewport.y - job.viewport.height;
+        // The vertex shader targets D3D's y-up clip space: drawn through a flipped viewport, as a
+        // D3D-to-Vulkan layer draws it, so SV_Position counts rows from the top as on D3D.
+        job.clip_y_up = true;
         for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
             auto file = file_with_role(r, stage == ShaderStage::Vertex ? "vertex" : "fragment");
             if (!file.ok()) return file.error();
@@ -45,12 +39,7 @@ public:
             if (!module.ok()) return module.error();
             (stage == ShaderStage::Vertex ? job.vertex_spirv : job.fragment_spirv) = module.value()->spirv;
         }
-        auto image = render_on_vulkan(job, engines);
-        if (!image.ok()) return image;
-        // The vertex shader targets D3D's y-up clip space; on Vulkan that draws the picture upside
-        // down, exactly as D3D would show it the right way up. Flip back to compare.
-        flip_rows(image.value());
-        return image;
+        return render_on_vulkan(job, engines);
     }
 
     bool renders_on_vulkan() const override { return true; }

@@ -85,6 +85,10 @@ struct RenderJob {
     std::vector<TextureInput> textures;
     int width = 0, height = 0;  // output size in pixels
     Viewport viewport;          // where inside width x height the pass draws; default: everywhere
+    // The vertex shader writes D3D's y-up clip space (HLSL): the viewport is flipped (negative
+    // height, Vulkan 1.1) so the picture lands the right way up with FragCoord counted from the
+    // top row, as D3D runs it.
+    bool clip_y_up = false;
     std::array<float, 4> clear_color = {0, 0, 0, 0};  // linear RGBA the whole target starts as
     OutputFormat format = OutputFormat::Rgba8Unorm;
     // The bytes of the std140 uniform block, as laid out by the shader. Empty = the shader has no
