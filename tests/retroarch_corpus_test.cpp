@@ -2,7 +2,9 @@
 // macro names and one an #ifdef hides, one that counts rows by gl_FragCoord, one whose value lies
 // outside its range, one that does not import, one whose SPIR-V fails) through the corpus run on
 // Vulkan, GL, HLSL and Godot 3 (which refuses program passes at export): rows, statuses, reasons,
-// shards and a byte-identical report.
+// shards and a byte-identical report. Then libraries that read outside their textures
+// (clamp_to_border) and hand matrices, arrays and flat integers between stages, through Dawn and
+// through a real Godot 4.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -226,5 +228,53 @@ TEST_CASE("WebGPU renders RetroArch's clamp_to_border like Vulkan: the WGSL fade
         CHECK(row.targets.at("spirv").status == "agrees");
         CHECK(row.targets.at("wgsl").status == "agrees");
         CHECK(row.targets.at("wgsl").psnr >= 40.0);
+    }
+}
+
+TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, clamp_to_border",
+          "[retroarch][corpus-command][godot4]") {
+    test::TempDir dir;
+    write(dir / "shaders/zoom.slang", zoom_out_pass());
+    // Bands of three rows by gl_FragCoord, and the output size read in the vertex stage.
+    write(dir / "shaders/rows.slang",
+          "#version 450\n"
+          "layout(push_constant) uniform Push { vec4 SourceSize; vec4 OutputSize; } params;\n"
+          "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
+          "#pragma stage vertex\n"
+          "layout(location = 0) in vec4 Position;\n"
+          "layout(location = 1) in vec2 TexCoord;\n"
+          "layout(location = 0) out vec2 vTexCoord;\n"
+          "layout(location = 1) out vec2 vPixel;\n"
+          "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; vPixel = TexCoord * params.OutputSize.xy; }\n"
+          "#pragma stage fragment\n"
+          "layout(location = 0) in vec2 vTexCoord;\n"
+          "layout(location = 1) in vec2 vPixel;\n"
+          "layout(location = 0) out vec4 FragColor;\n"
+          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+          "void main() {\n"
+          "    float band = mod(floor(gl_FragCoord.y / 3.0), 2.0);\n"
+          "    float column = mod(floor(vPixel.x / 4.0), 2.0);\n"
+          "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.5 * band + 0.25 * column), 1.0);\n"
+          "}\n");
+    write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
+    write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
+                                "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");
+    CorpusRequest request;
+    request.root = dir.path();
+    request.presets = {"chain.slangp", "linear.slangp"};
+    request.targets = {TargetId::Spirv, TargetId::Godot4};
+    request.source_width = 32;
+    request.source_height = 24;
+    request.display_width = 64;
+    request.display_height = 48;
+    request.frame = 0;
+    auto run = run_corpus(request, Cache());
+    INFO((run.ok() ? std::string() : run.error().str()));
+    REQUIRE(run.ok());
+    for (const CorpusRow& row : run.value().rows) {
+        INFO(row.preset << ": " << row.import_error << row.targets.at("godot4").reason);
+        CHECK(row.targets.at("godot4").passes_compiled == row.passes);
+        CHECK(row.targets.at("godot4").status == "agrees");
+        CHECK(row.targets.at("godot4").psnr >= 40.0);
     }
 }

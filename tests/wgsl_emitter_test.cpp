@@ -338,7 +338,7 @@ TEST_CASE("wgsl: derivatives, vector shuffles and composite inserts", "[wgsl]") 
     CHECK(pixel(r.dawn)[2] == Approx(1.0f));
 }
 
-TEST_CASE("wgsl: modf and frexp write their second part through the pointer; textureGather keeps its component", "[wgsl]") {
+TEST_CASE("wgsl: modf and frexp write their second part through the pointer, and textureGather keeps its component", "[wgsl]") {
     Uniforms u;
     u.a[0] = -2.75f;
     u.a[1] = 12.5f;

@@ -485,6 +485,7 @@ Result<std::vector<std::string>> scene_job_args(const Godot3SceneJob& job, const
         "--capture=" + frame_list(job.capture),
         fmt::format("--fps={}", job.fps),
         fmt::format("--start-time={}", job.start_time),
+        fmt::format("--frame-count-base={}", job.frame_count_base),
         "--params=" + (dir / "params.json").string(),
         "--output=" + (dir / "frame-").string(),
     };

@@ -261,6 +261,7 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
                     {"capture", job.capture},
                     {"fps", job.fps},
                     {"start_time", job.start_time},
+                    {"frame_count_base", job.frame_count_base},
                     {"params", params.value()},
                     {"output", output.string()}};
     if (!job.fit.empty()) message["fit"] = job.fit;

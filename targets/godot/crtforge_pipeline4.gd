@@ -41,7 +41,7 @@ extends Control
 @export var pixel_aspect := Vector2(1, 1)
 @export var screen_aspect := Vector2(0, 0)  # (0, 0): the source's display aspect
 @export var fit := "stretch"  # stretch | aspect | integer
-@export var passes: Array = []  # per pass: alias, scale, hdr, input, textures, frame_count_mod, frame_count
+@export var passes: Array = []  # per pass: alias, scale, hdr, input, textures, frame_count_mod, frame_count, sizes
 @export var feedback: Array = []  # aliases of passes read as the previous frame
 @export var history := 0  # frames of the original kept
 @export var luts: Dictionary = {}  # name -> {path, filter, wrap}
@@ -227,6 +227,10 @@ func _layout() -> void:
 	for i in range(passes.size()):
 		var viewport := get_node(passes[i]["alias"]) as SubViewport
 		_resize(viewport, viewport.get_node("Pass"), sizes[i])
+		if passes[i].get("sizes", false):  # a program pass: its vertex stage has no other way to know them
+			var material := (viewport.get_node("Pass") as TextureRect).material as ShaderMaterial
+			material.set_shader_parameter("outputSize", Vector2(sizes[i]))
+			material.set_shader_parameter("viewportSize", Vector2(screen.size))
 	for alias in feedback:
 		var copy := get_node("previous-" + alias) as SubViewport
 		_resize(copy, copy.get_node("Copy"), (get_node(alias) as SubViewport).size)

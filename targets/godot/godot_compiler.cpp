@@ -3,6 +3,8 @@
 #include "crtforge/inert_text.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <map>
 #include <regex>
 
 #include <fmt/format.h>
@@ -43,6 +45,64 @@ std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
     return out;
 }
 
+// Every call of `function` in `text`, its top-level arguments handed to `rewrite`, which returns
+// the replacement of the whole call.
+std::string rewrite_calls(const std::string& text, const std::string& function,
+                          const std::function<std::string(const std::vector<std::string>&)>& rewrite) {
+    const std::regex call("\\b" + function + "\\(");
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), call); it != std::sregex_iterator(); ++it) {
+        const size_t at = static_cast<size_t>(it->position());
+        if (at < last) continue;
+        std::vector<std::string> args(1);
+        int depth = 0;
+        size_t end = at + static_cast<size_t>(it->length());
+        for (; end < text.size(); ++end) {
+            const char c = text[end];
+            if (depth == 0 && c == ')') break;
+            if (depth == 0 && c == ',') {
+                args.emplace_back();
+                continue;
+            }
+            if (c == '(' || c == '[') ++depth;
+            if (c == ')' || c == ']') --depth;
+            args.back() += c;
+        }
+        if (end >= text.size()) throw spirv_cross::CompilerError("unbalanced call of " + function);
+        for (std::string& a : args) a.erase(0, std::min(a.size(), a.find_first_not_of(' ')));
+        out.append(text, last, at - last);
+        out += rewrite(args);
+        last = end + 1;
+    }
+    out.append(text, last, std::string::npos);
+    return out;
+}
+
+// Godot's shading language has no texel-offset variants of texture reads: the offset, in texels
+// of level 0, moves the coordinate instead (the same texel for reads of level 0).
+std::string without_texel_offsets(std::string text) {
+    auto moved = [](const std::vector<std::string>& a, size_t offset) {
+        return "(" + a[1] + ") + vec2(" + a[offset] + ") / vec2(textureSize(" + a[0] + ", 0))";
+    };
+    auto need = [](const std::vector<std::string>& a, size_t n, const char* f) {
+        if (a.size() != n) throw spirv_cross::CompilerError(std::string("an unexpected ") + f + " call");
+    };
+    text = rewrite_calls(text, "textureOffset", [&](const std::vector<std::string>& a) {
+        if (a.size() != 3 && a.size() != 4) throw spirv_cross::CompilerError("an unexpected textureOffset call");
+        return "texture(" + a[0] + ", " + moved(a, 2) + (a.size() == 4 ? ", " + a[3] : "") + ")";
+    });
+    text = rewrite_calls(text, "textureLodOffset", [&](const std::vector<std::string>& a) {
+        need(a, 4, "textureLodOffset");
+        return "textureLod(" + a[0] + ", " + moved(a, 3) + ", " + a[2] + ")";  // (s, P, lod, offset)
+    });
+    text = rewrite_calls(text, "texelFetchOffset", [&](const std::vector<std::string>& a) {
+        need(a, 4, "texelFetchOffset");
+        return "texelFetch(" + a[0] + ", (" + a[1] + ") + (" + a[3] + "), " + a[2] + ")";  // (s, P, lod, offset)
+    });
+    return text;
+}
+
 // TIME wraps (rendering/limits/time/time_rollover_secs, 3600 s by default). A phase TIME * speed
 // stays continuous across the wrap when speed * 3600 is a whole number of turns, so the speed
 // is rounded to the nearest multiple of 2*pi/3600 rad/s (a change below 0.0009 rad/s). Which param is
@@ -53,17 +113,34 @@ constexpr const char* kTau = "6.28318530717959";
 
 }  // namespace
 
-GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options)
-    : CompilerGLSL(without_undefined_values(std::move(spirv))), variant_(variant), options_(options) {}
+GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
+                             ShaderStage stage, std::vector<Varying> varyings)
+    : CompilerGLSL(without_undefined_values(std::move(spirv))), variant_(variant), options_(options), stage_(stage),
+      varyings_(std::move(varyings)) {
+    for (const VariantStage& vs : variant.stages)
+        for (const FormSpec* form : vs.forms) program_ = program_ || form->program();
+}
+
+std::string GodotCompiler::builtin_expression_fragment_size() const {
+    // The node's size in pixels, whatever it is stretched to: UV changes by 1/size per pixel on an
+    // axis-aligned node. Rounded, because a node covers whole pixels and the derivative carries
+    // ~1e-5 relative error, enough to move samples across floor() edges (mask cells).
+    return screen_mode() ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))";
+}
 
 std::string GodotCompiler::builtin_expression(const std::string& member) const {
     const bool screen = options_.mode == Mode::Screen;
-    if (member == "outputSize") {
-        // The node's size in pixels, whatever it is stretched to: UV changes by 1/size per pixel on an
-        // axis-aligned node. Rounded, because a node covers whole pixels and the derivative carries
-        // ~1e-5 relative error, enough to move samples across floor() edges (mask cells).
-        return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))";
+    // A program pass's sizes come from the host (crtforge_pipeline.gd sets them); a vertex stage
+    // has no derivatives to find them by. Unset (0), the node's own estimate stands in.
+    if (program_ && (member == "outputSize" || member == "viewportSize")) {
+        const std::string fallback = stage_ == ShaderStage::Vertex ? (screen ? "vec2(1.0)" : "(1.0 / TEXTURE_PIXEL_SIZE)")
+                                                                    : builtin_expression_fragment_size();
+        return "(" + member + ".x > 0.0 ? " + member + " : " + fallback + ")";
     }
+    // Godot's GLES3 vertex stage cannot size the screen texture: the screen's size stands in.
+    if (member == "sourceSize" && stage_ == ShaderStage::Vertex && screen)
+        return "(viewportSize.x > 0.0 ? viewportSize : vec2(1.0))";
+    if (member == "outputSize") return builtin_expression_fragment_size();
     if (member == "sourceSize") return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "(1.0 / TEXTURE_PIXEL_SIZE)";
     if (member == "time") {
         // The spec marks the speed the time feeds (role angular_speed); compile_godot() refused
@@ -123,14 +200,44 @@ void GodotCompiler::prepare() {
 
     const bool screen = options_.mode == Mode::Screen;
     auto resources = get_shader_resources();
+    if (stage_ == ShaderStage::Vertex) {
+        // A program's vertex stage: RetroArch's quad corner comes from UV (vertex_text()), so it
+        // reads no attributes; each output becomes a varying the fragment stage reads by location.
+        if (!resources.stage_inputs.empty())
+            throw spirv_cross::CompilerError("the vertex stage reads vertex attributes, which a canvas_item has not");
+        varyings_.clear();
+        for (const auto& out : resources.stage_outputs) {
+            if (!has_decoration(out.id, spv::DecorationLocation))
+                throw spirv_cross::CompilerError("a vertex output without a location");
+            Varying v;
+            v.location = get_decoration(out.id, spv::DecorationLocation);
+            v.name = get_name(out.id).empty() ? "crt_varying_" + std::to_string(v.location) : get_name(out.id);
+            set_name(out.id, v.name);
+            set_remapped_variable_state(out.id, true);
+            const bool flat = has_decoration(out.id, spv::DecorationFlat) || get_type(out.base_type_id).basetype != spirv_cross::SPIRType::Float;
+            v.declaration = "varying " + std::string(flat ? "flat " : "") + variable_decl(get_type(out.type_id), v.name, out.id) + ";";
+            varyings_.push_back(std::move(v));
+        }
+    }
     // Declared by Godot itself (or by emit_header): hide them and use Godot's names.
     for (const auto& in : resources.stage_inputs) {
+        if (stage_ == ShaderStage::Vertex) break;
         set_remapped_variable_state(in.id, true);
+        if (program_) {  // a varying the vertex stage writes at the same location
+            const uint32_t location = get_decoration(in.id, spv::DecorationLocation);
+            auto v = std::find_if(varyings_.begin(), varyings_.end(), [&](const Varying& x) { return x.location == location; });
+            if (v == varyings_.end())
+                throw spirv_cross::CompilerError("the fragment stage reads location " + std::to_string(location) +
+                                                 ", which the vertex stage does not write");
+            set_name(in.id, v->name);
+            continue;
+        }
         // Godot 3's SCREEN_UV (and SCREEN_TEXTURE) count rows from the bottom; the effects count
         // them from the top, as UV and Godot 4's SCREEN_UV do (crt_flip_y below).
         set_name(in.id, !screen ? "UV" : options_.godot_version >= 4 ? "SCREEN_UV" : "crt_flip_y(SCREEN_UV)");
     }
     for (const auto& out : resources.stage_outputs) {
+        if (stage_ == ShaderStage::Vertex) break;
         set_remapped_variable_state(out.id, true);
         set_name(out.id, "COLOR");
     }
@@ -189,9 +296,83 @@ std::string GodotCompiler::compile_godot() {
         if (close == std::string::npos) throw spirv_cross::CompilerError("no fragment() body to close");
         out.insert(close, "    COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);  // screen mode: the bezel's alpha over black\n");
     }
+    out = with_border_emulated(without_texel_offsets(out));
+    // Godot's matrices are square: matNxN is matN, and a non-square one has no Godot type.
+    static const std::regex sized_matrix(R"(\bmat([234])x([234])\b)");
+    std::smatch non_square;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), sized_matrix); it != std::sregex_iterator(); ++it)
+        if ((*it)[1] != (*it)[2]) throw spirv_cross::CompilerError("Godot has no non-square matrix type (" + it->str() + ")");
+    out = std::regex_replace(out, sized_matrix, "mat$1");
+    if (stage_ == ShaderStage::Vertex) out = vertex_text(out);
     if (options_.godot_version >= 4) return out;
     if (screen_mode()) out = with_screen_reads_flipped(out);
     return with_loop_increments(out);
+}
+
+std::string GodotCompiler::border_texture_name(const PassInput& input) const {
+    if (input.wrap != Wrap::ClampToBorder) return "";
+    if (input.binding != kSourceTextureName) return input.binding;
+    return screen_mode() ? "" : "TEXTURE";  // the screen has nothing outside it to read
+}
+
+std::string GodotCompiler::with_border_emulated(const std::string& text) const {
+    // Godot has no border colour (its samplers clamp to the edge): a texture the pass reads
+    // clamp_to_border has each read multiplied by the share of its footprint inside the texture,
+    // exact for nearest, and for linear at level 0 (as the WGSL emitter does).
+    std::map<std::string, bool> border;  // Godot name -> linear
+    for (const PassInput& in : variant_.pass->inputs)
+        if (const std::string name = border_texture_name(in); !name.empty()) border[name] = in.filter == Filter::Linear;
+    if (border.empty()) return text;
+    std::function<std::string(const std::string&)> rewrite = [&](const std::string& source) {
+        std::string out = source;
+        for (const std::string function : {"texture", "textureLod", "textureGrad"})
+            out = rewrite_calls(out, function, [&](const std::vector<std::string>& args) {
+                std::string call = function + "(";
+                for (size_t i = 0; i < args.size(); ++i) call += (i ? ", " : "") + rewrite(args[i]);
+                call += ")";
+                auto b = border.find(args[0]);
+                if (b == border.end() || args.size() < 2) return call;
+                const std::string uv = rewrite(args[1]);
+                return "(" + call + " * " +
+                       (b->second ? "crt_border_linear(" + uv + ", vec2(textureSize(" + args[0] + ", 0)))" : "crt_border_nearest(" + uv + ")") + ")";
+            });
+        return out;
+    };
+    return rewrite(text);
+}
+
+std::string GodotCompiler::vertex_text(std::string text) const {
+    // SPIRV-Cross names values by their ids, which the fragment stage's compile reuses: the vertex
+    // stage's become _v<id>.
+    static const std::regex id_name(R"(\b_(\d+)\b)");
+    text = std::regex_replace(text, id_name, "_v$1");
+    // The import draws RetroArch's quad as a full-screen triangle, its corner from gl_VertexIndex
+    // (generator/retroarch/slang_program.cpp); a canvas_item's own quad has that corner as UV.
+    for (const auto& [corner, uv] : {std::pair<std::string, std::string>{"float((gl_VertexID << 1) & 2)", "UV.x"},
+                                     {"float(gl_VertexID & 2)", "UV.y"}})
+        for (size_t at = text.find(corner); at != std::string::npos; at = text.find(corner, at + uv.size()))
+            text.replace(at, corner.size(), uv);
+    if (text.find("gl_VertexID") != std::string::npos)
+        throw spirv_cross::CompilerError("the vertex stage reads gl_VertexIndex other than as RetroArch's quad corner");
+    // The clip position is Godot's (VERTEX, the node's own quad): the shader's is computed and dropped.
+    const std::string entry = "void vertex()\n{\n";
+    const size_t body = text.find(entry);
+    if (body == std::string::npos) throw spirv_cross::CompilerError("no vertex() in the vertex stage");
+    text.insert(body + entry.size(), "    vec4 crt_position;  // the shader's clip position: Godot places the node itself\n");
+    return text;
+}
+
+std::string GodotCompiler::builtin_to_glsl(spv::BuiltIn builtin, spv::StorageClass storage) {
+    switch (builtin) {
+        // Vulkan's gl_FragCoord: pixel centres at +0.5 from the top-left. FRAGCOORD (and SCREEN_UV)
+        // count rows from the bottom in the Compatibility renderer's SubViewports and from the top in
+        // Forward+'s; the node's UV is top-down in both, and the pass's node fills its viewport.
+        case spv::BuiltInFragCoord:
+            return screen_mode() ? "vec4(SCREEN_UV / SCREEN_PIXEL_SIZE, FRAGCOORD.zw)"
+                                 : "vec4(UV * " + builtin_expression("outputSize") + ", FRAGCOORD.zw)";
+        case spv::BuiltInPosition: return "crt_position";
+        default: return CompilerGLSL::builtin_to_glsl(builtin, storage);
+    }
 }
 
 std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
@@ -264,6 +445,7 @@ std::string GodotCompiler::with_loop_increments(const std::string& text) {
 }
 
 void GodotCompiler::emit_header() {
+    if (stage_ == ShaderStage::Vertex) return;  // the fragment stage's header declares everything
     const Preset& preset = *variant_.preset;
     const bool screen = options_.mode == Mode::Screen;
     statement("// crtforge ", CRTFORGE_VERSION, ": preset ", preset.name, ". ", inert_comment(preset.doc));
@@ -297,8 +479,9 @@ void GodotCompiler::emit_header() {
     }
     statement("shader_type canvas_item;");
     // A pass before the last writes data for the next pass, not a picture to composite: its
-    // alpha (a transparent bezel) must not blend its colour away.
-    if (variant_.writes_alpha() && variant_.pass_index + 1 < variant_.preset->passes.size())
+    // alpha (a transparent bezel, or a value a RetroArch pass keeps there) must not blend its
+    // colour away.
+    if ((variant_.writes_alpha() || program_) && variant_.pass_index + 1 < variant_.preset->passes.size())
         statement("render_mode blend_disabled;");
     statement("");
     if (screen && options_.godot_version < 4) {
@@ -328,6 +511,26 @@ void GodotCompiler::emit_header() {
             statement("// Frames since the first, set every frame by the host (crtforge_pipeline.gd does it).");
             statement("uniform int frameCount = 0;");
         }
+    if (std::any_of(variant_.pass->inputs.begin(), variant_.pass->inputs.end(),
+                    [&](const PassInput& in) { return !border_texture_name(in).empty(); })) {
+        statement("// clamp_to_border without a border colour (Godot's samplers clamp to the edge): the share of a");
+        statement("// read's footprint inside the texture, which the reads are multiplied by.");
+        statement("float crt_border_linear(vec2 uv, vec2 size) {");
+        statement("    vec2 inside = clamp(min(uv, vec2(1.0) - uv) * size + vec2(0.5), vec2(0.0), vec2(1.0));");
+        statement("    return inside.x * inside.y;");
+        statement("}");
+        statement("float crt_border_nearest(vec2 uv) {");
+        statement("    return (uv.x >= 0.0 && uv.y >= 0.0 && uv.x < 1.0 && uv.y < 1.0) ? 1.0 : 0.0;");
+        statement("}");
+    }
+    if (program_) {
+        statement("// The pass's output size and the screen's, in pixels, set by the host (crtforge_pipeline.gd does it);");
+        statement("// left at 0, the node's size stands in.");
+        statement("uniform vec2 outputSize = vec2(0.0);");
+        statement("uniform vec2 viewportSize = vec2(0.0);");
+        statement("// What the vertex stage hands the fragment stage.");
+        for (const Varying& v : varyings_) statement(v.declaration);
+    }
     for (const std::string& texture : variant_.textures) {
         const PassInput* input = variant_.pass->find_input(texture);
         statement("// ", texture, ": ", input ? input->from.str() : std::string("set by the host"),
@@ -343,7 +546,7 @@ void GodotCompiler::emit_header() {
 
 void GodotCompiler::emit_function_prototype(spirv_cross::SPIRFunction& func, const spirv_cross::Bitset& return_flags) {
     if (func.self == ir.default_entry_point) {
-        statement("void fragment()");
+        statement(stage_ == ShaderStage::Vertex ? "void vertex()" : "void fragment()");
         return;
     }
     CompilerGLSL::emit_function_prototype(func, return_flags);

@@ -14,16 +14,30 @@
 
 namespace crtforge::godot {
 
+// A varying of a program pass (an imported RetroArch shader): what its vertex stage writes at a
+// location, which its fragment stage reads under the same name.
+struct Varying {
+    uint32_t location = 0;
+    std::string declaration;  // "varying flat vec2 noise_div;"
+    std::string name;
+};
+
 class GodotCompiler : public spirv_cross::CompilerGLSL {
 public:
-    GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options);
+    // `stage`: Fragment for fragment() (with the header), Vertex for a program pass's vertex().
+    GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
+                  ShaderStage stage = ShaderStage::Fragment, std::vector<Varying> varyings = {});
 
-    // The whole shader in Godot's dialect (may throw spirv_cross::CompilerError).
+    // The whole shader in Godot's dialect (may throw spirv_cross::CompilerError); for the vertex
+    // stage, its functions only.
     std::string compile_godot();
+    // Vertex stage: the varyings it writes, by location (valid after compile_godot()).
+    const std::vector<Varying>& varyings() const { return varyings_; }
 
 protected:
     void emit_header() override;
     void emit_function_prototype(spirv_cross::SPIRFunction& func, const spirv_cross::Bitset& return_flags) override;
+    std::string builtin_to_glsl(spv::BuiltIn builtin, spv::StorageClass storage) override;
 
 private:
     static constexpr const char* kBlockMarker = "crtforge_params_block";
@@ -34,11 +48,19 @@ private:
     void prepare();  // remaps resources onto Godot builtins
     std::string uniform_declaration(const VariantParam& p) const;
     std::string builtin_expression(const std::string& member) const;
+    std::string builtin_expression_fragment_size() const;
     static std::string with_loop_increments(const std::string& text);  // Godot 3's for-loop syntax
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
+    std::string vertex_text(std::string text) const;
+    // clamp_to_border emulated in the shader: each read of such a texture times the share inside it.
+    std::string with_border_emulated(const std::string& text) const;
+    std::string border_texture_name(const PassInput& input) const;  // "" when not emulated  // vertex(): RetroArch's quad from UV, clip position dropped
     const Variant& variant_;
     godot::Options options_;
+    ShaderStage stage_;
+    bool program_ = false;           // the pass is a whole program: varyings, sizes from the host
+    std::vector<Varying> varyings_;  // the vertex stage's outputs (given to the fragment stage)
     std::map<std::string, std::string> member_expressions_;  // block member -> Godot expression  // qualified: CompilerGLSL has its own nested Options
     std::vector<std::string> bool_members_;  // block members that are bool params (a uint in SPIR-V)
 };

@@ -136,10 +136,34 @@ std::vector<std::string> material_param_lines(const Variant& variant, int versio
 
 const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
 
+bool is_program_pass(const Variant& variant) {
+    for (const VariantStage& stage : variant.stages)
+        for (const FormSpec* form : stage.forms)
+            if (form->program()) return true;
+    return false;
+}
+
 Result<std::string> generate_shader(const TargetInput& input, const Options& options) {
+    // A program pass (an imported RetroArch shader) brings its vertex stage: translated first, its
+    // outputs become the varyings the fragment stage's header declares, and vertex() follows.
+    std::string vertex;
+    std::vector<Varying> varyings;
+    if (is_program_pass(*input.variant)) {
+        if (!input.vertex) return make_validation_error("a program pass without its vertex stage");
+        try {
+            GodotCompiler compiler(*input.vertex, *input.variant, options, ShaderStage::Vertex);
+            vertex = compiler.compile_godot();
+            varyings = compiler.varyings();
+        } catch (const std::exception& e) {
+            return make_validation_error(fmt::format("SPIRV-Cross cannot express the vertex shader in Godot {}: {}",
+                                                     options.godot_version, e.what()));
+        }
+    }
     try {
-        GodotCompiler compiler(*input.fragment, *input.variant, options);
-        return compiler.compile_godot();
+        GodotCompiler compiler(*input.fragment, *input.variant, options, ShaderStage::Fragment, std::move(varyings));
+        std::string text = compiler.compile_godot();
+        if (!vertex.empty()) text += "\n" + vertex;
+        return text;
     } catch (const std::exception& e) {
         return make_validation_error(fmt::format("SPIRV-Cross cannot express the fragment shader in Godot {}: {}",
                                                  options.godot_version, e.what()));
@@ -148,14 +172,14 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
 
 Result<TargetOutput> generate(const TargetInput& input, int version) {
     const std::string preset = input.variant->file_stem();
-    // A program pass (an imported RetroArch shader) computes its varyings in its own vertex stage,
-    // which the canvas_item emitter does not translate yet: refused, never emitted wrong.
-    for (const VariantStage& stage : input.variant->stages)
-        for (const FormSpec* form : stage.forms)
-            if (form->program())
-                return make_error("pass '" + input.variant->pass->alias + "' is a whole program (" + form->vertex_path +
-                                      "): Godot's canvas_item shaders do not run its vertex stage yet",
-                                  form->where.file, form->where.line, "form." + form->name);
+    // Godot 3 does not translate a program pass's vertex stage yet: refused, never emitted wrong.
+    if (version < 4)
+        for (const VariantStage& stage : input.variant->stages)
+            for (const FormSpec* form : stage.forms)
+                if (form->program())
+                    return make_error("pass '" + input.variant->pass->alias + "' is a whole program (" + form->vertex_path +
+                                          "): Godot 3's canvas_item shaders do not run its vertex stage yet",
+                                      form->where.file, form->where.line, "form." + form->name);
     const std::string ext = shader_extension(version);
     TargetOutput out;
     auto node = generate_shader(input, {version, Mode::NodeTexture});
@@ -188,10 +212,10 @@ std::vector<TargetInfo> records() {
     return {
         {TargetId::Godot4, "godot4", "Godot 4 canvas_item .gdshader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot4", [](const TargetInput& in) { return generate(in, 4); },
-         "godot4/spirv-cross-2021.01.15/v5", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
+         "godot4/spirv-cross-2021.01.15/v8", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
         {TargetId::Godot3, "godot3", "Godot 3 canvas_item .shader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot3", [](const TargetInput& in) { return generate(in, 3); },
-         "godot3/spirv-cross-2021.01.15/v6", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
+         "godot3/spirv-cross-2021.01.15/v8", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
     };
 }
 

@@ -100,7 +100,7 @@ Result<TargetOutput> generate(const TargetInput& input) {
 
 std::vector<TargetInfo> records() {
     return {{TargetId::Wgsl, "wgsl", "WGSL for WebGPU: one module, vs_main + fs_main (crtforge's own emitter)",
-             {"shader"}, "dawn", [](const TargetInput& in) { return generate(in); }, "wgsl/crtforge-emitter/v1"}};
+             {"shader"}, "dawn", [](const TargetInput& in) { return generate(in); }, "wgsl/crtforge-emitter/v2"}};
 }
 
 }  // namespace crtforge::wgsl

@@ -23,6 +23,7 @@
 #   --fps=60             the frame rate: the scene's `seconds` is start + frame / fps, and a uniform
 #                        crtforge_validation_time standing for TIME gets that mod 3600
 #   --start-time=0       seconds at frame 0
+#   --frame-count-base=0 the scene's frame (shaders' frameCount) at frame 0
 #   --params=PATH        as above, set on every pass that declares the uniform
 #   --fit=aspect         overrides the scene's display fit (stretch, aspect, integer)
 # Output file: 24-byte header, then W*H*4 little-endian float32, RGBA, row 0 = TOP of the picture:
@@ -393,7 +394,7 @@ func _scene_materials(scene):
 func _run_scene(opts):
 	yield(get_tree(), "idle_frame")
 	for key in opts.keys():
-		if not key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "fps", "start-time", "params", "output", "fit"]:
+		if not key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "fps", "start-time", "frame-count-base", "params", "output", "fit"]:
 			return _fail(2, "unknown argument '--%s'" % key)
 	for key in ["scene", "width", "height", "inputs", "input-width", "input-height", "run", "capture", "output"]:
 		if not opts.has(key):
@@ -412,6 +413,7 @@ func _run_scene(opts):
 	if fps <= 0:
 		return _fail(2, "--fps must be positive")
 	var start_time = float(opts.get("start-time", "0"))
+	var frame_count_base = int(opts.get("frame-count-base", "0"))
 	if start_time < 0:
 		return _fail(2, "--start-time must not be negative")
 
@@ -461,7 +463,7 @@ func _run_scene(opts):
 			image.create_from_data(iw, ih, false, Image.FORMAT_RGBAF, f.get_buffer(picture_bytes))
 			source.set_data(image)
 		scene.seconds = start_time + frame / fps  # the pipeline hands its shaders hostTime from it
-		scene.frame = frame
+		scene.frame = frame_count_base + frame
 		# Godot's TIME is the wall clock: the engine pins it through this uniform instead, wrapped
 		# as Godot wraps TIME (rendering/limits/time/time_rollover_secs, 3600 s by default).
 		for entry in materials:

@@ -16,7 +16,7 @@
 //    "filter","params":{name:value},"frames","output":PATH}
 //   {"op":"scene","project":DIR,"scene":"res://...","width","height","inputs":PATH (one picture
 //    per frame of run, back to back),"input_width","input_height","run":[..],"capture":[..],
-//    "fps","start_time","fit"?,"params","output":PATH (the captured pictures, back to back)}
+//    "fps","start_time","frame_count_base"?,"fit"?,"params","output":PATH (the captured pictures, back to back)}
 //   {"op":"project","project":DIR,"scene":"res://...","width","height","frames"}: a test's scene,
 //    run until it sets `done`; the reply's "output" is what it printed
 // Replies: {"ok":true,"format":N} or {"ok":false,"kind":"request"|"validation","error":...,
@@ -274,7 +274,8 @@ async function runJob(request) {
       op: 'scene', pack, scene: request.scene, width: request.width, height: request.height,
       inputs: await intoEngine(request.inputs, pictureBytes(request.input_width, request.input_height, request.run.length)),
       input_width: request.input_width, input_height: request.input_height, run: request.run,
-      capture: request.capture, fps: request.fps, start_time: request.start_time, params: request.params ?? {},
+      capture: request.capture, fps: request.fps, start_time: request.start_time,
+      frame_count_base: request.frame_count_base ?? 0, params: request.params ?? {},
     };
     if (request.fit) job.fit = request.fit;
   } else {

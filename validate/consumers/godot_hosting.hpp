@@ -97,6 +97,7 @@ Status fill_scene_job(int version, TargetId target, const SceneRenderRequest& r,
     job.capture = frames.capture;
     job.fps = r.preset->scene.fps;
     job.start_time = r.start_time;
+    job.frame_count_base = r.frame_count_base;
     job.width = r.width;
     job.height = r.height;
     job.params = r.overrides;

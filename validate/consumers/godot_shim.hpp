@@ -4,8 +4,12 @@
 // value;` into a member of one std140 block. Used to compile-check both dialects and to render
 // godot4 (no Godot 4 is installable here).
 //
-// Limits: it understands the dialect crtforge emits (one uniform declaration per line, no
-// render_mode, no vertex()/light() functions, no varyings); it does not implement Godot's own
+// A program pass's shader (an imported RetroArch pass) also has `varying` lines and a vertex():
+// those become a second Vulkan GLSL module, the vertex stage, whose outputs the fragment stage reads
+// at the same locations (UV is its input at location 0).
+//
+// Limits: it understands the dialect crtforge emits (one uniform and one varying declaration per
+// line, no light() function); it does not implement Godot's own
 // compiler checks, so it proves the shader is valid GLSL with Godot's builtins and renders the same
 // math, not that every Godot version accepts every construct.
 #pragma once
@@ -40,6 +44,7 @@ struct ShimTexture {
 
 struct ShimShader {
     std::string glsl;                    // Vulkan GLSL 450 for glslang
+    std::string vertex_glsl;             // the vertex stage's, where the shader has a vertex() ("" if not)
     std::vector<ShimUniform> uniforms;   // non-sampler uniforms, in declaration order
     std::vector<ShimTexture> textures;   // sampler uniforms other than the screen texture
     bool screen_mode = false;            // reads SCREEN_UV and the screen texture

@@ -85,6 +85,7 @@ struct Godot3SceneJob {
     std::vector<int> capture;       // the frames whose display image comes back (each in `run`)
     double fps = 60;                // a uniform crtforge_validation_time, where declared, gets
     double start_time = 0;          // (start_time + frame / fps) mod 3600, as Godot wraps TIME
+    int frame_count_base = 0;       // the scene's `frame` (shaders' frameCount) is frame_count_base + frame
     std::string fit;                // "": the scene's own display fit; else stretch, aspect or integer
     int width = 0, height = 0;      // the display, 2..kMaxImageDimension
     std::map<std::string, Value> params;  // set on every pass that declares the uniform

@@ -389,7 +389,7 @@ func _run_scene(job: Dictionary) -> Dictionary:
 				return _refuse("inputs[%d] is not input_width x input_height float32 RGBA pixels" % i)
 			source.update(image)
 		scene.seconds = start_time + frame / fps
-		scene.frame = frame
+		scene.frame = int(job.get("frame_count_base", 0)) + frame
 		# Godot's TIME is the wall clock: the engine pins it through this uniform instead, wrapped as
 		# Godot wraps TIME.
 		for material in materials:
