@@ -199,6 +199,32 @@ std::string zoom_out_pass() {
            "}\n";
 }
 
+// Runs `presets` of the library in `dir` on Vulkan and `target` (a 32x24 source on a 64x48
+// display, frame 0) and checks every pass compiles and every preset agrees with Vulkan.
+void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& presets, TargetId target) {
+    CorpusRequest request;
+    request.root = dir.path();
+    request.presets = presets;
+    request.targets = {TargetId::Spirv, target};
+    request.source_width = 32;
+    request.source_height = 24;
+    request.display_width = 64;
+    request.display_height = 48;
+    request.frame = 0;
+    auto run = run_corpus(request, Cache());
+    INFO((run.ok() ? std::string() : run.error().str()));
+    REQUIRE(run.ok());
+    const std::string name = target_info(target).name;
+    REQUIRE(run.value().rows.size() == presets.size());
+    for (const CorpusRow& row : run.value().rows) {
+        INFO(row.preset << ": " << row.import_error << row.targets.at(name).reason);
+        CHECK(row.targets.at("spirv").status == "agrees");
+        CHECK(row.targets.at(name).passes_compiled == row.passes);
+        CHECK(row.targets.at(name).status == "agrees");
+        CHECK(row.targets.at(name).psnr >= 40.0);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("WebGPU renders RetroArch's clamp_to_border like Vulkan: the WGSL fades to the border, the host clamps to the edge",
@@ -211,24 +237,7 @@ TEST_CASE("WebGPU renders RetroArch's clamp_to_border like Vulkan: the WGSL fade
     write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nscale_type0 = source\n"
                                 "shader1 = shaders/zoom.slang\nfilter_linear1 = true\n");
     write(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
-    CorpusRequest request;
-    request.root = dir.path();
-    request.presets = {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"};
-    request.targets = {TargetId::Spirv, TargetId::Wgsl};
-    request.source_width = 32;
-    request.source_height = 24;
-    request.display_width = 64;
-    request.display_height = 48;
-    request.frame = 0;
-    auto run = run_corpus(request, Cache());
-    INFO((run.ok() ? std::string() : run.error().str()));
-    REQUIRE(run.ok());
-    for (const CorpusRow& row : run.value().rows) {
-        INFO(row.preset << ": " << row.import_error << row.targets.at("wgsl").reason);
-        CHECK(row.targets.at("spirv").status == "agrees");
-        CHECK(row.targets.at("wgsl").status == "agrees");
-        CHECK(row.targets.at("wgsl").psnr >= 40.0);
-    }
+    check_all_agree(dir, {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"}, TargetId::Wgsl);
 }
 
 TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, clamp_to_border",
@@ -259,22 +268,5 @@ TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyin
     write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
     write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
                                 "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");
-    CorpusRequest request;
-    request.root = dir.path();
-    request.presets = {"chain.slangp", "linear.slangp"};
-    request.targets = {TargetId::Spirv, TargetId::Godot4};
-    request.source_width = 32;
-    request.source_height = 24;
-    request.display_width = 64;
-    request.display_height = 48;
-    request.frame = 0;
-    auto run = run_corpus(request, Cache());
-    INFO((run.ok() ? std::string() : run.error().str()));
-    REQUIRE(run.ok());
-    for (const CorpusRow& row : run.value().rows) {
-        INFO(row.preset << ": " << row.import_error << row.targets.at("godot4").reason);
-        CHECK(row.targets.at("godot4").passes_compiled == row.passes);
-        CHECK(row.targets.at("godot4").status == "agrees");
-        CHECK(row.targets.at("godot4").psnr >= 40.0);
-    }
+    check_all_agree(dir, {"chain.slangp", "linear.slangp"}, TargetId::Godot4);
 }
