@@ -515,12 +515,13 @@ void GodotCompiler::emit_header() {
                     [&](const PassInput& in) { return !border_texture_name(in).empty(); })) {
         statement("// clamp_to_border without a border colour (Godot's samplers clamp to the edge): the share of a");
         statement("// read's footprint inside the texture, which the reads are multiplied by.");
-        statement("float crt_border_linear(vec2 uv, vec2 size) {");
-        statement("    vec2 inside = clamp(min(uv, vec2(1.0) - uv) * size + vec2(0.5), vec2(0.0), vec2(1.0));");
-        statement("    return inside.x * inside.y;");
+        // (Names of crtforge's own: Godot refuses a parameter that shares a global's name.)
+        statement("float crt_border_linear(vec2 crt_uv, vec2 crt_size) {");
+        statement("    vec2 crt_inside = clamp(min(crt_uv, vec2(1.0) - crt_uv) * crt_size + vec2(0.5), vec2(0.0), vec2(1.0));");
+        statement("    return crt_inside.x * crt_inside.y;");
         statement("}");
-        statement("float crt_border_nearest(vec2 uv) {");
-        statement("    return (uv.x >= 0.0 && uv.y >= 0.0 && uv.x < 1.0 && uv.y < 1.0) ? 1.0 : 0.0;");
+        statement("float crt_border_nearest(vec2 crt_uv) {");
+        statement("    return (crt_uv.x >= 0.0 && crt_uv.y >= 0.0 && crt_uv.x < 1.0 && crt_uv.y < 1.0) ? 1.0 : 0.0;");
         statement("}");
     }
     if (program_) {
