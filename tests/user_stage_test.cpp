@@ -89,6 +89,18 @@ TEST_CASE("a user's own stage: golden approve, cross-target agreement, stale on 
         CHECK(report.value().failed() == 2 * 3);
     }
 
+    // A filter that also takes goldens the reference renders is refused, and writes nothing.
+    {
+        test::TempDir mixed;
+        REQUIRE(write_file_atomic(mixed / "plan.toml", std::string(kPlan) + "\n[[golden]]\nwhy = \"a shipped preset\"\n"
+                                                        "presets = [\"classic\"]\ninputs = [\"grey_ramp\"]\nsize = [160, 120]\n").ok());
+        auto refused = approve_goldens(lib, mixed.path(), "grey_ramp");
+        REQUIRE_FALSE(refused.ok());
+        CHECK_THAT(refused.error().message, Catch::Contains("rendered by the reference"));
+        CHECK(fs::directory_iterator(mixed.path()) != fs::directory_iterator());
+        CHECK_FALSE(fs::exists(mixed / "manifest.json"));
+    }
+
     // Approve: Vulkan renders stored as goldens marked approved.
     auto approved = approve_goldens(lib, goldens.path(), "my-poster.");
     REQUIRE(approved.ok());

@@ -507,6 +507,13 @@ Result<GoldenUpdate> approve_goldens(const TemplateLibrary& library, const std::
     for (const GoldenEntry& e : plan)
         if (e.id.find(filter) != std::string::npos) chosen.push_back(&e);
     if (chosen.empty()) return make_error("no planned golden's id contains '" + filter + "'", dir + "/plan.toml", 0, "--filter");
+    // A golden the reference can render stays the reference's: a Vulkan render approved in its
+    // place would make validate judge Vulkan against itself. Refused before anything is written.
+    for (const GoldenEntry* e : chosen)
+        if (const Preset* preset = library.find_preset(e->preset); preset && reference_models(*preset).ok())
+            return make_error("golden '" + e->id + "' is rendered by the reference (crtforge golden update); approve only goldens of "
+                              "stages the reference has no model of (narrow the filter)",
+                              dir + "/plan.toml", 0, "--filter");
     TargetRenderer renderer(vulkan);
     Cache cache;
     std::vector<std::pair<const GoldenEntry*, Image>> images;
