@@ -127,6 +127,8 @@ TEST_CASE("a bad plan names its line and field", "[golden][matrix]") {
         {"tag = \"A B\"\n", "golden.tag", "a-z"},
         {"tag = \"p\"\nparams = { noSuchParam = 1.0 }\n", "golden.params.noSuchParam", "no stage"},
         {"tag = \"p\"\nparams = { curvature = 2.0 }\n", "golden.params.curvature", "range"},
+        {"tag = \"p\"\nparams = { curvature = nan }\n", "golden.params.curvature", "finite"},
+        {"tag = \"p\"\nparams = { curvature = -inf }\n", "golden.params.curvature", "finite"},
         {"tag = \"u\"\nuniforms = \"some\"\n", "golden.uniforms", "default"},
         {"tag = \"t\"\ntime = -1.0\n", "golden.time", "seconds"},
         {"tag = \"g\"\ngodot = \"screen\"\n", "golden.godot", "godot3"},

@@ -313,6 +313,8 @@ public:
             return error(&node, field, "only float, int and colour params can be set (they are the runtime ones)");
         const std::optional<double> v = node.value<double>();
         if (!v || (spec.type == ParamType::Int && !node.is_integer())) return error(&node, field, std::string("must be a ") + param_type_name(spec.type));
+        // nan compares false with both bounds: without this it reached the manifest as null.
+        if (!std::isfinite(*v)) return error(&node, field, "must be a finite number");
         if ((spec.min && *v < *spec.min) || (spec.max && *v > *spec.max))
             return error(&node, field, fmt::format("{} is outside the param's range {}..{}", *v, spec.min.value_or(*v), spec.max.value_or(*v)));
         if (spec.type == ParamType::Int) return Value{static_cast<int64_t>(*v)};
