@@ -3,6 +3,7 @@
 // run's.
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -18,21 +19,37 @@ namespace fs = std::filesystem;
 namespace {
 
 // flock() on a file beside the directory: released by the kernel when the process dies, so a
-// killed export never leaves a lock behind.
+// killed export never leaves a lock held. The holder removes the file before it lets go, so none
+// stays beside --out; a process that opened the file before that removal and locks it after finds
+// its inode no longer at the path, and tries again on the new file.
 class DirLock {
 public:
-    explicit DirLock(const std::string& path) : fd_(::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
-        locked_ = fd_ >= 0 && ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
+    explicit DirLock(std::string path) : path_(std::move(path)) {
+        for (int attempt = 0; attempt < 100; ++attempt) {
+            fd_ = ::open(path_.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+            if (fd_ < 0) return;
+            if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) return;  // held by another export
+            struct stat held {}, named {};
+            if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+                held.st_dev == named.st_dev) {
+                locked_ = true;
+                return;
+            }
+            ::close(fd_);  // removed by the holder we waited for: lock the file now at the path
+            fd_ = -1;
+        }
     }
     ~DirLock() {
-        if (fd_ >= 0) ::close(fd_);  // closing releases the lock; the file stays (removing it would race)
+        if (locked_) ::unlink(path_.c_str());  // while still held: see the class comment
+        if (fd_ >= 0) ::close(fd_);
     }
     DirLock(const DirLock&) = delete;
     DirLock& operator=(const DirLock&) = delete;
     bool locked() const { return locked_; }
 
 private:
-    int fd_;
+    std::string path_;
+    int fd_ = -1;
     bool locked_ = false;
 };
 
