@@ -1,5 +1,8 @@
 // crtforge render --preset P [--target T] --input FILE|NAME|PATTERN --output FILE|PATTERN
 //                [--size WxH] [--fit stretch|aspect|integer] [--frame N | --frames A:B]
+#include <unistd.h>
+
+#include <cstdio>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -32,6 +35,9 @@ Result<std::pair<int, int>> parse_size(const std::string& text) {
 }
 
 namespace {
+
+// Runs of at least this many frames show their progress.
+constexpr size_t kProgressFrames = 30;
 
 // "%d" or "%0Nd" (one of them) in a file name: a sequence, one file per frame.
 struct Pattern {
@@ -226,6 +232,19 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             r.frames = frames;
             r.file_luts = file_luts;
             r.frame_count_base = a->frame_count_base;
+            // A long run (--frame 500 of a preset that keeps state draws every frame before it):
+            // a bar on a terminal, a line per 10 % in a log.
+            const bool tty = ::isatty(STDOUT_FILENO);
+            r.on_frame = [tty](size_t done, size_t total) {
+                if (total < kProgressFrames) return;
+                const std::string text = fmt::format("render: frame {}/{}", done, total);
+                if (tty) {
+                    draw_progress_bar(done, total, text);
+                } else if (done == total || done * 10 / total != (done - 1) * 10 / total) {
+                    fmt::print("{}\n", text);
+                    std::fflush(stdout);
+                }
+            };
             images = renderer.render_scene(r);
         }
         if (!images.ok()) return report(images.error());

@@ -237,6 +237,15 @@ TEST_CASE("render --frames writes one file per frame, an input sequence feeds th
     REQUIRE(same.ok());
     CHECK(same.value().max_abs < 1.0 / 255 + 1e-6);
 
+    // A long run shows its progress (a line per 10 % when not on a terminal); a short one does not.
+    r = test::run_crtforge("render --preset super-win --target spirv --input moving_sprite --size 64x56 --frame 39 --output '" +
+                           (tmp / "long.png") + "'");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("render: frame 4/40"));
+    CHECK_THAT(r.out, Catch::Contains("render: frame 40/40"));
+    CHECK(r.out.find("render: frame 2/") == std::string::npos);
+
     // A sequence that runs out, an output without %d, --frame with --frames: usage errors, no files.
     check_usage_error(test::run_crtforge("render --preset passthrough --target spirv --input '" + out + "' --frames 2:5 --output '" +
                                          (tmp / "h_%d.png") + "'"),

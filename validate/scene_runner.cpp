@@ -82,6 +82,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
     std::map<int, Image> kept;
     std::vector<Image> previous(preset.passes.size());  // last frame's outputs; empty before the first
     std::deque<Image> history;                          // earlier originals, newest first
+    size_t drawn = 0;
     for (int frame : run) {
         auto original = r.source(frame);
         if (!original.ok()) return original.error();
@@ -163,6 +164,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             history.push_front(original.value());
             while (static_cast<int>(history.size()) > preset.history_depth()) history.pop_back();
         }
+        if (r.on_frame) r.on_frame(++drawn, run.size());
     }
     std::vector<Image> out;
     for (size_t k = 0; k < r.frames.size(); ++k) {

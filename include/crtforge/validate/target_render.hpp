@@ -80,6 +80,9 @@ struct SceneRenderRequest {
     // frameCount at frame 0 (frame n: + n, before a pass's frame_count_mod): RetroArch's Vulkan
     // driver runs its first frame with FrameCount 1.
     int frame_count_base = 0;
+    // Called after each frame a pipeline host draws (done, total): a long --frame N shows progress.
+    // Engines that run the whole sequence themselves (Godot) do not call it.
+    std::function<void(size_t done, size_t total)> on_frame;
     // How the host uses the target's files, where a target ships more than one way (Godot): empty
     // for its ready scene; "defaults" (the node-mode shader with no param set), "material" (the
     // exported .tres) or "screen" (the screen-mode shader over the drawn picture). A consumer that
