@@ -62,6 +62,9 @@ Result<const Preset*> lookup_preset(const TemplateLibrary& lib, const std::strin
 // On a terminal, a progress bar drawn in place: "[#####.....] text", ended by a newline once
 // done == total.
 void draw_progress_bar(size_t done, size_t total, const std::string& text);
+// A long run's progress: the bar on a terminal; in a log (`tty` false), "<label>: <text>" each
+// time another 1/log_lines of the run is done, and at its end.
+void report_progress(bool tty, size_t done, size_t total, const std::string& label, const std::string& text, size_t log_lines);
 
 // Shared parsing helpers.
 Result<std::pair<int, int>> parse_size(const std::string& text);   // "WxH"

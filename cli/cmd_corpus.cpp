@@ -56,12 +56,7 @@ CorpusProgress corpus_progress() {
         const double eta = done ? secs / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
         const std::string status = fmt::format("{}/{} presets, {} not rendered on Vulkan, {:.0f} s, ~{:.0f} s left", done, total,
                                                *failing, secs, eta);
-        if (tty) {
-            draw_progress_bar(done, total, status);
-        } else if (done == total || (done * 50 / total) != ((done - 1) * 50 / total)) {
-            fmt::print("corpus: {}\n", status);
-            std::fflush(stdout);
-        }
+        report_progress(tty, done, total, "corpus", status, 50);
     };
 }
 

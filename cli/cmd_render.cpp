@@ -2,7 +2,6 @@
 //                [--size WxH] [--fit stretch|aspect|integer] [--frame N | --frames A:B]
 #include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -236,14 +235,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             // a bar on a terminal, a line per 10 % in a log.
             const bool tty = ::isatty(STDOUT_FILENO);
             r.on_frame = [tty](size_t done, size_t total) {
-                if (total < kProgressFrames) return;
-                const std::string text = fmt::format("render: frame {}/{}", done, total);
-                if (tty) {
-                    draw_progress_bar(done, total, text);
-                } else if (done == total || done * 10 / total != (done - 1) * 10 / total) {
-                    fmt::print("{}\n", text);
-                    std::fflush(stdout);
-                }
+                if (total >= kProgressFrames) report_progress(tty, done, total, "render", fmt::format("frame {}/{}", done, total), 10);
             };
             images = renderer.render_scene(r);
         }

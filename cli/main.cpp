@@ -89,6 +89,15 @@ void draw_progress_bar(size_t done, size_t total, const std::string& text) {
     std::fflush(stdout);
 }
 
+void report_progress(bool tty, size_t done, size_t total, const std::string& label, const std::string& text, size_t log_lines) {
+    if (tty) {
+        draw_progress_bar(done, total, text);
+    } else if (done == total || (total && done * log_lines / total != (done - 1) * log_lines / total)) {
+        fmt::print("{}: {}\n", label, text);
+        std::fflush(stdout);
+    }
+}
+
 Cache make_cache(const GlobalOptions& g) {
     if (g.no_cache) return Cache();
     return Cache(g.cache_dir.empty() ? Cache::default_dir() : g.cache_dir);

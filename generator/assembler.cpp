@@ -224,8 +224,7 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
     if (variant.options.precision == Precision::Medium) src += "precision mediump float;\n";
     for (const VariantStage& ss : variant.stages)
         for (const FormSpec* form : ss.forms) src += fmt::format("#define CRT_FORM_{}_{} 1\n", ss.stage->name, form->name);
-    if (variant.stages.size() == 1 && variant.stages.front().forms.front()->program())
-        return assemble_program(src, variant, *variant.stages.front().forms.front());
+    if (const FormSpec* program = variant.program_form()) return assemble_program(src, variant, *program);
     src += declarations(variant);
 
     // Each included file starts on its own line with a #line directive naming it, so glslang

@@ -66,6 +66,19 @@ std::vector<const VariantParam*> Variant::uniforms() const {
     return out;
 }
 
+const FormSpec* Variant::program_form() const {
+    if (stages.size() != 1 || stages.front().forms.empty()) return nullptr;
+    const FormSpec* form = stages.front().forms.front();
+    return form->program() ? form : nullptr;
+}
+
+std::map<std::string, bool> Variant::clamp_to_border_inputs() const {
+    std::map<std::string, bool> out;
+    for (const PassInput& in : pass->inputs)
+        if (in.wrap == Wrap::ClampToBorder) out[in.binding] = in.filter == Filter::Linear;
+    return out;
+}
+
 bool Variant::writes_alpha() const {
     for (const VariantStage& ss : stages)
         for (const FormSpec* form : ss.forms)

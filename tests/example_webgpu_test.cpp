@@ -395,20 +395,10 @@ TEST_CASE("The npm package's Babylon.js adapter renders presets like Vulkan", "[
 // render of the same .slangp.
 TEST_CASE("The WebGPU example renders an imported .slangp's clamp_to_border like Vulkan", "[wgsl][example][retroarch]") {
     test::TempDir tmp;
-    const std::string shader =
-        "#version 450\n"
-        "layout(push_constant) uniform Push { vec4 SourceSize; } params;\n"
-        "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
-        "#pragma stage vertex\n"
-        "layout(location = 0) in vec4 Position;\n"
-        "layout(location = 1) in vec2 TexCoord;\n"
-        "layout(location = 0) out vec2 vTexCoord;\n"
-        "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }\n"
-        "#pragma stage fragment\n"
-        "layout(location = 0) in vec2 vTexCoord;\n"
-        "layout(location = 0) out vec4 FragColor;\n"
-        "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-        "void main() { FragColor = vec4(texture(Source, (vTexCoord - 0.5) * 1.35 + 0.5).rgb, 1.0); }\n";
+    const std::string shader = test::slang_program(
+        {"", "", "", "",
+         "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+         "void main() { FragColor = vec4(texture(Source, (vTexCoord - 0.5) * 1.35 + 0.5).rgb, 1.0); }\n"});
     std::ofstream(tmp / "zoom.slang") << shader;
     std::ofstream(tmp / "border.slangp") << "shaders = 2\nshader0 = zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
                                              "shader1 = zoom.slang\nfilter_linear1 = true\n";

@@ -23,19 +23,8 @@ void write(const std::string& path, const std::string& text) {
 
 // A pass whose fragment main() body is `body` (reads `Source` at vTexCoord as `c`).
 std::string pass(const std::string& declarations, const std::string& body) {
-    return "#version 450\n"
-           "layout(push_constant) uniform Push { vec4 SourceSize; float GAIN; } params;\n"
-           "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
-           "#pragma parameter GAIN \"Gain\" 1.0 0.5 2.0 0.1\n"
-           "#pragma stage vertex\n"
-           "layout(location = 0) in vec4 Position;\n"
-           "layout(location = 1) in vec2 TexCoord;\n"
-           "layout(location = 0) out vec2 vTexCoord;\n"
-           "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }\n"
-           "#pragma stage fragment\n"
-           "layout(location = 0) in vec2 vTexCoord;\n"
-           "layout(location = 0) out vec4 FragColor;\n" +
-           declarations + "void main() {\n" + body + "\n}\n";
+    return test::slang_program({"float GAIN; ", "#pragma parameter GAIN \"Gain\" 1.0 0.5 2.0 0.1\n", "", "",
+                                declarations + "void main() {\n" + body + "\n}\n"});
 }
 
 const char* kDraw = "    FragColor = vec4(texture(Source, vTexCoord).rgb * params.GAIN, 1.0);";
@@ -174,29 +163,16 @@ namespace {
 // zoom to the fragment stage as a matrix, an array and a flat integer (stage I/O WGSL has no form
 // for but one location per slot).
 std::string zoom_out_pass() {
-    return "#version 450\n"
-           "layout(push_constant) uniform Push { vec4 SourceSize; } params;\n"
-           "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
-           "#pragma stage vertex\n"
-           "layout(location = 0) in vec4 Position;\n"
-           "layout(location = 1) in vec2 TexCoord;\n"
-           "layout(location = 0) out vec2 vTexCoord;\n"
-           "layout(location = 1) out mat2 vZoom;\n"
-           "layout(location = 3) out vec2 vShift[2];\n"
-           "layout(location = 5) flat out int vOn;\n"
-           "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord;\n"
-           "    vZoom = mat2(1.55, 0.0, 0.0, 1.55); vShift[0] = vec2(0.5); vShift[1] = vec2(-0.5); vOn = 1; }\n"
-           "#pragma stage fragment\n"
-           "layout(location = 0) in vec2 vTexCoord;\n"
-           "layout(location = 1) in mat2 vZoom;\n"
-           "layout(location = 3) in vec2 vShift[2];\n"
-           "layout(location = 5) flat in int vOn;\n"
-           "layout(location = 0) out vec4 FragColor;\n"
-           "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-           "void main() {\n"
-           "    vec2 uv = vOn == 1 ? vZoom * (vTexCoord + vShift[1]) + vShift[0] : vTexCoord;\n"
-           "    FragColor = vec4(texture(Source, uv).rgb, 1.0);\n"
-           "}\n";
+    return test::slang_program({"", "",
+                                "layout(location = 1) {io} mat2 vZoom;\n"
+                                "layout(location = 3) {io} vec2 vShift[2];\n"
+                                "layout(location = 5) flat {io} int vOn;\n",
+                                "    vZoom = mat2(1.55, 0.0, 0.0, 1.55); vShift[0] = vec2(0.5); vShift[1] = vec2(-0.5); vOn = 1;\n",
+                                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                "void main() {\n"
+                                "    vec2 uv = vOn == 1 ? vZoom * (vTexCoord + vShift[1]) + vShift[0] : vTexCoord;\n"
+                                "    FragColor = vec4(texture(Source, uv).rgb, 1.0);\n"
+                                "}\n"});
 }
 
 // Runs `presets` of the library in `dir` on Vulkan and `target` (a 32x24 source on a 64x48
@@ -246,25 +222,14 @@ TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyin
     write(dir / "shaders/zoom.slang", zoom_out_pass());
     // Bands of three rows by gl_FragCoord, and the output size read in the vertex stage.
     write(dir / "shaders/rows.slang",
-          "#version 450\n"
-          "layout(push_constant) uniform Push { vec4 SourceSize; vec4 OutputSize; } params;\n"
-          "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
-          "#pragma stage vertex\n"
-          "layout(location = 0) in vec4 Position;\n"
-          "layout(location = 1) in vec2 TexCoord;\n"
-          "layout(location = 0) out vec2 vTexCoord;\n"
-          "layout(location = 1) out vec2 vPixel;\n"
-          "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; vPixel = TexCoord * params.OutputSize.xy; }\n"
-          "#pragma stage fragment\n"
-          "layout(location = 0) in vec2 vTexCoord;\n"
-          "layout(location = 1) in vec2 vPixel;\n"
-          "layout(location = 0) out vec4 FragColor;\n"
-          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-          "void main() {\n"
-          "    float band = mod(floor(gl_FragCoord.y / 3.0), 2.0);\n"
-          "    float column = mod(floor(vPixel.x / 4.0), 2.0);\n"
-          "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.5 * band + 0.25 * column), 1.0);\n"
-          "}\n");
+          test::slang_program({"vec4 OutputSize; ", "", "layout(location = 1) {io} vec2 vPixel;\n",
+                               "    vPixel = TexCoord * params.OutputSize.xy;\n",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "void main() {\n"
+                               "    float band = mod(floor(gl_FragCoord.y / 3.0), 2.0);\n"
+                               "    float column = mod(floor(vPixel.x / 4.0), 2.0);\n"
+                               "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.5 * band + 0.25 * column), 1.0);\n"
+                               "}\n"}));
     write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
     write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
                                 "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");

@@ -163,4 +163,23 @@ const OutputFile& file_with_role(const TargetOutput& out, const std::string& rol
     throw;  // unreachable
 }
 
+std::string slang_program(const SlangProgram& p) {
+    auto varyings = [&](const std::string& io) {
+        std::string out = p.varyings;
+        for (size_t at = out.find("{io}"); at != std::string::npos; at = out.find("{io}", at + io.size())) out.replace(at, 4, io);
+        return out;
+    };
+    return "#version 450\n"
+           "layout(push_constant) uniform Push { vec4 SourceSize; " + p.push + "} params;\n"
+           "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n" + p.head +
+           "#pragma stage vertex\n"
+           "layout(location = 0) in vec4 Position;\n"
+           "layout(location = 1) in vec2 TexCoord;\n"
+           "layout(location = 0) out vec2 vTexCoord;\n" + varyings("out") +
+           "void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord;\n" + p.vertex_body + "}\n"
+           "#pragma stage fragment\n"
+           "layout(location = 0) in vec2 vTexCoord;\n" + varyings("in") +
+           "layout(location = 0) out vec4 FragColor;\n" + p.fragment;
+}
+
 }  // namespace crtforge::test

@@ -110,4 +110,15 @@ std::vector<Image> render_scene_or_fail(TargetRenderer& renderer, const Preset& 
 // The same from the fp64 reference, `supersample` x `supersample` samples per pixel.
 std::vector<Image> reference_scene_or_fail(const TemplateLibrary& lib, const Preset& preset, const SceneShot& shot, int supersample = 1);
 
+// A RetroArch .slang program for the import's tests: RetroArch's quad drawn with TexCoord handed
+// on as vTexCoord (location 0), FragColor out, and what each test adds.
+struct SlangProgram {
+    std::string push;         // push-constant members after `vec4 SourceSize;`
+    std::string head;         // lines before the stages (`#pragma parameter ...`)
+    std::string varyings;     // more stage I/O, "{io}" written `out` in the vertex stage and `in` after
+    std::string vertex_body;  // statements after `vTexCoord = TexCoord;`
+    std::string fragment;     // the fragment stage's declarations and main()
+};
+std::string slang_program(const SlangProgram& program);
+
 }  // namespace crtforge::test

@@ -3,6 +3,7 @@
 // variant; a scene has one per pass.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,13 @@ struct Variant {
     const VariantParam* angular_speed() const;
     // Whether a stage of the pass sets the output's alpha (a form with an alpha hook).
     bool writes_alpha() const;
+    // The whole-program form (an imported RetroArch pass: its own vertex and fragment stage) the
+    // pass is made of, or nullptr for a pass of snippet stages.
+    const FormSpec* program_form() const;
+    // The textures the pass samples clamp_to_border, by binding ("source" or a name in
+    // `textures`): true where it samples them linearly. Targets without a border colour (WebGPU,
+    // Godot) fade these samples in the shader.
+    std::map<std::string, bool> clamp_to_border_inputs() const;
 };
 
 // Default: params whose spec says runtime = true stay uniforms, all others are baked.

@@ -116,10 +116,7 @@ constexpr const char* kTau = "6.28318530717959";
 GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
                              ShaderStage stage, std::vector<Varying> varyings)
     : CompilerGLSL(without_undefined_values(std::move(spirv))), variant_(variant), options_(options), stage_(stage),
-      varyings_(std::move(varyings)) {
-    for (const VariantStage& vs : variant.stages)
-        for (const FormSpec* form : vs.forms) program_ = program_ || form->program();
-}
+      program_(variant.program_form() != nullptr), varyings_(std::move(varyings)) {}
 
 std::string GodotCompiler::builtin_expression_fragment_size() const {
     // The node's size in pixels, whatever it is stretched to: UV changes by 1/size per pixel on an
@@ -299,7 +296,6 @@ std::string GodotCompiler::compile_godot() {
     out = with_border_emulated(without_texel_offsets(out));
     // Godot's matrices are square: matNxN is matN, and a non-square one has no Godot type.
     static const std::regex sized_matrix(R"(\bmat([234])x([234])\b)");
-    std::smatch non_square;
     for (auto it = std::sregex_iterator(out.begin(), out.end(), sized_matrix); it != std::sregex_iterator(); ++it)
         if ((*it)[1] != (*it)[2]) throw spirv_cross::CompilerError("Godot has no non-square matrix type (" + it->str() + ")");
     out = std::regex_replace(out, sized_matrix, "mat$1");
@@ -309,19 +305,20 @@ std::string GodotCompiler::compile_godot() {
     return with_loop_increments(out);
 }
 
-std::string GodotCompiler::border_texture_name(const PassInput& input) const {
-    if (input.wrap != Wrap::ClampToBorder) return "";
-    if (input.binding != kSourceTextureName) return input.binding;
-    return screen_mode() ? "" : "TEXTURE";  // the screen has nothing outside it to read
+std::map<std::string, bool> GodotCompiler::border_textures() const {
+    std::map<std::string, bool> out;
+    for (const auto& [binding, linear] : variant_.clamp_to_border_inputs()) {
+        if (binding != kSourceTextureName) out[binding] = linear;
+        else if (!screen_mode()) out["TEXTURE"] = linear;  // the screen has nothing outside it to read
+    }
+    return out;
 }
 
 std::string GodotCompiler::with_border_emulated(const std::string& text) const {
     // Godot has no border colour (its samplers clamp to the edge): a texture the pass reads
     // clamp_to_border has each read multiplied by the share of its footprint inside the texture,
     // exact for nearest, and for linear at level 0 (as the WGSL emitter does).
-    std::map<std::string, bool> border;  // Godot name -> linear
-    for (const PassInput& in : variant_.pass->inputs)
-        if (const std::string name = border_texture_name(in); !name.empty()) border[name] = in.filter == Filter::Linear;
+    const std::map<std::string, bool> border = border_textures();
     if (border.empty()) return text;
     std::function<std::string(const std::string&)> rewrite = [&](const std::string& source) {
         std::string out = source;
@@ -511,8 +508,7 @@ void GodotCompiler::emit_header() {
             statement("// Frames since the first, set every frame by the host (crtforge_pipeline.gd does it).");
             statement("uniform int frameCount = 0;");
         }
-    if (std::any_of(variant_.pass->inputs.begin(), variant_.pass->inputs.end(),
-                    [&](const PassInput& in) { return !border_texture_name(in).empty(); })) {
+    if (!border_textures().empty()) {
         statement("// clamp_to_border without a border colour (Godot's samplers clamp to the edge): the share of a");
         statement("// read's footprint inside the texture, which the reads are multiplied by.");
         // (Names of crtforge's own: Godot refuses a parameter that shares a global's name.)

@@ -52,10 +52,10 @@ private:
     static std::string with_loop_increments(const std::string& text);  // Godot 3's for-loop syntax
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
-    std::string vertex_text(std::string text) const;
+    std::string vertex_text(std::string text) const;  // vertex(): RetroArch's quad from UV, clip position dropped
     // clamp_to_border emulated in the shader: each read of such a texture times the share inside it.
     std::string with_border_emulated(const std::string& text) const;
-    std::string border_texture_name(const PassInput& input) const;  // "" when not emulated  // vertex(): RetroArch's quad from UV, clip position dropped
+    std::map<std::string, bool> border_textures() const;  // Godot name (TEXTURE for the source) -> linear
     const Variant& variant_;
     godot::Options options_;
     ShaderStage stage_;

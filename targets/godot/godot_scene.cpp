@@ -194,10 +194,7 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int v
         entry["frame_count"] = std::find(variant.builtins.begin(), variant.builtins.end(), Builtin::FrameCount) != variant.builtins.end();
         entry["frame_count_mod"] = pass.frame_count_mod;
         // A program pass (an imported RetroArch shader) gets its output and screen sizes as uniforms.
-        if (std::any_of(variant.stages.begin(), variant.stages.end(), [](const VariantStage& vs) {
-                return std::any_of(vs.forms.begin(), vs.forms.end(), [](const FormSpec* f) { return f->program(); });
-            }))
-            entry["sizes"] = true;
+        if (variant.program_form()) entry["sizes"] = true;
         // The speed `seconds` is reduced by for the pass's hostTime: a uniform's name or the baked value.
         if (variant.angular_speed()) entry["time_speed"] = json(detail::time_reduce_by(variant));
         passes.push_back(std::move(entry));

@@ -136,19 +136,12 @@ std::vector<std::string> material_param_lines(const Variant& variant, int versio
 
 const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
 
-bool is_program_pass(const Variant& variant) {
-    for (const VariantStage& stage : variant.stages)
-        for (const FormSpec* form : stage.forms)
-            if (form->program()) return true;
-    return false;
-}
-
 Result<std::string> generate_shader(const TargetInput& input, const Options& options) {
     // A program pass (an imported RetroArch shader) brings its vertex stage: translated first, its
     // outputs become the varyings the fragment stage's header declares, and vertex() follows.
     std::string vertex;
     std::vector<Varying> varyings;
-    if (is_program_pass(*input.variant)) {
+    if (input.variant->program_form()) {
         if (!input.vertex) return make_validation_error("a program pass without its vertex stage");
         try {
             GodotCompiler compiler(*input.vertex, *input.variant, options, ShaderStage::Vertex);
@@ -173,13 +166,10 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
 Result<TargetOutput> generate(const TargetInput& input, int version) {
     const std::string preset = input.variant->file_stem();
     // Godot 3 does not translate a program pass's vertex stage yet: refused, never emitted wrong.
-    if (version < 4)
-        for (const VariantStage& stage : input.variant->stages)
-            for (const FormSpec* form : stage.forms)
-                if (form->program())
-                    return make_error("pass '" + input.variant->pass->alias + "' is a whole program (" + form->vertex_path +
-                                          "): Godot 3's canvas_item shaders do not run its vertex stage yet",
-                                      form->where.file, form->where.line, "form." + form->name);
+    if (const FormSpec* form = input.variant->program_form(); form && version < 4)
+        return make_error("pass '" + input.variant->pass->alias + "' is a whole program (" + form->vertex_path +
+                              "): Godot 3's canvas_item shaders do not run its vertex stage yet",
+                          form->where.file, form->where.line, "form." + form->name);
     const std::string ext = shader_extension(version);
     TargetOutput out;
     auto node = generate_shader(input, {version, Mode::NodeTexture});

@@ -51,6 +51,7 @@ struct WgslBinding {
     std::string sample_type;   // textures: "float"
     std::string paired_with;   // texture <-> sampler split from one combined image sampler
     std::vector<std::string> stages;  // "vertex", "fragment"
+    bool border_in_shader = false;    // samplers: the shader emulates clamp_to_border (EmitOptions::emulate_border)
 };
 
 struct WgslModule {

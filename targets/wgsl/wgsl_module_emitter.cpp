@@ -354,6 +354,7 @@ void ModuleEmitter::declare_resources() {
                 s.kind = "sampler";
                 s.wgsl_type = "sampler";
                 s.paired_with = name;
+                s.border_in_shader = border_textures.count(name) != 0;
                 s.stages = {stage_name};
                 bindings.push_back(s);
             }

@@ -205,8 +205,18 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
         default: break;
     }
     if (o.size() < 2) unsupported(inst, "an operand is missing");
+    // clamp_to_border on a clamp-to-edge sampler (EmitOptions::emulate_border): the sample is
+    // faded below, by a weight that reads the coordinate again, so an expression is named once.
+    auto border = mod_.border_textures.find(texture);
+    const bool fade = inst.op != spv::OpImageFetch && border != mod_.border_textures.end();
+    if (fade && analysis_.use_count(inst.result) == 0) return;  // dead, and pure
     const Expr coord_expr = value(o[1]);
-    const std::string coord = coord_expr.text;
+    std::string coord = coord_expr.text;
+    if (fade && !coord_expr.named) {
+        const std::string name = temp_name(inst.result) + "_uv";
+        line("let " + name + " = " + coord + ";");
+        coord = name;
+    }
     // OpImageGather has its component before the image operands.
     const size_t mask_at = inst.op == spv::OpImageGather ? 3 : 2;
     const uint32_t mask = o.size() > mask_at ? o[mask_at] : 0;
@@ -254,17 +264,14 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
     } else {
         unsupported(inst, "an explicit-LOD sample without Lod or Grad");
     }
-    auto border = mod_.border_textures.find(texture);
-    if (inst.op == spv::OpImageFetch || border == mod_.border_textures.end()) {
+    if (!fade) {
         define(inst, Expr::primary(text), true);
         return;
     }
-    // clamp_to_border on a clamp-to-edge sampler: outside the texture an edge sampler repeats the
-    // edge texel where a border one reads transparent black, so the border sample is the edge sample
-    // times the share of its footprint inside (exact for nearest, and for linear at level 0).
-    if (analysis_.use_count(inst.result) == 0) return;  // dead, and pure
-    std::string uv = coord_expr.named ? coord : temp_name(inst.result) + "_uv";
-    if (uv != coord) line("let " + uv + " = " + coord + ";");
+    // Outside the texture an edge sampler repeats the edge texel where a border one reads
+    // transparent black, so the border sample is the edge sample times the share of its footprint
+    // inside (exact for nearest, and for linear at level 0).
+    std::string uv = coord;
     const std::string size = "vec2<f32>(textureDimensions(" + texture + "))";
     if (operands.count(spv::ImageOperandsConstOffsetMask))
         uv = "(" + uv + " + vec2<f32>(" + operands[spv::ImageOperandsConstOffsetMask] + ") / " + size + ")";

@@ -23,8 +23,7 @@ EmitOptions emit_options(const Variant& variant) {
         "Bindings (group 0) and the uniform buffer's byte layout are in manifest.json under targets.wgsl.",
         variant.file_stem(), inert_comment(variant.preset->doc), kVertexEntry, kFragmentEntry);
     // WebGPU has no border colour: the hosts sample these clamp-to-edge and the shader fades.
-    for (const PassInput& in : variant.pass->inputs)
-        if (in.wrap == Wrap::ClampToBorder) options.emulate_border[in.binding] = in.filter == Filter::Linear;
+    options.emulate_border = variant.clamp_to_border_inputs();
     if (variant.options.precision == Precision::Medium)
         options.header_comment += "\nMedium precision: WGSL has no relaxed precision, so this is the full-precision f32 shader.";
     return options;
@@ -56,8 +55,7 @@ json manifest_extra(const WgslModule& module, const Variant& variant) {
         } else {
             entry["sampler"] = json{{"type", nearest(b.paired_with) ? "non-filtering" : "filtering"}};
             // The host samples clamp-to-edge: the shader fades to the border (EmitOptions::emulate_border).
-            if (const PassInput* in = variant.pass->find_input(b.paired_with); in && in->wrap == Wrap::ClampToBorder)
-                entry["sampler"]["borderInShader"] = true;
+            if (b.border_in_shader) entry["sampler"]["borderInShader"] = true;
             if (!b.paired_with.empty()) entry["pairedTexture"] = b.paired_with;
         }
         layout.push_back(std::move(entry));
@@ -100,7 +98,7 @@ Result<TargetOutput> generate(const TargetInput& input) {
 
 std::vector<TargetInfo> records() {
     return {{TargetId::Wgsl, "wgsl", "WGSL for WebGPU: one module, vs_main + fs_main (crtforge's own emitter)",
-             {"shader"}, "dawn", [](const TargetInput& in) { return generate(in); }, "wgsl/crtforge-emitter/v2"}};
+             {"shader"}, "dawn", [](const TargetInput& in) { return generate(in); }, "wgsl/crtforge-emitter/v3"}};
 }
 
 }  // namespace crtforge::wgsl
