@@ -210,9 +210,10 @@ Runner add_assemble_command(CLI::App& app, const GlobalOptions& g) {
         int code = kExitOk;
         auto options = args->flags.parse();
         if (!options.ok()) return report(options.error());
-        auto lib = load_library(g, code);
+        std::vector<std::string> named{args->preset};
+        auto lib = load_library(g, code, &named);
         if (!lib) return code;
-        auto preset = lookup_preset(*lib, args->preset);
+        auto preset = lookup_preset(*lib, named.front());
         if (!preset.ok()) return report(preset.error());
         auto variant = make_variant(*lib, *preset.value(), options.value());
         if (!variant.ok()) return report(variant.error());

@@ -75,6 +75,12 @@ std::shared_ptr<TemplateLibrary> load_library(const GlobalOptions& g, int& exit_
         return nullptr;
     }
     for (const std::string& w : lib.value()->warnings()) std::fprintf(stderr, "crtforge: %s\n", w.c_str());
+    // A broken preset stops a command over every preset, each broken one said on its line; a
+    // command naming other presets runs (naming a broken one gets its error from lookup_preset).
+    if ((!presets || presets->empty()) && !lib.value()->broken_presets().empty()) {
+        for (const auto& [name, error] : lib.value()->broken_presets()) exit_code = report(error);
+        return nullptr;
+    }
     return lib.value();
 }
 

@@ -3,6 +3,7 @@
 #include "crtforge/inert_text.hpp"
 
 #include <algorithm>
+#include <regex>
 #include <array>
 
 #include <fmt/format.h>
@@ -108,6 +109,19 @@ bool calls_warp(const Variant& variant) {
     return false;
 }
 
+// The line of `text` where function `fn` is defined (a type, the name, its parameters), else 0.
+int definition_line(const std::string& text, const std::string& fn) {
+    const std::regex definition("(^|\n)[ \t]*\\w+[ \t]+" + fn + "[ \t]*\\(");
+    std::smatch m;
+    if (!std::regex_search(text, m, definition)) return 0;
+    const auto start = text.begin() + m.position() + m[1].length();
+    return 1 + static_cast<int>(std::count(text.begin(), start, '\n'));
+}
+
+// Stands where a generated file resumes after a call line attributed to a snippet; include()
+// replaces it with the generated file's own line number.
+constexpr std::string_view kResumeLine = "#line @resume\n";
+
 // The calls of one hook in pass order, one statement each made from `pattern` ({} = the function).
 // In the uber-shader each call runs only where its stage's switch selects a form that has it.
 std::string hook_calls(const Variant& variant, Hook hook, const std::string& pattern) {
@@ -130,8 +144,13 @@ std::string hook_calls(const Variant& variant, Hook hook, const std::string& pat
                                          ss.switch_value(form));
             }
             const std::string call = fmt::format(fmt::runtime(pattern), fn);
+            // An error on the call line (the function's return or parameter types are not what
+            // the form's hook calls) is the snippet's: glslang reports it at the definition.
+            const int defined = definition_line(ss.stage->glsl_source, fn);
+            if (defined) text += line_directive(defined, ss.stage->glsl_path);
             if (ss.switched) text += fmt::format("    if ({}) {}  // {} ({})\n", condition, call, ss.stage->name, names);
             else text += fmt::format("    {}  // {} ({})\n", call, ss.stage->name, names);
+            if (defined) text += kResumeLine;
         }
     }
     return text;
@@ -144,6 +163,24 @@ std::string warp_function(const Variant& variant) {
 
 bool maps_source(const Variant& variant) {
     return screen_pass_index(*variant.preset) == variant.pass_index && source_uv_scale(*variant.preset) != std::array<double, 2>{1.0, 1.0};
+}
+
+// `text` (a generated file named `file`) with each kResumeLine a #line back to its own numbering:
+// the lines attributed elsewhere and the directives do not count.
+std::string resume_lines(const std::string& text, const std::string& file) {
+    std::string out;
+    int line = 0;
+    for (size_t at = 0; at < text.size();) {
+        const size_t end = std::min(text.find('\n', at), text.size() - 1) + 1;
+        const std::string_view one(text.data() + at, end - at);
+        if (one == kResumeLine) out += line_directive(line + 1, file);
+        else {
+            out += one;
+            if (one.rfind("#line ", 0) != 0) ++line;
+        }
+        at = end;
+    }
+    return out;
 }
 
 // The fixed pass order: warp, sample position, fetch, colour stages, finish.
@@ -232,7 +269,7 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
     auto include = [&src](const std::string& file, const std::string& text) {
         src += '\n';
         src += line_directive(1, file);
-        src += text;
+        src += resume_lines(text, file);
     };
     if (!variant.stages.empty()) {
         include(library.prelude_path(), library.prelude_source());

@@ -107,14 +107,21 @@ std::string entry_header(const std::string& key, std::string_view payload) {
 
 std::optional<std::string> Cache::get(const std::string& kind, const std::string& key) const {
     if (!enabled()) return std::nullopt;
-    std::ifstream in(dir_ + "/" + kind + "/" + key, std::ios::binary);
-    if (!in) {
+    const std::string path = dir_ + "/" + kind + "/" + key;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
         ++misses_;
         return std::nullopt;
     }
-    std::ostringstream data;
-    data << in.rdbuf();
-    const std::string blob = data.str();
+    // Only a regular file of bounded size is read: a FIFO, a device or a huge file planted as an
+    // entry is a rejected entry (then replaced by put), never a hang or an exhausted memory.
+    auto read = read_text_file(path, kMaxDataFileBytes);
+    if (!read.ok()) {
+        ++rejected_;
+        ++misses_;
+        return std::nullopt;
+    }
+    const std::string& blob = read.value();
     const size_t header_size = kEntryMagic.size() + key.size() + 1 + 32 + 1;
     if (blob.size() < header_size || blob.compare(0, kEntryMagic.size(), kEntryMagic) != 0) {
         ++rejected_;

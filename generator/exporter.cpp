@@ -16,6 +16,7 @@
 #include "crtforge/assembler.hpp"
 #include "crtforge/luts.hpp"
 #include "crtforge/files.hpp"
+#include "crtforge/lut_file.hpp"
 #include "generator/manifest.hpp"
 #include "generator/web_package.hpp"
 
@@ -287,9 +288,12 @@ Result<std::map<std::string, std::string>> lut_files(const Preset& preset) {
             files[lut.name] = encode_png(image.value());
             continue;
         }
-        auto data = read_text_file(lut_file_path(lut));
+        // Checked at load (crtforge/lut_file.hpp); read again here, so checked again.
+        auto data = read_text_file(lut_file_path(lut), kMaxLutFileBytes);
         if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
                                           "lut." + lut.name + ".file");
+        if (std::string e = lut_picture_error(data.value()); !e.empty())
+            return make_error("the LUT file '" + lut.file + "' " + e, lut.where.file, lut.where.line, "lut." + lut.name + ".file");
         files[lut.name] = std::move(data.value());
     }
     return files;

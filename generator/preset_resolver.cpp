@@ -361,7 +361,11 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         const PresetFile* child = chain.back();
         const int line = child->key_lines.count("base") ? child->key_lines.at("base") : 1;
         const PresetFile* base = find_file(child->base);
-        if (!base) return make_error("base preset '" + child->base + "' does not exist", child->where.file, line, "base");
+        if (!base) {
+            if (auto broken = broken_.find(child->base); broken != broken_.end())
+                return make_error("base preset '" + child->base + "' does not load (" + broken->second.str() + ")", child->where.file, line, "base");
+            return make_error("base preset '" + child->base + "' does not exist", child->where.file, line, "base");
+        }
         if (!seen.insert(base->name).second)
             return make_error("inheritance cycle through '" + base->name + "'", child->where.file, line, "base");
         if (chain.size() >= kMaxInheritanceDepth)
@@ -465,6 +469,9 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
                 return make_error("preset '" + entry.preset + "' refers back to itself", file, entry.line, field + ".preset");
             auto from = resolve_preset(files, entry.preset, visiting);
             if (!from.ok()) {
+                if (auto broken = broken_.find(entry.preset); broken != broken_.end())
+                    return make_error("preset '" + entry.preset + "' does not load (" + broken->second.str() + ")", file, entry.line,
+                                      field + ".preset");
                 if (!find_file(entry.preset))
                     return make_error("preset '" + entry.preset + "' does not exist", file, entry.line, field + ".preset");
                 return from.error();

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "crtforge/runtime/image.hpp"
 
 namespace crtforge {
 
@@ -86,6 +89,18 @@ std::vector<PixelSize> pass_sizes(const Preset& preset, PixelSize source, PixelS
     // The last pass draws the screen, whatever its scale says (as RetroArch's last pass does).
     if (!sizes.empty()) sizes.back() = {std::max(screen.width, 1), std::max(screen.height, 1)};
     return sizes;
+}
+
+Status check_pass_sizes(const Preset& preset, const std::vector<PixelSize>& sizes, PixelSize screen) {
+    for (size_t i = 0; i < sizes.size() && i < preset.passes.size(); ++i) {
+        const std::string over = image_budget_error(sizes[i].width, sizes[i].height);
+        if (over.empty()) continue;
+        const Pass& pass = preset.passes[i];
+        return make_error("pass '" + pass.alias + "' would render " + std::to_string(sizes[i].width) + "x" + std::to_string(sizes[i].height) +
+                              " for a " + std::to_string(screen.width) + "x" + std::to_string(screen.height) + " screen: it " + over,
+                          pass.where.file, pass.where.line, "pass." + pass.alias + ".scale");
+    }
+    return Ok{};
 }
 
 }  // namespace crtforge

@@ -7,8 +7,10 @@
 #include <set>
 
 #include "crtforge/files.hpp"
+#include "crtforge/lut_file.hpp"
 #include "crtforge/paths.hpp"
 #include "generator/template_lint.hpp"
+#include "generator/toml_reader.hpp"
 
 namespace crtforge {
 
@@ -50,6 +52,7 @@ std::vector<std::string> TemplateLibrary::preset_names() const {
 
 Result<const Preset*> TemplateLibrary::lookup_preset(const std::string& name) const {
     if (const Preset* p = find_preset(name)) return p;
+    if (auto broken = broken_.find(name); broken != broken_.end()) return broken->second;
     return make_error("unknown preset '" + name + "' (presets: " + join_list(preset_names()) + ")", {}, 0, "--preset");
 }
 
@@ -122,11 +125,11 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
     }
 
     lib->prelude_path_ = layers.front() + "/prelude.glsl";
-    auto prelude = read_text_file(lib->prelude_path_);
+    auto prelude = read_text_file(lib->prelude_path_, detail::kMaxTomlBytes);
     if (!prelude.ok()) return prelude.error();
     lib->prelude_ = prelude.value();
     lib->vertex_path_ = layers.front() + "/fullscreen.vert";
-    auto vertex = read_text_file(lib->vertex_path_);
+    auto vertex = read_text_file(lib->vertex_path_, detail::kMaxTomlBytes);
     if (!vertex.ok()) return vertex.error();
     lib->vertex_ = vertex.value();
 
@@ -135,7 +138,7 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
     if (spec_files.value().empty()) return make_error("no stage specs (*.toml) found", dir + "/stages");
     std::map<std::string, std::string> param_owner;  // param -> "file:line" of first declaration
     for (const auto& path : spec_files.value()) {
-        auto text = read_text_file(path);
+        auto text = read_text_file(path, detail::kMaxTomlBytes);
         if (!text.ok()) return text.error();
         auto spec = parse_stage_spec(text.value(), path);
         if (!spec.ok()) return spec.error();
@@ -160,7 +163,7 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
             continue;
         }
         s.glsl_path = std::filesystem::path(path).parent_path().string() + "/" + s.name + ".glsl";
-        auto glsl = read_text_file(s.glsl_path);
+        auto glsl = read_text_file(s.glsl_path, detail::kMaxTomlBytes);
         if (!glsl.ok()) return glsl.error();
         s.glsl_source = glsl.value();
         if (auto lint = detail::lint_stage_source(s); !lint.ok()) return lint.error();
@@ -185,25 +188,58 @@ Status TemplateLibrary::add_presets(const std::string& dir, bool test_only) {
     return add_preset_files(preset_files.value(), test_only);
 }
 
+namespace {
+
+// The folder a preset's LUT files must lie in: the template folder above its presets/ folder (or
+// the folder that holds it, for presets added from elsewhere).
+std::string template_root_of(const std::string& preset_path) {
+    const std::filesystem::path folder = std::filesystem::path(preset_path).parent_path();
+    return (folder.filename() == "presets" ? folder.parent_path() : folder).string();
+}
+
+}  // namespace
+
+Result<PresetFile> TemplateLibrary::load_preset_file(const std::string& path, const std::string& template_root) const {
+    auto text = read_text_file(path, detail::kMaxTomlBytes);
+    if (!text.ok()) return text.error();
+    auto file = parse_preset_file(text.value(), path, this);
+    if (!file.ok()) return file.error();
+    if (file.value().name != file_stem(path))
+        return make_error("preset name '" + file.value().name + "' must match the file name '" + file_stem(path) + "'", path, 1, "name");
+    for (const LutSpec& lut : file.value().luts)
+        if (!lut.file.empty())
+            if (auto bytes = read_lut_file(lut, template_root); !bytes.ok()) return bytes.error();
+    return file;
+}
+
 Status TemplateLibrary::add_preset_files(const std::vector<std::string>& paths, bool test_only) {
     std::vector<PresetFile> files;
+    auto refuse = [&](const std::string& name, Diagnostic error) -> Status {
+        if (test_only) return error;
+        broken_.emplace(name, std::move(error));
+        return Ok{};
+    };
     for (const auto& path : paths) {
-        auto text = read_text_file(path);
-        if (!text.ok()) return text.error();
-        auto file = parse_preset_file(text.value(), path, this);
-        if (!file.ok()) return file.error();
-        if (file.value().name != file_stem(path))
-            return make_error("preset name '" + file.value().name + "' must match the file name '" + file_stem(path) + "'",
-                              path, 1, "name");
-        if (find_preset(file.value().name))
-            return make_error("preset '" + file.value().name + "' already exists in the library", path, 1, "name");
+        auto file = load_preset_file(path, template_root_of(path));
+        if (!file.ok()) {
+            if (auto s = refuse(file_stem(path), file.error()); !s.ok()) return s;
+            continue;
+        }
+        if (find_preset(file.value().name) || broken_.count(file.value().name)) {
+            auto s = refuse(file.value().name, make_error("preset '" + file.value().name + "' already exists in the library", path, 1, "name"));
+            if (!s.ok()) return s;
+            continue;
+        }
         for (const std::string& w : file.value().warnings) warnings_.push_back(w);
         files.push_back(std::move(file.value()));
     }
     std::vector<Preset> added;
     for (const auto& f : files) {
         auto preset = resolve(files, f.name);
-        if (!preset.ok()) return preset.error();
+        if (!preset.ok()) {
+            if (auto s = refuse(f.name, preset.error()); !s.ok()) return s;
+            continue;
+        }
         preset.value().test_only = test_only;
         added.push_back(std::move(preset.value()));
     }

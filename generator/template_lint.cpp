@@ -46,6 +46,14 @@ Status lint_stage_source(const StageSpec& stage) {
     auto fail = [&](size_t at, const std::string& message) -> Status {
         return make_error(message, stage.glsl_path, line_at(text, at), "glsl");
     };
+    // A snippet declares no resources of its own: the generated code declares every texture (the
+    // form's `textures`) and uniform (the params) for each target; a sampler the snippet declared
+    // would compile in GLSL and reach a target (Godot, WGSL) that never binds it.
+    static const std::regex resource(R"(\b(uniform|buffer|layout)\b)");
+    if (std::smatch m; std::regex_search(text, m, resource))
+        return fail(static_cast<size_t>(m.position()), "a snippet declares no '" + m[1].str() +
+                                                            "' resources: the textures it reads are its form's `textures`, "
+                                                            "its values are the spec's params");
     const std::string number = R"(([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))";
     static const std::regex smoothstep(R"(\bsmoothstep\s*\(\s*)" + number + R"(\s*,\s*)" + number + R"(\s*,)");
     for (auto it = std::sregex_iterator(text.begin(), text.end(), smoothstep); it != std::sregex_iterator(); ++it)

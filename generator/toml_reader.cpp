@@ -25,7 +25,6 @@ namespace {
 
 // Bounds checked before toml++ sees the text: its parser recurses once per dotted-key segment
 // (a header of ~40 000 segments overflowed the stack), and no template file needs more than a few.
-constexpr size_t kMaxTomlBytes = 4u << 20;
 constexpr int kMaxKeySegments = 32;
 
 // The longest chain of dotted-key segments outside strings and comments, and the line it is on.

@@ -12,6 +12,10 @@
 
 namespace crtforge::detail {
 
+// The largest template file (TOML, GLSL) read: none needs more than a few KB, and a bound read
+// keeps a FIFO, a device or a huge file from taking the process's memory.
+inline constexpr size_t kMaxTomlBytes = 4u << 20;
+
 // What toml++ may be given: a bounded size and bounded dotted keys (its parser recurses per key
 // segment). A file beyond them is an error at the offending line, never a stack overflow.
 Status check_toml_bounds(const std::string& text, const std::string& path);

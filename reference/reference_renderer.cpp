@@ -422,6 +422,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job, 
         const PixelSize source{original.value().width, original.value().height};
         const PixelRect screen = screen_rect(preset, {job.width, job.height}, source, job.fit);
         const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
+        if (auto s = check_pass_sizes(preset, sizes, {screen.width, screen.height}); !s.ok()) return s.error();
         std::map<std::string, Image> current;
         auto black = [](PixelSize size) { return Image::make(size.width, size.height, {0, 0, 0, 0}); };
         auto resolve = [&](const TextureSource& from) -> Image {

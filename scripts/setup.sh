@@ -11,7 +11,7 @@ APT_PACKAGES=(
   chromium-common  # SwiftShader's Vulkan driver: validate's second, independent Vulkan driver
   chromium         # headless Chromium runs the real Godot 4 (its official web build) for the godot4 consumer
   libopenimageio-dev libfmt-dev catch2
-  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxxhash-dev zlib1g-dev
 )
 
 source "$(dirname "${BASH_SOURCE[0]}")/apt-packages.sh"

@@ -7,12 +7,17 @@
 #include <sstream>
 
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include "crtforge/assembler.hpp"
+#include "crtforge/cache.hpp"
 #include "crtforge/files.hpp"
+#include "crtforge/inert_text.hpp"
 #include "crtforge/runtime/image_io.hpp"
+#include "crtforge/variant.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -481,4 +486,107 @@ TEST_CASE("an empty value is refused, not taken as the option or key left out", 
     auto lib = t.load();
     REQUIRE_FALSE(lib.ok());
     CHECK_THAT(lib.error().str(), Catch::Contains("empty-base.toml:3") && Catch::Contains("field 'base'") && Catch::Contains("is empty"));
+}
+
+TEST_CASE("a cache entry that is a FIFO, a device or a huge file is a rejected entry, never read", "[hostile][cache]") {
+    test::TempDir dir;
+    Cache cache(dir.path());
+    const std::string fifo_key = Cache::key({"fifo"}), zero_key = Cache::key({"zero"});
+    fs::create_directories(dir / "kind");
+    REQUIRE(::mkfifo((dir / ("kind/" + fifo_key)).c_str(), 0600) == 0);
+    fs::create_symlink("/dev/zero", dir / ("kind/" + zero_key));
+    CHECK_FALSE(cache.get("kind", fifo_key).has_value());
+    CHECK_FALSE(cache.get("kind", zero_key).has_value());
+    CHECK(cache.rejected() == 2);
+    // put replaces the planted entry with a real one.
+    cache.put("kind", fifo_key, "payload");
+    CHECK(cache.get("kind", fifo_key) == std::optional<std::string>("payload"));
+}
+
+TEST_CASE("a snippet declares no resources of its own: a sampler outside its form's textures is refused at its line", "[hostile][spec]") {
+    for (const char* declaration : {"uniform sampler2D extraLut;", "layout(binding = 9) uniform sampler2D extraLut;",
+                                    "buffer Extra { float values[]; };"}) {
+        INFO(declaration);
+        test::ScratchTemplates t;
+        t.write("stages/glow.glsl", "// glow, with a texture nobody binds\n" + std::string(declaration) + "\n" + t.read("stages/glow.glsl"));
+        auto lib = t.load();
+        REQUIRE_FALSE(lib.ok());
+        CHECK_THAT(lib.error().file, Catch::EndsWith("stages/glow.glsl"));
+        CHECK(lib.error().line == 2);
+        CHECK(lib.error().field == "glsl");
+        CHECK_THAT(lib.error().message, Catch::Contains("declares no"));
+    }
+}
+
+TEST_CASE("a snippet function whose types differ from its hook's call is an error at the function, not in generated code", "[hostile][spec]") {
+    test::ScratchTemplates t;
+    // The colour hook calls color = glow_pulse(color, frag): a float result cannot be assigned.
+    t.write("stages/glow.glsl", "// glow\n\nfloat glow_pulse(vec3 color, CrtFrag frag) {\n    return pulseIntensity;\n}\n");
+    test::TempDir tmp;
+    for (const char* uniforms : {"default", "uber"}) {
+        INFO(uniforms);
+        auto r = test::run_crtforge("--no-cache --templates '" + t.dir() + "' export --preset crt-pulse --target glsl330 --uniforms " +
+                                    uniforms + " --out '" + (tmp / "out") + "'");
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Catch::Contains("stages/glow.glsl:3:") && Catch::Contains("cannot convert"));
+        CHECK_THAT(r.err, !Catch::Contains("generated"));
+        CHECK_FALSE(fs::exists(tmp / "out"));
+    }
+    // An error the generated code makes itself still names the generated file, at its own line:
+    // the attributed call lines leave the generated numbering as it was.
+    test::ScratchTemplates fine;
+    auto lib = fine.load();
+    REQUIRE(lib.ok());
+    auto variant = make_variant(*lib.value(), *lib.value()->find_preset("crt-pulse"), VariantOptions{});
+    REQUIRE(variant.ok());
+    const std::string src = assemble(*lib.value(), variant.value()).fragment;
+    const size_t main_at = src.find("#line 1 \"<generated main");
+    REQUIRE(main_at != std::string::npos);
+    int generated = 0;
+    std::istringstream lines(src.substr(src.find('\n', main_at) + 1));
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("#line ", 0) == 0) {
+            if (line.find("<generated main") != std::string::npos) CHECK(line.rfind("#line " + std::to_string(generated + 1) + " ", 0) == 0);
+            continue;
+        }
+        ++generated;
+    }
+    CHECK(src.find("#line @resume") == std::string::npos);
+}
+
+TEST_CASE("text for junit.xml is well-formed XML 1.0 whatever a crafted shard holds", "[hostile][report]") {
+    CHECK(xml_escape("a<b & \"c\"") == "a&lt;b &amp; &quot;c&quot;");
+    CHECK(xml_escape("tab\tline\nok") == "tab\tline\nok");
+    CHECK(xml_escape("caf\xC3\xA9 \xE2\x9C\x93 \xF0\x9F\x93\xBA") == "caf\xC3\xA9 \xE2\x9C\x93 \xF0\x9F\x93\xBA");
+    const std::string replacement = "\xEF\xBF\xBD";
+    // C0 controls, U+FFFE/U+FFFF, stray continuation bytes, overlong forms, surrogates, cut sequences.
+    for (const std::string& bad : {std::string("\x01", 1), std::string("\0", 1), std::string("\x1b"), std::string("\xEF\xBF\xBE"),
+                                  std::string("\xEF\xBF\xBF"), std::string("\x80"), std::string("\xC0\xAF"), std::string("\xED\xA0\x80"),
+                                  std::string("\xF4\x90\x80\x80"), std::string("\xE2\x9C")}) {
+        INFO(bad.size());
+        const std::string out = xml_escape("x" + bad + "y");
+        CHECK(out.front() == 'x');
+        CHECK(out.back() == 'y');
+        CHECK(out.find(replacement) != std::string::npos);
+        for (unsigned char c : out) CHECK((c >= 0x20 || c == '\t' || c == '\n'));
+    }
+}
+
+TEST_CASE("a pass graph asking for a framebuffer beyond the memory budget is refused before it is allocated", "[hostile][scene]") {
+    test::TempDir dir;
+    // Eight times the viewport: 16384 x 16384 at a 2048 x 2048 screen (4 GiB as RGBA float).
+    REQUIRE(write_file_atomic(dir / "overlay/presets/big.toml",
+                              "name = \"big\"\ndoc = \"d\"\n[[pass]]\nalias = \"up\"\nscale_type = \"viewport\"\nscale = 8.0\n"
+                              "[pass.stages.scanlines]\nscanlineIntensity = 0.5\n[[pass]]\nalias = \"down\"\n")
+                .ok());
+    for (const char* target : {"spirv", "glsl330"}) {
+        INFO(target);
+        auto r = test::run_crtforge("--templates '" + (dir / "overlay") + "' render --preset big --target " + target +
+                                    " --input pixel_art --size 2048x2048 --output '" + (dir / "big.png") + "'");
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.err, Catch::Contains("presets/big.toml:3") && Catch::Contains("pass.up.scale") && Catch::Contains("16384x16384") &&
+                              Catch::Contains("budget"));
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK_FALSE(fs::exists(dir / "big.png"));
+    }
 }

@@ -123,7 +123,10 @@ Result<std::shared_ptr<TemplateLibrary>> import_into(const std::string& slangp, 
     auto imported = import_slangp(slangp, options);
     if (!imported.ok()) return imported.error();
     if (auto s = write_imported_preset(imported.value(), overlay); !s.ok()) return s.error();
-    return TemplateLibrary::load(overlay);
+    auto lib = TemplateLibrary::load(overlay);
+    if (lib.ok())
+        if (auto broken = lib.value()->lookup_preset(imported.value().name); !broken.ok()) return broken.error();
+    return lib;
 }
 
 // The preset's display through `target`'s consumer at `width` x `height`.

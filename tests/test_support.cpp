@@ -21,6 +21,7 @@ namespace {
 std::shared_ptr<TemplateLibrary> load_shipped() {
     auto loaded = TemplateLibrary::load(shipped_template_dir());
     if (!loaded.ok()) FAIL("shipped templates do not load: " << loaded.error().str());
+    for (const auto& [name, error] : loaded.value()->broken_presets()) FAIL("shipped preset " << name << " does not load: " << error.str());
     return loaded.value();
 }
 
@@ -54,6 +55,12 @@ TempDir::~TempDir() {
 
 ScratchTemplates::ScratchTemplates() : dir_(tmp_ / "templates") {
     fs::copy(shipped_template_dir(), dir_, fs::copy_options::recursive);
+}
+
+Result<std::shared_ptr<TemplateLibrary>> ScratchTemplates::load() const {
+    auto lib = TemplateLibrary::load(dir_);
+    if (lib.ok() && !lib.value()->broken_presets().empty()) return lib.value()->broken_presets().begin()->second;
+    return lib;
 }
 
 void ScratchTemplates::write(const std::string& rel, const std::string& text) const {

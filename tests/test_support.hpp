@@ -46,7 +46,9 @@ public:
     void write(const std::string& rel, const std::string& text) const;  // relative to templates/
     void remove(const std::string& rel) const;
     std::string read(const std::string& rel) const;
-    Result<std::shared_ptr<TemplateLibrary>> load() const { return TemplateLibrary::load(dir_); }
+    // The library as a command over every preset sees it: a broken preset is the load's error
+    // (the first by name). TemplateLibrary::load(dir()) keeps broken presets apart instead.
+    Result<std::shared_ptr<TemplateLibrary>> load() const;
 
 private:
     TempDir tmp_;

@@ -108,12 +108,13 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
         return row;
     }
     const TemplateLibrary& lib = *library.value();
-    const Preset* preset = lib.find_preset(imported.value().name);
-    if (!preset) {
-        row.import_error = "the imported overlay lacks preset '" + imported.value().name + "'";
+    auto found = lib.lookup_preset(imported.value().name);
+    if (!found.ok()) {
+        row.import_error = one_line(found.error());
         skip_all("not imported");
         return row;
     }
+    const Preset* preset = found.value();
     row.passes = preset->passes.size();
 
     // SPIR-V, pass by pass: every pass that compiles is still emitted for the targets.

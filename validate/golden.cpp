@@ -18,7 +18,9 @@
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/uniforms.hpp"
 #include "crtforge/files.hpp"
+#include "crtforge/lut_file.hpp"
 #include "crtforge/validate/target_render.hpp"
+#include "generator/toml_reader.hpp"
 
 namespace crtforge {
 
@@ -270,7 +272,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
         std::string text = "lut " + lut.name + " " + lut.generator + " " + lut.file + " " + filter_name(lut.filter) + " " + wrap_name(lut.wrap);
         for (const auto& [name, value] : lut.params) text += fmt::format(" {}={}", name, value);
         if (!lut.generator.empty()) parts.push_back(text);
-        else if (auto data = read_text_file(lut_file_path(lut)); data.ok()) parts.push_back(text + "\n" + data.value());
+        else if (auto data = read_text_file(lut_file_path(lut), kMaxLutFileBytes); data.ok()) parts.push_back(text + "\n" + data.value());
         else return data.error();
     }
     std::map<std::string, const StageSpec*> stages;
@@ -288,7 +290,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
         parts.push_back(text);
     }
     for (const auto& [name, stage] : stages) {
-        auto spec = read_text_file(stage->where.file);
+        auto spec = read_text_file(stage->where.file, detail::kMaxTomlBytes);
         if (!spec.ok()) return spec.error();
         parts.push_back(spec.value());
         parts.push_back(stage->glsl_source);
@@ -334,7 +336,8 @@ Result<Image> render_golden_reference(const TemplateLibrary& library, const Gold
 
 Result<std::vector<GoldenEntry>> load_golden_manifest(const std::string& dir) {
     const std::string path = dir + "/manifest.json";
-    auto text = read_text_file(path);
+    auto text = read_text_file(path, kMaxDataFileBytes);
+    if (!text.ok() && std::filesystem::exists(path)) return text.error();
     if (!text.ok()) return make_error("no golden manifest (run 'crtforge golden update')", path);
     json j = json::parse(text.value(), nullptr, false);
     if (j.is_discarded() || !j.contains("goldens")) return make_error("not a golden manifest", path);

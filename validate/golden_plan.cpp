@@ -489,7 +489,7 @@ Status add_golden_presets(TemplateLibrary& library, const std::string& golden_di
 
 Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, const std::string& golden_dir) {
     const std::string path = golden_dir + "/plan.toml";
-    auto text = read_text_file(path);
+    auto text = read_text_file(path, detail::kMaxTomlBytes);
     if (!text.ok()) return text.error();
     auto plan = PlanReader(path).read(text.value(), library);
     if (!plan.ok()) return plan.error();

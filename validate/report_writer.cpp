@@ -65,17 +65,17 @@ std::string junit_xml(const ValidationReport& report) {
         for (const auto& c : report.checks) {
             if (c.target != t) continue;
             ++tests;
-            cases += "    <testcase classname=\"" + html_escape(c.target + "." + c.preset) + "\" name=\"" + html_escape(c.check) + "\"";
+            cases += "    <testcase classname=\"" + xml_escape(c.target + "." + c.preset) + "\" name=\"" + xml_escape(c.check) + "\"";
             if (c.passed && c.not_rendered) {
-                cases += ">\n      <skipped message=\"" + html_escape(c.message) + "\"/>\n    </testcase>\n";
+                cases += ">\n      <skipped message=\"" + xml_escape(c.message) + "\"/>\n    </testcase>\n";
             } else if (c.passed) {
                 cases += "/>\n";
             } else {
                 ++failures;
-                cases += ">\n      <failure message=\"" + html_escape(c.message) + "\"/>\n    </testcase>\n";
+                cases += ">\n      <failure message=\"" + xml_escape(c.message) + "\"/>\n    </testcase>\n";
             }
         }
-        out += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n", html_escape(t), tests, failures) + cases + "  </testsuite>\n";
+        out += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n", xml_escape(t), tests, failures) + cases + "  </testsuite>\n";
     }
     return out + "</testsuites>\n";
 }
@@ -320,7 +320,7 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
     std::map<unsigned, std::string> shard_paths;  // index -> report, to refuse repeats
     for (const auto& dir : dirs) {
         const std::string path = dir + "/report.json";
-        auto text = read_text_file(path);
+        auto text = read_text_file(path, kMaxDataFileBytes);
         if (!text.ok()) return text.error();
         json j = json::parse(text.value(), nullptr, false);
         if (j.is_discarded() || !j.contains("checks")) return make_error("not a crtforge report", path);

@@ -89,6 +89,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         const PixelSize source{original.value().width, original.value().height};
         const PixelRect screen = screen_rect(preset, {r.width, r.height}, source, r.fit);
         const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
+        if (auto s = check_pass_sizes(preset, sizes, {screen.width, screen.height}); !s.ok()) return s.error();
         std::vector<Image> current(preset.passes.size());
         auto index_of = [&](const std::string& alias) {
             for (size_t i = 0; i < preset.passes.size(); ++i)

@@ -341,7 +341,7 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
         for (TargetId t : targets) what += std::string("target ") + target_info(t).name + "|";
         for (const auto& i : request.inputs) what += "input " + i + "|";
         if (request.render)
-            if (auto manifest = read_text_file(request.golden_dir + "/manifest.json"); manifest.ok()) what += manifest.value();
+            if (auto manifest = read_text_file(request.golden_dir + "/manifest.json", kMaxDataFileBytes); manifest.ok()) what += manifest.value();
         report.run_id = Cache::key({what}).substr(0, 16);
     }
     if (request.render) {

@@ -14,6 +14,7 @@
 
 #include "crtforge/files.hpp"
 #include "crtforge/inert_text.hpp"
+#include "crtforge/lut_file.hpp"
 #include "generator/reserved_words.hpp"
 #include "generator/retroarch/slang_program.hpp"
 #include "generator/retroarch/slangp_file.hpp"
@@ -223,9 +224,10 @@ private:
         for (const auto& lut : preset_.textures) {
             if (!detail::is_identifier(lut.name))
                 return make_error("LUT name '" + lut.name + "' is not an identifier", lut.where.file, lut.where.line, "textures");
-            std::string data;
-            auto bytes = read_text_file(lut.path);
+            auto bytes = read_text_file(lut.path, kMaxLutFileBytes);
             if (!bytes.ok()) return make_error(bytes.error().message, lut.where.file, lut.where.line, lut.name);
+            if (std::string e = lut_picture_error(bytes.value()); !e.empty())
+                return make_error("texture '" + lut.path + "' " + e, lut.where.file, lut.where.line, lut.name);
             out_.inputs.push_back(lut.path);
             const std::string file = out_.name + "/" + lut.name + fs::path(lut.path).extension().string();
             out_.files.push_back({"presets/" + file, std::move(bytes.value())});

@@ -15,6 +15,9 @@ namespace crtforge {
 // The whole file. A directory, a FIFO or a device is refused before it is opened (reading one
 // would block or never end), and so is a file over `max_bytes` (0: no bound).
 Result<std::string> read_text_file(const std::string& path, std::uintmax_t max_bytes = 0);
+// The bound for data files crtforge writes and reads back (golden manifest, report shards, cache
+// entries): far above any real one, far below what would exhaust memory.
+inline constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{256} << 20;
 // Regular files in dir whose names end with `ext`, sorted by name (deterministic order).
 Result<std::vector<std::string>> list_files(const std::string& dir, const std::string& ext);
 // Writes to "<path>.tmp-<pid>" then renames, so readers never see a half-written file; creates the

@@ -23,4 +23,9 @@ std::string inert_quoted(std::string_view text);
 // Safe as HTML or XML text and attribute values: '&', '<', '>', '"' and '\'' as entities.
 std::string html_escape(std::string_view text);
 
+// Safe as XML 1.0 text and attribute values (junit.xml), which must be well-formed: html_escape,
+// and every character XML 1.0 forbids even as a reference (C0 controls but tab, newline and
+// carriage return; U+FFFE, U+FFFF) or a byte that is not UTF-8 becomes U+FFFD.
+std::string xml_escape(std::string_view text);
+
 }  // namespace crtforge

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "crtforge/diagnostic.hpp"
 #include "crtforge/preset.hpp"
 
 namespace crtforge {
@@ -39,5 +40,9 @@ size_t screen_pass_index(const Preset& preset);
 // factor of its main input's size (source), of the screen (viewport) or absolute; rounded to the
 // nearest pixel, at least 1. The last pass draws the screen: its size is the screen's.
 std::vector<PixelSize> pass_sizes(const Preset& preset, PixelSize source, PixelSize screen);
+
+// An error at the pass (its [[pass]] line, field pass.<alias>.scale) whose output would be beyond
+// the image memory budget at this screen, checked before a renderer allocates it; else Ok.
+Status check_pass_sizes(const Preset& preset, const std::vector<PixelSize>& sizes, PixelSize screen);
 
 }  // namespace crtforge

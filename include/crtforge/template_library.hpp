@@ -2,6 +2,7 @@
 // every preset, loaded and validated from one templates/ directory.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -16,7 +17,9 @@ namespace crtforge {
 class TemplateLibrary {
 public:
     // Loads <dir>/stages/*.toml (+ .glsl), <dir>/prelude.glsl, <dir>/fullscreen.vert and
-    // <dir>/presets/*.toml. Any invalid file fails the whole load with its first diagnostic.
+    // <dir>/presets/*.toml. An invalid stage or shared file fails the whole load with its first
+    // diagnostic; an invalid preset file is one broken preset (broken_presets()), and so is every
+    // preset derived from it, while the others load.
     // A folder without prelude.glsl is an overlay: its stages/ and presets/ (either may be absent)
     // go on top of the shipped templates (default_dir()), a file replacing the shipped one of the
     // same name: a studio keeps only its own stages and presets.
@@ -30,8 +33,12 @@ public:
     const std::vector<Preset>& presets() const { return presets_; }  // sorted by name
     const StageSpec* find_stage(const std::string& name) const;
     const Preset* find_preset(const std::string& name) const;
-    // The same, or an error (field --preset) that lists the presets there are.
+    // The same, or the preset's own load error when it is broken, or an error (field --preset)
+    // that lists the presets there are.
     Result<const Preset*> lookup_preset(const std::string& name) const;
+    // The presets that did not load, by name (a file's stem), each with its first diagnostic.
+    // Commands over every preset refuse to run while one is broken; commands naming others run.
+    const std::map<std::string, Diagnostic>& broken_presets() const { return broken_; }
     std::vector<std::string> preset_names() const;
     const ParamSpec* find_param(const std::string& name, const StageSpec** owner = nullptr) const;
 
@@ -57,7 +64,11 @@ public:
 
 private:
     Status add_presets(const std::string& dir, bool test_only);
+    // Test presets (shipped with the golden plan) must all load; the library's own may break one
+    // by one (broken_).
     Status add_preset_files(const std::vector<std::string>& paths, bool test_only);
+    // One preset file read, parsed and its LUT files checked (inside `template_root`).
+    Result<PresetFile> load_preset_file(const std::string& path, const std::string& template_root) const;
     // resolve(), tracking the presets being resolved (`preset = "..."` references nest).
     Result<Preset> resolve_preset(const std::vector<PresetFile>& files, const std::string& name,
                                   std::set<std::string>& visiting) const;
@@ -65,6 +76,7 @@ private:
     std::string dir_;
     std::vector<StageSpec> stages_;  // sorted by order
     std::vector<Preset> presets_;
+    std::map<std::string, Diagnostic> broken_;
     std::string prelude_, prelude_path_, vertex_, vertex_path_;
     std::vector<std::string> warnings_;
     bool overlay_ = false;

@@ -209,6 +209,8 @@ static Result<Image> read_image_quietly(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) return make_error("file not found", path);
     if (fs::is_directory(path, ec)) return make_error("is a directory, not an image file", path);
+    // A FIFO or a device would block the reader or never end; links are followed to what they name.
+    if (!fs::is_regular_file(path, ec)) return make_error("is not a regular file", path);
 
     // Ask every reader for straight alpha: OIIO otherwise premultiplies PNG/TIFF colours by alpha.
     OIIO::ImageSpec config;

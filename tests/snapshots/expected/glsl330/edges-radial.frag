@@ -20,8 +20,8 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - smoothstep(0.3, 0.9, length((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.025 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
-    vec4 _475 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _477 = isnan(c);
-    fragColor = vec4(_477.x ? vec4(0.0).x : _475.x, _477.y ? vec4(0.0).y : _475.y, _477.z ? vec4(0.0).z : _475.z, _477.w ? vec4(0.0).w : _475.w);
+    vec4 _474 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _476 = isnan(c);
+    fragColor = vec4(_476.x ? vec4(0.0).x : _474.x, _476.y ? vec4(0.0).y : _474.y, _476.z ? vec4(0.0).z : _474.z, _476.w ? vec4(0.0).w : _474.w);
 }
 

@@ -1,6 +1,6 @@
 #version 450
 
-vec4 _1032;
+vec4 _1031;
 
 layout(binding = 0, std140) uniform CrtParams
 {
@@ -18,49 +18,49 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _605 = q.xy;
-    vec2 _613 = q.zw * fma(crt.bendAmount, dot(_605, _605), 1.0);
+    vec2 _604 = q.xy;
+    vec2 _612 = q.zw * fma(crt.bendAmount, dot(_604, _604), 1.0);
     vec4 q_1;
-    q_1.z = _613.x;
-    q_1.w = _613.y;
-    vec2 _620 = q_1.wz * 0.5;
-    vec2 sampleUv = _620 + vec2(0.5);
+    q_1.z = _612.x;
+    q_1.w = _612.y;
+    vec2 _619 = q_1.wz * 0.5;
+    vec2 sampleUv = _619 + vec2(0.5);
     vec4 texel = texture(source, sampleUv);
-    vec4 texel_1 = texture(source, _620 + vec2(0.5025, 0.5));
-    vec4 texel_2 = texture(source, _620 + vec2(0.4975, 0.5));
-    vec4 texel_3 = texture(source, _620 + vec2(0.5, 0.5025));
-    vec4 texel_4 = texture(source, _620 + vec2(0.5, 0.4975));
+    vec4 texel_1 = texture(source, _619 + vec2(0.5025, 0.5));
+    vec4 texel_2 = texture(source, _619 + vec2(0.4975, 0.5));
+    vec4 texel_3 = texture(source, _619 + vec2(0.5, 0.5025));
+    vec4 texel_4 = texture(source, _619 + vec2(0.5, 0.4975));
     vec3 color;
     do
     {
-        float _755 = sampleUv.x;
-        bool _756 = _755 < 0.0;
-        bool _763;
-        if (!_756)
+        float _754 = sampleUv.x;
+        bool _755 = _754 < 0.0;
+        bool _762;
+        if (!_755)
         {
-            _763 = _755 > 1.0;
+            _762 = _754 > 1.0;
         }
         else
         {
-            _763 = _756;
+            _762 = _755;
         }
-        if (_763)
+        if (_762)
         {
             color = crt.edgeColor;
             break;
         }
-        float _769 = sampleUv.y;
-        bool _770 = _769 < 0.0;
-        bool _777;
-        if (!_770)
+        float _768 = sampleUv.y;
+        bool _769 = _768 < 0.0;
+        bool _776;
+        if (!_769)
         {
-            _777 = _769 > 1.0;
+            _776 = _768 > 1.0;
         }
         else
         {
-            _777 = _770;
+            _776 = _769;
         }
-        if (_777)
+        if (_776)
         {
             color = crt.edgeColor.zyx;
             break;

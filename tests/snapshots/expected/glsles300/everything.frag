@@ -2,7 +2,7 @@
 precision highp float;
 precision highp int;
 
-vec4 _2430;
+vec4 _2429;
 
 layout(std140) uniform CrtParams
 {
@@ -28,25 +28,25 @@ void main()
 {
     vec2 _705 = vTexCoord * crt.outputSize;
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _1228 = q.xy;
-    vec2 _1236 = q.zw * (crt.bendAmount * dot(_1228, _1228) + 1.0);
+    vec2 _1227 = q.xy;
+    vec2 _1235 = q.zw * (crt.bendAmount * dot(_1227, _1227) + 1.0);
     vec4 q_1;
-    q_1.z = _1236.x;
-    q_1.w = _1236.y;
+    q_1.z = _1235.x;
+    q_1.w = _1235.y;
     vec2 sampleUv = (q_1.wz * 0.5) + vec2(0.5);
-    float _1295 = sampleUv.x;
-    float _1298 = sampleUv.y;
-    vec3 color_1 = mix(texture(source, sampleUv).xyz, texture(source, sampleUv + (vec2(dFdx(_1295), dFdy(_1298)) * 4.0)).xyz, vec3(crt.tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
-    float _1366 = color_1.y;
+    float _1294 = sampleUv.x;
+    float _1297 = sampleUv.y;
+    vec3 color_1 = mix(texture(source, sampleUv).xyz, texture(source, sampleUv + (vec2(dFdx(_1294), dFdy(_1297)) * 4.0)).xyz, vec3(crt.tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float _1365 = color_1.y;
     vec4 s;
-    s = vec4(color_1.x, _1366, color_1.z, 1.0);
+    s = vec4(color_1.x, _1365, color_1.z, 1.0);
     int k_1;
     vec4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = _1366 * 0.5 + (0.01 * float(k));
+        s_1.y = _1365 * 0.5 + (0.01 * float(k));
         k_1 = k + 1;
         if (k_1 >= crt.loopCount)
         {
@@ -57,10 +57,10 @@ void main()
         continue;
     }
     int x = int(_705.x) - 10;
-    float _1467 = _705.y;
-    vec3 color_2 = (s_1.xyz * s.w) * (0.03 * mod(_1467 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
+    float _1466 = _705.y;
+    vec3 color_2 = (s_1.xyz * s.w) * (0.03 * mod(_1466 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
     vec3 tint;
-    switch (int(_1467) & 3)
+    switch (int(_1466) & 3)
     {
         case 0:
         {
@@ -80,55 +80,55 @@ void main()
         }
     }
     float lift;
-    if (_1295 > 0.5)
+    if (_1294 > 0.5)
     {
         lift = sqrt(max(color_2.y, 0.0));
     }
     else
     {
-        float _1575 = color_2.y;
-        lift = _1575 * _1575;
+        float _1574 = color_2.y;
+        lift = _1574 * _1574;
     }
     vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * crt.shapeScale;
     vec3 color;
     do
     {
-        bool _1763 = _1295 < 0.0;
-        bool _1770;
-        if (!_1763)
+        bool _1762 = _1294 < 0.0;
+        bool _1769;
+        if (!_1762)
         {
-            _1770 = _1295 > 1.0;
+            _1769 = _1294 > 1.0;
         }
         else
         {
-            _1770 = _1763;
+            _1769 = _1762;
         }
-        if (_1770)
+        if (_1769)
         {
             color = crt.edgeColor;
             break;
         }
-        bool _1777 = _1298 < 0.0;
-        bool _1784;
-        if (!_1777)
+        bool _1776 = _1297 < 0.0;
+        bool _1783;
+        if (!_1776)
         {
-            _1784 = _1298 > 1.0;
+            _1783 = _1297 > 1.0;
         }
         else
         {
-            _1784 = _1777;
+            _1783 = _1776;
         }
-        if (_1784)
+        if (_1783)
         {
             color = crt.edgeColor.zyx;
             break;
         }
-        color = ((color_2 * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (crt.pulseDepth * sin(_1467 * 0.025 + (crt.time * crt.pulseRate)) + 1.0);
+        color = ((color_2 * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (crt.pulseDepth * sin(_1466 * 0.025 + (crt.time * crt.pulseRate)) + 1.0);
         break;
     } while(false);
     vec4 c = vec4(color, 1.0);
-    vec4 _1832 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _1834 = isnan(c);
-    fragColor = vec4(_1834.x ? vec4(0.0).x : _1832.x, _1834.y ? vec4(0.0).y : _1832.y, _1834.z ? vec4(0.0).z : _1832.z, _1834.w ? vec4(0.0).w : _1832.w);
+    vec4 _1831 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _1833 = isnan(c);
+    fragColor = vec4(_1833.x ? vec4(0.0).x : _1831.x, _1833.y ? vec4(0.0).y : _1831.y, _1833.z ? vec4(0.0).z : _1831.z, _1833.w ? vec4(0.0).w : _1831.w);
 }
 

@@ -1,4 +1,4 @@
-static float4 _2430;
+static float4 _2429;
 
 cbuffer CrtParams : register(b0)
 {
@@ -55,25 +55,25 @@ void frag_main()
 {
     float2 _705 = vTexCoord * crt_outputSize;
     float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _1228 = q.xy;
-    float2 _1236 = q.zw * mad(crt_bendAmount, dot(_1228, _1228), 1.0f);
+    float2 _1227 = q.xy;
+    float2 _1235 = q.zw * mad(crt_bendAmount, dot(_1227, _1227), 1.0f);
     float4 q_1;
-    q_1.z = _1236.x;
-    q_1.w = _1236.y;
+    q_1.z = _1235.x;
+    q_1.w = _1235.y;
     float2 sampleUv = (q_1.wz * 0.5f) + 0.5f.xx;
-    float _1295 = sampleUv.x;
-    float _1298 = sampleUv.y;
-    float3 color_1 = lerp(source.Sample(_source_sampler, sampleUv).xyz, source.Sample(_source_sampler, sampleUv + (float2(ddx(_1295), ddy(_1298)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(sampleUv)) * 100.0f, 0.0f, 1.0f)).xxx);
-    float _1366 = color_1.y;
+    float _1294 = sampleUv.x;
+    float _1297 = sampleUv.y;
+    float3 color_1 = lerp(source.Sample(_source_sampler, sampleUv).xyz, source.Sample(_source_sampler, sampleUv + (float2(ddx(_1294), ddy(_1297)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(sampleUv)) * 100.0f, 0.0f, 1.0f)).xxx);
+    float _1365 = color_1.y;
     float4 s;
-    s = float4(color_1.x, _1366, color_1.z, 1.0f);
+    s = float4(color_1.x, _1365, color_1.z, 1.0f);
     int k_1;
     float4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = mad(_1366, 0.5f, 0.01f * float(k));
+        s_1.y = mad(_1365, 0.5f, 0.01f * float(k));
         k_1 = k + 1;
         if (k_1 >= crt_loopCount)
         {
@@ -84,10 +84,10 @@ void frag_main()
         continue;
     }
     int x = int(_705.x) - 10;
-    float _1467 = _705.y;
-    float3 color_2 = (s_1.xyz * s.w) * mad(0.03f, mod(_1467 - 4.0f, -5.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
+    float _1466 = _705.y;
+    float3 color_2 = (s_1.xyz * s.w) * mad(0.03f, mod(_1466 - 4.0f, -5.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
     float3 tint;
-    switch (int(_1467) & 3)
+    switch (int(_1466) & 3)
     {
         case 0:
         {
@@ -107,56 +107,56 @@ void frag_main()
         }
     }
     float lift;
-    if (_1295 > 0.5f)
+    if (_1294 > 0.5f)
     {
         lift = sqrt(max(color_2.y, 0.0f));
     }
     else
     {
-        float _1575 = color_2.y;
-        lift = _1575 * _1575;
+        float _1574 = color_2.y;
+        lift = _1574 * _1574;
     }
     float2 d = abs((sampleUv * 2.0f) - 1.0f.xx) * crt_shapeScale;
     float3 color;
     do
     {
-        bool _1763 = _1295 < 0.0f;
-        bool _1770;
-        if (!_1763)
+        bool _1762 = _1294 < 0.0f;
+        bool _1769;
+        if (!_1762)
         {
-            _1770 = _1295 > 1.0f;
+            _1769 = _1294 > 1.0f;
         }
         else
         {
-            _1770 = _1763;
+            _1769 = _1762;
         }
-        if (_1770)
+        if (_1769)
         {
             color = crt_edgeColor;
             break;
         }
-        bool _1777 = _1298 < 0.0f;
-        bool _1784;
-        if (!_1777)
+        bool _1776 = _1297 < 0.0f;
+        bool _1783;
+        if (!_1776)
         {
-            _1784 = _1298 > 1.0f;
+            _1783 = _1297 > 1.0f;
         }
         else
         {
-            _1784 = _1777;
+            _1783 = _1776;
         }
-        if (_1784)
+        if (_1783)
         {
             color = crt_edgeColor.zyx;
             break;
         }
-        color = (mad(color_2, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx) * clamp(1.5f - max(d.x, d.y), 0.8f, 0.2f)) * mad(crt_pulseDepth, sin(mad(_1467, 0.025f, crt_time * crt_pulseRate)), 1.0f);
+        color = (mad(color_2, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx) * clamp(1.5f - max(d.x, d.y), 0.8f, 0.2f)) * mad(crt_pulseDepth, sin(mad(_1466, 0.025f, crt_time * crt_pulseRate)), 1.0f);
         break;
     } while(false);
     float4 c = float4(color, 1.0f);
-    float4 _1832 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _1834 = isnan(c);
-    fragColor = float4(_1834.x ? 0.0f.xxxx.x : _1832.x, _1834.y ? 0.0f.xxxx.y : _1832.y, _1834.z ? 0.0f.xxxx.z : _1832.z, _1834.w ? 0.0f.xxxx.w : _1832.w);
+    float4 _1831 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _1833 = isnan(c);
+    fragColor = float4(_1833.x ? 0.0f.xxxx.x : _1831.x, _1833.y ? 0.0f.xxxx.y : _1831.y, _1833.z ? 0.0f.xxxx.z : _1831.z, _1833.w ? 0.0f.xxxx.w : _1831.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -1,4 +1,4 @@
-static float4 _1032;
+static float4 _1031;
 
 cbuffer CrtParams : register(b0, space0)
 {
@@ -27,49 +27,49 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _605 = q.xy;
-    float2 _613 = q.zw * mad(crt_bendAmount, dot(_605, _605), 1.0f);
+    float2 _604 = q.xy;
+    float2 _612 = q.zw * mad(crt_bendAmount, dot(_604, _604), 1.0f);
     float4 q_1;
-    q_1.z = _613.x;
-    q_1.w = _613.y;
-    float2 _620 = q_1.wz * 0.5f;
-    float2 sampleUv = _620 + 0.5f.xx;
+    q_1.z = _612.x;
+    q_1.w = _612.y;
+    float2 _619 = q_1.wz * 0.5f;
+    float2 sampleUv = _619 + 0.5f.xx;
     float4 texel = source.Sample(_source_sampler, sampleUv);
-    float4 texel_1 = source.Sample(_source_sampler, _620 + float2(0.5025f, 0.5f));
-    float4 texel_2 = source.Sample(_source_sampler, _620 + float2(0.4975f, 0.5f));
-    float4 texel_3 = source.Sample(_source_sampler, _620 + float2(0.5f, 0.5025f));
-    float4 texel_4 = source.Sample(_source_sampler, _620 + float2(0.5f, 0.4975f));
+    float4 texel_1 = source.Sample(_source_sampler, _619 + float2(0.5025f, 0.5f));
+    float4 texel_2 = source.Sample(_source_sampler, _619 + float2(0.4975f, 0.5f));
+    float4 texel_3 = source.Sample(_source_sampler, _619 + float2(0.5f, 0.5025f));
+    float4 texel_4 = source.Sample(_source_sampler, _619 + float2(0.5f, 0.4975f));
     float3 color;
     do
     {
-        float _755 = sampleUv.x;
-        bool _756 = _755 < 0.0f;
-        bool _763;
-        if (!_756)
+        float _754 = sampleUv.x;
+        bool _755 = _754 < 0.0f;
+        bool _762;
+        if (!_755)
         {
-            _763 = _755 > 1.0f;
+            _762 = _754 > 1.0f;
         }
         else
         {
-            _763 = _756;
+            _762 = _755;
         }
-        if (_763)
+        if (_762)
         {
             color = crt_edgeColor;
             break;
         }
-        float _769 = sampleUv.y;
-        bool _770 = _769 < 0.0f;
-        bool _777;
-        if (!_770)
+        float _768 = sampleUv.y;
+        bool _769 = _768 < 0.0f;
+        bool _776;
+        if (!_769)
         {
-            _777 = _769 > 1.0f;
+            _776 = _768 > 1.0f;
         }
         else
         {
-            _777 = _770;
+            _776 = _769;
         }
-        if (_777)
+        if (_776)
         {
             color = crt_edgeColor.zyx;
             break;
@@ -78,9 +78,9 @@ void frag_main()
         break;
     } while(false);
     float4 c = float4(color, 1.0f);
-    float4 _825 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _827 = isnan(c);
-    fragColor = float4(_827.x ? 0.0f.xxxx.x : _825.x, _827.y ? 0.0f.xxxx.y : _825.y, _827.z ? 0.0f.xxxx.z : _825.z, _827.w ? 0.0f.xxxx.w : _825.w);
+    float4 _824 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    bool4 _826 = isnan(c);
+    fragColor = float4(_826.x ? 0.0f.xxxx.x : _824.x, _826.y ? 0.0f.xxxx.y : _824.y, _826.z ? 0.0f.xxxx.z : _824.z, _826.w ? 0.0f.xxxx.w : _824.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

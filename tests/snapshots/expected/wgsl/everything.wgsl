@@ -44,27 +44,27 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var k: i32;
   var tint: vec3<f32>;
   var lift: f32;
-  var _1770: bool;
-  var _1784: bool;
+  var _1769: bool;
+  var _1783: bool;
   var color: vec3<f32>;
   var s_1: vec4<f32>;
   var k_1: i32;
   let _705 = vTexCoord * crt.outputSize;
-  let _1222 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let q = _1222 - vec4<f32>(1.0);
-  let _1228 = q.xy;
-  let _1236 = q.zw * fma(crt.bendAmount, dot(_1228, _1228), 1.0);
+  let _1221 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = _1221 - vec4<f32>(1.0);
+  let _1227 = q.xy;
+  let _1235 = q.zw * fma(crt.bendAmount, dot(_1227, _1227), 1.0);
   var q_1 = vec4<f32>();
-  q_1.z = _1236.x;
+  q_1.z = _1235.x;
   var q_2 = q_1;
-  q_2.w = _1236.y;
+  q_2.w = _1235.y;
   let sampleUv = (q_2.wz * 0.5) + vec2<f32>(0.5);
   let _721 = (sampleUv * 2.0) - vec2<f32>(1.0);
   let texel = textureSample(source, source_sampler, sampleUv);
-  let _1306 = length(fwidth(sampleUv)) * 100.0;
+  let _1305 = length(fwidth(sampleUv)) * 100.0;
   let texel_1 = textureSample(source, source_sampler, sampleUv + (vec2<f32>(dpdx(sampleUv.x), dpdy(sampleUv.y)) * 4.0));
-  let _1318 = crt.tapMix * clamp(_1306, 0.0, 1.0);
-  let color_1 = mix(texel.xyz, texel_1.xyz, vec3<f32>(_1318, _1318, _1318));
+  let _1317 = crt.tapMix * clamp(_1305, 0.0, 1.0);
+  let color_1 = mix(texel.xyz, texel_1.xyz, vec3<f32>(_1317, _1317, _1317));
   let s_2 = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
   s = s_2;
   k = 0i;
@@ -83,9 +83,9 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   let x = i32(_705.x) - 10i;
   let r_rem = x % crt.bandWidth;
   let r_1 = select(r_rem, r_rem + crt.bandWidth, (r_rem != i32()) & ((r_rem < i32()) != (crt.bandWidth < i32())));
-  let _1468 = _705.y - 4.0;
-  let _1482 = fma((-0.001), f32(x / (-3i)), fma(0.01, f32(r_1), fma(0.02, f32(x / crt.bandWidth), 1.0)));
-  let color_2 = (s_1.xyz * s.w) * fma(0.03, _1468 - (-5.0) * floor(_1468 / (-5.0)), _1482);
+  let _1467 = _705.y - 4.0;
+  let _1481 = fma((-0.001), f32(x / (-3i)), fma(0.01, f32(r_1), fma(0.02, f32(x / crt.bandWidth), 1.0)));
+  let color_2 = (s_1.xyz * s.w) * fma(0.03, _1467 - (-5.0) * floor(_1467 / (-5.0)), _1481);
   switch (i32(_705.y) & 3i) {
     case 0i: {
       tint = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
@@ -102,31 +102,31 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   } else {
     lift = color_2.y * color_2.y;
   }
-  let _1594 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
+  let _1593 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
   let d = abs(_721) * crt.shapeScale;
-  let _1680 = 1.5 - max(d.x, d.y);
-  let color_3 = fma(color_2, tint, vec3<f32>(_1594, _1594, _1594)) * min(max(_1680, 0.8), 0.2);
-  let _1729 = fma(crt.pulseDepth, sin(fma(_705.y, 0.025, crt.time * crt.pulseRate)), 1.0);
-  let color_4 = color_3 * _1729;
+  let _1679 = 1.5 - max(d.x, d.y);
+  let color_3 = fma(color_2, tint, vec3<f32>(_1593, _1593, _1593)) * min(max(_1679, 0.8), 0.2);
+  let _1728 = fma(crt.pulseDepth, sin(fma(_705.y, 0.025, crt.time * crt.pulseRate)), 1.0);
+  let color_4 = color_3 * _1728;
   switch (0u) {
     default: {
-      let _1763 = sampleUv.x < 0.0;
-      if (!_1763) {
-        _1770 = sampleUv.x > 1.0;
+      let _1762 = sampleUv.x < 0.0;
+      if (!_1762) {
+        _1769 = sampleUv.x > 1.0;
       } else {
-        _1770 = _1763;
+        _1769 = _1762;
       }
-      if (_1770) {
+      if (_1769) {
         color = crt.edgeColor;
         break;
       }
-      let _1777 = sampleUv.y < 0.0;
-      if (!_1777) {
-        _1784 = sampleUv.y > 1.0;
+      let _1776 = sampleUv.y < 0.0;
+      if (!_1776) {
+        _1783 = sampleUv.y > 1.0;
       } else {
-        _1784 = _1777;
+        _1783 = _1776;
       }
-      if (_1784) {
+      if (_1783) {
         color = crt.edgeColor.zyx;
         break;
       }
@@ -134,8 +134,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
     }
   }
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _1834 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _1835 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1834);
-  fragColor = _1835;
+  let _1833 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _1834 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1833);
+  fragColor = _1834;
   return fragColor;
 }

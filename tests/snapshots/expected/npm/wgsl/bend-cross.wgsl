@@ -33,45 +33,45 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _763: bool;
-  var _777: bool;
+  var _762: bool;
+  var _776: bool;
   var color: vec3<f32>;
-  let _599 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let q = _599 - vec4<f32>(1.0);
-  let _605 = q.xy;
-  let _613 = q.zw * fma(crt.bendAmount, dot(_605, _605), 1.0);
+  let _598 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = _598 - vec4<f32>(1.0);
+  let _604 = q.xy;
+  let _612 = q.zw * fma(crt.bendAmount, dot(_604, _604), 1.0);
   var q_1 = vec4<f32>();
-  q_1.z = _613.x;
+  q_1.z = _612.x;
   var q_2 = q_1;
-  q_2.w = _613.y;
-  let _620 = q_2.wz * 0.5;
-  let sampleUv = _620 + vec2<f32>(0.5);
+  q_2.w = _612.y;
+  let _619 = q_2.wz * 0.5;
+  let sampleUv = _619 + vec2<f32>(0.5);
   let texel = textureSample(source, source_sampler, sampleUv);
-  let texel_1 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5025, 0.5));
-  let texel_2 = textureSample(source, source_sampler, _620 + vec2<f32>(0.4975, 0.5));
-  let texel_3 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5, 0.5025));
-  let texel_4 = textureSample(source, source_sampler, _620 + vec2<f32>(0.5, 0.4975));
-  let _698 = (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25;
-  let color_1 = mix(texel.xyz, _698, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
+  let texel_1 = textureSample(source, source_sampler, _619 + vec2<f32>(0.5025, 0.5));
+  let texel_2 = textureSample(source, source_sampler, _619 + vec2<f32>(0.4975, 0.5));
+  let texel_3 = textureSample(source, source_sampler, _619 + vec2<f32>(0.5, 0.5025));
+  let texel_4 = textureSample(source, source_sampler, _619 + vec2<f32>(0.5, 0.4975));
+  let _697 = (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25;
+  let color_1 = mix(texel.xyz, _697, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
   switch (0u) {
     default: {
-      let _756 = sampleUv.x < 0.0;
-      if (!_756) {
-        _763 = sampleUv.x > 1.0;
+      let _755 = sampleUv.x < 0.0;
+      if (!_755) {
+        _762 = sampleUv.x > 1.0;
       } else {
-        _763 = _756;
+        _762 = _755;
       }
-      if (_763) {
+      if (_762) {
         color = crt.edgeColor;
         break;
       }
-      let _770 = sampleUv.y < 0.0;
-      if (!_770) {
-        _777 = sampleUv.y > 1.0;
+      let _769 = sampleUv.y < 0.0;
+      if (!_769) {
+        _776 = sampleUv.y > 1.0;
       } else {
-        _777 = _770;
+        _776 = _769;
       }
-      if (_777) {
+      if (_776) {
         color = crt.edgeColor.zyx;
         break;
       }
@@ -79,8 +79,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
     }
   }
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _827 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _828 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _827);
-  fragColor = _828;
+  let _826 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _827 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _826);
+  fragColor = _827;
   return fragColor;
 }

@@ -35,12 +35,12 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
   let texel = textureSample(source, source_sampler, vTexCoord);
-  let _402 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _442 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let color = (texel.xyz * (1.0 - smoothstep(0.3, 0.9, _402))) * fma(crt.pulseDepth, sin(_442), 1.0);
+  let _401 = length((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
+  let _441 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - smoothstep(0.3, 0.9, _401))) * fma(crt.pulseDepth, sin(_441), 1.0);
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _477 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _478 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _477);
-  fragColor = _478;
+  let _476 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _477 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _476);
+  fragColor = _477;
   return fragColor;
 }

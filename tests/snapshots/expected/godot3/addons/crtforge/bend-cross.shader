@@ -15,49 +15,49 @@ uniform float tapMix : hint_range(0.0, 1.0, 0.01) = 0.4;
 void fragment()
 {
     vec4 q_1 = (vec4(UV.xyyx) * 2.0) - vec4(1.0);
-    vec2 _605 = q_1.xy;
-    vec2 _613 = q_1.zw * (bendAmount * dot(_605, _605) + 1.0);
+    vec2 _604 = q_1.xy;
+    vec2 _612 = q_1.zw * (bendAmount * dot(_604, _604) + 1.0);
     vec4 q_2 = vec4(0.0);
-    q_2.z = _613.x;
-    q_2.w = _613.y;
-    vec2 _620 = q_2.wz * 0.5;
-    vec2 sampleUv = _620 + vec2(0.5);
+    q_2.z = _612.x;
+    q_2.w = _612.y;
+    vec2 _619 = q_2.wz * 0.5;
+    vec2 sampleUv = _619 + vec2(0.5);
     vec4 texel = texture(TEXTURE, sampleUv);
-    vec4 texel_1 = texture(TEXTURE, _620 + vec2(0.5025, 0.5));
-    vec4 texel_2 = texture(TEXTURE, _620 + vec2(0.4975, 0.5));
-    vec4 texel_3 = texture(TEXTURE, _620 + vec2(0.5, 0.5025));
-    vec4 texel_4 = texture(TEXTURE, _620 + vec2(0.5, 0.4975));
+    vec4 texel_1 = texture(TEXTURE, _619 + vec2(0.5025, 0.5));
+    vec4 texel_2 = texture(TEXTURE, _619 + vec2(0.4975, 0.5));
+    vec4 texel_3 = texture(TEXTURE, _619 + vec2(0.5, 0.5025));
+    vec4 texel_4 = texture(TEXTURE, _619 + vec2(0.5, 0.4975));
     vec3 color_1;
     do
     {
-        float _755 = sampleUv.x;
-        bool _756 = _755 < 0.0;
-        bool _763;
-        if (!_756)
+        float _754 = sampleUv.x;
+        bool _755 = _754 < 0.0;
+        bool _762;
+        if (!_755)
         {
-            _763 = _755 > 1.0;
+            _762 = _754 > 1.0;
         }
         else
         {
-            _763 = _756;
+            _762 = _755;
         }
-        if (_763)
+        if (_762)
         {
             color_1 = edgeColor.rgb;
             break;
         }
-        float _769 = sampleUv.y;
-        bool _770 = _769 < 0.0;
-        bool _777;
-        if (!_770)
+        float _768 = sampleUv.y;
+        bool _769 = _768 < 0.0;
+        bool _776;
+        if (!_769)
         {
-            _777 = _769 > 1.0;
+            _776 = _768 > 1.0;
         }
         else
         {
-            _777 = _770;
+            _776 = _769;
         }
-        if (_777)
+        if (_776)
         {
             color_1 = edgeColor.rgb.zyx;
             break;
@@ -66,8 +66,8 @@ void fragment()
         break;
     } while(false);
     vec4 c = vec4(color_1, 1.0);
-    vec4 _825 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _827 = isnan(c);
-    COLOR = vec4(_827.x ? vec4(0.0).x : _825.x, _827.y ? vec4(0.0).y : _825.y, _827.z ? vec4(0.0).z : _825.z, _827.w ? vec4(0.0).w : _825.w);
+    vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _826 = isnan(c);
+    COLOR = vec4(_826.x ? vec4(0.0).x : _824.x, _826.y ? vec4(0.0).y : _824.y, _826.z ? vec4(0.0).z : _824.z, _826.w ? vec4(0.0).w : _824.w);
 }
 

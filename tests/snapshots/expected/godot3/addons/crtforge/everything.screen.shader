@@ -36,25 +36,25 @@ void fragment()
 {
     vec2 _705 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
     vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
-    vec2 _1228 = q_1.xy;
-    vec2 _1236 = q_1.zw * (bendAmount * dot(_1228, _1228) + 1.0);
+    vec2 _1227 = q_1.xy;
+    vec2 _1235 = q_1.zw * (bendAmount * dot(_1227, _1227) + 1.0);
     vec4 q_2 = vec4(0.0);
-    q_2.z = _1236.x;
-    q_2.w = _1236.y;
+    q_2.z = _1235.x;
+    q_2.w = _1235.y;
     vec2 sampleUv = (q_2.wz * 0.5) + vec2(0.5);
-    float _1295 = sampleUv.x;
-    float _1298 = sampleUv.y;
-    vec3 color_2 = mix(textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv), 0.0).xyz, textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv + (vec2(dFdx(_1295), dFdy(_1298)) * 4.0)), 0.0).xyz, vec3(tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
-    float _1366 = color_2.y;
+    float _1294 = sampleUv.x;
+    float _1297 = sampleUv.y;
+    vec3 color_2 = mix(textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv), 0.0).xyz, textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv + (vec2(dFdx(_1294), dFdy(_1297)) * 4.0)), 0.0).xyz, vec3(tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float _1365 = color_2.y;
     vec4 s_2;
-    s_2 = vec4(color_2.x, _1366, color_2.z, 1.0);
+    s_2 = vec4(color_2.x, _1365, color_2.z, 1.0);
     int k_1_1;
     vec4 s_1_1;
     int k_2 = 0;
     for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)
     {
         s_1_1 = s_2;
-        s_1_1.y = _1366 * 0.5 + (0.01 * float(k_2));
+        s_1_1.y = _1365 * 0.5 + (0.01 * float(k_2));
         k_1_1 = k_2 + 1;
         if (k_1_1 >= loopCount)
         {
@@ -65,10 +65,10 @@ void fragment()
         continue;
     }
     int x = int(_705.x) - 10;
-    float _1467 = _705.y;
-    vec3 color_3 = (s_1_1.xyz * s_2.w) * (0.03 * mod(_1467 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
+    float _1466 = _705.y;
+    vec3 color_3 = (s_1_1.xyz * s_2.w) * (0.03 * mod(_1466 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
     vec3 tint_1;
-    switch (int(_1467) & 3)
+    switch (int(_1466) & 3)
     {
         case 0:
         {
@@ -88,55 +88,55 @@ void fragment()
         }
     }
     float lift_1;
-    if (_1295 > 0.5)
+    if (_1294 > 0.5)
     {
         lift_1 = sqrt(max(color_3.y, 0.0));
     }
     else
     {
-        float _1575 = color_3.y;
-        lift_1 = _1575 * _1575;
+        float _1574 = color_3.y;
+        lift_1 = _1574 * _1574;
     }
     vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * shapeScale;
     vec3 color_1;
     do
     {
-        bool _1763 = _1295 < 0.0;
-        bool _1770;
-        if (!_1763)
+        bool _1762 = _1294 < 0.0;
+        bool _1769;
+        if (!_1762)
         {
-            _1770 = _1295 > 1.0;
+            _1769 = _1294 > 1.0;
         }
         else
         {
-            _1770 = _1763;
+            _1769 = _1762;
         }
-        if (_1770)
+        if (_1769)
         {
             color_1 = edgeColor.rgb;
             break;
         }
-        bool _1777 = _1298 < 0.0;
-        bool _1784;
-        if (!_1777)
+        bool _1776 = _1297 < 0.0;
+        bool _1783;
+        if (!_1776)
         {
-            _1784 = _1298 > 1.0;
+            _1783 = _1297 > 1.0;
         }
         else
         {
-            _1784 = _1777;
+            _1783 = _1776;
         }
-        if (_1784)
+        if (_1783)
         {
             color_1 = edgeColor.rgb.zyx;
             break;
         }
-        color_1 = ((color_3 * tint_1 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (pulseDepth * sin(_1467 * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
+        color_1 = ((color_3 * tint_1 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * (pulseDepth * sin(_1466 * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
         break;
     } while(false);
     vec4 c = vec4(color_1, 1.0);
-    vec4 _1832 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _1834 = isnan(c);
-    COLOR = vec4(_1834.x ? vec4(0.0).x : _1832.x, _1834.y ? vec4(0.0).y : _1832.y, _1834.z ? vec4(0.0).z : _1832.z, _1834.w ? vec4(0.0).w : _1832.w);
+    vec4 _1831 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    bvec4 _1833 = isnan(c);
+    COLOR = vec4(_1833.x ? vec4(0.0).x : _1831.x, _1833.y ? vec4(0.0).y : _1831.y, _1833.z ? vec4(0.0).z : _1831.z, _1833.w ? vec4(0.0).w : _1831.w);
 }
 

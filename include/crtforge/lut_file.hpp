@@ -1,0 +1,30 @@
+// LUT files: the pictures a preset names with `file = "..."` (its own, or a RetroArch import's).
+// They are copied into exports and loaded by engines, so they are checked where they enter
+// crtforge, not where a renderer first decodes them: inside the template folder, a regular file of
+// bounded size, and a whole PNG or JPEG picture within the image budget.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "crtforge/diagnostic.hpp"
+#include "crtforge/preset.hpp"
+
+namespace crtforge {
+
+// The largest LUT file read (bytes): the corpus's largest picture is a few MB.
+inline constexpr std::uintmax_t kMaxLutFileBytes = std::uintmax_t{64} << 20;
+
+// Empty when `bytes` are a whole PNG (every chunk's CRC, IHDR, the image data inflating to exactly
+// the rows IHDR declares, IEND) or a whole JPEG (its markers up to the scan, a frame header, the
+// end-of-image marker) within kMaxImageDimension and the image budget; else why not.
+std::string lut_picture_error(std::string_view bytes);
+
+// The file of `lut` (a file LUT), relative to its preset file: refused when absolute or when it
+// resolves (links followed) outside `template_root`, when it is not a regular file, is larger than
+// kMaxLutFileBytes, or is not a whole picture. The error names the preset file, the LUT's line
+// and the field lut.<name>.file. Returns the bytes.
+Result<std::string> read_lut_file(const LutSpec& lut, const std::string& template_root);
+
+}  // namespace crtforge
