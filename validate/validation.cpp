@@ -22,6 +22,7 @@
 #include "crtforge/files.hpp"
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/image_io.hpp"
+#include "crtforge/validate/godot_inspector.hpp"
 #include "crtforge/validate/target_render.hpp"
 
 namespace crtforge {
@@ -74,12 +75,22 @@ struct Job {
     bool second = false;  // renders on the second Vulkan driver: render checks only
 };
 
-// The compile checks of a preset on a target: one per shader role of every pass.
+// The Godot version of a Godot target, 0 for any other.
+int godot_version_of(TargetId target) { return target == TargetId::Godot4 ? 4 : target == TargetId::Godot3 ? 3 : 0; }
+
+// The name of a per-pass check: "kind:role" of a single-pass preset, "kind:alias.role" otherwise.
+std::string pass_check(const Preset& preset, const Pass& pass, const std::string& kind, const std::string& role) {
+    return kind + ":" + (preset.single_pass() ? role : pass.alias + "." + role);
+}
+
+// The checks of a preset's files on a target: a compile check per shader role of every pass, and
+// on Godot an inspector check per pass (its params as the inspector shows them).
 std::vector<std::string> compile_checks(const Preset& preset, TargetId target) {
     std::vector<std::string> checks;
-    for (const Pass& pass : preset.passes)
-        for (const std::string& role : target_info(target).shader_roles)
-            checks.push_back("compile:" + (preset.single_pass() ? role : pass.alias + "." + role));
+    for (const Pass& pass : preset.passes) {
+        for (const std::string& role : target_info(target).shader_roles) checks.push_back(pass_check(preset, pass, "compile", role));
+        if (godot_version_of(target)) checks.push_back(pass_check(preset, pass, "inspector", "params"));
+    }
     return checks;
 }
 
@@ -188,14 +199,21 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         for (const OutputFile& f : outputs[i].files) {
             if (!f.is_shader()) continue;
             const std::string role = f.manifest_role();
-            CheckResult r{preset->name, target,
-                          "compile:" + (preset->single_pass() ? role : preset->passes[i].alias + "." + role), false, {}, {}, {}};
+            CheckResult r{preset->name, target, pass_check(*preset, preset->passes[i], "compile", role), false, {}, {}, {}};
             auto consumed = renderer.compile(job.target, f);
             r.passed = consumed.ok();
             if (!consumed.ok()) r.message = consumed.error().str();
             compiles = compiles && r.passed;
             results.push_back(std::move(r));
         }
+    // What the Godot inspector shows of each pass's params, read back from the shader and material.
+    for (size_t i = 0; i < outputs.size() && !job.second && godot_version_of(job.target); ++i) {
+        CheckResult r{preset->name, target, pass_check(*preset, preset->passes[i], "inspector", "params"), false, {}, {}, {}};
+        const auto problems = godot_inspector_problems(compiled.value()[i].variant, outputs[i], godot_version_of(job.target));
+        r.passed = problems.empty();
+        for (const std::string& p : problems) r.message += (r.message.empty() ? "" : "; ") + p;
+        results.push_back(std::move(r));
+    }
 
     // Never silently green: a rendering run with no golden for this preset on this target says so
     // as its own status, with no metrics (a pass unless --strict).
