@@ -2,6 +2,7 @@
 // and validation can fail — perturbed shaders are caught, with pictures and reasons in the report.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -286,4 +287,40 @@ TEST_CASE("the judge catches errors confined to a row or a patch, small global g
         for (int y = 0; y < im.height; ++y)
             for (int x = 0; x < im.width; ++x) std::swap(im.at(x, y)[0], im.at(x, y)[2]);
     });
+}
+
+TEST_CASE("a golden goes stale when a pass's supersample, a declared tier or fullscreen.vert changes", "[validate][golden]") {
+    // The hash of one golden of super-win (it declares tiers) in a scratch copy, before and after
+    // each edit.
+    auto hash_after = [](const std::function<void(const test::ScratchTemplates&)>& edit) {
+        test::ScratchTemplates t;
+        edit(t);
+        auto lib = t.load();
+        REQUIRE(lib.ok());
+        GoldenEntry e;
+        e.id = "super-win.pixel_art.320x240.f0";
+        e.preset = "super-win";
+        e.input = "pixel_art";
+        e.width = 320;
+        e.height = 240;
+        auto hash = golden_inputs_hash(*lib.value(), e);
+        REQUIRE(hash.ok());
+        return hash.value();
+    };
+    const std::string before = hash_after([](const test::ScratchTemplates&) {});
+    CHECK(hash_after([](const test::ScratchTemplates&) {}) == before);
+    auto replaced = [](const test::ScratchTemplates& t, const std::string& file, const std::string& find, const std::string& replace) {
+        std::string text = t.read(file);
+        const size_t at = text.find(find);
+        REQUIRE(at != std::string::npos);
+        t.write(file, text.replace(at, find.size(), replace));
+    };
+    CHECK(hash_after([&](const test::ScratchTemplates& t) { t.write("fullscreen.vert", t.read("fullscreen.vert") + "\n// edited\n"); }) != before);
+    const std::string preset = test::ScratchTemplates().read("presets/super-win.toml");
+    REQUIRE(preset.find("[tiers.") != std::string::npos);
+    const size_t scale = preset.find("scale = ", preset.find("[tiers."));
+    REQUIRE(scale != std::string::npos);
+    const std::string old_line = preset.substr(scale, preset.find('\n', scale) - scale);
+    INFO(old_line);
+    CHECK(hash_after([&](const test::ScratchTemplates& t) { replaced(t, "presets/super-win.toml", old_line, "scale = 0.3"); }) != before);
 }

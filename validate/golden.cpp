@@ -277,14 +277,17 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
     }
     std::map<std::string, const StageSpec*> stages;
     for (const Pass& pass : preset->passes) {
-        std::string text = fmt::format("pass {} {} {} {} {} {} {} mod {}", pass.alias, scale_type_name(pass.scale_x.type), pass.scale_x.factor,
-                                       scale_type_name(pass.scale_y.type), pass.scale_y.factor, pixel_format_name(pass.format),
-                                       preset->filter == Filter::Nearest ? "nearest" : "linear", pass.frame_count_mod);
+        std::string text = fmt::format("pass {} {} {} {} {} {} {} mod {} supersample {}", pass.alias, scale_type_name(pass.scale_x.type),
+                                       pass.scale_x.factor, scale_type_name(pass.scale_y.type), pass.scale_y.factor,
+                                       pixel_format_name(pass.format), preset->filter == Filter::Nearest ? "nearest" : "linear",
+                                       pass.frame_count_mod, pass.supersample);
         for (const PassInput& in : pass.inputs)
             text += fmt::format(" [{} {} {} {} {}]", in.binding, in.from.str(), filter_name(in.filter), wrap_name(in.wrap), in.mipmap);
         for (const ResolvedStage& st : pass.stages) {
             text += "\n  " + st.stage->name + "/" + st.form->name;
             for (const auto& [name, value] : st.values) text += " " + name + "=" + value_to_exact_string(value);
+            // A program form (an imported RetroArch pass) carries its own two files.
+            if (st.form->program()) text += "\n" + st.form->vertex_source + "\n" + st.form->fragment_source;
             stages[st.stage->name] = st.stage;
         }
         parts.push_back(text);
@@ -295,7 +298,14 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
         parts.push_back(spec.value());
         parts.push_back(stage->glsl_source);
     }
+    // The declared tiers: a golden of the preset stands for them too (their changes, as resolved).
+    for (const DeclaredTier& tier : preset->tiers) {
+        std::string text = "tier " + tier.name;
+        for (const std::string& change : tier.changes) text += "\n  " + change;
+        parts.push_back(text);
+    }
     parts.push_back(library.prelude_source());
+    parts.push_back(library.vertex_source());  // fullscreen.vert: every pass's vertex stage
     std::string all;  // length-prefixed, so no two lists of parts join to the same text
     for (const std::string& part : parts) all += std::to_string(part.size()) + ":" + part;
     return Cache::key({all});
