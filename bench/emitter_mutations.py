@@ -22,22 +22,22 @@ import tempfile
 MUTATIONS = [
     ("targets/wgsl/wgsl_printer.cpp", 'case spv::OpFSub: case spv::OpISub: binary("-")',
      'case spv::OpFSub: case spv::OpISub: binary("+")', "wgsl", "classic,crt-shadow-mask", "subtraction printed as addition"),
-    ("targets/wgsl/wgsl_printer.cpp", '{GLSLstd450Floor, "floor"}', '{GLSLstd450Floor, "ceil"}',
+    ("targets/wgsl/wgsl_printer_builtins.cpp", '{GLSLstd450Floor, "floor"}', '{GLSLstd450Floor, "ceil"}',
      "wgsl", "crt-shadow-mask,atari-16", "floor printed as ceil"),
-    ("targets/wgsl/wgsl_printer.cpp", '{GLSLstd450Fract, "fract"}', '{GLSLstd450Fract, "trunc"}',
+    ("targets/wgsl/wgsl_printer_builtins.cpp", '{GLSLstd450Fract, "fract"}', '{GLSLstd450Fract, "trunc"}',
      "wgsl", "crt-aperture-grille,webgpu-post,quiet-frame", "fract printed as trunc"),
     ("targets/wgsl/wgsl_printer.cpp", 'case spv::OpFOrdLessThan: compare("<")', 'case spv::OpFOrdLessThan: compare("<=")',
      "wgsl", "crt-shadow-mask,atari-crt,super-win,atari-ntsc,atari-chain", "a < comparison printed as <= (differs only at equality)"),
     ("targets/wgsl/wgsl_printer.cpp", 'case spv::OpSelect: call("select", {2, 1, 0})',
      'case spv::OpSelect: call("select", {1, 2, 0})', "wgsl", "crt-shadow-mask,classic,super-win", "select arms swapped"),
-    ("targets/wgsl/wgsl_printer.cpp", 'define(inst, Expr::primary("smoothstep(" + texts() + ")"), true);',
+    ("targets/wgsl/wgsl_printer_builtins.cpp", 'define(inst, Expr::primary("smoothstep(" + texts() + ")"), true);',
      'define(inst, Expr::primary("sqrt(smoothstep(" + texts() + "))"), true);',
      "wgsl", "quiet-frame,super-win,stage-vignette-quiet-frame", "smoothstep's curve bent (sqrt of it)"),
-    ("targets/wgsl/wgsl_printer.cpp", '{GLSLstd450FMin, "min"}', '{GLSLstd450FMin, "max"}',
+    ("targets/wgsl/wgsl_printer_builtins.cpp", '{GLSLstd450FMin, "min"}', '{GLSLstd450FMin, "max"}',
      "wgsl", "super-win,stage-color-grade-lut32,stage-crt-screen-perspective", "min printed as max"),
     ("targets/godot/godot_compiler.cpp", 'constexpr const char* kTau = "6.28318530717959";',
      'constexpr const char* kTau = "6.2832";', "godot3", "crt-pulse", "the TIME-wrap rounding uses a short 2*pi"),
-    ("targets/godot/godot_compiler.cpp", 'return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(', 'return screen ? "(0.5 / SCREEN_PIXEL_SIZE)" : "round(',
+    ("targets/godot/godot_compiler.cpp", 'return screen_mode() ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(', 'return screen_mode() ? "(0.5 / SCREEN_PIXEL_SIZE)" : "round(',
      "godot3", "classic,crt-shadow-mask,webgpu-post", "screen mode's output size halved"),
     ("targets/godot/godot_compiler.cpp", '"round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))"',
      '"floor(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))"', "godot4", "classic,crt-shadow-mask,webgpu-post",
@@ -88,11 +88,13 @@ def main():
     if not os.path.isdir(src):
         if run(f"git clone -q {repo} {src}", cwd=work).returncode != 0:
             sys.exit("bench: cannot clone the repository")
-    # Dawn's npm packages are not in git: the clone uses the working tree's (scripts/setup.sh).
-    modules = os.path.join(repo, "tools/wgsl-runner/node_modules")
-    link = os.path.join(src, "tools/wgsl-runner/node_modules")
-    if os.path.isdir(modules) and not os.path.exists(link):
-        os.symlink(modules, link)
+    # The npm packages (Dawn; Godot 4's web build; the screenshot tool) are not in git: the clone
+    # uses the working tree's (scripts/setup.sh installs them).
+    for tool in ("wgsl-runner", "godot4-runner", "screenshot"):
+        modules = os.path.join(repo, "tools", tool, "node_modules")
+        link = os.path.join(src, "tools", tool, "node_modules")
+        if os.path.isdir(modules) and not os.path.exists(link):
+            os.symlink(modules, link)
     # The product's own build (the clone shares nothing with the working tree's build/).
     build = os.path.join(src, "build")
     print("bench: building the unmutated product once (several minutes on 2 cores)...", flush=True)

@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include <glslang/SPIRV/NonSemanticShaderDebugInfo100.h>
+#define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType: which instructions define a typed value
 #include <glslang/SPIRV/spirv.hpp>
 
 namespace crtforge {
@@ -47,7 +48,11 @@ struct DebugFacts {
     std::map<uint32_t, std::string> strings;
     std::map<uint32_t, std::string> local_variables;  // DebugLocalVariable result -> name
     std::set<uint32_t> named;
+    std::map<uint32_t, std::string> name_of;          // OpName target -> its name
     std::set<uint32_t> module_values;
+    std::map<uint32_t, uint32_t> vector_sizes;        // OpTypeVector result -> component count
+    std::set<uint32_t> bool_types;                    // OpTypeBool, and vectors of it
+    std::map<uint32_t, uint32_t> value_types;         // a function's value -> its type (first definition)
 };
 
 bool is_module_value(uint16_t op) {
@@ -69,6 +74,9 @@ DebugFacts gather(const SpirvBinary& words, const std::vector<Instruction>& list
     for (const Instruction& in : list) {
         if (!in_function && is_module_value(in.opcode) && in.count >= 3) facts.module_values.insert(words[in.offset + 2]);
         const size_t a = in.offset;
+        bool has_result = false, has_type = false;
+        spv::HasResultAndType(static_cast<spv::Op>(in.opcode), &has_result, &has_type);
+        if (in_function && has_result && has_type && in.count >= 3) facts.value_types.emplace(words[a + 2], words[a + 1]);
         switch (in.opcode) {
             case spv::OpExtInstImport:
                 if (in.count >= 3 && is_debug_info_set(spirv_literal_string(words, a + 2, a + in.count)))
@@ -79,6 +87,14 @@ DebugFacts gather(const SpirvBinary& words, const std::vector<Instruction>& list
                 break;
             case spv::OpName:
                 if (in.count >= 2) facts.named.insert(words[a + 1]);
+                if (in.count >= 3) facts.name_of[words[a + 1]] = spirv_literal_string(words, a + 2, a + in.count);
+                break;
+            case spv::OpTypeVector:
+                if (in.count == 4) facts.vector_sizes[words[a + 1]] = words[a + 3];
+                if (in.count == 4 && facts.bool_types.count(words[a + 2])) facts.bool_types.insert(words[a + 1]);
+                break;
+            case spv::OpTypeBool:
+                if (in.count == 2) facts.bool_types.insert(words[a + 1]);
                 break;
             case spv::OpFunction: in_function = true; break;
             case spv::OpFunctionEnd: in_function = false; break;
@@ -107,6 +123,71 @@ bool is_texture_read(uint16_t op) {
     }
 }
 
+bool is_condition(uint16_t op) {
+    switch (op) {
+        case spv::OpFOrdLessThan: case spv::OpFOrdGreaterThan: case spv::OpFOrdLessThanEqual: case spv::OpFOrdGreaterThanEqual:
+        case spv::OpFOrdEqual: case spv::OpFOrdNotEqual: case spv::OpFUnordLessThan: case spv::OpFUnordGreaterThan:
+        case spv::OpFUnordLessThanEqual: case spv::OpFUnordGreaterThanEqual: case spv::OpFUnordEqual: case spv::OpFUnordNotEqual:
+        case spv::OpSLessThan: case spv::OpSGreaterThan: case spv::OpSLessThanEqual: case spv::OpSGreaterThanEqual:
+        case spv::OpULessThan: case spv::OpUGreaterThan: case spv::OpULessThanEqual: case spv::OpUGreaterThanEqual:
+        case spv::OpIEqual: case spv::OpINotEqual: case spv::OpLogicalAnd: case spv::OpLogicalOr: case spv::OpLogicalNot:
+        case spv::OpLogicalEqual: case spv::OpLogicalNotEqual: case spv::OpIsNan: case spv::OpIsInf: case spv::OpAny: case spv::OpAll:
+            return true;
+        default:
+            return false;
+    }
+}
+
+// A component or swizzle of a named vector, which SPIRV-Cross keeps in a temporary of its own
+// (`float _1294 = sampleUv.x;`), is named after it: sampleUv_x, q_zw. In module order, so a
+// swizzle of a swizzle builds on its base's name.
+void add_component_names(const SpirvBinary& words, const std::vector<Instruction>& list, const DebugFacts& facts,
+                         std::map<uint32_t, std::string>& names) {
+    auto base_name = [&](uint32_t id) -> std::string {
+        if (auto n = names.find(id); n != names.end()) return n->second;
+        if (auto n = facts.name_of.find(id); n != facts.name_of.end()) return n->second;
+        return {};
+    };
+    auto vector_size = [&](uint32_t id) -> uint32_t {
+        auto type = facts.value_types.find(id);
+        if (type == facts.value_types.end()) return 0;
+        auto size = facts.vector_sizes.find(type->second);
+        return size == facts.vector_sizes.end() ? 0 : size->second;
+    };
+    static constexpr const char* kLetters = "xyzw";
+    for (const Instruction& in : list) {
+        const size_t a = in.offset;
+        if (in.count < 5 || (in.opcode != spv::OpCompositeExtract && in.opcode != spv::OpVectorShuffle)) continue;
+        const uint32_t id = words[a + 2], vector = words[a + 3];
+        if (facts.named.count(id) || names.count(id) || facts.module_values.count(id)) continue;
+        const std::string base = base_name(vector);
+        const uint32_t size = vector_size(vector);
+        // A name ending in '_' would make a "__" (reserved in GLSL).
+        if (base.empty() || base.back() == '_' || size == 0) continue;
+        std::string letters;
+        if (in.opcode == spv::OpCompositeExtract) {
+            if (in.count == 5 && words[a + 4] < size) letters = kLetters[words[a + 4]];
+        } else if (in.count >= 6 && in.count <= 9) {  // a shuffle of the first vector's components only
+            for (size_t k = a + 5; k < a + in.count; ++k) {
+                if (words[k] >= size) {
+                    letters.clear();
+                    break;
+                }
+                letters += kLetters[words[k]];
+            }
+        }
+        if (!letters.empty()) names.emplace(id, base + "_" + letters);
+    }
+    // A condition SPIRV-Cross keeps in a temporary (a short-circuit's operands, a select's test) is
+    // one: `bool inside_1 = ...` reads better than `bool _1762`; SPIRV-Cross numbers repeats.
+    for (const Instruction& in : list) {
+        const bool bool_phi = in.opcode == spv::OpPhi && in.count >= 3 && facts.bool_types.count(words[in.offset + 1]);
+        if (in.count < 3 || !(is_condition(in.opcode) || bool_phi)) continue;
+        const uint32_t id = words[in.offset + 2];
+        if (!facts.named.count(id) && !facts.module_values.count(id)) names.emplace(id, "cond");
+    }
+}
+
 // The value -> name pairs the DebugValues give, in module order, the first name of a value winning.
 std::map<uint32_t, std::string> value_names(const SpirvBinary& words, const std::vector<Instruction>& list,
                                             const DebugFacts& facts) {
@@ -128,6 +209,7 @@ std::map<uint32_t, std::string> value_names(const SpirvBinary& words, const std:
     for (const Instruction& in : list)
         if (in.count >= 3 && is_texture_read(in.opcode) && !facts.named.count(words[in.offset + 2]))
             names.emplace(words[in.offset + 2], "texel");
+    add_component_names(words, list, facts, names);
     return names;
 }
 

@@ -95,6 +95,27 @@ TEST_CASE("exported shaders keep the template's local names on every target", "[
     CHECK(named > 2 * numbered);
 }
 
+TEST_CASE("a component or swizzle of a named vector, and a condition, are named in exported code", "[targets][readable]") {
+    const TemplateLibrary& lib = test::shipped_library();
+    // A temporary that only holds part of a named value, or a condition, never keeps its SSA number.
+    const std::regex component(R"((?:float|vec[234]) _[0-9]+ = [A-Za-z]\w*\.[xyzw]{1,4};)");
+    const std::regex condition(R"(\b(?:bool|bvec[234]) _[0-9]+\b)");
+    int conditions = 0;
+    for (const Preset& p : lib.presets()) {
+        auto scene = compile_scene(lib, p, VariantOptions{}, Cache());
+        REQUIRE(scene.ok());
+        for (const CompiledVariant& pass : scene.value())
+            for (TargetId target : {TargetId::Glsl330, TargetId::Glsl450, TargetId::Godot4}) {
+                const std::string text = fragment_text(pass, target);
+                INFO(p.name << " " << target_info(target).name);
+                CHECK_FALSE(std::regex_search(text, component));
+                CHECK_FALSE(std::regex_search(text, condition));
+                conditions += text.find("cond") != std::string::npos;
+            }
+    }
+    CHECK(conditions > 0);  // conditions were kept in temporaries, and named
+}
+
 TEST_CASE("carrying the names adds or removes no instruction and leaves no debug info", "[targets][readable]") {
     const TemplateLibrary& lib = test::shipped_library();
     size_t modules = 0;

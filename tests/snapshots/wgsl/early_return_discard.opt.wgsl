@@ -42,9 +42,9 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
         discard;
         return fragColor;
       }
-      let _113 = vTexCoord < p.a.xy;
-      let _119 = vTexCoord > p.a.zw;
-      if (any(vec4<bool>(_113.x, _113.y, _119.x, _119.y))) {
+      let cond = vTexCoord < p.a.xy;
+      let cond_1 = vTexCoord > p.a.zw;
+      if (any(vec4<bool>(cond.x, cond.y, cond_1.x, cond_1.y))) {
         _214 = p.b;
       } else {
         _214 = textureSample(source, source_sampler, vTexCoord);

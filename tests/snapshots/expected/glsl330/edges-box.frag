@@ -22,7 +22,7 @@ void main()
     vec2 d = abs((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale;
     vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(d.x, d.y), 0.8, 0.2))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.025 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
     vec4 _515 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _517 = isnan(c);
-    fragColor = vec4(_517.x ? vec4(0.0).x : _515.x, _517.y ? vec4(0.0).y : _515.y, _517.z ? vec4(0.0).z : _515.z, _517.w ? vec4(0.0).w : _515.w);
+    bvec4 cond = isnan(c);
+    fragColor = vec4(cond.x ? vec4(0.0).x : _515.x, cond.y ? vec4(0.0).y : _515.y, cond.z ? vec4(0.0).z : _515.z, cond.w ? vec4(0.0).w : _515.w);
 }
 

@@ -29,25 +29,25 @@ void main()
 {
     vec2 _705 = vTexCoord * crt.outputSize;
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _1227 = q.xy;
-    vec2 _1235 = q.zw * (crt.bendAmount * dot(_1227, _1227) + 1.0);
+    vec2 q_xy = q.xy;
+    vec2 _1235 = q.zw * (crt.bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_1;
     q_1.z = _1235.x;
     q_1.w = _1235.y;
     vec2 sampleUv = (q_1.wz * 0.5) + vec2(0.5);
-    float _1294 = sampleUv.x;
-    float _1297 = sampleUv.y;
-    vec3 color_1 = mix(texture(source, sampleUv).xyz, texture(source, sampleUv + (vec2(dFdx(_1294), dFdy(_1297)) * 4.0)).xyz, vec3(crt.tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
-    float _1365 = color_1.y;
+    float sampleUv_x = sampleUv.x;
+    float sampleUv_y = sampleUv.y;
+    vec3 color_1 = mix(texture(source, sampleUv).xyz, texture(source, sampleUv + (vec2(dFdx(sampleUv_x), dFdy(sampleUv_y)) * 4.0)).xyz, vec3(crt.tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float color_y = color_1.y;
     vec4 s;
-    s = vec4(color_1.x, _1365, color_1.z, 1.0);
+    s = vec4(color_1.x, color_y, color_1.z, 1.0);
     int k_1;
     vec4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = _1365 * 0.5 + (0.01 * float(k));
+        s_1.y = color_y * 0.5 + (0.01 * float(k));
         k_1 = k + 1;
         if (k_1 >= crt.loopCount)
         {
@@ -81,45 +81,45 @@ void main()
         }
     }
     float lift;
-    if (_1294 > 0.5)
+    if (sampleUv_x > 0.5)
     {
         lift = sqrt(max(color_2.y, 0.0));
     }
     else
     {
-        float _1574 = color_2.y;
-        lift = _1574 * _1574;
+        float color_y_1 = color_2.y;
+        lift = color_y_1 * color_y_1;
     }
     vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * crt.shapeScale;
     vec3 color;
     do
     {
-        bool _1762 = _1294 < 0.0;
-        bool _1769;
-        if (!_1762)
+        bool cond_2 = sampleUv_x < 0.0;
+        bool cond;
+        if (!cond_2)
         {
-            _1769 = _1294 > 1.0;
+            cond = sampleUv_x > 1.0;
         }
         else
         {
-            _1769 = _1762;
+            cond = cond_2;
         }
-        if (_1769)
+        if (cond)
         {
             color = crt.edgeColor;
             break;
         }
-        bool _1776 = _1297 < 0.0;
-        bool _1783;
-        if (!_1776)
+        bool cond_3 = sampleUv_y < 0.0;
+        bool cond_1;
+        if (!cond_3)
         {
-            _1783 = _1297 > 1.0;
+            cond_1 = sampleUv_y > 1.0;
         }
         else
         {
-            _1783 = _1776;
+            cond_1 = cond_3;
         }
-        if (_1783)
+        if (cond_1)
         {
             color = crt.edgeColor.zyx;
             break;
@@ -129,7 +129,7 @@ void main()
     } while(false);
     vec4 c = vec4(color, 1.0);
     vec4 _1831 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _1833 = isnan(c);
-    fragColor = vec4(_1833.x ? vec4(0.0).x : _1831.x, _1833.y ? vec4(0.0).y : _1831.y, _1833.z ? vec4(0.0).z : _1831.z, _1833.w ? vec4(0.0).w : _1831.w);
+    bvec4 cond_4 = isnan(c);
+    fragColor = vec4(cond_4.x ? vec4(0.0).x : _1831.x, cond_4.y ? vec4(0.0).y : _1831.y, cond_4.z ? vec4(0.0).z : _1831.z, cond_4.w ? vec4(0.0).w : _1831.w);
 }
 

@@ -18,8 +18,8 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _604 = q.xy;
-    vec2 _612 = q.zw * fma(crt.bendAmount, dot(_604, _604), 1.0);
+    vec2 q_xy = q.xy;
+    vec2 _612 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
     vec4 q_1;
     q_1.z = _612.x;
     q_1.w = _612.y;
@@ -33,34 +33,34 @@ void main()
     vec3 color;
     do
     {
-        float _754 = sampleUv.x;
-        bool _755 = _754 < 0.0;
-        bool _762;
-        if (!_755)
+        float sampleUv_x = sampleUv.x;
+        bool cond_2 = sampleUv_x < 0.0;
+        bool cond;
+        if (!cond_2)
         {
-            _762 = _754 > 1.0;
+            cond = sampleUv_x > 1.0;
         }
         else
         {
-            _762 = _755;
+            cond = cond_2;
         }
-        if (_762)
+        if (cond)
         {
             color = crt.edgeColor;
             break;
         }
-        float _768 = sampleUv.y;
-        bool _769 = _768 < 0.0;
-        bool _776;
-        if (!_769)
+        float sampleUv_y = sampleUv.y;
+        bool cond_3 = sampleUv_y < 0.0;
+        bool cond_1;
+        if (!cond_3)
         {
-            _776 = _768 > 1.0;
+            cond_1 = sampleUv_y > 1.0;
         }
         else
         {
-            _776 = _769;
+            cond_1 = cond_3;
         }
-        if (_776)
+        if (cond_1)
         {
             color = crt.edgeColor.zyx;
             break;

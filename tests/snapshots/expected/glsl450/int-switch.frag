@@ -46,8 +46,8 @@ void main()
     }
     else
     {
-        float _705 = color.y;
-        lift = _705 * _705;
+        float color_y = color.y;
+        lift = color_y * color_y;
     }
     vec4 c = vec4(fma(color, tint, vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)), 1.0);
     fragColor = mix(clamp(c, vec4(-65504.0), vec4(65504.0)), vec4(0.0), isnan(c));

@@ -14,16 +14,16 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 texel = texture(source, vTexCoord);
-    float _380 = texel.y;
+    float texel_y = texel.y;
     vec4 s;
-    s = vec4(texel.x, _380, texel.z, 1.0);
+    s = vec4(texel.x, texel_y, texel.z, 1.0);
     int k_1;
     vec4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = fma(_380, 0.9, 0.01 * float(k));
+        s_1.y = fma(texel_y, 0.9, 0.01 * float(k));
         k_1 = k + 1;
         if (k_1 >= crt.loopCount)
         {

@@ -20,8 +20,8 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
-    vec2 _604 = q.xy;
-    vec2 _612 = q.zw * (crt.bendAmount * dot(_604, _604) + 1.0);
+    vec2 q_xy = q.xy;
+    vec2 _612 = q.zw * (crt.bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_1;
     q_1.z = _612.x;
     q_1.w = _612.y;
@@ -35,34 +35,34 @@ void main()
     vec3 color;
     do
     {
-        float _754 = sampleUv.x;
-        bool _755 = _754 < 0.0;
-        bool _762;
-        if (!_755)
+        float sampleUv_x = sampleUv.x;
+        bool cond_2 = sampleUv_x < 0.0;
+        bool cond;
+        if (!cond_2)
         {
-            _762 = _754 > 1.0;
+            cond = sampleUv_x > 1.0;
         }
         else
         {
-            _762 = _755;
+            cond = cond_2;
         }
-        if (_762)
+        if (cond)
         {
             color = crt.edgeColor;
             break;
         }
-        float _768 = sampleUv.y;
-        bool _769 = _768 < 0.0;
-        bool _776;
-        if (!_769)
+        float sampleUv_y = sampleUv.y;
+        bool cond_3 = sampleUv_y < 0.0;
+        bool cond_1;
+        if (!cond_3)
         {
-            _776 = _768 > 1.0;
+            cond_1 = sampleUv_y > 1.0;
         }
         else
         {
-            _776 = _769;
+            cond_1 = cond_3;
         }
-        if (_776)
+        if (cond_1)
         {
             color = crt.edgeColor.zyx;
             break;
@@ -72,7 +72,7 @@ void main()
     } while(false);
     vec4 c = vec4(color, 1.0);
     vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _826 = isnan(c);
-    fragColor = vec4(_826.x ? vec4(0.0).x : _824.x, _826.y ? vec4(0.0).y : _824.y, _826.z ? vec4(0.0).z : _824.z, _826.w ? vec4(0.0).w : _824.w);
+    bvec4 cond_4 = isnan(c);
+    fragColor = vec4(cond_4.x ? vec4(0.0).x : _824.x, cond_4.y ? vec4(0.0).y : _824.y, cond_4.z ? vec4(0.0).z : _824.z, cond_4.w ? vec4(0.0).w : _824.w);
 }
 

@@ -27,8 +27,8 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _604 = q.xy;
-    float2 _612 = q.zw * mad(crt_bendAmount, dot(_604, _604), 1.0f);
+    float2 q_xy = q.xy;
+    float2 _612 = q.zw * mad(crt_bendAmount, dot(q_xy, q_xy), 1.0f);
     float4 q_1;
     q_1.z = _612.x;
     q_1.w = _612.y;
@@ -42,34 +42,34 @@ void frag_main()
     float3 color;
     do
     {
-        float _754 = sampleUv.x;
-        bool _755 = _754 < 0.0f;
-        bool _762;
-        if (!_755)
+        float sampleUv_x = sampleUv.x;
+        bool cond_2 = sampleUv_x < 0.0f;
+        bool cond;
+        if (!cond_2)
         {
-            _762 = _754 > 1.0f;
+            cond = sampleUv_x > 1.0f;
         }
         else
         {
-            _762 = _755;
+            cond = cond_2;
         }
-        if (_762)
+        if (cond)
         {
             color = crt_edgeColor;
             break;
         }
-        float _768 = sampleUv.y;
-        bool _769 = _768 < 0.0f;
-        bool _776;
-        if (!_769)
+        float sampleUv_y = sampleUv.y;
+        bool cond_3 = sampleUv_y < 0.0f;
+        bool cond_1;
+        if (!cond_3)
         {
-            _776 = _768 > 1.0f;
+            cond_1 = sampleUv_y > 1.0f;
         }
         else
         {
-            _776 = _769;
+            cond_1 = cond_3;
         }
-        if (_776)
+        if (cond_1)
         {
             color = crt_edgeColor.zyx;
             break;
@@ -79,8 +79,8 @@ void frag_main()
     } while(false);
     float4 c = float4(color, 1.0f);
     float4 _824 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _826 = isnan(c);
-    fragColor = float4(_826.x ? 0.0f.xxxx.x : _824.x, _826.y ? 0.0f.xxxx.y : _824.y, _826.z ? 0.0f.xxxx.z : _824.z, _826.w ? 0.0f.xxxx.w : _824.w);
+    bool4 cond_4 = isnan(c);
+    fragColor = float4(cond_4.x ? 0.0f.xxxx.x : _824.x, cond_4.y ? 0.0f.xxxx.y : _824.y, cond_4.z ? 0.0f.xxxx.z : _824.z, cond_4.w ? 0.0f.xxxx.w : _824.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

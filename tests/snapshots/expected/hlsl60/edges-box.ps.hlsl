@@ -28,8 +28,8 @@ void frag_main()
     float2 d = abs((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale;
     float4 c = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - clamp(1.5f - max(d.x, d.y), 0.8f, 0.2f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
     float4 _515 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _517 = isnan(c);
-    fragColor = float4(_517.x ? 0.0f.xxxx.x : _515.x, _517.y ? 0.0f.xxxx.y : _515.y, _517.z ? 0.0f.xxxx.z : _515.z, _517.w ? 0.0f.xxxx.w : _515.w);
+    bool4 cond = isnan(c);
+    fragColor = float4(cond.x ? 0.0f.xxxx.x : _515.x, cond.y ? 0.0f.xxxx.y : _515.y, cond.z ? 0.0f.xxxx.z : _515.z, cond.w ? 0.0f.xxxx.w : _515.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -55,25 +55,25 @@ void frag_main()
 {
     float2 _705 = vTexCoord * crt_outputSize;
     float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
-    float2 _1227 = q.xy;
-    float2 _1235 = q.zw * mad(crt_bendAmount, dot(_1227, _1227), 1.0f);
+    float2 q_xy = q.xy;
+    float2 _1235 = q.zw * mad(crt_bendAmount, dot(q_xy, q_xy), 1.0f);
     float4 q_1;
     q_1.z = _1235.x;
     q_1.w = _1235.y;
     float2 sampleUv = (q_1.wz * 0.5f) + 0.5f.xx;
-    float _1294 = sampleUv.x;
-    float _1297 = sampleUv.y;
-    float3 color_1 = lerp(source.Sample(_source_sampler, sampleUv).xyz, source.Sample(_source_sampler, sampleUv + (float2(ddx(_1294), ddy(_1297)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(sampleUv)) * 100.0f, 0.0f, 1.0f)).xxx);
-    float _1365 = color_1.y;
+    float sampleUv_x = sampleUv.x;
+    float sampleUv_y = sampleUv.y;
+    float3 color_1 = lerp(source.Sample(_source_sampler, sampleUv).xyz, source.Sample(_source_sampler, sampleUv + (float2(ddx(sampleUv_x), ddy(sampleUv_y)) * 4.0f)).xyz, (crt_tapMix * clamp(length(fwidth(sampleUv)) * 100.0f, 0.0f, 1.0f)).xxx);
+    float color_y = color_1.y;
     float4 s;
-    s = float4(color_1.x, _1365, color_1.z, 1.0f);
+    s = float4(color_1.x, color_y, color_1.z, 1.0f);
     int k_1;
     float4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = mad(_1365, 0.5f, 0.01f * float(k));
+        s_1.y = mad(color_y, 0.5f, 0.01f * float(k));
         k_1 = k + 1;
         if (k_1 >= crt_loopCount)
         {
@@ -107,45 +107,45 @@ void frag_main()
         }
     }
     float lift;
-    if (_1294 > 0.5f)
+    if (sampleUv_x > 0.5f)
     {
         lift = sqrt(max(color_2.y, 0.0f));
     }
     else
     {
-        float _1574 = color_2.y;
-        lift = _1574 * _1574;
+        float color_y_1 = color_2.y;
+        lift = color_y_1 * color_y_1;
     }
     float2 d = abs((sampleUv * 2.0f) - 1.0f.xx) * crt_shapeScale;
     float3 color;
     do
     {
-        bool _1762 = _1294 < 0.0f;
-        bool _1769;
-        if (!_1762)
+        bool cond_2 = sampleUv_x < 0.0f;
+        bool cond;
+        if (!cond_2)
         {
-            _1769 = _1294 > 1.0f;
+            cond = sampleUv_x > 1.0f;
         }
         else
         {
-            _1769 = _1762;
+            cond = cond_2;
         }
-        if (_1769)
+        if (cond)
         {
             color = crt_edgeColor;
             break;
         }
-        bool _1776 = _1297 < 0.0f;
-        bool _1783;
-        if (!_1776)
+        bool cond_3 = sampleUv_y < 0.0f;
+        bool cond_1;
+        if (!cond_3)
         {
-            _1783 = _1297 > 1.0f;
+            cond_1 = sampleUv_y > 1.0f;
         }
         else
         {
-            _1783 = _1776;
+            cond_1 = cond_3;
         }
-        if (_1783)
+        if (cond_1)
         {
             color = crt_edgeColor.zyx;
             break;
@@ -155,8 +155,8 @@ void frag_main()
     } while(false);
     float4 c = float4(color, 1.0f);
     float4 _1831 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _1833 = isnan(c);
-    fragColor = float4(_1833.x ? 0.0f.xxxx.x : _1831.x, _1833.y ? 0.0f.xxxx.y : _1831.y, _1833.z ? 0.0f.xxxx.z : _1831.z, _1833.w ? 0.0f.xxxx.w : _1831.w);
+    bool4 cond_4 = isnan(c);
+    fragColor = float4(cond_4.x ? 0.0f.xxxx.x : _1831.x, cond_4.y ? 0.0f.xxxx.y : _1831.y, cond_4.z ? 0.0f.xxxx.z : _1831.z, cond_4.w ? 0.0f.xxxx.w : _1831.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

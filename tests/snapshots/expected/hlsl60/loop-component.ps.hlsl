@@ -23,16 +23,16 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float4 texel = source.Sample(_source_sampler, vTexCoord);
-    float _380 = texel.y;
+    float texel_y = texel.y;
     float4 s;
-    s = float4(texel.x, _380, texel.z, 1.0f);
+    s = float4(texel.x, texel_y, texel.z, 1.0f);
     int k_1;
     float4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = mad(_380, 0.9f, 0.01f * float(k));
+        s_1.y = mad(texel_y, 0.9f, 0.01f * float(k));
         k_1 = k + 1;
         if (k_1 >= crt_loopCount)
         {
@@ -44,8 +44,8 @@ void frag_main()
     }
     float4 c = float4(s_1.xyz * s.w, 1.0f);
     float4 _457 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _459 = isnan(c);
-    fragColor = float4(_459.x ? 0.0f.xxxx.x : _457.x, _459.y ? 0.0f.xxxx.y : _457.y, _459.z ? 0.0f.xxxx.z : _457.z, _459.w ? 0.0f.xxxx.w : _457.w);
+    bool4 cond = isnan(c);
+    fragColor = float4(cond.x ? 0.0f.xxxx.x : _457.x, cond.y ? 0.0f.xxxx.y : _457.y, cond.z ? 0.0f.xxxx.z : _457.z, cond.w ? 0.0f.xxxx.w : _457.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

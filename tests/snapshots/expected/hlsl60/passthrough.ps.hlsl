@@ -18,8 +18,8 @@ void frag_main()
 {
     float4 c = source.Sample(_source_sampler, vTexCoord);
     float4 _122 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
-    bool4 _124 = isnan(c);
-    fragColor = float4(_124.x ? 0.0f.xxxx.x : _122.x, _124.y ? 0.0f.xxxx.y : _122.y, _124.z ? 0.0f.xxxx.z : _122.z, _124.w ? 0.0f.xxxx.w : _122.w);
+    bool4 cond = isnan(c);
+    fragColor = float4(cond.x ? 0.0f.xxxx.x : _122.x, cond.y ? 0.0f.xxxx.y : _122.y, cond.z ? 0.0f.xxxx.z : _122.z, cond.w ? 0.0f.xxxx.w : _122.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -45,12 +45,12 @@ void main()
     }
     else
     {
-        float _705 = color.y;
-        lift = _705 * _705;
+        float color_y = color.y;
+        lift = color_y * color_y;
     }
     vec4 c = vec4(color * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift), 1.0);
     vec4 _791 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _793 = isnan(c);
-    fragColor = vec4(_793.x ? vec4(0.0).x : _791.x, _793.y ? vec4(0.0).y : _791.y, _793.z ? vec4(0.0).z : _791.z, _793.w ? vec4(0.0).w : _791.w);
+    bvec4 cond = isnan(c);
+    fragColor = vec4(cond.x ? vec4(0.0).x : _791.x, cond.y ? vec4(0.0).y : _791.y, cond.z ? vec4(0.0).z : _791.z, cond.w ? vec4(0.0).w : _791.w);
 }
 

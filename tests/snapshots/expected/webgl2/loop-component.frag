@@ -13,16 +13,16 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 texel = texture(source, vTexCoord);
-    float _380 = texel.y;
+    float texel_y = texel.y;
     vec4 s;
-    s = vec4(texel.x, _380, texel.z, 1.0);
+    s = vec4(texel.x, texel_y, texel.z, 1.0);
     int k_1;
     vec4 s_1;
     int k = 0;
     for (;;)
     {
         s_1 = s;
-        s_1.y = _380 * 0.9 + (0.01 * float(k));
+        s_1.y = texel_y * 0.9 + (0.01 * float(k));
         k_1 = k + 1;
         if (k_1 >= loopCount)
         {
@@ -34,7 +34,7 @@ void main()
     }
     vec4 c = vec4(s_1.xyz * s.w, 1.0);
     vec4 _457 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _459 = isnan(c);
-    fragColor = vec4(_459.x ? vec4(0.0).x : _457.x, _459.y ? vec4(0.0).y : _457.y, _459.z ? vec4(0.0).z : _457.z, _459.w ? vec4(0.0).w : _457.w);
+    bvec4 cond = isnan(c);
+    fragColor = vec4(cond.x ? vec4(0.0).x : _457.x, cond.y ? vec4(0.0).y : _457.y, cond.z ? vec4(0.0).z : _457.z, cond.w ? vec4(0.0).w : _457.w);
 }
 

@@ -39,8 +39,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   let _441 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
   let color = (texel.xyz * (1.0 - smoothstep(0.3, 0.9, _401))) * fma(crt.pulseDepth, sin(_441), 1.0);
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _476 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _477 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _476);
+  let cond = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _477 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
   fragColor = _477;
   return fragColor;
 }

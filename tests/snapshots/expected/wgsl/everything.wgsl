@@ -44,16 +44,16 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var k: i32;
   var tint: vec3<f32>;
   var lift: f32;
-  var _1769: bool;
-  var _1783: bool;
+  var cond: bool;
+  var cond_1: bool;
   var color: vec3<f32>;
   var s_1: vec4<f32>;
   var k_1: i32;
   let _705 = vTexCoord * crt.outputSize;
   let _1221 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
   let q = _1221 - vec4<f32>(1.0);
-  let _1227 = q.xy;
-  let _1235 = q.zw * fma(crt.bendAmount, dot(_1227, _1227), 1.0);
+  let q_xy = q.xy;
+  let _1235 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
   var q_1 = vec4<f32>();
   q_1.z = _1235.x;
   var q_2 = q_1;
@@ -110,23 +110,23 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   let color_4 = color_3 * _1728;
   switch (0u) {
     default: {
-      let _1762 = sampleUv.x < 0.0;
-      if (!_1762) {
-        _1769 = sampleUv.x > 1.0;
+      let cond_2 = sampleUv.x < 0.0;
+      if (!cond_2) {
+        cond = sampleUv.x > 1.0;
       } else {
-        _1769 = _1762;
+        cond = cond_2;
       }
-      if (_1769) {
+      if (cond) {
         color = crt.edgeColor;
         break;
       }
-      let _1776 = sampleUv.y < 0.0;
-      if (!_1776) {
-        _1783 = sampleUv.y > 1.0;
+      let cond_3 = sampleUv.y < 0.0;
+      if (!cond_3) {
+        cond_1 = sampleUv.y > 1.0;
       } else {
-        _1783 = _1776;
+        cond_1 = cond_3;
       }
-      if (_1783) {
+      if (cond_1) {
         color = crt.edgeColor.zyx;
         break;
       }
@@ -134,8 +134,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
     }
   }
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _1833 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _1834 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _1833);
+  let cond_4 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _1834 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond_4);
   fragColor = _1834;
   return fragColor;
 }

@@ -61,8 +61,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   let _719 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
   let color_1 = fma(color, tint, vec3<f32>(_719, _719, _719));
   let c = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
-  let _793 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _794 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _793);
+  let cond = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _794 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
   fragColor = _794;
   return fragColor;
 }

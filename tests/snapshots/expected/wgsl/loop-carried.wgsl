@@ -67,8 +67,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   }
   let color_1 = color * fma(0.1, sum_2, 1.0);
   let c = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
-  let _652 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _653 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _652);
+  let cond = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _653 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
   fragColor = _653;
   return fragColor;
 }

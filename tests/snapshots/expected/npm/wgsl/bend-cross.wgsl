@@ -33,13 +33,13 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _762: bool;
-  var _776: bool;
+  var cond: bool;
+  var cond_1: bool;
   var color: vec3<f32>;
   let _598 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
   let q = _598 - vec4<f32>(1.0);
-  let _604 = q.xy;
-  let _612 = q.zw * fma(crt.bendAmount, dot(_604, _604), 1.0);
+  let q_xy = q.xy;
+  let _612 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
   var q_1 = vec4<f32>();
   q_1.z = _612.x;
   var q_2 = q_1;
@@ -55,23 +55,23 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   let color_1 = mix(texel.xyz, _697, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
   switch (0u) {
     default: {
-      let _755 = sampleUv.x < 0.0;
-      if (!_755) {
-        _762 = sampleUv.x > 1.0;
+      let cond_2 = sampleUv.x < 0.0;
+      if (!cond_2) {
+        cond = sampleUv.x > 1.0;
       } else {
-        _762 = _755;
+        cond = cond_2;
       }
-      if (_762) {
+      if (cond) {
         color = crt.edgeColor;
         break;
       }
-      let _769 = sampleUv.y < 0.0;
-      if (!_769) {
-        _776 = sampleUv.y > 1.0;
+      let cond_3 = sampleUv.y < 0.0;
+      if (!cond_3) {
+        cond_1 = sampleUv.y > 1.0;
       } else {
-        _776 = _769;
+        cond_1 = cond_3;
       }
-      if (_776) {
+      if (cond_1) {
         color = crt.edgeColor.zyx;
         break;
       }
@@ -79,8 +79,8 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
     }
   }
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
-  let _826 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _827 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), _826);
+  let cond_4 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
+  let _827 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond_4);
   fragColor = _827;
   return fragColor;
 }

@@ -16,8 +16,8 @@ uniform float tapMix : hint_range(0.0, 1.0, 0.01) = 0.4;
 void fragment()
 {
     vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
-    vec2 _604 = q_1.xy;
-    vec2 _612 = q_1.zw * (bendAmount * dot(_604, _604) + 1.0);
+    vec2 q_xy = q_1.xy;
+    vec2 _612 = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_2 = vec4(0.0);
     q_2.z = _612.x;
     q_2.w = _612.y;
@@ -31,34 +31,34 @@ void fragment()
     vec3 color_1;
     do
     {
-        float _754 = sampleUv.x;
-        bool _755 = _754 < 0.0;
-        bool _762;
-        if (!_755)
+        float sampleUv_x = sampleUv.x;
+        bool cond_3 = sampleUv_x < 0.0;
+        bool cond_2;
+        if (!cond_3)
         {
-            _762 = _754 > 1.0;
+            cond_2 = sampleUv_x > 1.0;
         }
         else
         {
-            _762 = _755;
+            cond_2 = cond_3;
         }
-        if (_762)
+        if (cond_2)
         {
             color_1 = edgeColor.rgb;
             break;
         }
-        float _768 = sampleUv.y;
-        bool _769 = _768 < 0.0;
-        bool _776;
-        if (!_769)
+        float sampleUv_y = sampleUv.y;
+        bool cond_4 = sampleUv_y < 0.0;
+        bool cond_1_1;
+        if (!cond_4)
         {
-            _776 = _768 > 1.0;
+            cond_1_1 = sampleUv_y > 1.0;
         }
         else
         {
-            _776 = _769;
+            cond_1_1 = cond_4;
         }
-        if (_776)
+        if (cond_1_1)
         {
             color_1 = edgeColor.rgb.zyx;
             break;
@@ -68,7 +68,7 @@ void fragment()
     } while(false);
     vec4 c = vec4(color_1, 1.0);
     vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _826 = isnan(c);
-    COLOR = vec4(_826.x ? vec4(0.0).x : _824.x, _826.y ? vec4(0.0).y : _824.y, _826.z ? vec4(0.0).z : _824.z, _826.w ? vec4(0.0).w : _824.w);
+    bvec4 cond_5 = isnan(c);
+    COLOR = vec4(cond_5.x ? vec4(0.0).x : _824.x, cond_5.y ? vec4(0.0).y : _824.y, cond_5.z ? vec4(0.0).z : _824.z, cond_5.w ? vec4(0.0).w : _824.w);
 }
 

@@ -25,7 +25,7 @@ void fragment()
     vec2 d = abs((crt_flip_y(SCREEN_UV) * 2.0) - vec2(1.0)) * shapeScale;
     vec4 c = vec4((textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0).xyz * (1.0 - clamp(1.5 - max(d.x, d.y), 0.8, 0.2))) * (pulseDepth * sin((crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE)).y * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
     vec4 _515 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _517 = isnan(c);
-    COLOR = vec4(_517.x ? vec4(0.0).x : _515.x, _517.y ? vec4(0.0).y : _515.y, _517.z ? vec4(0.0).z : _515.z, _517.w ? vec4(0.0).w : _515.w);
+    bvec4 cond = isnan(c);
+    COLOR = vec4(cond.x ? vec4(0.0).x : _515.x, cond.y ? vec4(0.0).y : _515.y, cond.z ? vec4(0.0).z : _515.z, cond.w ? vec4(0.0).w : _515.w);
 }
 

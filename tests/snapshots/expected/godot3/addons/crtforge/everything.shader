@@ -35,25 +35,25 @@ void fragment()
 {
     vec2 _705 = UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))));
     vec4 q_1 = (vec4(UV.xyyx) * 2.0) - vec4(1.0);
-    vec2 _1227 = q_1.xy;
-    vec2 _1235 = q_1.zw * (bendAmount * dot(_1227, _1227) + 1.0);
+    vec2 q_xy = q_1.xy;
+    vec2 _1235 = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_2 = vec4(0.0);
     q_2.z = _1235.x;
     q_2.w = _1235.y;
     vec2 sampleUv = (q_2.wz * 0.5) + vec2(0.5);
-    float _1294 = sampleUv.x;
-    float _1297 = sampleUv.y;
-    vec3 color_2 = mix(texture(TEXTURE, sampleUv).xyz, texture(TEXTURE, sampleUv + (vec2(dFdx(_1294), dFdy(_1297)) * 4.0)).xyz, vec3(tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
-    float _1365 = color_2.y;
+    float sampleUv_x = sampleUv.x;
+    float sampleUv_y = sampleUv.y;
+    vec3 color_2 = mix(texture(TEXTURE, sampleUv).xyz, texture(TEXTURE, sampleUv + (vec2(dFdx(sampleUv_x), dFdy(sampleUv_y)) * 4.0)).xyz, vec3(tapMix * clamp(length(fwidth(sampleUv)) * 100.0, 0.0, 1.0)));
+    float color_y = color_2.y;
     vec4 s_2;
-    s_2 = vec4(color_2.x, _1365, color_2.z, 1.0);
+    s_2 = vec4(color_2.x, color_y, color_2.z, 1.0);
     int k_1_1;
     vec4 s_1_1;
     int k_2 = 0;
     for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)
     {
         s_1_1 = s_2;
-        s_1_1.y = _1365 * 0.5 + (0.01 * float(k_2));
+        s_1_1.y = color_y * 0.5 + (0.01 * float(k_2));
         k_1_1 = k_2 + 1;
         if (k_1_1 >= loopCount)
         {
@@ -87,45 +87,45 @@ void fragment()
         }
     }
     float lift_1;
-    if (_1294 > 0.5)
+    if (sampleUv_x > 0.5)
     {
         lift_1 = sqrt(max(color_3.y, 0.0));
     }
     else
     {
-        float _1574 = color_3.y;
-        lift_1 = _1574 * _1574;
+        float color_y_1 = color_3.y;
+        lift_1 = color_y_1 * color_y_1;
     }
     vec2 d = abs((sampleUv * 2.0) - vec2(1.0)) * shapeScale;
     vec3 color_1;
     do
     {
-        bool _1762 = _1294 < 0.0;
-        bool _1769;
-        if (!_1762)
+        bool cond_3 = sampleUv_x < 0.0;
+        bool cond_2;
+        if (!cond_3)
         {
-            _1769 = _1294 > 1.0;
+            cond_2 = sampleUv_x > 1.0;
         }
         else
         {
-            _1769 = _1762;
+            cond_2 = cond_3;
         }
-        if (_1769)
+        if (cond_2)
         {
             color_1 = edgeColor.rgb;
             break;
         }
-        bool _1776 = _1297 < 0.0;
-        bool _1783;
-        if (!_1776)
+        bool cond_4 = sampleUv_y < 0.0;
+        bool cond_1_1;
+        if (!cond_4)
         {
-            _1783 = _1297 > 1.0;
+            cond_1_1 = sampleUv_y > 1.0;
         }
         else
         {
-            _1783 = _1776;
+            cond_1_1 = cond_4;
         }
-        if (_1783)
+        if (cond_1_1)
         {
             color_1 = edgeColor.rgb.zyx;
             break;
@@ -135,7 +135,7 @@ void fragment()
     } while(false);
     vec4 c = vec4(color_1, 1.0);
     vec4 _1831 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _1833 = isnan(c);
-    COLOR = vec4(_1833.x ? vec4(0.0).x : _1831.x, _1833.y ? vec4(0.0).y : _1831.y, _1833.z ? vec4(0.0).z : _1831.z, _1833.w ? vec4(0.0).w : _1831.w);
+    bvec4 cond_5 = isnan(c);
+    COLOR = vec4(cond_5.x ? vec4(0.0).x : _1831.x, cond_5.y ? vec4(0.0).y : _1831.y, cond_5.z ? vec4(0.0).z : _1831.z, cond_5.w ? vec4(0.0).w : _1831.w);
 }
 

@@ -55,7 +55,7 @@ void fragment()
     }
     vec4 c = vec4(color * (0.1 * sum_2_1 + 1.0), 1.0);
     vec4 _650 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _652 = isnan(c);
-    COLOR = vec4(_652.x ? vec4(0.0).x : _650.x, _652.y ? vec4(0.0).y : _650.y, _652.z ? vec4(0.0).z : _650.z, _652.w ? vec4(0.0).w : _650.w);
+    bvec4 cond = isnan(c);
+    COLOR = vec4(cond.x ? vec4(0.0).x : _650.x, cond.y ? vec4(0.0).y : _650.y, cond.z ? vec4(0.0).z : _650.z, cond.w ? vec4(0.0).w : _650.w);
 }
 

@@ -11,16 +11,16 @@ uniform int loopCount : hint_range(0, 16, 1) = 3;
 void fragment()
 {
     vec4 texel = texture(TEXTURE, UV);
-    float _380 = texel.y;
+    float texel_y = texel.y;
     vec4 s_2;
-    s_2 = vec4(texel.x, _380, texel.z, 1.0);
+    s_2 = vec4(texel.x, texel_y, texel.z, 1.0);
     int k_1_1;
     vec4 s_1_1;
     int k_2 = 0;
     for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)
     {
         s_1_1 = s_2;
-        s_1_1.y = _380 * 0.9 + (0.01 * float(k_2));
+        s_1_1.y = texel_y * 0.9 + (0.01 * float(k_2));
         k_1_1 = k_2 + 1;
         if (k_1_1 >= loopCount)
         {
@@ -32,7 +32,7 @@ void fragment()
     }
     vec4 c = vec4(s_1_1.xyz * s_2.w, 1.0);
     vec4 _457 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _459 = isnan(c);
-    COLOR = vec4(_459.x ? vec4(0.0).x : _457.x, _459.y ? vec4(0.0).y : _457.y, _459.z ? vec4(0.0).z : _457.z, _459.w ? vec4(0.0).w : _457.w);
+    bvec4 cond = isnan(c);
+    COLOR = vec4(cond.x ? vec4(0.0).x : _457.x, cond.y ? vec4(0.0).y : _457.y, cond.z ? vec4(0.0).z : _457.z, cond.w ? vec4(0.0).w : _457.w);
 }
 

@@ -10,7 +10,7 @@ void fragment()
 {
     vec4 c = texture(TEXTURE, UV);
     vec4 _122 = clamp(c, vec4(-65504.0), vec4(65504.0));
-    bvec4 _124 = isnan(c);
-    COLOR = vec4(_124.x ? vec4(0.0).x : _122.x, _124.y ? vec4(0.0).y : _122.y, _124.z ? vec4(0.0).z : _122.z, _124.w ? vec4(0.0).w : _122.w);
+    bvec4 cond = isnan(c);
+    COLOR = vec4(cond.x ? vec4(0.0).x : _122.x, cond.y ? vec4(0.0).y : _122.y, cond.z ? vec4(0.0).z : _122.z, cond.w ? vec4(0.0).w : _122.w);
 }
 
