@@ -28,11 +28,6 @@ using detail::preset_format;
 
 namespace {
 
-
-}  // namespace
-
-namespace {
-
 // The [stages.<name>] tables of a preset or of a pass: each stage's enable flag and param values.
 Result<std::vector<PresetStageEntry>> parse_stage_entries(const TomlReader& r, const toml::node& stages,
                                                           const std::string& prefix, const TemplateLibrary* library) {
@@ -173,7 +168,7 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
     auto alias = r.string(t, "alias", prefix, true);
     if (!alias.ok()) return alias.error();
     if (!detail::is_identifier(alias.value()))
-        return r.error(t.get("alias"), prefix + ".alias", "'" + alias.value() + "' is not an identifier");
+        return r.error(t.get("alias"), prefix + ".alias", detail::not_identifier(alias.value()));
     pass.alias = alias.value();
     const std::string field = "pass." + pass.alias;
     auto preset = r.string(t, "preset", field, false);
@@ -237,7 +232,7 @@ Result<LutSpec> parse_lut(const TomlReader& r, const std::string& name, const to
     const std::string field = "lut." + name;
     const toml::table* t = node.as_table();
     if (!t) return r.error(&node, field, "must be a table");
-    if (!detail::is_identifier(name)) return r.error(&node, field, "'" + name + "' is not an identifier");
+    if (!detail::is_identifier(name)) return r.error(&node, field, detail::not_identifier(name));
     LutSpec lut;
     lut.name = name;
     lut.where = {r.path(), r.line_of(node)};

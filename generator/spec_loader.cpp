@@ -97,7 +97,7 @@ Result<ParamSpec> parse_param(const TomlReader& r, const toml::table& t, const s
     if (!name.ok()) return name.error();
     p.name = name.value();
     if (!detail::is_identifier(p.name))
-        return r.error(t.get("name"), join_field(prefix, "name"), "'" + p.name + "' is not a valid GLSL identifier");
+        return r.error(t.get("name"), join_field(prefix, "name"), detail::not_identifier(p.name));
     if (const std::string language = detail::reserving_language(p.name); !language.empty())
         return r.error(t.get("name"), "param." + p.name,
                        "'" + p.name + "' is a keyword or builtin of " + language +
@@ -220,7 +220,7 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
     if (!name.ok()) return name.error();
     f.name = name.value();
     if (!detail::is_identifier(f.name))
-        return r.error(t.get("name"), "form.name", "'" + f.name + "' is not a valid identifier");
+        return r.error(t.get("name"), "form.name", detail::not_identifier(f.name));
     const std::string field = "form." + f.name;
     auto doc = r.string(t, "doc", field, true);
     if (!doc.ok()) return doc.error();
@@ -284,7 +284,7 @@ Result<StageSpec> parse_stage_spec(const std::string& text, const std::string& p
     if (!name.ok()) return name.error();
     stage.name = name.value();
     if (!detail::is_identifier(stage.name))
-        return r.error(root.get("name"), "name", "'" + stage.name + "' is not a valid identifier");
+        return r.error(root.get("name"), "name", detail::not_identifier(stage.name));
     auto doc = r.string(root, "doc", "", true);
     if (!doc.ok()) return doc.error();
     stage.doc = doc.value();

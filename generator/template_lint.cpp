@@ -7,6 +7,8 @@ namespace crtforge::detail {
 
 namespace {
 
+constexpr unsigned long kMaxSnippetArray = 4096;
+
 // The snippet with // and /* */ comments blanked (newlines kept, so lines still count).
 std::string without_comments(const std::string& text) {
     std::string out = text;
@@ -54,6 +56,26 @@ Status lint_stage_source(const StageSpec& stage) {
         return fail(static_cast<size_t>(m.position()), "a snippet declares no '" + m[1].str() +
                                                             "' resources: the textures it reads are its form's `textures`, "
                                                             "its values are the spec's params");
+    // An array beyond a few thousand elements is no CRT stage's, and past 65535 words one SPIR-V
+    // instruction cannot hold its constant (glslang then writes a broken module).
+    static const std::regex array_size(R"(\[\s*(\d+)\s*\])");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), array_size); it != std::sregex_iterator(); ++it)
+        if ((*it)[1].length() > 6 || std::stoul((*it)[1]) > kMaxSnippetArray)
+            return fail(static_cast<size_t>(it->position()), "an array of " + (*it)[1].str() + " elements; a snippet's arrays hold at most " +
+                                                                   std::to_string(kMaxSnippetArray));
+    static const std::regex array_constructor(R"(\[\s*\d*\s*\]\s*\()");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), array_constructor); it != std::sregex_iterator(); ++it) {
+        size_t elements = 1;
+        int depth = 0;
+        for (size_t i = static_cast<size_t>(it->position() + it->length()); i < text.size() && depth >= 0; ++i) {
+            if (text[i] == '(') ++depth;
+            else if (text[i] == ')') --depth;
+            else if (text[i] == ',' && depth == 0) ++elements;
+        }
+        if (elements > kMaxSnippetArray)
+            return fail(static_cast<size_t>(it->position()), "an array constructor of " + std::to_string(elements) +
+                                                                 " elements; a snippet's arrays hold at most " + std::to_string(kMaxSnippetArray));
+    }
     const std::string number = R"(([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))";
     static const std::regex smoothstep(R"(\bsmoothstep\s*\(\s*)" + number + R"(\s*,\s*)" + number + R"(\s*,)");
     for (auto it = std::sregex_iterator(text.begin(), text.end(), smoothstep); it != std::sregex_iterator(); ++it)

@@ -13,12 +13,30 @@ std::string join_field(const std::string& prefix, const std::string& key) {
 }
 
 bool is_identifier(const std::string& name) {
+    if (name.size() > kMaxIdentifierLength) return false;
     if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
         return false;
     for (char c : name)
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
     // Names starting with gl_ or containing "__" are reserved in GLSL.
     return name.rfind("gl_", 0) != 0 && name.find("__") == std::string::npos;
+}
+
+std::string not_identifier(const std::string& name) {
+    // Appends only: gcc 12 warns -Wrestrict (a false positive, GCC 105329) on `"'" + s + ...`.
+    std::string out = "'";
+    if (name.size() > kMaxIdentifierLength) {
+        out.append(name, 0, 24);
+        out += "...' is ";
+        out += std::to_string(name.size());
+        out += " characters long; a name is at most ";
+        out += std::to_string(kMaxIdentifierLength);
+        out += " (it becomes an identifier in every target language and part of file names)";
+        return out;
+    }
+    out += name;
+    out += "' is not an identifier";
+    return out;
 }
 
 namespace {

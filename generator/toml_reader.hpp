@@ -78,6 +78,12 @@ std::string join_field(const std::string& prefix, const std::string& key);
 // terminator, a trailing backslash), described for an error; empty when the text is plain.
 // Every string the spec and preset readers take goes through it.
 std::string unsafe_text(const std::string& text);
+// A name crtforge puts into generated code and file names: a GLSL identifier (not gl_..., no
+// "__") of at most kMaxIdentifierLength characters.
+inline constexpr size_t kMaxIdentifierLength = 64;
 bool is_identifier(const std::string& name);
+// Why `name` is not one, for an error: "'x-y' is not an identifier", or its length (a long name is
+// not quoted whole).
+std::string not_identifier(const std::string& name);
 
 }  // namespace crtforge::detail

@@ -590,3 +590,30 @@ TEST_CASE("a pass graph asking for a framebuffer beyond the memory budget is ref
         CHECK_FALSE(fs::exists(dir / "big.png"));
     }
 }
+
+TEST_CASE("a name too long for generated code is refused at its line, not deep in glslang", "[hostile][preset]") {
+    test::TempDir dir;
+    const std::string alias(5000, 'a');
+    REQUIRE(write_file_atomic(dir / "overlay/presets/long.toml", "name = \"long\"\ndoc = \"d\"\n[[pass]]\nalias = \"" + alias +
+                                                                    "\"\n[pass.stages.scanlines]\nscanlineIntensity = 0.5\n[[pass]]\nalias = \"b\"\n")
+                .ok());
+    auto r = test::run_crtforge("--templates '" + (dir / "overlay") + "' export --preset long --target glsl330 --out '" + (dir / "out") + "'");
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("presets/long.toml:4") && Catch::Contains("5000 characters long"));
+    CHECK(r.err.size() < 400);  // the name is not quoted whole
+    CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("a huge const array in a snippet is refused at its line, not deep in spirv-opt", "[hostile][spec]") {
+    std::string elements = "0.5";
+    for (int i = 1; i < 5000; ++i) elements += ", 0.5";
+    for (const std::string& declaration : {std::string("const float crtBig[100000] = float[100000](0.5);"), "const float crtBig[] = float[](" + elements + ");"}) {
+        test::ScratchTemplates t;
+        t.write("stages/glow.glsl", "// glow\n" + declaration + "\n" + t.read("stages/glow.glsl"));
+        auto lib = t.load();
+        REQUIRE_FALSE(lib.ok());
+        CHECK_THAT(lib.error().file, Catch::EndsWith("stages/glow.glsl"));
+        CHECK(lib.error().line == 2);
+        CHECK_THAT(lib.error().message, Catch::Contains("at most 4096"));
+    }
+}
