@@ -183,8 +183,13 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         if (auto machine = check_machine(request, a->device); !machine.ok()) return report(machine.error());
         request.run_id = a->run_id;
         request.strict = a->strict;
-        if (!a->report.empty())
-            if (auto s = prepare_report_dir(a->report); !s.ok()) return report(s.error());
+        std::optional<StagedReportDir> staged;
+        if (!a->report.empty()) {
+            auto opened = StagedReportDir::open(a->report);
+            if (!opened.ok()) return report(opened.error());
+            staged.emplace(std::move(opened.value()));
+            request.report_dir = staged->path();
+        }
         auto lib = load_library(g, code, &request.presets);
         if (!lib) return code;
         if (auto s = add_golden_presets(*lib, request.golden_dir); !s.ok()) return report(s.error());
@@ -192,8 +197,10 @@ Runner add_validate_command(CLI::App& app, const GlobalOptions& g) {
         auto result = run_validation(*lib, request, cache, make_progress());
         if (!result.ok()) return report(result.error());
         const ValidationReport& r = result.value();
-        if (!a->report.empty())
-            if (auto s = write_report(r, a->report); !s.ok()) return report(s.error());
+        if (staged) {
+            if (auto s = write_report(r, staged->path()); !s.ok()) return report(s.error());
+            if (auto s = staged->commit(); !s.ok()) return report(s.error());
+        }
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         print_summary(r);
         annotate_for_github(r, [&](const std::string& name) {
@@ -220,9 +227,11 @@ Runner add_report_command(CLI::App& app, const GlobalOptions&) {
     return [out, dirs]() {
         auto merged = merge_reports(*dirs);
         if (!merged.ok()) return report(merged.error());
-        if (auto s = prepare_report_dir(*out); !s.ok()) return report(s.error());
-        if (auto s = copy_report_images(*dirs, *out); !s.ok()) return report(s.error());
-        if (auto s = write_report(merged.value(), *out); !s.ok()) return report(s.error());
+        auto staged = StagedReportDir::open(*out);
+        if (!staged.ok()) return report(staged.error());
+        if (auto s = copy_report_images(*dirs, staged.value().path()); !s.ok()) return report(s.error());
+        if (auto s = write_report(merged.value(), staged.value().path()); !s.ok()) return report(s.error());
+        if (auto s = staged.value().commit(); !s.ok()) return report(s.error());
         print_summary(merged.value());
         annotate_for_github(merged.value(), {});
         fmt::print("report merge: {} passed, {} failed ({} checks from {} shards) into {}\n", merged.value().passed(),

@@ -1,5 +1,6 @@
 // crtforge: a thin command line over the crtforge library.
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <optional>
 #include <new>
@@ -147,6 +148,9 @@ std::string empty_option_value(const CLI::App& app) {
 
 int main(int argc, char** argv) {
     crtforge::keep_freed_memory();  // before anything allocates an image
+    // A file-size limit (ulimit -f) would kill the process by signal mid-write, leaving a partial
+    // file: ignored, the write fails with EFBIG instead and the error paths clean up as on a full disk.
+    std::signal(SIGXFSZ, SIG_IGN);
     using namespace crtforge::cli;
     CLI::App app{"crtforge: generate, cross-compile and export CRT shader variants"};
     app.set_version_flag("--version", std::string("crtforge ") + CRTFORGE_VERSION);

@@ -617,3 +617,30 @@ TEST_CASE("a huge const array in a snippet is refused at its line, not deep in s
         CHECK_THAT(lib.error().message, Catch::Contains("at most 4096"));
     }
 }
+
+TEST_CASE("a report folder is written all or nothing: a refused or failed run leaves the earlier report", "[hostile][cli][validate]") {
+    test::TempDir dir;
+    const std::string report = dir / "report";
+    const std::string run = "validate --preset classic --target spirv --input color_bars --second-device none --report '" + report + "'";
+    REQUIRE(test::run_crtforge(run).exit_code == 0);
+    const std::string before = slurp(report + "/report.json");
+    REQUIRE_FALSE(before.empty());
+    auto no_staging_left = [&] {
+        for (const auto& e : fs::directory_iterator(dir.path()))
+            if (e.path().filename().string().find("staging") != std::string::npos) return false;
+        return true;
+    };
+    // Refused after the folder was checked: an unknown preset.
+    auto refused = test::run_crtforge("validate --preset no-such-preset --target spirv --second-device none --report '" + report + "'");
+    CHECK(refused.exit_code == 2);
+    CHECK(slurp(report + "/report.json") == before);
+    CHECK(no_staging_left());
+    // A write refused part-way by a file-size limit, with SIGXFSZ at its default (it would kill
+    // the process): an error, the earlier report kept whole.
+    auto limited = test::run_command("ulimit -f 8; '" CRTFORGE_BINARY "' " + run);
+    CHECK(limited.exit_code == 2);
+    CHECK_THAT(limited.err, Catch::Contains("crtforge:"));
+    CHECK(slurp(report + "/report.json") == before);
+    CHECK(fs::exists(report + "/images"));
+    CHECK(no_staging_left());
+}

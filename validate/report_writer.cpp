@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <map>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -278,19 +280,51 @@ Status write_report(const ValidationReport& report, const std::string& dir) {
     return write_file_atomic(dir + "/report.html", report_html(report));
 }
 
-Status prepare_report_dir(const std::string& dir) {
+namespace {
+constexpr const char* kReportEntries[] = {"images", "report.json", "junit.xml", "report.html"};
+}  // namespace
+
+Result<StagedReportDir> StagedReportDir::open(const std::string& dir) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    if (!fs::exists(dir, ec)) return Ok{};
-    if (!fs::is_directory(dir, ec)) return make_error("is not a folder", dir, 0, "--report");
-    if (fs::is_empty(dir, ec)) return Ok{};
-    if (!fs::exists(fs::path(dir) / "report.json", ec))
-        return make_error("holds files but no report.json: not an earlier report, so it is left alone (choose an empty or new folder)",
-                          dir, 0, "--report");
-    for (const char* name : {"images", "report.json", "junit.xml", "report.html"}) {
-        fs::remove_all(fs::path(dir) / name, ec);
-        if (ec) return make_error("cannot remove the earlier report's " + std::string(name) + ": " + ec.message(), dir, 0, "--report");
+    if (fs::exists(dir, ec)) {
+        if (!fs::is_directory(dir, ec)) return make_error("is not a folder", dir, 0, "--report");
+        if (!fs::is_empty(dir, ec) && !fs::exists(fs::path(dir) / "report.json", ec))
+            return make_error("holds files but no report.json: not an earlier report, so it is left alone (choose an empty or new folder)",
+                              dir, 0, "--report");
     }
+    // Beside the folder, so commit() renames within one file system.
+    const fs::path target = fs::absolute(dir, ec).lexically_normal();
+    const std::string staging = (target.has_filename() ? target : target.parent_path()).string() + ".staging-" + std::to_string(::getpid());
+    fs::remove_all(staging, ec);
+    fs::create_directories(staging, ec);
+    if (ec) return make_error("cannot create the report's staging folder: " + ec.message(), staging, 0, "--report");
+    return StagedReportDir(dir, staging);
+}
+
+StagedReportDir::~StagedReportDir() {
+    if (staging_.empty()) return;
+    std::error_code ec;
+    std::filesystem::remove_all(staging_, ec);
+}
+
+Status StagedReportDir::commit() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir_, ec);
+    if (ec) return make_error("cannot create the report folder: " + ec.message(), dir_, 0, "--report");
+    for (const char* name : kReportEntries) {
+        fs::remove_all(fs::path(dir_) / name, ec);
+        if (ec) return make_error("cannot remove the earlier report's " + std::string(name) + ": " + ec.message(), dir_, 0, "--report");
+    }
+    for (const char* name : kReportEntries) {
+        const fs::path from = fs::path(staging_) / name;
+        if (!fs::exists(from, ec)) continue;
+        fs::rename(from, fs::path(dir_) / name, ec);
+        if (ec) return make_error("cannot move the report's " + std::string(name) + " into place: " + ec.message(), dir_, 0, "--report");
+    }
+    fs::remove_all(staging_, ec);
+    staging_.clear();
     return Ok{};
 }
 

@@ -79,10 +79,26 @@ Result<ValidationReport> run_validation(const TemplateLibrary& library, const Va
 // report.json, junit.xml and report.html into dir. No timestamps or timings: the same results give
 // byte-identical files.
 Status write_report(const ValidationReport& report, const std::string& dir);
-// Before a run writes into `dir`: an earlier report there (report.json) is removed with its
-// images, so nothing of another run stays beside this one; a non-empty folder that is not a
-// report is refused (it is not ours to empty).
-Status prepare_report_dir(const std::string& dir);
+// A report folder written all or nothing. The run writes into a staging folder beside `dir`
+// (path()); commit() then removes the earlier report's entries (images/, report.json, junit.xml,
+// report.html) and renames the staged ones into place, so nothing of another run stays beside
+// this one. Until then `dir` keeps its earlier report untouched: a run that fails, is refused or
+// runs out of disk leaves it as it was, and the staging folder goes with the object. A non-empty
+// `dir` that holds no report.json is refused at open (it is not ours to empty).
+class StagedReportDir {
+public:
+    static Result<StagedReportDir> open(const std::string& dir);
+    StagedReportDir(StagedReportDir&& other) noexcept : dir_(std::move(other.dir_)), staging_(std::move(other.staging_)) { other.staging_.clear(); }
+    StagedReportDir& operator=(StagedReportDir&&) = delete;
+    StagedReportDir(const StagedReportDir&) = delete;
+    ~StagedReportDir();
+    const std::string& path() const { return staging_; }
+    Status commit();
+
+private:
+    StagedReportDir(std::string dir, std::string staging) : dir_(std::move(dir)), staging_(std::move(staging)) {}
+    std::string dir_, staging_;
+};
 // The pictures of shard reports (<dir>/images/<golden>/...) into one report folder, so the merged
 // report.html shows them. Shards render disjoint (preset, target) pairs; a file two shards both
 // hold (the input and golden pictures of a golden) is the same picture, and the first is kept.
