@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Emitter-level mutation testing: how many wrong emitters does `crtforge validate` catch?
 
-Each mutation below edits one line of an emitter (targets/), the kind of slip a change to the WGSL
-printer, the Godot compiler or a writer's options could make. The script clones the repository's
+Each mutation below edits one line of an emitter (targets/) or of a file users receive (Godot's
+inspector metadata, manifest.json), the kind of slip a change to the WGSL printer, the Godot
+compiler, a writer's options or the manifest could make. The script clones the repository's
 committed state into a scratch folder, builds it once, then for each mutation: applies it, rebuilds
 (incremental), runs `crtforge validate` on the mutated target for a few presets, and reverts it.
 A mutation is killed when validate fails (a compile or render check); it survives when every
@@ -62,6 +63,14 @@ MUTATIONS = [
      "godot3", "super-win", "a material colour's alpha 0"),
     ("targets/godot/godot_writer.cpp", 'if (auto d = std::get_if<double>(&p->value)) value = literal(*d);',
      'if (auto d = std::get_if<double>(&p->value)) value = literal(*d * 0.5);', "godot4", "classic", "material values halved"),
+    # manifest.json (issue 29): validate's Vulkan renders bind and fill the passes from it.
+    ("generator/manifest.cpp", 'member["offset"] = m.offset;', 'member["offset"] = m.offset + 4;',
+     "spirv", "classic,atari-16", "a uniform member's offset one float late"),
+    ("generator/manifest.cpp", 'json texture{{"name", t.name}, {"set", t.set}, {"binding", t.binding}};',
+     'json texture{{"name", t.name}, {"set", t.set}, {"binding", t.binding + 1}};', "spirv", "atari-ntsc,super-win",
+     "a texture's binding off by one"),
+    ("generator/manifest.cpp", 'out["size"] = block.size;', 'out["size"] = block.size - 4;', "spirv", "classic",
+     "the uniform block's size one float short"),
     ("targets/hlsl/hlsl_writer.cpp", "common.vertex.flip_vert_y = options.flip_vertex_y && stage == ShaderStage::Vertex;",
      "common.vertex.flip_vert_y = !options.flip_vertex_y && stage == ShaderStage::Vertex;", "hlsl50",
      "classic,webgpu-post", "HLSL's clip-space y flip inverted"),

@@ -23,6 +23,7 @@
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/validate/godot_inspector.hpp"
+#include "crtforge/validate/manifest_host.hpp"
 #include "crtforge/validate/target_render.hpp"
 
 namespace crtforge {
@@ -241,9 +242,16 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         std::vector<Image> images;
         const auto& variant_outputs = outputs_for(first.variant_options());
         if (!failure && !variant_outputs.ok()) failure = variant_outputs.error().str();
+        // Vulkan draws as a host that reads only manifest.json binds and fills the passes.
+        const auto& passes = job.work->compiled.at(options_key(first.variant_options())).value();
+        std::optional<std::vector<CompiledVariant>> hosted;
+        if (!failure && job.target == TargetId::Spirv) {
+            auto from_manifest = as_manifest_host(*preset, passes);
+            if (!from_manifest.ok()) failure = from_manifest.error().str();
+            else hosted = std::move(from_manifest.value());
+        }
         if (!failure) {
-            SceneRenderRequest sr = golden_scene_request(sequence, *preset, job.work->compiled.at(options_key(first.variant_options())).value(),
-                                                         job.target, &variant_outputs.value());
+            SceneRenderRequest sr = golden_scene_request(sequence, *preset, hosted ? *hosted : passes, job.target, &variant_outputs.value());
             sr.file_luts = job.work->file_luts;
             auto rendered = renderer.render_scene(sr);
             if (!rendered.ok()) failure = rendered.error().str();
