@@ -288,7 +288,12 @@ Result<std::map<std::string, std::string>> lut_files(const Preset& preset) {
             files[lut.name] = encode_png(image.value());
             continue;
         }
-        // Checked at load (crtforge/lut_file.hpp); read again here, so checked again.
+        // Read and checked at load (crtforge/lut_file.hpp); a LUT resolved outside a library is
+        // read and checked here.
+        if (lut.bytes) {
+            files[lut.name] = *lut.bytes;
+            continue;
+        }
         auto data = read_text_file(lut_file_path(lut), kMaxLutFileBytes);
         if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
                                           "lut." + lut.name + ".file");

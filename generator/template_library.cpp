@@ -206,9 +206,12 @@ Result<PresetFile> TemplateLibrary::load_preset_file(const std::string& path, co
     if (!file.ok()) return file.error();
     if (file.value().name != file_stem(path))
         return make_error("preset name '" + file.value().name + "' must match the file name '" + file_stem(path) + "'", path, 1, "name");
-    for (const LutSpec& lut : file.value().luts)
-        if (!lut.file.empty())
-            if (auto bytes = read_lut_file(lut, template_root); !bytes.ok()) return bytes.error();
+    for (LutSpec& lut : file.value().luts) {
+        if (lut.file.empty()) continue;
+        auto bytes = read_lut_file(lut, template_root);
+        if (!bytes.ok()) return bytes.error();
+        lut.bytes = std::make_shared<const std::string>(std::move(bytes.value()));
+    }
     return file;
 }
 

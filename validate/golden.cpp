@@ -272,6 +272,7 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
         std::string text = "lut " + lut.name + " " + lut.generator + " " + lut.file + " " + filter_name(lut.filter) + " " + wrap_name(lut.wrap);
         for (const auto& [name, value] : lut.params) text += fmt::format(" {}={}", name, value);
         if (!lut.generator.empty()) parts.push_back(text);
+        else if (lut.bytes) parts.push_back(text + "\n" + *lut.bytes);
         else if (auto data = read_text_file(lut_file_path(lut), kMaxLutFileBytes); data.ok()) parts.push_back(text + "\n" + data.value());
         else return data.error();
     }

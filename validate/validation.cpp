@@ -235,6 +235,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         data_of[d->entry] = d;
     }
     std::map<const GoldenEntry*, CheckResult> checks, agreements;
+    std::map<std::string, Result<std::vector<CompiledVariant>>> manifest_hosted;  // by options_key
     for (const auto& sequence : golden_sequences(entries)) {
         const GoldenEntry& first = *sequence.front();
         std::optional<std::string> failure;
@@ -242,16 +243,18 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
         std::vector<Image> images;
         const auto& variant_outputs = outputs_for(first.variant_options());
         if (!failure && !variant_outputs.ok()) failure = variant_outputs.error().str();
-        // Vulkan draws as a host that reads only manifest.json binds and fills the passes.
-        const auto& passes = job.work->compiled.at(options_key(first.variant_options())).value();
-        std::optional<std::vector<CompiledVariant>> hosted;
+        // Vulkan draws as a host that reads only manifest.json binds and fills the passes (read
+        // back once per variant the job renders).
+        const std::string key = options_key(first.variant_options());
+        const std::vector<CompiledVariant>* passes = &job.work->compiled.at(key).value();
         if (!failure && job.target == TargetId::Spirv) {
-            auto from_manifest = as_manifest_host(*preset, passes);
-            if (!from_manifest.ok()) failure = from_manifest.error().str();
-            else hosted = std::move(from_manifest.value());
+            auto hosted = manifest_hosted.find(key);
+            if (hosted == manifest_hosted.end()) hosted = manifest_hosted.emplace(key, as_manifest_host(*preset, *passes)).first;
+            if (!hosted->second.ok()) failure = hosted->second.error().str();
+            else passes = &hosted->second.value();
         }
         if (!failure) {
-            SceneRenderRequest sr = golden_scene_request(sequence, *preset, hosted ? *hosted : passes, job.target, &variant_outputs.value());
+            SceneRenderRequest sr = golden_scene_request(sequence, *preset, *passes, job.target, &variant_outputs.value());
             sr.file_luts = job.work->file_luts;
             auto rendered = renderer.render_scene(sr);
             if (!rendered.ok()) failure = rendered.error().str();

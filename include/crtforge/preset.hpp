@@ -108,6 +108,9 @@ struct LutSpec {
     std::string name;
     std::string generator;                 // "yiq_grade", "atari_ntsc" (generator/luts.hpp), or ""
     std::string file;                      // with no generator: an image, relative to the preset file
+    // A file LUT's bytes as the library read and checked them at load (read_lut_file), so export
+    // and the golden hash do not read the file again; null for a LUT resolved outside a library.
+    std::shared_ptr<const std::string> bytes;
     std::map<std::string, double> params;  // the generator's params, defaults filled in
     Filter filter = Filter::Linear;        // how passes sample it
     Wrap wrap = Wrap::ClampToEdge;
