@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <zlib.h>
+
 namespace crtforge {
 
 namespace {
@@ -78,21 +80,6 @@ LutImage atari_ntsc(const std::map<std::string, double>& p) {
 
 // ---- PNG ----------------------------------------------------------------------------------
 
-uint32_t crc32(const uint8_t* data, size_t size, uint32_t crc = 0) {
-    static const auto table = [] {
-        std::vector<uint32_t> t(256);
-        for (uint32_t n = 0; n < 256; ++n) {
-            uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = c & 1 ? 0xedb88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    crc = ~crc;
-    for (size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
-    return ~crc;
-}
-
 void put32(std::string& out, uint32_t v) {
     for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((v >> shift) & 0xffu);
 }
@@ -101,7 +88,7 @@ void chunk(std::string& out, const char* type, const std::string& data) {
     put32(out, static_cast<uint32_t>(data.size()));
     std::string body = std::string(type, 4) + data;
     out += body;
-    put32(out, crc32(reinterpret_cast<const uint8_t*>(body.data()), body.size()));
+    put32(out, static_cast<uint32_t>(::crc32(::crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size()))));
 }
 
 }  // namespace
@@ -181,12 +168,9 @@ std::string encode_png(const LutImage& image) {
         z.append(raw, at, n);
         if (last) break;
     }
-    uint32_t a = 1, b = 0;  // Adler-32 of the uncompressed stream
-    for (unsigned char c : raw) {
-        a = (a + c) % 65521;
-        b = (b + a) % 65521;
-    }
-    put32(z, (b << 16) | a);
+    // zlib's Adler-32 of the uncompressed stream (the blocks stay stored: the bytes depend on no
+    // compressor's version).
+    put32(z, static_cast<uint32_t>(::adler32(::adler32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(raw.data()), static_cast<uInt>(raw.size()))));
     chunk(png, "IDAT", z);
     chunk(png, "IEND", "");
     return png;
