@@ -324,6 +324,63 @@ Result<std::vector<OutputFile>> generate_target_scene(TargetId target, const Pre
     return files;
 }
 
+namespace {
+
+// manifest.json's fields above "presets" (which starts empty).
+json manifest_head(const VariantOptions& options, const std::vector<TargetId>& targets) {
+    json manifest;
+    manifest["generator"] = std::string("crtforge ") + CRTFORGE_VERSION;
+    manifest["manifestVersion"] = 2;
+    manifest["options"] = json{{"uniforms", options.uniforms.str()}, {"precision", precision_name(options.precision)}};
+    json target_names = json::array();
+    for (TargetId t : targets) target_names.push_back(target_info(t).name);
+    manifest["targets"] = std::move(target_names);
+    manifest["presets"] = json::object();
+    return manifest;
+}
+
+// Puts one pass's emitted files for `target` at their export paths; returns the pass's manifest
+// entry for the target (which names those paths).
+json place_target_files(const CompiledVariant& variant, TargetId target, const TargetOutput& out,
+                        std::map<std::string, std::string>& files) {
+    detail::ManifestTargetEntry te{target, {}, out.bindings, out.manifest_json};
+    for (const OutputFile& f : out.files) {
+        const std::string path = f.path.empty() ? export_path(variant.variant.file_stem(), target, f.suffix)
+                                                : std::string(target_info(target).name) + "/" + f.path;
+        te.files[f.manifest_role()] = path;
+        files[path] = f.data;
+    }
+    return detail::target_manifest(te);
+}
+
+void place_lut_files(const Preset& preset, const std::map<std::string, std::string>& luts,
+                     std::map<std::string, std::string>& files) {
+    for (const LutSpec& lut : preset.luts) files[lut_export_path(preset, lut)] = luts.at(lut.name);
+}
+
+}  // namespace
+
+Result<std::map<std::string, std::string>> preset_web_package(const Preset& preset, const std::vector<CompiledVariant>& passes,
+                                                              const std::vector<TargetOutput>& wgsl) {
+    if (passes.empty() || wgsl.size() != passes.size())
+        return make_error("preset " + preset.name + ": the npm package needs every pass's WGSL");
+    auto luts = lut_files(preset);
+    if (!luts.ok()) return luts.error();
+    std::map<std::string, std::string> files;
+    place_lut_files(preset, luts.value(), files);
+    json entry = detail::preset_manifest(preset, passes);
+    for (size_t i = 0; i < passes.size(); ++i)
+        entry["passes"][i]["targets"] = json{{target_info(TargetId::Wgsl).name, place_target_files(passes[i], TargetId::Wgsl, wgsl[i], files)}};
+    json manifest = manifest_head(passes.front().variant.options, {TargetId::Wgsl});
+    manifest["presets"][preset.name] = std::move(entry);
+    if (auto package = detail::add_web_package(manifest, files); !package.ok()) return package.error();
+    std::map<std::string, std::string> package;
+    const std::string dir = detail::kWebPackageDir;
+    for (auto& [path, data] : files)
+        if (path.compare(0, dir.size(), dir) == 0) package[path.substr(dir.size())] = std::move(data);
+    return package;
+}
+
 Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequest& request, const Cache& cache) {
     std::vector<const Preset*> presets;
     if (request.presets.empty()) {
@@ -341,15 +398,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
         for (const auto& t : all_targets()) targets.push_back(t.id);
 
     ExportResult result;
-    json manifest;
-    manifest["generator"] = std::string("crtforge ") + CRTFORGE_VERSION;
-    manifest["manifestVersion"] = 2;
-    manifest["options"] = json{{"uniforms", request.options.uniforms.str()},
-                               {"precision", precision_name(request.options.precision)}};
-    json target_names = json::array();
-    for (TargetId t : targets) target_names.push_back(target_info(t).name);
-    manifest["targets"] = std::move(target_names);
-    manifest["presets"] = json::object();
+    json manifest = manifest_head(request.options, targets);
 
     // Each preset is compiled and emitted on a worker thread (glslang, SPIRV-Tools and SPIRV-Cross
     // objects are per-thread); results are gathered in preset order, so output stays deterministic.
@@ -372,7 +421,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
             po.error = luts.error();
             return;
         }
-        for (const LutSpec& lut : preset->luts) po.files[lut_export_path(*preset, lut)] = luts.value().at(lut.name);
+        place_lut_files(*preset, luts.value(), po.files);
         po.entry = detail::preset_manifest(*preset, compiled.value());
         std::map<TargetId, std::vector<TargetOutput>> per_target;
         for (size_t pass = 0; pass < compiled.value().size(); ++pass) {
@@ -387,14 +436,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
                     po.error = d;
                     return;
                 }
-                detail::ManifestTargetEntry te{target, {}, out.value().bindings, out.value().manifest_json};
-                for (const OutputFile& f : out.value().files) {
-                    const std::string path = f.path.empty() ? export_path(variant.variant.file_stem(), target, f.suffix)
-                                                            : std::string(target_info(target).name) + "/" + f.path;
-                    te.files[f.manifest_role()] = path;
-                    po.files[path] = f.data;
-                }
-                files[target_info(target).name] = detail::target_manifest(te);
+                files[target_info(target).name] = place_target_files(variant, target, out.value(), po.files);
                 per_target[target].push_back(std::move(out.value()));
             }
             po.entry["passes"][pass]["targets"] = std::move(files);

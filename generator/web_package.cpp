@@ -11,8 +11,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-constexpr const char* kPackageDir = "npm/";
-
 json package_json() {
     json p;
     p["name"] = "crtforge-presets";
@@ -67,7 +65,7 @@ Status add_web_package(const json& manifest, std::map<std::string, std::string>&
     std::vector<std::string> kept;
     const json web = web_manifest(manifest, kept);
     const WebPackageSources& sources = web_package_sources();
-    const std::string dir = kPackageDir;
+    const std::string dir = kWebPackageDir;
     std::map<std::string, std::string> package;
     package[dir + "package.json"] = package_json().dump(2) + "\n";
     package[dir + "manifest.json"] = web.dump(2) + "\n";

@@ -10,6 +10,9 @@
 
 namespace crtforge::detail {
 
+// The package's folder in an export.
+inline constexpr const char* kWebPackageDir = "npm/";
+
 // Adds npm/ to an export's files (path -> contents) when the manifest has WGSL: package.json,
 // index.mjs, index.d.ts, crt-webgpu.mjs, README.md, a manifest.json with the WGSL entries only, and
 // copies of the WGSL modules and LUT PNGs that manifest names, so the folder is the whole package.

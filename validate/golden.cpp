@@ -608,6 +608,16 @@ Status write_golden_manifest(const std::string& dir, const std::vector<GoldenEnt
     return write_file_atomic(dir + "/manifest.json", manifest.dump(2) + "\n");
 }
 
+Tolerance with_filter_step(Tolerance t, double step) {
+    if (step <= 0) return t;
+    const double rms = step / std::sqrt(12.0);
+    t.max_rmse += rms;
+    if (t.max_tile_rmse > 0) t.max_tile_rmse += rms;  // 0: no tile bound
+    t.why += fmt::format(" Plus {:.5f} on the RMSE bounds: this consumer's linear samples of 8-bit textures come in steps of {:.5f}.",
+                         rms, step);
+    return t;
+}
+
 Result<Verdict> judge(const Image& render, const Image& reference, const Tolerance& t, double output_quantum, const Image* unstable) {
     if (unstable && !unstable->empty() && (unstable->width != reference.width || unstable->height != reference.height))
         return make_error("the unstable-pixel map does not have the golden's size");

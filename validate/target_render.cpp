@@ -64,6 +64,33 @@ double TargetRenderer::output_quantum(TargetId target) {
     return consumer.ok() ? consumer.value()->output_quantum() : 0.0;
 }
 
+bool samples_8bit_linearly(const Preset& preset) {
+    auto pass_format = [&](const std::string& alias) {
+        for (const Pass& p : preset.passes)
+            if (p.alias == alias) return p.format;
+        return PixelFormat::Rgba16F;
+    };
+    for (const Pass& pass : preset.passes)
+        for (const PassInput& in : pass.inputs) {
+            if (in.filter != Filter::Linear) continue;
+            switch (in.from.kind) {
+                case TextureSource::Kind::Lut: return true;  // every LUT is an 8-bit picture
+                case TextureSource::Kind::Pass:
+                case TextureSource::Kind::Feedback:
+                    if (pass_format(in.from.name) != PixelFormat::Rgba16F) return true;
+                    break;
+                case TextureSource::Kind::Original: break;  // hosts upload it as floats
+            }
+        }
+    return false;
+}
+
+double TargetRenderer::filtered_8bit_step(TargetId target, const Preset& preset) {
+    auto consumer = consumer_of(target);
+    if (!consumer.ok() || consumer.value()->filtered_8bit_step() == 0.0) return 0.0;
+    return samples_8bit_linearly(preset) ? consumer.value()->filtered_8bit_step() : 0.0;
+}
+
 bool TargetRenderer::renders_on_vulkan(TargetId target) {
     auto consumer = consumer_of(target);
     return consumer.ok() && consumer.value()->renders_on_vulkan();

@@ -260,6 +260,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             if (!rendered.ok()) failure = rendered.error().str();
             else images = std::move(rendered.value());
         }
+        const double filter_step = renderer.filtered_8bit_step(job.target, *preset);
         for (size_t i = 0; i < sequence.size(); ++i) {
             const GoldenEntry* g = sequence[i];
             const GoldenData* data = data_of.at(g);
@@ -274,7 +275,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
             } else if (failure) {
                 r.message = *failure;
             } else {
-                auto verdict = judge(images[i], data->golden.value(), g->tolerance, renderer.output_quantum(job.target),
+                auto verdict = judge(images[i], data->golden.value(), with_filter_step(g->tolerance, filter_step), renderer.output_quantum(job.target),
                                      &data->unstable.value());
                 if (!verdict.ok()) {
                     r.message = verdict.error().str();
@@ -300,7 +301,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                     r.message = "passed, but golden/plan.toml expects it to fail (" + g->expect_fail_why +
                                 "): remove the target from expect_fail";
                 } else {
-                    auto bounded = judge(images[i], data->golden.value(), g->expect_fail_bound, renderer.output_quantum(job.target),
+                    auto bounded = judge(images[i], data->golden.value(), with_filter_step(g->expect_fail_bound, filter_step), renderer.output_quantum(job.target),
                                          &data->unstable.value());
                     r.passed = bounded.ok() && bounded.value().passed;
                     r.message = r.passed ? "expected failure (" + g->expect_fail_why + "): " + r.message
@@ -330,7 +331,7 @@ std::vector<CheckResult> run_job(const TemplateLibrary& library, const Job& job,
                 if (vulkan_failure) {
                     r.message = *vulkan_failure;
                 } else {
-                    auto verdict = judge(images[i], vulkan_images[i], g->tolerance, renderer.output_quantum(job.target));
+                    auto verdict = judge(images[i], vulkan_images[i], with_filter_step(g->tolerance, filter_step), renderer.output_quantum(job.target));
                     if (!verdict.ok()) {
                         r.message = verdict.error().str();
                     } else {

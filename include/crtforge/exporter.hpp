@@ -54,6 +54,11 @@ struct ExportResult {
 Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequest& request,
                                 const Cache& cache);
 
+// The npm package that `crtforge export --preset <name> --target wgsl` writes as npm/ (paths
+// relative to it: package.json, index.mjs, crt-webgpu.mjs, manifest.json, wgsl/, luts/, ...), from
+// the preset's compiled passes and their emitted WGSL: what validate's Dawn consumer loads.
+Result<std::map<std::string, std::string>> preset_web_package(const Preset& preset, const std::vector<CompiledVariant>& passes,
+                                                              const std::vector<TargetOutput>& wgsl);
 // Writes files under dir atomically per file; refuses to write anything if dir cannot be created.
 Status write_files(const std::string& dir, const std::map<std::string, std::string>& files);
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cctype>
 #include <cstdlib>
@@ -108,6 +109,46 @@ const char* wrap_name(WrapMode wrap) {
     return "?";
 }
 
+Status check_scene_job(const DawnSceneJob& job) {
+    if (!job.package_files.count("index.mjs") || !job.package_files.count("manifest.json"))
+        return job_error("the package has no index.mjs or manifest.json", "package_files");
+    if (job.preset.empty()) return job_error("the preset name is empty", "preset");
+    if (job.run.empty() || job.inputs.size() != job.run.size())
+        return job_error(fmt::format("{} input pictures for {} frames", job.inputs.size(), job.run.size()), "inputs");
+    if (job.capture.empty()) return job_error("no frame is captured", "capture");
+    for (int f : job.capture)
+        if (std::find(job.run.begin(), job.run.end(), f) == job.run.end())
+            return job_error(fmt::format("captured frame {} is not drawn", f), "capture");
+    for (int f : job.run)
+        if (f < 0) return job_error(fmt::format("frame {} is negative", f), "run");
+    if (!job.times.empty() && job.times.size() != job.run.size())
+        return job_error(fmt::format("{} times for {} frames", job.times.size(), job.run.size()), "times");
+    for (double t : job.times)
+        if (!std::isfinite(t)) return job_error("a frame's time is not finite", "times");
+    if (!job.fit.empty() && job.fit != "stretch" && job.fit != "aspect" && job.fit != "integer")
+        return job_error("the display fit must be stretch, aspect or integer, not '" + job.fit + "'", "fit");
+    const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Dawn", "maxTextureDimension2D"};
+    for (const Image& input : job.inputs) {
+        if (input.width != job.inputs.front().width || input.height != job.inputs.front().height)
+            return job_error("the input pictures differ in size", "inputs");
+        if (auto s = detail::check_job_extent(job.width, job.height, input, limits); !s.ok()) return s;
+    }
+    if (job.format != OutputFormat::Rgba8Unorm && job.format != OutputFormat::Rgba8Srgb && job.format != OutputFormat::Rgba16Float)
+        return job_error("unknown output format", "format");
+    return Ok{};
+}
+
+// A param as the package's setParam() takes it: a number, or [r, g, b] for a colour (a bool as 0
+// or 1; an enum's name, which no uniform holds, goes as text for the package to refuse).
+json package_param(const Value& value) {
+    if (auto d = std::get_if<double>(&value)) return *d;
+    if (auto i = std::get_if<int64_t>(&value)) return *i;
+    if (auto b = std::get_if<bool>(&value)) return *b ? 1 : 0;
+    if (auto t = std::get_if<std::string>(&value)) return *t;
+    const Color& c = std::get<Color>(value);
+    return json::array({c[0], c[1], c[2]});
+}
+
 Status check_job(const DawnJob& job) {
     if (trim(job.wgsl).empty()) return job_error("the WGSL module is empty", "wgsl");
     if (job.vertex_entry.empty()) return job_error("the vertex entry point name is empty", "vertex_entry");
@@ -193,8 +234,27 @@ struct DawnEngine::Impl {
     }
 
     // Sends one request and waits for its reply, restarting the runner first if it died.
-    Result<json> request(const json& message, const char* during) {
-        return runner->request(message, during, kRequestSeconds, [this](const json& r) { return started(r); });
+    Result<json> request(const json& message, const char* during, int seconds = kRequestSeconds) {
+        return runner->request(message, during, seconds, [this](const json& r) { return started(r); });
+    }
+
+    // The folder holding exactly `files` (a package), written into the scratch folder on first use:
+    // every golden of a preset loads the same package, and Node keeps a module per folder.
+    std::vector<std::pair<std::map<std::string, std::string>, fs::path>> packages;
+    Result<fs::path> package_folder(const std::map<std::string, std::string>& files) {
+        for (const auto& [held, folder] : packages)
+            if (held == files) return folder;
+        const fs::path folder = scratch() / fmt::format("package{}", packages.size());
+        for (const auto& [path, data] : files) {
+            const fs::path relative = fs::path(path).lexically_normal();
+            if (path.empty() || relative.is_absolute() || *relative.begin() == "..")
+                return job_error("a package file's path must stay inside the package: '" + path + "'", "package_files");
+            std::error_code ec;
+            fs::create_directories((folder / relative).parent_path(), ec);
+            if (auto s = write_file(folder / relative, data.data(), data.size()); !s.ok()) return s.error();
+        }
+        packages.emplace_back(files, folder);
+        return folder;
     }
 };
 
@@ -334,6 +394,72 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
         return image;
     } catch (const std::exception& e) {
         return make_validation_error(fmt::format("the Dawn render failed: {}", e.what()));
+    }
+}
+
+Result<std::vector<Image>> DawnEngine::render_scene(const DawnSceneJob& job) {
+    static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
+    if (auto s = check_scene_job(job); !s.ok()) return s.error();
+    try {
+        std::lock_guard lock(impl_->mutex);
+        auto folder = impl_->package_folder(job.package_files);
+        if (!folder.ok()) return folder.error();
+        const fs::path dir = impl_->scratch(), inputs = dir / "inputs.f32", output = dir / "output.f32";
+        {
+            std::ofstream out(inputs, std::ios::binary | std::ios::trunc);
+            for (const Image& input : job.inputs)
+                out.write(reinterpret_cast<const char*>(input.rgba.data()), static_cast<std::streamsize>(input.rgba.size() * sizeof(float)));
+            if (!out.flush()) return make_error("cannot write the input pictures to '" + inputs.string() + "'");
+        }
+        std::error_code ec;
+        fs::remove(output, ec);
+        json params = json::object();
+        for (const auto& [name, value] : job.params) params[name] = package_param(value);
+        json message = {
+            {"op", "scene"},
+            {"package", folder.value().string()},
+            {"preset", job.preset},
+            {"width", job.width},
+            {"height", job.height},
+            {"format", format_name(job.format)},
+            {"input_width", job.inputs.front().width},
+            {"input_height", job.inputs.front().height},
+            {"inputs", inputs.string()},
+            {"run", job.run},
+            {"capture", job.capture},
+            {"params", std::move(params)},
+            {"output", output.string()},
+        };
+        if (!job.times.empty()) message["times"] = job.times;
+        if (!job.fit.empty()) message["fit"] = job.fit;
+        // A long sequence gets time in proportion: llvmpipe draws a few frames a second at most.
+        const int seconds = kRequestSeconds + 2 * static_cast<int>(job.run.size());
+        auto reply = impl_->request(message, "scene", seconds);
+        fs::remove(inputs, ec);
+        if (!reply.ok()) return reply.error();
+        const json& r = reply.value();
+        if (!r.value("ok", false)) {
+            const std::string error = r.value("error", std::string("unknown error"));
+            if (r.value("kind", "") == "request") return make_error("the Dawn runner refused the scene request: " + error);
+            return make_validation_error("the shipped npm package failed in Dawn: " + error);
+        }
+        const std::size_t one = static_cast<std::size_t>(job.width) * job.height * 4;
+        const std::uintmax_t size = fs::file_size(output, ec);
+        std::ifstream in(output, std::ios::binary);
+        std::vector<Image> images;
+        for (std::size_t k = 0; !ec && size == one * sizeof(float) * job.capture.size() && k < job.capture.size(); ++k) {
+            Image image = Image::make(job.width, job.height);
+            if (!in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(one * sizeof(float)))) break;
+            images.push_back(std::move(image));
+        }
+        in.close();
+        fs::remove(output, ec);
+        if (images.size() != job.capture.size())
+            return make_validation_error(fmt::format("the Dawn runner wrote {} bytes of pixels, expected {} for {} frames of {}x{}", size,
+                                                     one * sizeof(float) * job.capture.size(), job.capture.size(), job.width, job.height));
+        return images;
+    } catch (const std::exception& e) {
+        return make_validation_error(fmt::format("the Dawn scene render failed: {}", e.what()));
     }
 }
 

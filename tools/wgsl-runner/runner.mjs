@@ -13,6 +13,8 @@
 // the engine therefore passes --reply-fd and sends the process's stdout and stderr to a log.
 import { readFileSync, writeFileSync, writeSync, closeSync } from 'node:fs';
 import { createInterface } from 'node:readline';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
 
 process.env.EGL_PLATFORM ??= 'surfaceless';  // Mesa EGL without a window system
 
@@ -304,6 +306,32 @@ const OUTPUT_FORMATS = {
   'rgba8unorm-srgb': { gpu: 'rgba8unorm-srgb', bytes: 4 },
 };
 
+// A mapped readback buffer (rows bytesPerRow apart) as linear float32 RGBA, rows top first.
+function decodeRows(mapped, bytesPerRow, width, height, format) {
+  const out = new Float32Array(width * height * 4);
+  const rowValues = width * 4;
+  for (let y = 0; y < height; ++y) {
+    const base = y * bytesPerRow;
+    const o = y * rowValues;
+    if (format.gpu === 'rgba16float') {
+      const row = new Uint16Array(mapped.buffer, mapped.byteOffset + base, rowValues);
+      for (let i = 0; i < rowValues; ++i) out[o + i] = HALF_TO_FLOAT[row[i]];
+    } else if (format.gpu === 'rgba8unorm') {
+      for (let i = 0; i < rowValues; ++i) out[o + i] = mapped[base + i] / 255;
+    } else {
+      for (let i = 0; i < rowValues; ++i) out[o + i] = (i & 3) === 3 ? mapped[base + i] / 255 : srgbToLinear(mapped[base + i]);
+    }
+  }
+  return out;
+}
+
+function outputFormat(request) {
+  const formatName = str(request, 'format', 'rgba16float');
+  const format = OUTPUT_FORMATS[formatName];
+  if (!format) throw new RequestError(`"format" must be one of ${Object.keys(OUTPUT_FORMATS).join(', ')}; got '${formatName}'`);
+  return format;
+}
+
 // ---- requests ------------------------------------------------------------------------------
 
 async function opCompile(request) {
@@ -320,9 +348,7 @@ async function opRender(request) {
   const maxDim = device.limits.maxTextureDimension2D;
   const width = int(request, 'width', undefined, 1, maxDim);
   const height = int(request, 'height', undefined, 1, maxDim);
-  const formatName = str(request, 'format', 'rgba16float');
-  const format = OUTPUT_FORMATS[formatName];
-  if (!format) throw new RequestError(`"format" must be one of ${Object.keys(OUTPUT_FORMATS).join(', ')}; got '${formatName}'`);
+  const format = outputFormat(request);
   const output = str(request, 'output');
   const uniformPath = request.uniform ?? null;
   if (uniformPath !== null && (typeof uniformPath !== 'string' || uniformPath === '')) throw new RequestError('"uniform" must be a path or null');
@@ -444,21 +470,7 @@ async function opRender(request) {
     cleanup();
     throw new RejectError(`reading the pixels back failed: ${oneLine(e.message)}`, { messages });
   }
-  const mapped = new Uint8Array(readback.getMappedRange());
-  const out = new Float32Array(width * height * 4);
-  const rowValues = width * 4;
-  for (let y = 0; y < height; ++y) {
-    const base = y * bytesPerRow;
-    const o = y * rowValues;
-    if (format.gpu === 'rgba16float') {
-      const row = new Uint16Array(mapped.buffer, mapped.byteOffset + base, rowValues);
-      for (let i = 0; i < rowValues; ++i) out[o + i] = HALF_TO_FLOAT[row[i]];
-    } else if (format.gpu === 'rgba8unorm') {
-      for (let i = 0; i < rowValues; ++i) out[o + i] = mapped[base + i] / 255;
-    } else {
-      for (let i = 0; i < rowValues; ++i) out[o + i] = (i & 3) === 3 ? mapped[base + i] / 255 : srgbToLinear(mapped[base + i]);
-    }
-  }
+  const out = decodeRows(new Uint8Array(readback.getMappedRange()), bytesPerRow, width, height, format);
   readback.unmap();
   cleanup();
   try {
@@ -467,6 +479,117 @@ async function opRender(request) {
     throw new RequestError(`cannot write the output '${output}': ${oneLine(e.message)}`);
   }
   return { ok: true, messages, width, height, input_format: inputFormat, texture_formats: textureFormats };
+}
+
+// ---- a whole preset through the shipped npm package ------------------------------------------
+
+function frameList(request, key) {
+  const v = request[key];
+  if (!Array.isArray(v) || !v.length || !v.every((f) => Number.isInteger(f) && f >= 0 && f <= 2 ** 31))
+    throw new RequestError(`"${key}" must be a non-empty array of frame numbers; got ${JSON.stringify(v)}`);
+  return v;
+}
+
+// Runs a preset as a page or a Node app does: the package folder an export writes (npm/) is
+// imported, loadCrtPreset() reads its manifest, WGSL and LUT files and makes the scene, and each
+// frame of `run` is one scene.encode() over that frame's original. Nothing of crtforge's own
+// pipeline logic is here: pass sizes, feedback, history, uniforms and time are the package's.
+async function opScene(request) {
+  const dir = str(request, 'package');
+  const presetName = str(request, 'preset');
+  const maxDim = device.limits.maxTextureDimension2D;
+  const width = int(request, 'width', undefined, 1, maxDim);
+  const height = int(request, 'height', undefined, 1, maxDim);
+  const format = outputFormat(request);
+  const inputWidth = int(request, 'input_width', undefined, 1, maxDim);
+  const inputHeight = int(request, 'input_height', undefined, 1, maxDim);
+  const run = frameList(request, 'run');
+  const capture = frameList(request, 'capture');
+  for (const f of capture) if (!run.includes(f)) throw new RequestError(`"capture" frame ${f} is not in "run"`);
+  const times = request.times ?? null;
+  if (times !== null && (!Array.isArray(times) || times.length !== run.length || !times.every(Number.isFinite)))
+    throw new RequestError(`"times" must be null or ${run.length} finite numbers`);
+  const fit = request.fit ?? undefined;
+  if (fit !== undefined && !['stretch', 'aspect', 'integer'].includes(fit)) throw new RequestError(`"fit" must be stretch, aspect or integer; got ${JSON.stringify(fit)}`);
+  const params = request.params ?? {};
+  if (params === null || typeof params !== 'object' || Array.isArray(params)) throw new RequestError('"params" must be an object');
+  const inputs = readBytes(str(request, 'inputs'), 'inputs');
+  const one = inputWidth * inputHeight * 16;
+  if (inputs.length !== one * run.length)
+    throw new RequestError(`the inputs hold ${inputs.length} bytes; ${run.length} pictures of ${inputWidth}x${inputHeight} RGBA float32 need ${one * run.length}`);
+  const pictures = new Float32Array(inputs.buffer.slice(inputs.byteOffset, inputs.byteOffset + inputs.length));
+  const output = str(request, 'output');
+
+  let pkg;
+  try {
+    pkg = await import(pathToFileURL(path.join(path.resolve(dir), 'index.mjs')).href);
+  } catch (e) {
+    throw new RejectError(`the npm package in '${dir}' does not load: ${oneLine(e.message)}`);
+  }
+  const { result, error } = await withErrorScopes(async () => {
+    const destroy = [];
+    try {
+      const manifest = await pkg.loadManifest();
+      const preset = manifest.presets?.[presetName];
+      if (!preset) throw new RejectError(`the package's manifest has no preset '${presetName}'`);
+      const crt = await pkg.loadCrtPreset(device, presetName, { format: format.gpu });
+      destroy.push(crt);
+      for (const pass of crt.passes) {
+        const bad = (await pass.compilationInfo()).find((m) => m.type === 'error');
+        if (bad) throw new RejectError(`the WGSL of pass ${pass.alias}, ${bad.lineNum}:${bad.linePos}: ${oneLine(bad.message)}`);
+      }
+      for (const [name, value] of Object.entries(params)) crt.setParam(name, value);
+      // The original as an app would upload float pictures: rgba32float where every pass that
+      // reads it samples it nearest (or the device filters float32), else rgba16float.
+      const linear = preset.passes.some((p) => p.textures.some((t) => /^original(@\d+)?$/.test(t.from) && t.filter !== 'nearest'));
+      const half = linear && !device.features.has('float32-filterable');
+      const source = device.createTexture({
+        size: [inputWidth, inputHeight], format: half ? 'rgba16float' : 'rgba32float',
+        usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+      });
+      destroy.push(source);
+      const target = device.createTexture({ size: [width, height], format: format.gpu, usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC });
+      destroy.push(target);
+      const bytesPerRow = Math.ceil((width * format.bytes) / 256) * 256;
+      const images = [];
+      for (let i = 0; i < run.length; ++i) {
+        const picture = pictures.subarray((i * one) / 4, ((i + 1) * one) / 4);
+        device.queue.writeTexture({ texture: source }, half ? floatsToHalves(picture) : picture,
+          { bytesPerRow: inputWidth * (half ? 8 : 16), rowsPerImage: inputHeight }, [inputWidth, inputHeight]);
+        const encoder = device.createCommandEncoder();
+        crt.encode(encoder, { source, target: target.createView(), width, height, frame: run[i], fit, ...(times ? { time: times[i] } : {}) });
+        let readback = null;
+        if (capture.includes(run[i])) {
+          readback = device.createBuffer({ size: bytesPerRow * height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+          destroy.push(readback);
+          encoder.copyTextureToBuffer({ texture: target }, { buffer: readback, bytesPerRow, rowsPerImage: height }, [width, height]);
+        }
+        device.queue.submit([encoder.finish()]);
+        await device.queue.onSubmittedWorkDone();
+        if (readback) {
+          await readback.mapAsync(GPUMapMode.READ);
+          images.push({ frame: run[i], pixels: decodeRows(new Uint8Array(readback.getMappedRange()), bytesPerRow, width, height, format) });
+          readback.unmap();
+        }
+      }
+      return images;
+    } finally {
+      for (const o of destroy) o.destroy();
+    }
+  }).catch((e) => {
+    if (e instanceof RequestError || e instanceof RejectError) throw e;
+    return { result: null, error: oneLine(e.message) };
+  });
+  if (error) throw new RejectError(error);
+  // The captured frames in the order "capture" lists them.
+  const out = new Float32Array(capture.length * width * height * 4);
+  capture.forEach((frame, k) => out.set(result.find((image) => image.frame === frame).pixels, k * width * height * 4));
+  try {
+    writeFileSync(output, new Uint8Array(out.buffer));
+  } catch (e) {
+    throw new RequestError(`cannot write the output '${output}': ${oneLine(e.message)}`);
+  }
+  return { ok: true, width, height, frames: capture.length };
 }
 
 async function handle(line) {
@@ -489,7 +612,8 @@ async function dispatch(request) {
       case 'info': return { ok: true, info: adapterInfo() };
       case 'compile': return await opCompile(request);
       case 'render': return await opRender(request);
-      default: return { ok: false, kind: 'request', error: `unknown op ${JSON.stringify(request.op)} (expected compile, render or info)` };
+      case 'scene': return await opScene(request);
+      default: return { ok: false, kind: 'request', error: `unknown op ${JSON.stringify(request.op)} (expected compile, render, scene or info)` };
     }
   } catch (e) {
     if (e instanceof RequestError) return { ok: false, kind: 'request', error: e.message };

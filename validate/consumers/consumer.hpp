@@ -74,6 +74,10 @@ public:
     // The step of the displayed values when the consumer's display is coarser than half floats
     // (the judge allows for it); 0 for the float displays validation reads back.
     virtual double output_quantum() const { return 0.0; }
+    // The step of the values its GPU returns when it filters an 8-bit texture linearly, where that
+    // is coarser than floats (0: not); a preset that samples such a texture linearly is judged with
+    // the step's rounding added to its RMSE bounds (with_filter_step in golden.hpp).
+    virtual double filtered_8bit_step() const { return 0.0; }
     // Whether its renders run on the Vulkan engine (so a second Vulkan driver can run them too).
     virtual bool renders_on_vulkan() const { return false; }
 };
@@ -136,5 +140,21 @@ Result<RenderJob> vulkan_job(TargetRenderRequest request);
 
 // The same diagnostic as a validation failure: crtforge's output was rejected.
 Diagnostic as_validation(Diagnostic d);
+
+namespace consumers {
+
+// The frames a consumer that runs whole scenes itself must draw to show `frames`: every frame up
+// to the last when the scene keeps state, else only those (sorted, unique); and the frames to
+// capture (sorted, unique).
+struct SceneFrames {
+    std::vector<int> run, capture;
+};
+SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames);
+
+// The captured pictures in the order `frames` asked for them.
+std::vector<Image> in_request_order(const std::vector<int>& frames, const std::vector<int>& capture,
+                                    const std::vector<Image>& images);
+
+}  // namespace consumers
 
 }  // namespace crtforge

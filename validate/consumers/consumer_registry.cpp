@@ -169,4 +169,31 @@ Diagnostic as_validation(Diagnostic d) {
     return d;
 }
 
+namespace consumers {
+
+SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames) {
+    SceneFrames out;
+    out.capture = frames;
+    std::sort(out.capture.begin(), out.capture.end());
+    out.capture.erase(std::unique(out.capture.begin(), out.capture.end()), out.capture.end());
+    if (preset.keeps_state() && !out.capture.empty()) {
+        for (int f = 0; f <= out.capture.back(); ++f) out.run.push_back(f);
+    } else {
+        out.run = out.capture;
+    }
+    return out;
+}
+
+std::vector<Image> in_request_order(const std::vector<int>& frames, const std::vector<int>& capture,
+                                    const std::vector<Image>& images) {
+    std::vector<Image> out;
+    for (int f : frames) {
+        const size_t at = static_cast<size_t>(std::find(capture.begin(), capture.end(), f) - capture.begin());
+        out.push_back(images[at]);
+    }
+    return out;
+}
+
+}  // namespace consumers
+
 }  // namespace crtforge

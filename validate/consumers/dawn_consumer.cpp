@@ -1,11 +1,15 @@
 // "dawn": WGSL as a WebGPU page uses it — Dawn (Chromium's WebGPU, npm webgpu) compiles the module
-// with zero errors and zero warnings, and renders it from the bind-group layout crtforge describes.
+// with zero errors and zero warnings. A preset renders through the npm package the export ships
+// (index.mjs, crt-webgpu.mjs, its manifest, WGSL and LUT files) exactly as a page runs it, so a bug
+// in the shipped driver or its manifest fails validation; a lone pass (`crtforge render` of one
+// pass, the stage checks) renders from the bind-group layout crtforge describes.
 #include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "crtforge/assembler.hpp"
+#include "crtforge/exporter.hpp"
 #include "validate/consumers/consumer.hpp"
 
 namespace crtforge {
@@ -92,9 +96,48 @@ public:
         return engine.value()->render(job);
     }
 
+    Result<std::vector<Image>> render_scene(const SceneRenderRequest& r, ConsumerEngines& engines) const override {
+        if (!r.host.empty()) return make_error("the WGSL target has no host mode '" + r.host + "'");
+        if (!r.preset || !r.passes || !r.outputs || r.outputs->size() != r.passes->size() || !r.source)
+            return make_error("a Dawn scene render needs the preset, its passes and their WGSL files");
+        DawnSceneJob job;
+        auto package = preset_web_package(*r.preset, *r.passes, *r.outputs);
+        if (!package.ok()) return package.error();
+        job.package_files = std::move(package.value());
+        job.preset = r.preset->name;
+        const consumers::SceneFrames frames = consumers::scene_frames(*r.preset, r.frames);
+        for (int f : frames.run) {
+            auto input = r.source(f);
+            if (!input.ok()) return input.error();
+            job.inputs.push_back(std::move(input.value()));
+            // The package's frame is the frame counter a game passes; its time, unless given, is
+            // frame / fps: given only where the sequence starts elsewhere.
+            job.run.push_back(r.frame_count_base + f);
+            if (r.start_time != 0.0 || r.frame_count_base != 0) job.times.push_back(r.start_time + f / r.preset->scene.fps);
+        }
+        for (int f : frames.capture) job.capture.push_back(r.frame_count_base + f);
+        if (r.fit) job.fit = display_fit_name(*r.fit);
+        job.width = r.width;
+        job.height = r.height;
+        job.format = r.format;
+        job.params = r.overrides;
+        auto engine = engines.dawn();
+        if (!engine.ok()) return engine.error();
+        auto images = engine.value()->render_scene(job);
+        if (!images.ok()) return images.error();
+        return consumers::in_request_order(r.frames, frames.capture, images.value());
+    }
+
+    // The package keeps an 8-bit pass (and every LUT) in rgba8unorm, as a page does, and llvmpipe
+    // returns a linear sample of rgba8unorm in whole 1/255 steps (measured through Dawn: a 0 -> 255
+    // ramp sampled at 64 points comes back as integers /255, up to 0.86/255 off; rgba16float's
+    // samples are exact), which the per-pass path never met since it uploads floats.
+    double filtered_8bit_step() const override { return 1.0 / 255.0; }
+
     std::string describe(ConsumerEngines& engines) const override {
         auto d = engines.dawn();
-        return d.ok() ? d.value()->adapter_description() : std::string("Dawn unavailable");
+        return d.ok() ? d.value()->adapter_description() + "; presets through the exported npm package (crt-webgpu.mjs)"
+                      : std::string("Dawn unavailable");
     }
 };
 

@@ -122,29 +122,6 @@ Result<std::string> host_scene(int version, const std::string& mode, const Targe
     return scene_text(version == 3 ? kScene3 : kScene4, mode, used, material, linear);
 }
 
-SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames) {
-    SceneFrames out;
-    out.capture = frames;
-    std::sort(out.capture.begin(), out.capture.end());
-    out.capture.erase(std::unique(out.capture.begin(), out.capture.end()), out.capture.end());
-    if (preset.keeps_state() && !out.capture.empty()) {
-        for (int f = 0; f <= out.capture.back(); ++f) out.run.push_back(f);
-    } else {
-        out.run = out.capture;
-    }
-    return out;
-}
-
-std::vector<Image> in_request_order(const std::vector<int>& frames, const std::vector<int>& capture,
-                                    const std::vector<Image>& images) {
-    std::vector<Image> out;
-    for (int f : frames) {
-        const size_t at = static_cast<size_t>(std::find(capture.begin(), capture.end(), f) - capture.begin());
-        out.push_back(images[at]);
-    }
-    return out;
-}
-
 Result<std::map<std::string, std::string>> scene_project_files(int version, TargetId target,
                                                                const SceneRenderRequest& r, std::string& scene) {
     if (!r.preset || !r.passes || !r.outputs || r.outputs->size() != r.passes->size() || !r.source)

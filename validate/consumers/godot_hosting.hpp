@@ -1,6 +1,6 @@
 // What validate's two real-Godot consumers (Godot 3 under Xvfb, Godot 4 in Chromium) share: pinning
-// TIME to the frame being rendered, the host scenes that use the exported shaders without
-// crtforge_pipeline.gd (the matrix's host modes), and the frames a scene runs.
+// TIME to the frame being rendered, and the host scenes that use the exported shaders without
+// crtforge_pipeline.gd (the matrix's host modes).
 #pragma once
 
 #include <cmath>
@@ -33,17 +33,6 @@ Status pin_time(std::string& code);
 Result<std::string> host_scene(int version, const std::string& mode, const TargetOutput& files, bool linear);
 const char* host_script(int version);
 inline constexpr const char* kHostScriptPath = "crtforge_validation_host.gd";
-
-// The frames a scene must draw to show `frames`: every frame up to the last when the scene keeps
-// state, else only those (sorted, unique); and the frames to capture (sorted, unique).
-struct SceneFrames {
-    std::vector<int> run, capture;
-};
-SceneFrames scene_frames(const Preset& preset, const std::vector<int>& frames);
-
-// The captured pictures in the order `frames` asked for them.
-std::vector<Image> in_request_order(const std::vector<int>& frames, const std::vector<int>& capture,
-                                    const std::vector<Image>& images);
 
 // The project files of a scene render: the export's files for the preset (TIME pinned in every
 // shader) and the exported scene, or validate's host scene for `request.host`; `scene` gets the

@@ -31,6 +31,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +39,7 @@
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/runtime/image.hpp"
 #include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/value.hpp"
 
 namespace crtforge {
 
@@ -74,6 +76,25 @@ struct DawnJob {
     uint32_t uniform_binding = 0, texture_binding = 1, sampler_binding = 2;
 };
 
+// A whole preset run by the npm package an export ships (`crtforge-presets`: index.mjs's
+// loadCrtPreset over crt-webgpu.mjs's createCrtScene), as a page or a Node app runs it: the
+// package's own manifest, WGSL and LUT files, and its own pass sizes, feedback, history, uniforms
+// and time. The runner adds only what an app adds: the original uploaded as a float texture
+// (rgba32float, or rgba16float where a pass filters it linearly and the device cannot filter
+// float32), one scene.encode() per frame, and the read-back.
+struct DawnSceneJob {
+    std::map<std::string, std::string> package_files;  // by path inside the package folder
+    std::string preset;
+    std::vector<Image> inputs;   // the original at each frame of `run`, all one size
+    std::vector<int> run;        // the frames drawn, in order: encode()'s `frame`
+    std::vector<int> capture;    // the frames whose display image comes back (each in `run`)
+    std::vector<double> times;   // seconds at each frame of `run`; empty: the package's own (frame / fps)
+    std::string fit;             // "": the preset's display fit; else stretch, aspect or integer
+    int width = 0, height = 0;   // the display
+    OutputFormat format = OutputFormat::Rgba16Float;
+    std::map<std::string, Value> params;  // scene.setParam() before the first frame
+};
+
 class DawnEngine {
 public:
     // Starts the runner and waits for its adapter. Errors (ErrorKind::Input, one line):
@@ -104,6 +125,12 @@ public:
     //    the shader uses that the job lacks, a too-short uniform buffer, ...): ErrorKind::Validation;
     //  - the runner died or timed out: ErrorKind::Validation.
     Result<Image> render(const DawnJob& job);
+
+    // The display images of job.capture, in that order (row 0 = top, linear floats). Errors, one
+    // line: a bad job (ErrorKind::Input, field "job.<name>"); the package failing to load, a WGSL
+    // compile error, the package refusing a param, or any WebGPU validation error while it runs
+    // (ErrorKind::Validation).
+    Result<std::vector<Image>> render_scene(const DawnSceneJob& job);
 
     // E.g. "Dawn (npm webgpu 0.6.2), opengles backend, compatibility: llvmpipe-llvm-15-0-6-256-bits-
     // (OpenGL version OpenGL ES 3.2 Mesa 22.3.6)".

@@ -203,6 +203,11 @@ struct Verdict {
 // limits by its RMS (step / sqrt(3) for truncation).
 // `unstable` (optional, the golden's size): a per-pixel allowance (red channel) added where the
 // reference flips under jitter (GoldenEntry::unstable).
+// `t` for a render whose linear samples of 8-bit textures come back in whole steps of `step`
+// (TargetRenderer::filtered_8bit_step): each such sample is off by up to half a step, RMS
+// step / sqrt(12), which the RMSE and tile RMSE bounds gain (their why says so); 0: `t` itself.
+Tolerance with_filter_step(Tolerance t, double step);
+
 Result<Verdict> judge(const Image& render, const Image& golden, const Tolerance& tolerance, double output_quantum = 0,
                       const Image* unstable = nullptr);
 

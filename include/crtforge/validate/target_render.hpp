@@ -95,6 +95,9 @@ Result<std::map<std::string, Image>> read_file_luts(const Preset& preset);
 
 class ConsumerEngines;
 
+// Whether a pass of the preset samples an 8-bit texture (an rgba8 pass's output, or a LUT) linearly.
+bool samples_8bit_linearly(const Preset& preset);
+
 // Owns the engines of one thread, created on first use and reused.
 class TargetRenderer {
 public:
@@ -110,6 +113,9 @@ public:
     std::string consumer(TargetId target);
     // The step of the target's displayed values where coarser than half floats (0 otherwise).
     double output_quantum(TargetId target);
+    // The step of the target's linear samples of 8-bit textures where the preset takes such samples
+    // and the consumer's GPU returns them coarser than floats (0 otherwise).
+    double filtered_8bit_step(TargetId target, const Preset& preset);
     // Whether the target's consumer renders on the Vulkan engine.
     bool renders_on_vulkan(TargetId target);
 
