@@ -65,11 +65,21 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     // once more on a picture four times its output's size, and the supersampled palette at 1.5
     // pixels a texel.
     size_t isolation_presets = 0;
-    for (const Preset& p : test::validation_library().presets()) isolation_presets += p.test_only;
+    for (const Preset& p : test::validation_library().presets()) isolation_presets += p.test_only && p.name.rfind("stage-", 0) == 0;
     CHECK(isolation_presets >= 20);
     CHECK(stages == 3 * isolation_presets + 2);
     // Frame counters past 2^24, on the stage that reads frameCount.
     CHECK(past_2_24 == 2);
+    // The pass-graph test: the original's history three frames deep, judged on a moving sprite
+    // after the history has filled.
+    const Preset* graph = test::validation_library().find_preset("graph-history");
+    REQUIRE(graph);
+    CHECK(graph->test_only);
+    CHECK(graph->history_depth() == 3);
+    std::set<int> graph_frames;
+    for (const GoldenEntry& e : plan)
+        if (e.preset == graph->name && e.input == "moving_sprite") graph_frames.insert(e.frame);
+    CHECK(graph_frames == std::set<int>{3, 7});
 }
 
 TEST_CASE("parameter draws are fixed by the seed, inside each range and on its step grid", "[golden][matrix]") {
@@ -164,7 +174,10 @@ TEST_CASE("stage-isolation presets are validation-only: not exported, not in 'al
     request.targets = {TargetId::Spirv};
     auto exported = run_export(lib, request, Cache());
     REQUIRE(exported.ok());
-    for (const auto& [path, data] : exported.value().files) CHECK(path.find("stage-") == std::string::npos);
+    for (const auto& [path, data] : exported.value().files) {
+        CHECK(path.find("stage-") == std::string::npos);
+        CHECK(path.find("graph-") == std::string::npos);
+    }
     CHECK(exported.value().files.size() > 10);
     auto plan = plan_of("[[golden]]\nwhy = \"x\"\npresets = \"all\"\ninputs = [\"flat_grey\"]\nsize = [8, 8]\n");
     REQUIRE(plan.ok());

@@ -59,13 +59,14 @@ class PlanReader {
 public:
     explicit PlanReader(std::string path) : path_(std::move(path)) {}
 
-    // A stage-isolation preset (golden/stages/<name>.toml, named stage-*): known by name even to a
-    // library that did not load them, which has no goldens of it to plan. A library that did load
-    // them knows each by name, so a misspelt one is still an error there.
+    // A validation preset (golden/stages/<name>.toml: a stage alone, stage-*, or a pass-graph test,
+    // graph-*): known by name even to a library that did not load them, which has no goldens of it
+    // to plan. A library that did load them knows each by name, so a misspelt one is still an error there.
     bool is_stage_preset(const std::string& name, bool isolation_loaded) const {
         if (name.find('/') != std::string::npos) return false;
         const std::filesystem::path dir = std::filesystem::path(path_).parent_path() / "stages";
-        return std::filesystem::is_regular_file(dir / (name + ".toml")) || (!isolation_loaded && name.rfind("stage-", 0) == 0);
+        return std::filesystem::is_regular_file(dir / (name + ".toml")) ||
+               (!isolation_loaded && (name.rfind("stage-", 0) == 0 || name.rfind("graph-", 0) == 0));
     }
 
     Diagnostic error(const toml::node* node, const std::string& field, const std::string& message) const {
@@ -137,8 +138,11 @@ public:
                     return error(t.get("except"), "golden.except", "only with presets = \"all\" or \"stages\"");
                 auto list = names(t, "except", "golden.except");
                 if (!list.ok()) return list.error();
+                const bool isolation_loaded = std::any_of(library.presets().begin(), library.presets().end(),
+                                                          [](const Preset& p) { return p.test_only; });
                 for (const auto& name : list.value())
-                    if (!library.find_preset(name)) return error(t.get("except"), "golden.except", "unknown preset '" + name + "'");
+                    if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
+                        return error(t.get("except"), "golden.except", "unknown preset '" + name + "'");
                 rule.except = list.value();
             }
             if (const toml::node* r = t.get("requires")) {
