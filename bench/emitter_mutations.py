@@ -10,7 +10,7 @@ A mutation is killed when validate fails (a compile or render check); it survive
 check passes. Prints one line per mutation and the kill rate. Not run in CI (it rebuilds the
 product once per mutation: about a minute each on 2 cores after a first full build).
 
-usage: bench/emitter_mutations.py [--keep DIR] [--only SUBSTRING]
+usage: bench/emitter_mutations.py [--keep DIR] [--only SUBSTRING of a description or a file]
 """
 import argparse
 import os
@@ -117,7 +117,7 @@ def run(cmd, cwd, quiet=True):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--keep", help="build in this folder and keep it (reused by a later run)")
-    parser.add_argument("--only", default="", help="only mutations whose description contains this")
+    parser.add_argument("--only", default="", help="only mutations whose description or file contains this")
     args = parser.parse_args()
     repo = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
     work = os.path.abspath(args.keep) if args.keep else tempfile.mkdtemp(prefix="crtforge-mutations-")
@@ -140,7 +140,7 @@ def main():
            cwd=src).returncode != 0:
         sys.exit("bench: the unmutated product does not build")
     killed = 0
-    chosen = [m for m in MUTATIONS if args.only in m[5]]
+    chosen = [m for m in MUTATIONS if args.only in m[5] or args.only in m[0]]
     for path, find, replace, target, presets, what in chosen:
         file = os.path.join(src, path)
         original = open(file).read()
