@@ -54,24 +54,47 @@ LutImage yiq_grade(const std::map<std::string, double>& p) {
     return out;
 }
 
+// The Atari 2600's NTSC palette as emulators publish it (Stella's standard NTSC table,
+// src/common/PaletteHandler.cxx, ourNTSCPalette) follows one rule, which this generator states:
+// hue 0 is grey, g(l) = peak * (l / 7)^gamma; each colour hue runs from its darkest colour
+// (luminance 0: the hue's chroma clipped against black) to its brightest (luminance 7: clipped
+// against peak white) along one curve all hues share, f(l) = ln(1 + l / k) / ln(1 + 7 / k). The
+// 15 hues' two end colours are the table's: no YIQ model with one phase step and amplitude
+// reproduces them (the best such fit is dE76 13 off at its worst entry, 8 on average); the six
+// luminances between them come from the curve, within dE76 0.81 of the table (measured for every
+// entry by tests/luts_test.cpp).
+constexpr uint8_t kAtariHueEnds[15][2][3] = {
+    {{0x48, 0x48, 0x00}, {0xfc, 0xfc, 0x54}}, {{0x7c, 0x2c, 0x00}, {0xec, 0xc8, 0x60}}, {{0x90, 0x1c, 0x00}, {0xfc, 0xbc, 0x74}},
+    {{0x94, 0x00, 0x00}, {0xfc, 0x90, 0x90}}, {{0x84, 0x00, 0x64}, {0xec, 0x8c, 0xe0}}, {{0x50, 0x00, 0x84}, {0xd4, 0x8c, 0xfc}},
+    {{0x14, 0x00, 0x90}, {0xbc, 0x90, 0xfc}}, {{0x00, 0x00, 0x94}, {0x84, 0x90, 0xfc}}, {{0x00, 0x1c, 0x88}, {0x84, 0xc8, 0xfc}},
+    {{0x00, 0x30, 0x64}, {0x84, 0xe0, 0xfc}}, {{0x00, 0x40, 0x30}, {0x84, 0xfc, 0xd4}}, {{0x00, 0x44, 0x00}, {0x90, 0xfc, 0x90}},
+    {{0x14, 0x3c, 0x00}, {0xc8, 0xfc, 0x84}}, {{0x30, 0x38, 0x00}, {0xe0, 0xec, 0x7c}}, {{0x48, 0x2c, 0x00}, {0xfc, 0xe0, 0x70}},
+};
+
 LutImage atari_ntsc(const std::map<std::string, double>& p) {
-    const double burst = param(p, "burstPhase") * kPi / 180.0, step = param(p, "hueStep") * kPi / 180.0,
-                 saturation = param(p, "saturation"), lum_min = param(p, "lumMin"), lum_max = param(p, "lumMax");
+    const double k = param(p, "luminanceCurve"), peak = param(p, "greyPeak"), gamma = param(p, "greyGamma"),
+                 saturation = param(p, "saturation");
     LutImage out;
     out.width = 128;
     out.height = 1;
     out.rgba.resize(128 * 4);
     for (int hue = 0; hue < 16; ++hue)
         for (int lum = 0; lum < 8; ++lum) {
-            const double y = lum_min + (lum_max - lum_min) * lum / 7.0;
-            // Hue 0 carries no colour; hue 1 is in phase with the colour burst (gold), and every
-            // further hue is delayed by one more step.
-            const double phase = burst + (hue - 1) * step;
-            const double chroma = hue == 0 ? 0.0 : saturation;
             double rgb[3];
-            yiq_to_rgb({y, chroma * std::cos(phase), chroma * std::sin(phase)}, rgb);
+            if (hue == 0) {
+                rgb[0] = rgb[1] = rgb[2] = peak * std::pow(lum / 7.0, gamma);
+            } else {
+                const double f = std::log1p(lum / k) / std::log1p(7.0 / k);
+                for (int c = 0; c < 3; ++c) {
+                    const double dark = kAtariHueEnds[hue - 1][0][c] / 255.0, bright = kAtariHueEnds[hue - 1][1][c] / 255.0;
+                    rgb[c] = dark + f * (bright - dark);
+                }
+                // Saturation scales the chroma (I, Q) about the colour's own luma.
+                Yiq c = rgb_to_yiq(rgb[0], rgb[1], rgb[2]);
+                yiq_to_rgb({c.y, c.i * saturation, c.q * saturation}, rgb);
+            }
             uint8_t* px = &out.rgba[static_cast<size_t>(hue * 8 + lum) * 4];
-            for (int k = 0; k < 3; ++k) px[k] = to_byte(rgb[k]);
+            for (int c = 0; c < 3; ++c) px[c] = to_byte(rgb[c]);
             px[3] = 255;
         }
     append_palette_cells(out);  // the nearest-colour search tables below the palette
@@ -106,15 +129,15 @@ const std::vector<LutGenerator>& lut_generators() {
           {"gamma", 0.5, 2.5, 1.1, "Exponent on the decoded RGB: above 1 deepens shadows and midtones"}},
          yiq_grade},
         {"atari_ntsc",
-         "The Atari 2600 NTSC palette from its generation rule: hue 0 grey, hues 1..15 one phase step apart from "
-         "the colour burst (gold), 8 luminances, one saturation, YIQ -> RGB",
+         "The Atari 2600 NTSC palette by the rule emulators' tables follow (Stella's standard NTSC palette): hue 0 grey "
+         "peak * (l / 7)^gamma; hues 1..15 from their darkest to their brightest colour (the table's) along one shared "
+         "luminance curve ln(1 + l / k) / ln(1 + 7 / k); chroma scaled by saturation",
          "128 wide: row 0 the palette, texel (hue * 8 + luminance); the rows below list, per cell of a 16^3 RGB grid "
          "over [-1/16, 17/16], the entries that can be nearest there (generator/palette_cells.hpp)",
-         {{"burstPhase", -180.0, 180.0, -57.0, "Phase of hue 1 (gold, the colour burst: -U) in the I/Q plane, degrees"},
-          {"hueStep", 20.0, 30.0, 24.0, "Phase delay between successive hues, degrees (24: 15 hues evenly round)"},
-          {"saturation", 0.0, 0.6, 0.3, "Chroma amplitude of hues 1..15"},
-          {"lumMin", 0.0, 0.5, 0.0, "Luma of luminance 0"},
-          {"lumMax", 0.5, 1.0, 1.0, "Luma of luminance 7"}},
+         {{"luminanceCurve", 1.0, 100.0, 9.0, "k of the colour hues' luminance curve ln(1 + l / k) / ln(1 + 7 / k): small bends it, large straightens it"},
+          {"greyPeak", 0.5, 1.0, 236.0 / 255.0, "Hue 0's luminance 7 (the table's 0xec)"},
+          {"greyGamma", 0.3, 1.5, 0.6, "Exponent of hue 0's luminance ramp peak * (l / 7)^gamma"},
+          {"saturation", 0.0, 2.0, 1.0, "Scale of every colour's chroma (I, Q) about its luma: 1 is the published table"}},
          atari_ntsc},
     };
     return generators;

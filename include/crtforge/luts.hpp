@@ -38,8 +38,9 @@ struct LutGenerator {
 // decode with hue, saturation, contrast, brightness and gamma ("a simplified version of Drag's
 // NES Palette Generator").
 // atari_ntsc: the Atari 2600's NTSC palette, 128 colours in row 0 (x = hue * 8 + luminance):
-// hue 0 grey, hues 1..15 at a fixed phase step from the colour burst (gold), 8 luminances, one
-// saturation, YIQ -> RGB; below it the tables of its nearest-colour search (palette_cells.hpp).
+// hue 0 grey, hues 1..15 each from its darkest to its brightest colour along one shared
+// luminance curve (the rule of emulators' published tables, Stella's); below it the tables of its
+// nearest-colour search (palette_cells.hpp).
 const std::vector<LutGenerator>& lut_generators();
 const LutGenerator* find_lut_generator(const std::string& name);
 

@@ -1,6 +1,9 @@
 // crtforge WGSL runner: a persistent Dawn (npm `webgpu`, dawn.node) process that compiles and
 // renders WGSL for crtforge's Dawn engine (include/crtforge/dawn_engine.hpp). See README.md.
 //
+// Ops: info, compile (a module's messages), render (one pass from a described bind-group layout)
+// and scene (a whole preset through an exported npm package, as an app runs it).
+//
 // Protocol: one JSON request per line on stdin, one JSON reply per line on the reply channel
 // (stdout, or the descriptor given with --reply-fd=N). Every reply has "ok" and, when ok is
 // false, "error" (one line) and "kind": "request" (malformed request, unreadable file) or
