@@ -251,6 +251,26 @@ Status TemplateLibrary::add_preset_files(const std::vector<std::string>& paths, 
     return Ok{};
 }
 
+Status TemplateLibrary::add_tier_presets() {
+    std::vector<Preset> added;
+    for (const Preset& p : presets_) {
+        if (p.test_only) continue;
+        for (const DeclaredTier& tier : p.tiers) {
+            if (!tier.preset) continue;
+            Preset t = *tier.preset;
+            t.name = p.name + "-tier-" + tier.name;
+            t.doc = "Declared tier '" + tier.name + "' of " + p.name + ": " + tier.doc;
+            t.test_only = true;
+            t.tier_of = p.name;
+            if (find_preset(t.name)) return make_error("preset '" + t.name + "' clashes with the name of " + p.name + "'s tier '" + tier.name + "'", tier.where.file, tier.where.line);
+            added.push_back(std::move(t));
+        }
+    }
+    for (Preset& p : added) presets_.push_back(std::move(p));
+    std::sort(presets_.begin(), presets_.end(), [](const Preset& a, const Preset& b) { return a.name < b.name; });
+    return Ok{};
+}
+
 Status TemplateLibrary::add_test_presets(const std::string& dir) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) return Ok{};

@@ -176,7 +176,10 @@ TEST_CASE("devices lists lavapipe, and golden update writes only when asked", "[
     CHECK_FALSE(fs::exists(dir / "classic.color_bars.320x240.f0.png"));
     auto manifest = load_golden_manifest(dir.path());
     REQUIRE(manifest.ok());
-    CHECK(manifest.value().size() == test::golden_plan_or_fail(test::shipped_library(), dir.path()).size());
+    // The CLI's library: the shipped presets and their declared tiers (no golden/stages/ here).
+    TemplateLibrary with_tiers = test::shipped_library();
+    REQUIRE(with_tiers.add_tier_presets().ok());
+    CHECK(manifest.value().size() == test::golden_plan_or_fail(with_tiers, dir.path()).size());
 }
 
 TEST_CASE("validate exits 1 on a failing comparison and 2 on bad arguments", "[cli][validate]") {

@@ -82,6 +82,32 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     CHECK(graph_frames == std::set<int>{12, 23});
 }
 
+TEST_CASE("every declared tier is a validation preset of its own, with goldens", "[golden][matrix]") {
+    const TemplateLibrary& lib = test::validation_library();
+    const auto plan = test::golden_plan_or_fail(lib, golden_dir());
+    size_t declared = 0;
+    for (const Preset& p : lib.presets()) {
+        if (p.test_only) continue;
+        for (const DeclaredTier& tier : p.tiers) {
+            ++declared;
+            const Preset* t = lib.find_preset(p.name + "-tier-" + tier.name);
+            REQUIRE(t);
+            CHECK(t->test_only);
+            CHECK(t->tier_of == p.name);
+            CHECK(t->passes.size() == tier.preset->passes.size());
+            size_t goldens = 0;
+            for (const GoldenEntry& e : plan) goldens += e.preset == t->name;
+            CHECK(goldens >= 2);
+        }
+    }
+    CHECK(declared >= 6);
+    // The tier's changes are what renders: atari-ntsc's ssaa tier supersamples its palette pass.
+    const Preset* ssaa = lib.find_preset("atari-ntsc-tier-ssaa");
+    REQUIRE(ssaa);
+    CHECK(ssaa->passes.front().supersample == 2);
+    CHECK(lib.find_preset("atari-ntsc")->passes.front().supersample == 1);
+}
+
 TEST_CASE("parameter draws are fixed by the seed, inside each range and on its step grid", "[golden][matrix]") {
     const std::string rule = R"([[golden]]
 why = "draws"
@@ -177,6 +203,7 @@ TEST_CASE("stage-isolation presets are validation-only: not exported, not in 'al
     for (const auto& [path, data] : exported.value().files) {
         CHECK(path.find("stage-") == std::string::npos);
         CHECK(path.find("graph-") == std::string::npos);
+        CHECK(path.find("-tier-") == std::string::npos);
     }
     CHECK(exported.value().files.size() > 10);
     auto plan = plan_of("[[golden]]\nwhy = \"x\"\npresets = \"all\"\ninputs = [\"flat_grey\"]\nsize = [8, 8]\n");

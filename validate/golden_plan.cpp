@@ -24,6 +24,7 @@ namespace {
 struct PlanRule {
     bool all_presets = false;   // every shipped preset
     bool stage_presets = false; // every stage-isolation preset (golden/stages/)
+    bool tier_presets = false;  // every declared tier of a shipped preset (add_tier_presets)
     std::vector<std::string> except;  // presets left out of "all" / "stages"
     std::vector<std::string> presets;
     std::optional<Builtin> requires_builtin;  // only presets whose shaders read it
@@ -119,27 +120,28 @@ public:
             if (!t.get("why") || !t.get("why")->is_string()) return error(&node, "golden.why", "must say what the entry tests");
             if (const toml::node* p = t.get("presets"); p && p->is_string()) {
                 const std::string which = *p->value<std::string>();
-                if (which != "all" && which != "stages")
-                    return error(p, "golden.presets", "must be \"all\", \"stages\" or a list of presets");
+                if (which != "all" && which != "stages" && which != "tiers")
+                    return error(p, "golden.presets", "must be \"all\", \"stages\", \"tiers\" or a list of presets");
                 rule.all_presets = which == "all";
                 rule.stage_presets = which == "stages";
+                rule.tier_presets = which == "tiers";
             } else {
                 auto list = names(t, "presets", "golden.presets");
                 if (!list.ok()) return list.error();
                 const bool isolation_loaded = std::any_of(library.presets().begin(), library.presets().end(),
-                                                          [](const Preset& p) { return p.test_only; });
+                                                          [](const Preset& p) { return p.test_only && p.tier_of.empty(); });
                 for (const auto& name : list.value())
                     if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
                         return error(t.get("presets"), "golden.presets", "unknown preset '" + name + "'");
                 rule.presets = list.value();
             }
             if (t.get("except")) {
-                if (!rule.all_presets && !rule.stage_presets)
-                    return error(t.get("except"), "golden.except", "only with presets = \"all\" or \"stages\"");
+                if (!rule.all_presets && !rule.stage_presets && !rule.tier_presets)
+                    return error(t.get("except"), "golden.except", "only with presets = \"all\", \"stages\" or \"tiers\"");
                 auto list = names(t, "except", "golden.except");
                 if (!list.ok()) return list.error();
                 const bool isolation_loaded = std::any_of(library.presets().begin(), library.presets().end(),
-                                                          [](const Preset& p) { return p.test_only; });
+                                                          [](const Preset& p) { return p.test_only && p.tier_of.empty(); });
                 for (const auto& name : list.value())
                     if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
                         return error(t.get("except"), "golden.except", "unknown preset '" + name + "'");
@@ -488,7 +490,8 @@ void share_reference_images(std::vector<GoldenEntry>& entries) {
 }  // namespace
 
 Status add_golden_presets(TemplateLibrary& library, const std::string& golden_dir) {
-    return library.add_test_presets(golden_dir + "/stages");
+    if (auto s = library.add_test_presets(golden_dir + "/stages"); !s.ok()) return s;
+    return library.add_tier_presets();
 }
 
 Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, const std::string& golden_dir) {
@@ -504,7 +507,8 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
         for (const PlanRule& rule : plan.value().rules) {
             const bool named = std::find(rule.presets.begin(), rule.presets.end(), p.name) != rule.presets.end();
             const bool excepted = std::find(rule.except.begin(), rule.except.end(), p.name) != rule.except.end();
-            const bool chosen = named || (!excepted && (p.test_only ? rule.stage_presets : rule.all_presets));
+            const bool selected = !p.test_only ? rule.all_presets : p.tier_of.empty() ? rule.stage_presets : rule.tier_presets;
+            const bool chosen = named || (!excepted && selected);
             if (!chosen || (rule.requires_builtin && !reads_builtin(library, p, *rule.requires_builtin))) continue;
             auto configs = configurations(library, p, rule, path);
             if (!configs.ok()) return configs.error();

@@ -229,6 +229,7 @@ struct Preset {
     std::vector<std::string> lineage;      // this preset, then its bases
     SourceLocation where;
     bool test_only = false;                // a validation configuration (add_test_presets), not shipped
+    std::string tier_of;                   // a declared tier as a test preset (add_tier_presets): its preset
     std::vector<DeclaredTier> tiers;       // [tiers.<name>] of the preset and its bases (a tier's own preset has none)
 
     bool single_pass() const { return passes.size() == 1; }

@@ -61,6 +61,10 @@ public:
     // golden/stages/. `export`, `list` and `bench` of "all presets" leave them out. Call it before
     // the library is used: it re-sorts presets(), so earlier Preset pointers dangle.
     Status add_test_presets(const std::string& dir);
+    // Adds every declared tier of the shipped presets ([tiers.<name>]) as a test preset named
+    // "<preset>-tier-<name>" (Preset::tier_of names its preset), so validation renders the tiers
+    // a preset's author offers like any preset. Same caveat as add_test_presets.
+    Status add_tier_presets();
 
 private:
     Status add_presets(const std::string& dir, bool test_only);
