@@ -246,9 +246,13 @@ Status TemplateLibrary::add_preset_files(const std::vector<std::string>& paths, 
         preset.value().test_only = test_only;
         added.push_back(std::move(preset.value()));
     }
+    adopt(std::move(added));
+    return Ok{};
+}
+
+void TemplateLibrary::adopt(std::vector<Preset> added) {
     for (Preset& p : added) presets_.push_back(std::move(p));
     std::sort(presets_.begin(), presets_.end(), [](const Preset& a, const Preset& b) { return a.name < b.name; });
-    return Ok{};
 }
 
 Status TemplateLibrary::add_tier_presets() {
@@ -266,8 +270,7 @@ Status TemplateLibrary::add_tier_presets() {
             added.push_back(std::move(t));
         }
     }
-    for (Preset& p : added) presets_.push_back(std::move(p));
-    std::sort(presets_.begin(), presets_.end(), [](const Preset& a, const Preset& b) { return a.name < b.name; });
+    adopt(std::move(added));
     return Ok{};
 }
 

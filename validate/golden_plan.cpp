@@ -70,6 +70,12 @@ public:
                (!isolation_loaded && (name.rfind("stage-", 0) == 0 || name.rfind("graph-", 0) == 0));
     }
 
+    // Whether the library holds golden/stages/'s presets (tier presets do not count).
+    static bool validation_presets_loaded(const TemplateLibrary& library) {
+        return std::any_of(library.presets().begin(), library.presets().end(),
+                           [](const Preset& p) { return p.test_only && p.tier_of.empty(); });
+    }
+
     Diagnostic error(const toml::node* node, const std::string& field, const std::string& message) const {
         return make_error(message, path_, node ? static_cast<int>(node->source().begin.line) : 0, field);
     }
@@ -128,10 +134,8 @@ public:
             } else {
                 auto list = names(t, "presets", "golden.presets");
                 if (!list.ok()) return list.error();
-                const bool isolation_loaded = std::any_of(library.presets().begin(), library.presets().end(),
-                                                          [](const Preset& p) { return p.test_only && p.tier_of.empty(); });
                 for (const auto& name : list.value())
-                    if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
+                    if (!library.find_preset(name) && !is_stage_preset(name, validation_presets_loaded(library)))
                         return error(t.get("presets"), "golden.presets", "unknown preset '" + name + "'");
                 rule.presets = list.value();
             }
@@ -140,10 +144,8 @@ public:
                     return error(t.get("except"), "golden.except", "only with presets = \"all\", \"stages\" or \"tiers\"");
                 auto list = names(t, "except", "golden.except");
                 if (!list.ok()) return list.error();
-                const bool isolation_loaded = std::any_of(library.presets().begin(), library.presets().end(),
-                                                          [](const Preset& p) { return p.test_only && p.tier_of.empty(); });
                 for (const auto& name : list.value())
-                    if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
+                    if (!library.find_preset(name) && !is_stage_preset(name, validation_presets_loaded(library)))
                         return error(t.get("except"), "golden.except", "unknown preset '" + name + "'");
                 rule.except = list.value();
             }

@@ -65,11 +65,6 @@ double TargetRenderer::output_quantum(TargetId target) {
 }
 
 bool samples_8bit_linearly(const Preset& preset) {
-    auto pass_format = [&](const std::string& alias) {
-        for (const Pass& p : preset.passes)
-            if (p.alias == alias) return p.format;
-        return PixelFormat::Rgba16F;
-    };
     for (const Pass& pass : preset.passes)
         for (const PassInput& in : pass.inputs) {
             if (in.filter != Filter::Linear) continue;
@@ -77,7 +72,7 @@ bool samples_8bit_linearly(const Preset& preset) {
                 case TextureSource::Kind::Lut: return true;  // every LUT is an 8-bit picture
                 case TextureSource::Kind::Pass:
                 case TextureSource::Kind::Feedback:
-                    if (pass_format(in.from.name) != PixelFormat::Rgba16F) return true;
+                    if (const Pass* from = preset.find_pass(in.from.name); from && from->format != PixelFormat::Rgba16F) return true;
                     break;
                 case TextureSource::Kind::Original: break;  // hosts upload it as floats
             }

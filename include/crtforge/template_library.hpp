@@ -68,6 +68,8 @@ public:
 
 private:
     Status add_presets(const std::string& dir, bool test_only);
+    // Appends presets and keeps presets() sorted by name.
+    void adopt(std::vector<Preset> added);
     // Test presets (shipped with the golden plan) must all load; the library's own may break one
     // by one (broken_).
     Status add_preset_files(const std::vector<std::string>& paths, bool test_only);
