@@ -194,7 +194,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         }
         auto luts = read_file_luts(*preset);
         if (!luts.ok()) return report(luts.error());
-        const std::map<std::string, Image>& file_luts = luts.value();
+        const std::map<std::string, SharedImage>& file_luts = luts.value();
         Cache cache = make_cache(g);
 
         if (a->supersample != 1 && !a->reference) return report(make_error("needs --reference", {}, 0, "--supersample"));

@@ -1,6 +1,7 @@
 // compile_variant -> emit_target -> run_export: the in-memory export pipeline, with the
 // content-hash cache in front of the two expensive steps (glslang+spirv-opt and SPIRV-Cross).
 #include "crtforge/exporter.hpp"
+#include "crtforge/bounded_memo.hpp"
 #include "crtforge/version.hpp"
 
 #include <algorithm>
@@ -37,29 +38,17 @@ SpirvBinary from_bytes(const std::string& bytes) {
 }
 
 // Modules compiled earlier in this process (the full-screen vertex shader is shared by every
-// variant): a memo in front of the on-disk cache, shared by worker threads.
-struct CompileMemo {
-    std::mutex mutex;
-    std::map<std::string, SpirvBinary> modules;
-};
-
-CompileMemo& compile_memo() {
-    static CompileMemo memo;
+// variant): a memo in front of the on-disk cache.
+BoundedMemo<SpirvBinary>& compile_memo() {
+    static BoundedMemo<SpirvBinary> memo(256u << 20, [](const SpirvBinary& m) { return m.size() * sizeof(uint32_t); });
     return memo;
 }
 
 Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
                                    const std::string& name, const Cache& cache) {
     const std::string key = Cache::key({"spirv", Cache::build_id(), compiler_versions(), shader_stage_name(stage), source});
-    {
-        std::lock_guard<std::mutex> lock(compile_memo().mutex);
-        auto it = compile_memo().modules.find(key);
-        if (it != compile_memo().modules.end()) return it->second;
-    }
-    auto remember = [&](const SpirvBinary& words) {
-        std::lock_guard<std::mutex> lock(compile_memo().mutex);
-        compile_memo().modules.emplace(key, words);
-    };
+    if (auto known = compile_memo().find(key)) return std::move(*known);
+    auto remember = [&](const SpirvBinary& words) { compile_memo().put(key, words); };
     if (auto hit = cache.get("spirv", key); hit && hit->size() % 4 == 0 && !hit->empty()) {
         // A cached module reaches SPIRV-Cross and the drivers: it must be valid SPIR-V, whatever
         // happened to the file (the checksum catches damage; this catches the rest).

@@ -2,6 +2,8 @@
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/parse_number.hpp"
 #include "crtforge/version.hpp"
+#include "crtforge/cache.hpp"
+#include "crtforge/bounded_memo.hpp"
 #include "generator/spirv_debug_names.hpp"
 #include "generator/spirv_pow_reduction.hpp"
 
@@ -159,6 +161,21 @@ bool has_global_initialiser_code(const glslang::TIntermediate& intermediate) {
     return false;
 }
 
+// Optimised modules by what glslang made of their source without debug info: the instructions,
+// types and names, none of the file names or line numbers a #line gives. Two sources that differ
+// only there and in comments (the corpus imports each preset into a stage and folder of its own,
+// and its presets share most passes) are optimised once. A module that fails is never kept, so
+// each failure is reported with its own file names.
+BoundedMemo<SpirvBinary>& optimized_memo() {
+    static BoundedMemo<SpirvBinary> memo(256u << 20, [](const SpirvBinary& m) { return m.size() * sizeof(uint32_t); });
+    return memo;
+}
+
+std::string optimized_memo_key(const SpirvBinary& plain, bool carry_names) {
+    const std::string_view words(reinterpret_cast<const char*>(plain.data()), plain.size() * sizeof(uint32_t));
+    return Cache::key({"optimized", compiler_versions(), carry_names ? "names" : "plain", words});
+}
+
 }  // namespace
 
 Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOptions& options) {
@@ -186,6 +203,22 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     glslang::GlslangToSpv(intermediate, spirv, &logger, &spv_options);
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
 
+    // The memo's key is the module without debug info (OpLine output, debug_lines, names its files:
+    // it is not memoised).
+    std::string memo_key;
+    if (options.optimize && !options.debug_lines) {
+        SpirvBinary plain;
+        if (spv_options.generateDebugInfo) {
+            glslang::SpvOptions plain_options = spv_options;
+            plain_options.generateDebugInfo = false;
+            plain_options.emitNonSemanticShaderDebugInfo = false;
+            spv::SpvBuildLogger plain_logger;
+            glslang::GlslangToSpv(intermediate, plain, &plain_logger, &plain_options);
+        }
+        memo_key = optimized_memo_key(spv_options.generateDebugInfo ? plain : spirv, carry_names);
+        if (auto known = optimized_memo().find(memo_key)) return std::move(*known);
+    }
+
     if (options.optimize) {
         if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
         else return optimized.error();
@@ -203,6 +236,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     }
     if (auto valid = validate_spirv(spirv); !valid.ok())
         return make_validation_error(valid.error().message + " (the generator produced invalid SPIR-V)", name);
+    if (!memo_key.empty()) optimized_memo().put(memo_key, spirv);
     return spirv;
 }
 

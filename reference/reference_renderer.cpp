@@ -391,7 +391,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job, 
         if (lut.generator.empty()) {
             auto file = job.file_luts.find(lut.name);
             if (file == job.file_luts.end()) return make_error("reference scene job lacks the image of file LUT '" + lut.name + "'");
-            luts[lut.name] = file->second;
+            luts[lut.name] = *file->second;
             continue;
         }
         auto image = generate_lut(lut.generator, lut.params);

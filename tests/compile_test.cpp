@@ -65,3 +65,30 @@ TEST_CASE("compile_to_spirv reports errors of sources without #line", "[compile]
     CHECK(r.error().file == "inline.frag");
     CHECK(r.error().line == 3);
 }
+
+TEST_CASE("sources that differ only in #line file names and comments give one module, a code change another", "[compile]") {
+    // The optimised-module memo is keyed by glslang's output without debug info: the file names a
+    // #line gives and comments do not count, the code does; a failure keeps its own file name.
+    auto source = [](const std::string& file, const std::string& comment, const std::string& gain) {
+        return "#version 450\n#extension GL_GOOGLE_cpp_style_line_directive : require\n#line 1 \"" + file + "\"\n// " + comment +
+               "\nlayout(location = 0) in vec2 uv;\nlayout(location = 0) out vec4 color;\n"
+               "void main() { float shade = uv.x * " + gain + "; color = vec4(shade, uv.y, 0.0, 1.0); }\n";
+    };
+    CompileOptions options;
+    auto a = compile_to_spirv(source("/tmp/one/pass0.frag", "preset one", "0.5"), options);
+    auto b = compile_to_spirv(source("/tmp/two/pass7.frag", "preset two", "0.5"), options);
+    auto c = compile_to_spirv(source("/tmp/one/pass0.frag", "preset one", "0.25"), options);
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    REQUIRE(c.ok());
+    CHECK(a.value() == b.value());
+    CHECK(a.value() != c.value());
+
+    const std::string broken = "#version 450\n#extension GL_GOOGLE_cpp_style_line_directive : require\n#line 1 \"/tmp/three/pass1.frag\"\nvoid main() { int x = ; }\n";
+    auto first = compile_to_spirv(broken, options);
+    auto again = compile_to_spirv(std::string(broken).replace(broken.find("three"), 5, "four!"), options);
+    REQUIRE_FALSE(first.ok());
+    REQUIRE_FALSE(again.ok());
+    CHECK(first.error().file == "/tmp/three/pass1.frag");
+    CHECK(again.error().file == "/tmp/four!/pass1.frag");
+}

@@ -542,7 +542,11 @@ TEST_CASE("dawn: bad textures, viewports and clear colours are input errors", "[
     expect(job, "job.textures[0].binding");
 
     job = good;
-    job.textures[0].image.rgba.pop_back();
+    {
+        Image broken = *job.textures[0].image;
+        broken.rgba.pop_back();
+        job.textures[0].image = std::move(broken);
+    }
     expect(job, "job.textures[0].image");
     job.textures[0].image = Image::make(kMaxImageDimension + 1, 1);
     expect(job, "job.textures[0].image");

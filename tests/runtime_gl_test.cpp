@@ -737,7 +737,11 @@ TEST_CASE("bad GL textures, viewports and clear colours are input errors", "[gl]
     expect(job, "job.textures[0].name");
 
     job = good;
-    job.textures[0].image.rgba.resize(3);
+    {
+        Image broken = *job.textures[0].image;
+        broken.rgba.resize(3);
+        job.textures[0].image = std::move(broken);
+    }
     expect(job, "job.textures[0].image");
     job.textures[0].image = Image::make(kMaxImageDimension + 1, 1);
     expect(job, "job.textures[0].image");

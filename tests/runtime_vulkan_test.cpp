@@ -395,6 +395,49 @@ void main() {
     }
 }
 
+TEST_CASE("the engine keeps uploads and pipelines only for what is really the same", "[runtime][vulkan]") {
+    // The engine keeps a shared image's upload and a built pass for later jobs: each job here
+    // shares as much as it can with the one before and differs in one thing, which must show.
+    const std::string tex_shader = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+layout(set = 0, binding = 3) uniform sampler2D lut;
+void main() { fragColor = vec4(texture(lut, vTexCoord).r, SCALE * texture(source, vTexCoord).r, 0.0, 1.0); }
+)";
+    auto shader = [&](const char* scale) {
+        std::string text = tex_shader;
+        text.replace(text.find("SCALE"), 5, scale);
+        return text;
+    };
+    const SharedImage lut_a = row_of({0.25f, 0.75f});
+    const SharedImage lut_b = row_of({0.5f, 1.0f});  // same size, other texels
+    // Four columns sample u = 1/8, 3/8, 5/8, 7/8 of the two-texel LUT.
+    RenderJob job = make_job(shader("1.0"), Image::make(1, 1, {0.125f, 0, 0, 1}), 4, 1, OutputFormat::Rgba16Float);
+    job.textures.push_back(texture_input("lut", 3, Image{}, SamplerFilter::Nearest));
+    job.textures[0].image = lut_a;
+    const Image first = render_ok(job);
+    CHECK(first.pixel(0, 0) == P{0.25f, 0.125f, 0.0f, 1.0f});
+    CHECK(first.pixel(3, 0) == P{0.75f, 0.125f, 0.0f, 1.0f});
+    CHECK(render_ok(job).rgba == first.rgba);  // the kept upload and pass draw the same again
+
+    job.textures[0].image = lut_b;  // another image: its own upload
+    CHECK(render_ok(job).pixel(3, 0) == P{1.0f, 0.125f, 0.0f, 1.0f});
+    job.textures[0].filter = SamplerFilter::Linear;  // the same image, another sampler
+    CHECK(render_ok(job).pixel(1, 0)[0] == Approx(0.625).margin(1.0 / 256));  // 3/4 of 0.5 + 1/4 of 1
+    job.textures[0].filter = SamplerFilter::Nearest;
+
+    RenderJob other = make_job(shader("2.0"), Image::make(1, 1, {0.125f, 0, 0, 1}), 4, 1, OutputFormat::Rgba16Float);
+    other.textures = job.textures;  // the same layout and texture, another fragment module
+    CHECK(render_ok(other).pixel(0, 0) == P{0.5f, 0.25f, 0.0f, 1.0f});
+    other.format = OutputFormat::Rgba8Unorm;  // another target format: another pass
+    CHECK(render_ok(other).pixel(0, 0)[1] == Approx(64.0 / 255).margin(0.5 / 255));
+    other.width = 1;  // another viewport (u = 1/2: texel 1): another pass
+    const Image narrow = render_ok(other);
+    CHECK(narrow.width == 1);
+    CHECK(narrow.pixel(0, 0)[0] == Approx(1.0).margin(0.5 / 255));
+}
+
 TEST_CASE("each wrap mode returns its texel outside 0..1, for the input and an extra texture", "[runtime][vulkan]") {
     // Column 0 samples u = -0.375, column 1 u = 1.375: the centres of texels -2 and 5 of a 4-texel
     // row (texel centres, not the edges at -0.25 / 1.25, where nearest may round either way).
@@ -497,7 +540,11 @@ void main() { fragColor = texture(source, vTexCoord) + texture(lut, vTexCoord); 
     expect(job, "job.textures[0].binding");
 
     job = good;
-    job.textures[0].image.rgba.pop_back();
+    {
+        Image broken = *job.textures[0].image;
+        broken.rgba.pop_back();
+        job.textures[0].image = std::move(broken);
+    }
     expect(job, "job.textures[0].image");
     job.textures[0].image = Image::make(kMaxImageDimension + 1, 1);
     expect(job, "job.textures[0].image");

@@ -3,8 +3,15 @@
 
 #include <algorithm>
 #include <deque>
+#include <filesystem>
+#include <mutex>
+#include <optional>
 
+#include "crtforge/bounded_memo.hpp"
+#include "crtforge/cache.hpp"
 #include "crtforge/exporter.hpp"
+#include "crtforge/files.hpp"
+#include "crtforge/lut_file.hpp"
 #include "crtforge/luts.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/scene.hpp"
@@ -34,20 +41,42 @@ Result<WrapMode> to_wrap(Wrap w, const std::string& where) {
     return make_error("unknown wrap mode", {}, 0, where);
 }
 
+// File LUTs decoded earlier in this process, by the file's bytes: the corpus imports each preset
+// into a folder of its own, and hundreds of presets (a bezel pack) share the same large pictures.
+// At most 64 Mpx (1 GiB as RGBA float).
+BoundedMemo<SharedImage>& decoded_luts() {
+    static BoundedMemo<SharedImage> memo(size_t{64} << 20, [](const SharedImage& image) { return image->pixel_count(); });
+    return memo;
+}
+
 }  // namespace
 
-Result<std::map<std::string, Image>> read_file_luts(const Preset& preset) {
-    std::map<std::string, Image> out;
+Result<std::map<std::string, SharedImage>> read_file_luts(const Preset& preset) {
+    std::map<std::string, SharedImage> out;
     for (const LutSpec& lut : preset.luts) {
         if (!lut.generator.empty()) continue;
-        auto image = read_image(lut_file_path(lut));
+        const std::string path = lut_file_path(lut);
+        // The key is the file's name ending (the reader goes by it) and bytes; read_image then
+        // checks the picture itself, and its error is the one reported.
+        auto bytes = read_text_file(path, kMaxLutFileBytes);
+        std::string key;
+        if (bytes.ok()) {
+            key = Cache::key({"lut", std::filesystem::path(path).extension().string(), bytes.value()});
+            if (auto known = decoded_luts().find(key)) {
+                out[lut.name] = *known;
+                continue;
+            }
+        }
+        auto image = read_image(path);
         if (!image.ok()) return image.error();
-        out[lut.name] = std::move(image.value());
+        SharedImage shared(std::move(image.value()));
+        if (!key.empty()) decoded_luts().put(key, shared);
+        out[lut.name] = std::move(shared);
     }
     return out;
 }
 
-Result<Image> scene_lut_image(const LutSpec& lut, const std::map<std::string, Image>& file_luts) {
+Result<SharedImage> scene_lut_image(const LutSpec& lut, const std::map<std::string, SharedImage>& file_luts) {
     if (lut.generator.empty()) {
         auto file = file_luts.find(lut.name);
         if (file == file_luts.end()) return make_error("no image for file LUT '" + lut.name + "'", lut.where.file, lut.where.line);
@@ -57,7 +86,7 @@ Result<Image> scene_lut_image(const LutSpec& lut, const std::map<std::string, Im
     if (!generated.ok()) return generated.error();
     Image image = Image::make(generated.value().width, generated.value().height);
     for (size_t i = 0; i < generated.value().rgba.size(); ++i) image.rgba[i] = static_cast<float>(generated.value().rgba[i] / 255.0);
-    return image;
+    return SharedImage(std::move(image));
 }
 
 Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRenderer& render_pass) {
@@ -65,7 +94,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         return make_error("scene render request without its preset, compiled passes or source");
     if (r.outputs && r.outputs->size() != r.passes->size()) return make_error("scene render request: one output per pass expected");
     const Preset& preset = *r.preset;
-    std::map<std::string, Image> luts;
+    std::map<std::string, SharedImage> luts;
     for (const LutSpec& lut : preset.luts) {
         auto image = scene_lut_image(lut, r.file_luts);
         if (!image.ok()) return image.error();
@@ -79,42 +108,39 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         for (int f = 0; f <= last; ++f) run.push_back(f);
     }
 
-    std::map<int, Image> kept;
-    std::vector<Image> previous(preset.passes.size());  // last frame's outputs; empty before the first
-    std::deque<Image> history;                          // earlier originals, newest first
+    std::map<int, SharedImage> kept;
+    std::vector<SharedImage> previous(preset.passes.size());  // last frame's outputs; empty before the first
+    std::deque<SharedImage> history;                          // earlier originals, newest first
     size_t drawn = 0;
     for (int frame : run) {
-        auto original = r.source(frame);
-        if (!original.ok()) return original.error();
-        const PixelSize source{original.value().width, original.value().height};
+        auto source_image = r.source(frame);
+        if (!source_image.ok()) return source_image.error();
+        const SharedImage original(std::move(source_image.value()));
+        const PixelSize source{original->width, original->height};
         const PixelRect screen = screen_rect(preset, {r.width, r.height}, source, r.fit);
         const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
         if (auto s = check_pass_sizes(preset, sizes, {screen.width, screen.height}); !s.ok()) return s.error();
-        std::vector<Image> current(preset.passes.size());
+        std::vector<SharedImage> current(preset.passes.size());
         auto index_of = [&](const std::string& alias) {
             for (size_t i = 0; i < preset.passes.size(); ++i)
                 if (preset.passes[i].alias == alias) return i;
             return preset.passes.size();
         };
-        // The frame's original is moved into its last reader when no later frame needs it (a
-        // large picture is not held twice more); otherwise each reader gets a copy.
-        int original_reads = 0;
-        for (const Pass& pass : preset.passes)
-            for (const PassInput& in : pass.inputs) original_reads += in.from.kind == TextureSource::Kind::Original && in.from.frames_back == 0;
-        auto resolve = [&](const TextureSource& from) -> Image {
+        // Every reader shares one image: a LUT or an earlier output is never copied per reader.
+        auto resolve = [&](const TextureSource& from) -> SharedImage {
             switch (from.kind) {
                 case TextureSource::Kind::Original:
-                    if (from.frames_back == 0) return --original_reads == 0 && !stateful ? std::move(original.value()) : original.value();
+                    if (from.frames_back == 0) return original;
                     if (static_cast<size_t>(from.frames_back) <= history.size()) return history[from.frames_back - 1];
                     return Image::make(source.width, source.height);
                 case TextureSource::Kind::Pass: return current[index_of(from.name)];
                 case TextureSource::Kind::Feedback: {
                     const size_t i = index_of(from.name);
-                    return previous[i].empty() ? Image::make(sizes[i].width, sizes[i].height) : previous[i];
+                    return previous[i]->empty() ? SharedImage(Image::make(sizes[i].width, sizes[i].height)) : previous[i];
                 }
                 case TextureSource::Kind::Lut: return luts.at(from.name);
             }
-            return Image{};
+            return {};
         };
         for (size_t i = 0; i < preset.passes.size(); ++i) {
             const Pass& pass = preset.passes[i];
@@ -124,7 +150,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             pr.target = r.target;
             pr.output = r.outputs ? &(*r.outputs)[i] : nullptr;
             const PassInput& main = pass.inputs.front();
-            pr.input = resolve(main.from);
+            pr.input = *resolve(main.from);  // the main input travels as an Image of its own
             pr.filter = to_filter(main.filter);
             auto wrap = to_wrap(main.wrap, "pass." + pass.alias + ".wrap");
             if (!wrap.ok()) return wrap.error();
@@ -155,23 +181,18 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             }
             auto image = render_pass(std::move(pr));
             if (!image.ok()) return image.error();
-            current[i] = std::move(image.value());
+            current[i] = SharedImage(std::move(image.value()));
         }
-        // The display frame is moved, not copied, unless the next frame still reads it.
-        if (std::find(r.frames.begin(), r.frames.end(), frame) != r.frames.end())
-            kept[frame] = stateful ? current.back() : std::move(current.back());
+        if (std::find(r.frames.begin(), r.frames.end(), frame) != r.frames.end()) kept[frame] = current.back();
         if (stateful) {
             previous = std::move(current);
-            history.push_front(original.value());
+            history.push_front(original);
             while (static_cast<int>(history.size()) > preset.history_depth()) history.pop_back();
         }
         if (r.on_frame) r.on_frame(++drawn, run.size());
     }
     std::vector<Image> out;
-    for (size_t k = 0; k < r.frames.size(); ++k) {
-        const bool again = std::find(r.frames.begin() + static_cast<std::ptrdiff_t>(k) + 1, r.frames.end(), r.frames[k]) != r.frames.end();
-        out.push_back(again ? kept.at(r.frames[k]) : std::move(kept.at(r.frames[k])));
-    }
+    for (int frame : r.frames) out.push_back(*kept.at(frame));
     return out;
 }
 

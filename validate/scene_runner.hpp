@@ -16,6 +16,6 @@ using PassRenderer = std::function<Result<Image>(TargetRenderRequest pass)>;
 Result<std::vector<Image>> run_scene(const SceneRenderRequest& request, const PassRenderer& render_pass);
 
 // A generated or file LUT's image (8-bit texels as floats).
-Result<Image> scene_lut_image(const LutSpec& lut, const std::map<std::string, Image>& file_luts);
+Result<SharedImage> scene_lut_image(const LutSpec& lut, const std::map<std::string, SharedImage>& file_luts);
 
 }  // namespace crtforge

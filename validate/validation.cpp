@@ -65,7 +65,7 @@ struct PresetWork {
     std::vector<GoldenData*> goldens;
     std::once_flag once;
     std::map<std::string, Result<std::vector<CompiledVariant>>> compiled;  // by options_key
-    std::map<std::string, Image> file_luts;
+    std::map<std::string, SharedImage> file_luts;
     std::optional<Diagnostic> lut_error;
 };
 

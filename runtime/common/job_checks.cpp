@@ -64,7 +64,7 @@ Status check_texture_images(const std::vector<TextureInput>& textures, const Job
     }
     for (std::size_t i = 0; i < textures.size(); ++i) {
         const std::string what = fmt::format("texture {} ('{}') image", i, textures[i].name);
-        if (auto s = check_texture_image(textures[i].image, limits, what, texture_field(i, "image")); !s.ok()) return s;
+        if (auto s = check_texture_image(*textures[i].image, limits, what, texture_field(i, "image")); !s.ok()) return s;
     }
     return Ok{};
 }

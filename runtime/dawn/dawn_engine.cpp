@@ -355,13 +355,13 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
                           {"sampler_binding", t.sampler_binding},
                           {"filter", filter_name(t.filter)},
                           {"wrap", wrap_name(t.wrap)}};
-            if (!t.image.empty()) {
+            if (!t.image->empty()) {
                 const fs::path file = dir / fmt::format("texture{}.f32", i);
-                if (auto s = write_file(file, t.image.rgba.data(), t.image.rgba.size() * sizeof(float)); !s.ok())
+                if (auto s = write_file(file, t.image->rgba.data(), t.image->rgba.size() * sizeof(float)); !s.ok())
                     return s.error();
                 entry["image"] = file.string();
-                entry["width"] = t.image.width;
-                entry["height"] = t.image.height;
+                entry["width"] = t.image->width;
+                entry["height"] = t.image->height;
             }
             textures.push_back(std::move(entry));
         }

@@ -246,7 +246,7 @@ private:
         for (size_t i = 0; i < job.textures.size(); ++i) {
             const TextureInput& t = job.textures[i];
             const auto unit = static_cast<GLuint>(i + 1);
-            textures.push_back(create_sampled_texture(*context_, t.image, t.filter, t.wrap, unit));
+            textures.push_back(create_sampled_texture(*context_, *t.image, t.filter, t.wrap, unit));
         }
 
         const UniqueFramebuffer framebuffer = make_framebuffer(gl);

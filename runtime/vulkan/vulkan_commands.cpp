@@ -39,7 +39,11 @@ VkBufferImageCopy whole_image(const DeviceImage& image) {
     return region;
 }
 
-void record_upload(VkCommandBuffer commands, const HostBuffer& staging, const DeviceImage& texture) {
+// Texels already on the device (an earlier job uploaded them) record nothing.
+void record_upload(VkCommandBuffer commands, const UploadedImage& texels) {
+    if (texels.uploaded) return;
+    const HostBuffer& staging = texels.staging;
+    const DeviceImage& texture = texels.image;
     image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     const VkBufferImageCopy region = whole_image(texture);
@@ -91,13 +95,13 @@ void record_readback(VkCommandBuffer commands, const DeviceImage& target, const 
 }  // namespace
 
 void record_pass(VkCommandBuffer commands, const PassCommands& pass) {
-    for (const SampledTexture& texture : pass.textures) record_upload(commands, texture.staging, texture.image);
+    for (const SampledTexture& texture : pass.textures) record_upload(commands, *texture.texels);
     record_draw(commands, pass);
     record_readback(commands, pass.target, pass.readback);
 }
 
 void record_uploads(VkCommandBuffer commands, const PassCommands& pass) {
-    for (const SampledTexture& texture : pass.textures) record_upload(commands, texture.staging, texture.image);
+    for (const SampledTexture& texture : pass.textures) record_upload(commands, *texture.texels);
 }
 
 void record_timed_draws(VkCommandBuffer commands, const PassCommands& pass, VkQueryPool queries, int draws) {

@@ -17,7 +17,7 @@
 namespace crtforge::vulkan {
 
 struct PassCommands {
-    const std::vector<SampledTexture>& textures;  // each image receives its staging, then is sampled
+    const std::vector<SampledTexture>& textures;  // each not yet on the device receives its staging, then is sampled
     const GraphicsPass& pass;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;

@@ -1,6 +1,8 @@
 // The Vulkan RenderEngine: check the job, create its objects, run the one command buffer, read
-// the target back. The instance and device (VulkanContext) live as long as the engine; everything
-// else lives for one render() or time_draws() call.
+// the target back. The instance and device (VulkanContext) live as long as the engine, and so do
+// the textures it has uploaded from shared images (TextureCache) and the passes it has built
+// (GraphicsPassCache); everything else lives for one render() or time_draws() call.
+
 #include <algorithm>
 #include <cstring>
 #include <exception>
@@ -17,6 +19,7 @@
 #include "runtime/vulkan/vulkan_context.hpp"
 #include "runtime/vulkan/vulkan_pipeline.hpp"
 #include "runtime/vulkan/vulkan_resources.hpp"
+#include "runtime/vulkan/vulkan_texture_cache.hpp"
 
 namespace crtforge {
 namespace vulkan {
@@ -30,17 +33,21 @@ struct JobResources {
     HostBuffer readback;
 };
 
-Result<JobResources> create_job_resources(const VulkanContext& context, const RenderJob& job, const JobPlan& plan) {
+// The input is the job's own; the other textures come through `cache`.
+Result<JobResources> create_job_resources(const VulkanContext& context, const RenderJob& job, const JobPlan& plan,
+                                          TextureCache& cache) {
     JobResources out;
 
     out.textures.reserve(job.textures.size() + 1);
     for (size_t i = 0; i <= job.textures.size(); ++i) {
         const TexturePlan& format = plan.textures[i];
-        auto texture = i == 0 ? create_sampled_texture(context, job.input, format.format, format.texels, job.filter,
-                                                       job.wrap, job.texture_binding)
-                              : create_sampled_texture(context, job.textures[i - 1].image, format.format, format.texels,
-                                                       job.textures[i - 1].filter, job.textures[i - 1].wrap,
-                                                       job.textures[i - 1].binding);
+        auto texels = i == 0 ? create_uploaded_image(context, job.input, format.format, format.texels)
+                             : cache.get(context, job.textures[i - 1].image, format.format, format.texels);
+        if (!texels) return texels.error();
+        const SamplerFilter filter = i == 0 ? job.filter : job.textures[i - 1].filter;
+        const WrapMode wrap = i == 0 ? job.wrap : job.textures[i - 1].wrap;
+        const uint32_t binding = i == 0 ? job.texture_binding : job.textures[i - 1].binding;
+        auto texture = create_sampled_texture(context, std::move(texels).value(), filter, wrap, binding);
         if (!texture) return texture.error();
         out.textures.push_back(std::move(texture).value());
     }
@@ -108,7 +115,7 @@ private:
     // uploads its textures once. Held by pointer: `commands` refers into the rest.
     struct PreparedJob {
         JobResources resources;
-        GraphicsPass pass;
+        std::shared_ptr<const GraphicsPass> pass;
         UniqueFramebuffer framebuffer;
         DescriptorSet descriptors;
         std::optional<PassCommands> commands;
@@ -116,19 +123,19 @@ private:
 
     Result<std::unique_ptr<PreparedJob>> prepare(const RenderJob& job, const JobPlan& plan) {
         const VulkanContext& context = *context_;
-        auto resources = create_job_resources(context, job, plan);
+        auto resources = create_job_resources(context, job, plan, textures_);
         if (!resources) return resources.error();
-        auto pass = create_graphics_pass(context, job, plan.output_format);
+        auto pass = passes_.get(context, job, plan.output_format);
         if (!pass) return pass.error();
         auto out = std::make_unique<PreparedJob>(PreparedJob{std::move(resources).value(), std::move(pass).value(), {}, {}, {}});
-        auto framebuffer = create_framebuffer(context, out->pass.render_pass.get(), out->resources.target);
+        auto framebuffer = create_framebuffer(context, out->pass->render_pass.get(), out->resources.target);
         if (!framebuffer) return framebuffer.error();
         out->framebuffer = std::move(framebuffer).value();
         const JobResources& r = out->resources;
-        auto descriptors = create_descriptor_set(context, out->pass, job, r.uniforms ? &*r.uniforms : nullptr, r.textures);
+        auto descriptors = create_descriptor_set(context, *out->pass, job, r.uniforms ? &*r.uniforms : nullptr, r.textures);
         if (!descriptors) return descriptors.error();
         out->descriptors = std::move(descriptors).value();
-        out->commands.emplace(PassCommands{r.textures, out->pass, out->framebuffer.get(), out->descriptors.set,
+        out->commands.emplace(PassCommands{r.textures, *out->pass, out->framebuffer.get(), out->descriptors.set,
                                            job.descriptor_set, r.target, r.readback, job.clear_color});
         return out;
     }
@@ -159,6 +166,7 @@ private:
         }
         if (auto s = submit_and_wait(context, [&](VkCommandBuffer cb) { for (auto& p : prepared) record_uploads(cb, *p->commands); }); !s)
             return s.error();
+        for (auto& p : prepared) mark_uploaded(p->resources);
 
         VkQueryPoolCreateInfo info{};
         info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
@@ -196,12 +204,19 @@ private:
         if (!prepared) return prepared.error();
         const PassCommands& commands = *prepared.value()->commands;
         if (auto s = submit_and_wait(*context_, [&](VkCommandBuffer cb) { record_pass(cb, commands); }); !s) return s.error();
+        mark_uploaded(prepared.value()->resources);
         const HostBuffer& readback = prepared.value()->resources.readback;
         if (auto s = invalidate(*context_, readback); !s) return s.error();
         return read_texels(readback.mapped, job.width, job.height, job.format);
     }
 
+    static void mark_uploaded(JobResources& resources) {
+        for (SampledTexture& texture : resources.textures) texture.texels->mark_uploaded();
+    }
+
     std::unique_ptr<VulkanContext> context_;
+    TextureCache textures_{VkDeviceSize{1} << 30};  // 1 GiB of uploaded textures
+    GraphicsPassCache passes_{128};
 };
 
 }  // namespace

@@ -210,6 +210,47 @@ Result<GraphicsPass> create_graphics_pass(const VulkanContext& context, const Re
     return pass;
 }
 
+namespace {
+
+// Everything of the job and format that create_graphics_pass reads, as bytes.
+std::string graphics_pass_key(const RenderJob& job, VkFormat color_format) {
+    std::string key;
+    auto put = [&](const void* data, size_t size) { key.append(static_cast<const char*>(data), size); };
+    auto put_int = [&](int64_t value) { put(&value, sizeof value); };
+    put_int(color_format);
+    put_int(job.uniform_data.empty() ? -1 : static_cast<int64_t>(job.uniform_binding));
+    put_int(job.texture_binding);
+    put_int(job.descriptor_set);
+    put_int(static_cast<int64_t>(job.textures.size()));
+    for (const TextureInput& texture : job.textures) put_int(texture.binding);
+    const Viewport area = job.viewport.full() ? Viewport{0, 0, job.width, job.height} : job.viewport;
+    for (int v : {area.x, area.y, area.width, area.height}) put_int(v);
+    put_int(job.clip_y_up);
+    put_int(static_cast<int64_t>(job.vertex_spirv.size()));
+    put(job.vertex_spirv.data(), job.vertex_spirv.size() * sizeof(uint32_t));
+    put(job.fragment_spirv.data(), job.fragment_spirv.size() * sizeof(uint32_t));
+    return key;
+}
+
+}  // namespace
+
+Result<std::shared_ptr<const GraphicsPass>> GraphicsPassCache::get(const VulkanContext& context, const RenderJob& job,
+                                                                   VkFormat color_format) {
+    std::string key = graphics_pass_key(job, color_format);
+    const size_t hash = std::hash<std::string>{}(key);
+    for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+        if (it->hash != hash || it->key != key) continue;
+        entries_.splice(entries_.begin(), entries_, it);
+        return entries_.front().pass;
+    }
+    auto pass = create_graphics_pass(context, job, color_format);
+    if (!pass) return pass.error();
+    auto shared = std::make_shared<const GraphicsPass>(std::move(pass).value());
+    entries_.push_front({hash, std::move(key), shared});
+    if (entries_.size() > capacity_) entries_.pop_back();
+    return shared;
+}
+
 Result<UniqueFramebuffer> create_framebuffer(const VulkanContext& context, VkRenderPass render_pass,
                                              const DeviceImage& target) {
     VkImageView view = target.view.get();
@@ -263,7 +304,7 @@ Result<DescriptorSet> create_descriptor_set(const VulkanContext& context, const 
     images.reserve(textures.size());
     std::vector<VkWriteDescriptorSet> writes;
     for (const SampledTexture& texture : textures) {
-        images.push_back({texture.sampler.get(), texture.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+        images.push_back({texture.sampler.get(), texture.texels->image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
         VkWriteDescriptorSet write{};
         write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         write.dstSet = out.set;

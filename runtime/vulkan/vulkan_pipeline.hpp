@@ -1,6 +1,10 @@
 // The graphics pipeline for one full-screen pass and the descriptor set that feeds it.
 #pragma once
 
+#include <list>
+#include <memory>
+#include <string>
+
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -26,6 +30,25 @@ struct GraphicsPass {
 // begins) and left in TRANSFER_SRC_OPTIMAL for the readback copy; viewport and scissor fixed to
 // the job's viewport (its whole size by default).
 Result<GraphicsPass> create_graphics_pass(const VulkanContext& context, const RenderJob& job, VkFormat color_format);
+
+// The graphics passes an engine has built, by everything create_graphics_pass reads from the job
+// (the two modules, the descriptor layout, the viewport, clip_y_up) and the colour format: a pass
+// drawn every frame, and a pass that several presets share, is compiled by the driver once.
+// At most `capacity` passes, least recently used first out; a job holds what it uses.
+class GraphicsPassCache {
+public:
+    explicit GraphicsPassCache(size_t capacity) : capacity_(capacity) {}
+    Result<std::shared_ptr<const GraphicsPass>> get(const VulkanContext& context, const RenderJob& job, VkFormat color_format);
+
+private:
+    struct Entry {
+        size_t hash;
+        std::string key;
+        std::shared_ptr<const GraphicsPass> pass;
+    };
+    const size_t capacity_;
+    std::list<Entry> entries_;  // most recently used first
+};
 
 Result<UniqueFramebuffer> create_framebuffer(const VulkanContext& context, VkRenderPass render_pass,
                                              const DeviceImage& target);

@@ -171,27 +171,32 @@ Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter
     return UniqueSampler(context.device(), sampler);
 }
 
-Result<SampledTexture> create_sampled_texture(const VulkanContext& context, const Image& image, VkFormat format,
-                                              TextureTexels texels, SamplerFilter filter, WrapMode wrap,
-                                              uint32_t binding) {
-    SampledTexture out;
-    out.binding = binding;
+Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext& context, const Image& image,
+                                                             VkFormat format, TextureTexels texels) {
+    auto out = std::make_shared<UploadedImage>();
     // A shader that samples nothing still gets a valid descriptor: a 1x1 transparent-black texture.
     const Image blank = Image::make(1, 1);
     const Image& source = image.empty() ? blank : image;
     auto staging =
         create_host_buffer(context, source.pixel_count() * texel_bytes(texels), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     if (!staging) return staging.error();
-    out.staging = std::move(staging).value();
-    write_texels(source, texels, out.staging.mapped);
-    if (auto s = flush(context, out.staging); !s) return s.error();
+    out->staging = std::move(staging).value();
+    write_texels(source, texels, out->staging.mapped);
+    if (auto s = flush(context, out->staging); !s) return s.error();
 
     auto device_image = create_device_image(context, format, static_cast<uint32_t>(source.width),
                                             static_cast<uint32_t>(source.height),
                                             VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     if (!device_image) return device_image.error();
-    out.image = std::move(device_image).value();
+    out->image = std::move(device_image).value();
+    return out;
+}
 
+Result<SampledTexture> create_sampled_texture(const VulkanContext& context, std::shared_ptr<UploadedImage> texels,
+                                              SamplerFilter filter, WrapMode wrap, uint32_t binding) {
+    SampledTexture out;
+    out.binding = binding;
+    out.texels = std::move(texels);
     auto sampler = create_sampler(context, filter, wrap);
     if (!sampler) return sampler.error();
     out.sampler = std::move(sampler).value();

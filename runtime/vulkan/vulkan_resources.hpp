@@ -2,6 +2,8 @@
 // objects disappear when its render() returns, whichever way it returns.
 #pragma once
 
+#include <memory>
+
 #include <vulkan/vulkan.h>
 
 #include "crtforge/diagnostic.hpp"
@@ -43,20 +45,34 @@ Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat f
 // `wrap` on every axis, unnormalised coordinates off, no mipmaps, no anisotropy.
 Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap);
 
-// One texture a pass samples: its texels on their way up, the image they go to, its sampler.
-// Members are declared so the sampler and image go before the staging buffer.
-struct SampledTexture {
-    HostBuffer staging;  // tightly packed texels, copied into `image` by the command buffer
+// A texture's texels on the device. `staging` holds them on their way up until the first command
+// buffer that uploads them has run (mark_uploaded() then releases it); after that the image is
+// in SHADER_READ_ONLY_OPTIMAL and any later job may sample it as it is.
+struct UploadedImage {
+    HostBuffer staging;
     DeviceImage image;
+    bool uploaded = false;
+
+    void mark_uploaded() {
+        uploaded = true;
+        staging = HostBuffer{};
+    }
+};
+
+// `image` (empty = a 1x1 transparent-black texture) written as `texels` into a staging buffer,
+// and a `format` image of its size to receive it.
+Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext& context, const Image& image,
+                                                             VkFormat format, TextureTexels texels);
+
+// One texture a pass samples: its texels (shared with the engine's upload cache, so a LUT that
+// every pass and frame reads goes up once) and its sampler.
+struct SampledTexture {
+    std::shared_ptr<UploadedImage> texels;
     UniqueSampler sampler;
     uint32_t binding = 0;  // of its combined image sampler in the job's set
 };
 
-// The one upload path of the input and of every extra texture: `image` (empty = a 1x1
-// transparent-black texture) written as `texels` into a staging buffer, a `format` image of its
-// size to receive it, and a sampler with `filter` and `wrap`.
-Result<SampledTexture> create_sampled_texture(const VulkanContext& context, const Image& image, VkFormat format,
-                                              TextureTexels texels, SamplerFilter filter, WrapMode wrap,
-                                              uint32_t binding);
+Result<SampledTexture> create_sampled_texture(const VulkanContext& context, std::shared_ptr<UploadedImage> texels,
+                                              SamplerFilter filter, WrapMode wrap, uint32_t binding);
 
 }  // namespace crtforge::vulkan

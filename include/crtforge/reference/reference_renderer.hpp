@@ -69,7 +69,7 @@ struct ReferenceSceneJob {
     int width = 0, height = 0;                            // the display
     std::optional<DisplayFit> fit;                        // default: the preset's
     std::vector<int> frames;                              // the frames whose display image is returned
-    std::map<std::string, Image> file_luts;               // images of the preset's file LUTs, by name
+    std::map<std::string, SharedImage> file_luts;         // images of the preset's file LUTs, by name
     double start_time = 0.0;                              // seconds at frame 0 (frame n: + n / fps)
     // Perturbations that find the pixels where the math is discontinuous exactly at the sample
     // (a mask cell edge on a pixel centre, a quantiser threshold on an input value): every pass's

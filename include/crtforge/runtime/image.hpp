@@ -4,7 +4,9 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace crtforge {
@@ -70,6 +72,28 @@ private:
     std::size_t offset(int x, int y) const {
         return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4;
     }
+};
+
+// An image nobody changes any more, shared by reference: a scene's LUTs and pass outputs reach
+// every pass that reads them without a copy, and an engine recognises a texture it has already
+// uploaded by identity() (the same for as long as any copy of this handle lives). Made from an
+// Image (moved in); reads as a const Image (a default one reads as empty).
+class SharedImage {
+public:
+    SharedImage() = default;
+    SharedImage(Image image) : image_(std::make_shared<const Image>(std::move(image))) {}  // NOLINT: implicit by design
+
+    const Image& operator*() const { return image_ ? *image_ : none(); }
+    const Image* operator->() const { return &**this; }
+    // What an engine's upload cache holds to keep identity() from being reused by a new image.
+    const std::shared_ptr<const Image>& identity() const { return image_; }
+
+private:
+    static const Image& none() {
+        static const Image none;
+        return none;
+    }
+    std::shared_ptr<const Image> image_;
 };
 
 }  // namespace crtforge

@@ -48,7 +48,7 @@ struct TextureInput {
     uint32_t binding = 0;          // the Vulkan descriptor binding of the combined image sampler (in
                                    // the job's descriptor_set), and the WGSL texture_2d<f32> binding
     uint32_t sampler_binding = 0;  // the WGSL sampler binding (Dawn only; ignored elsewhere)
-    Image image;                   // empty = a 1x1 transparent-black texture
+    SharedImage image;             // empty = a 1x1 transparent-black texture
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
 };

@@ -35,7 +35,7 @@ Result<DawnEngine*> shared_dawn_engine();
 // A texture a pass reads besides its main input, as the pass samples it.
 struct PassTexture {
     std::string name;  // the sampler's name in the pass's shader
-    Image image;
+    SharedImage image;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
 };
@@ -75,7 +75,7 @@ struct SceneRenderRequest {
     std::vector<int> frames;                               // the frames whose display image is returned
     OutputFormat format = OutputFormat::Rgba16Float;       // the display's
     std::map<std::string, Value> overrides;
-    std::map<std::string, Image> file_luts;                // images of the preset's file LUTs, by name
+    std::map<std::string, SharedImage> file_luts;          // images of the preset's file LUTs, by name
     double start_time = 0.0;                               // seconds at frame 0 (frame n: + n / fps)
     // frameCount at frame 0 (frame n: + n, before a pass's frame_count_mod): RetroArch's Vulkan
     // driver runs its first frame with FrameCount 1.
@@ -91,7 +91,7 @@ struct SceneRenderRequest {
 };
 
 // The images of a preset's file LUTs (not the generated ones), by name: SceneRenderRequest::file_luts.
-Result<std::map<std::string, Image>> read_file_luts(const Preset& preset);
+Result<std::map<std::string, SharedImage>> read_file_luts(const Preset& preset);
 
 class ConsumerEngines;
 

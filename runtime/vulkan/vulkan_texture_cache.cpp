@@ -1,0 +1,27 @@
+#include "runtime/vulkan/vulkan_texture_cache.hpp"
+
+namespace crtforge::vulkan {
+
+Result<std::shared_ptr<UploadedImage>> TextureCache::get(const VulkanContext& context, const SharedImage& image,
+                                                         VkFormat format, TextureTexels texels) {
+    if (!image.identity()) return create_uploaded_image(context, *image, format, texels);
+    for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+        if (it->image != image.identity() || it->format != format || it->texels != texels) continue;
+        entries_.splice(entries_.begin(), entries_, it);
+        return entries_.front().uploaded;
+    }
+    auto uploaded = create_uploaded_image(context, *image, format, texels);
+    if (!uploaded) return uploaded.error();
+    // A picture near the image budget is not kept: it would hold its memory, twice, past its job.
+    const VkDeviceSize bytes = VkDeviceSize{image->pixel_count()} * texel_bytes(texels);
+    if (bytes > budget_ / 4) return uploaded;
+    entries_.push_front({image.identity(), format, texels, uploaded.value(), bytes});
+    bytes_ += bytes;
+    while (bytes_ > budget_) {
+        bytes_ -= entries_.back().bytes;
+        entries_.pop_back();
+    }
+    return uploaded;
+}
+
+}  // namespace crtforge::vulkan
