@@ -95,7 +95,7 @@ Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, 
 }
 
 struct RenderArgs {
-    std::string preset, tier, target = "spirv", input, output, size, device, frames, fit;
+    std::string preset, tier, target = "spirv", input, output, size, device, frames, fit, display = "rgba16f";
     int frame = 0, supersample = 1, frame_count_base = 0;
     bool reference = false;
     VariantFlags flags;
@@ -139,6 +139,11 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--frames", a->frames, "Frames A:B (inclusive): one output file each")->excludes(frame);
     cmd->add_option("--frame-count-base", a->frame_count_base, "frameCount at frame 0 (RetroArch's Vulkan driver starts at 1); not with --reference")
         ->check(CLI::Range(0, 1000000));
+    cmd->add_option("--display", a->display,
+                    "The display's format: rgba16f (values kept as drawn; a NaN is an error when written) or rgba8 (an 8-bit "
+                    "display such as RetroArch's: values clamp to 0..1, a NaN shows as 0); not with --reference")
+        ->check(CLI::IsMember({"rgba16f", "rgba8"}))
+        ->capture_default_str();
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
     cmd->add_flag("--reference", a->reference, "Render with the CPU double-precision reference instead");
     cmd->add_option("--supersample", a->supersample,
@@ -200,6 +205,8 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         if (a->supersample != 1 && !a->reference) return report(make_error("needs --reference", {}, 0, "--supersample"));
         if (a->frame_count_base != 0 && a->reference)
             return report(make_error("the reference counts frames from 0", {}, 0, "--frame-count-base"));
+        if (a->display != "rgba16f" && a->reference)
+            return report(make_error("the reference draws in double precision, not onto a display format", {}, 0, "--display"));
         Result<std::vector<Image>> images = make_error("not rendered");
         if (a->reference) {
             ReferenceSceneJob job;
@@ -231,6 +238,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             r.frames = frames;
             r.file_luts = file_luts;
             r.frame_count_base = a->frame_count_base;
+            r.format = a->display == "rgba8" ? OutputFormat::Rgba8Unorm : OutputFormat::Rgba16Float;
             // A long run (--frame 500 of a preset that keeps state draws every frame before it):
             // a bar on a terminal, a line per 10 % in a log.
             const bool tty = ::isatty(STDOUT_FILENO);

@@ -1,5 +1,7 @@
 // The crtforge executable: exit codes (0 ok, 1 validation failure, 2 bad usage or input), one-line
 // errors naming file, line and field, and no partial output on failure.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -127,6 +129,26 @@ TEST_CASE("render puts a preset on a user's image through a target's consumer", 
     auto hdr = test::run_crtforge("render --preset webgpu-post --input hdr --reference --output '" + (tmp / "hdr.exr") + "'");
     CHECK(hdr.exit_code == 0);
     CHECK(fs::exists(tmp / "hdr.exr"));
+
+    // The display's format: float keeps what the last pass drew; an 8-bit display (RetroArch's)
+    // clamps it to 0..1 in 1/255 steps.
+    auto max_value = [](const Image& image) { return *std::max_element(image.rgba.begin(), image.rgba.end()); };
+    for (const char* display : {"rgba16f", "rgba8"}) {
+        INFO(display);
+        const std::string out = tmp / (std::string("hdr-") + display + ".exr");
+        auto r = test::run_crtforge(std::string("render --preset passthrough --input hdr --size 64x48 --display ") + display +
+                                    " --output '" + out + "'");
+        REQUIRE(r.exit_code == 0);
+        auto image = read_image(out);
+        REQUIRE(image.ok());
+        if (std::string(display) == "rgba8") {
+            CHECK(max_value(image.value()) <= 1.0f);
+            const float v = image.value().rgba[0] * 255.0f;
+            CHECK(v == Approx(std::round(v)).margin(1e-3));
+        } else {
+            CHECK(max_value(image.value()) > 1.0f);
+        }
+    }
 }
 
 TEST_CASE("render rejects bad sizes, inputs and outputs with exit 2 and no file", "[cli][render][errors]") {
@@ -139,6 +161,9 @@ TEST_CASE("render rejects bad sizes, inputs and outputs with exit 2 and no file"
     check_usage_error(test::run_crtforge("render --preset classic --input '" + (tmp / "broken.png") + "' --output '" + out + "'"), "broken.png");
     check_usage_error(test::run_crtforge("render --preset classic --input color_bars --output '" + (tmp / "out.bmp") + "'"), "--output");
     check_usage_error(test::run_crtforge("render --preset classic --input color_bars --frame -3 --output '" + out + "'"), "--frame");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --display rgba10 --output '" + out + "'"), "--display");
+    check_usage_error(test::run_crtforge("render --preset classic --input color_bars --reference --display rgba8 --output '" + out + "'"),
+                      "--display");
     CHECK_FALSE(fs::exists(out));
 }
 

@@ -4,10 +4,14 @@
 # input, judged by PSNR. Needs scripts/setup-retroarch.sh's root and a built crtforge.
 #
 #   agreement.sh [--corpus DIR] [--viewport WxH] [--frames "1 3 9"] [--target spirv] [--out DIR]
-#                [--min-psnr 40] PRESET.slangp...      (paths relative to --corpus)
+#                [--min-psnr 40] [--set FILE] PRESET.slangp...      (paths relative to --corpus)
+#
+# --set FILE adds the presets FILE lists, one per line (# starts a comment): agreement-set.txt
+# beside this script is the curated set, `agreement.sh --set tools/retroarch-runner/agreement-set.txt`.
 #
 # Prints one line per preset and frame: "psnr  preset  frame", then a summary; exits 1 when any
-# PSNR is below --min-psnr. Frames: RetroArch's `--max-frames N` shows the frame its Vulkan driver
+# PSNR is below --min-psnr. crtforge draws onto an 8-bit display as RetroArch's swapchain is
+# (render --display rgba8: values clamp, a NaN shows as 0). Frames: RetroArch's `--max-frames N` shows the frame its Vulkan driver
 # drew with FrameCount N + 1 after N + 1 runs of the chain (README.md, measured); crtforge draws
 # frames 0..N with frameCount starting at 1 (render --frame-count-base 1): the same sequence.
 set -euo pipefail
@@ -30,6 +34,14 @@ while [ $# -gt 0 ]; do
         --target) target=$2; shift 2 ;;
         --out) out=$2; shift 2 ;;
         --min-psnr) min_psnr=$2; shift 2 ;;
+        --set)
+            [ -f "$2" ] || { echo "agreement.sh: --set $2: no such file" >&2; exit 2; }
+            while read -r line; do
+                line=${line%%#*}
+                line=$(echo "$line" | xargs)
+                [ -n "$line" ] && presets+=("$line")
+            done < "$2"
+            shift 2 ;;
         -*) echo "agreement.sh: unknown option $1" >&2; exit 2 ;;
         *) presets+=("$1"); shift ;;
     esac
@@ -63,7 +75,7 @@ for preset in "${presets[@]}"; do
     fi
     # crtforge draws frames 0..last once; each listed frame is one of its pictures.
     if ! "$crtforge" --templates "$overlay" render --preset imported --target "$target" --input "$input" \
-        --output "$work/$name.cf.%d.png" --size "$viewport" --fit stretch --frames "0:$last" --frame-count-base 1 \
+        --output "$work/$name.cf.%d.png" --size "$viewport" --fit stretch --frames "0:$last" --frame-count-base 1 --display rgba8 \
         >/dev/null 2>"$work/$name.cf.log"; then
         echo "crtforge-failed  $preset  $(tail -1 "$work/$name.cf.log")"
         failed=$((failed + count)); total=$((total + count))
