@@ -108,6 +108,7 @@ public:
         if (!parsed.ok()) return parsed.error();
         const toml::table& root = parsed.value();
         Plan plan;
+        const bool isolation_loaded = validation_presets_loaded(library);
         for (const auto& [key, node] : root)
             if (key != "golden") return error(&node, std::string(key.str()), "unknown key");
         const toml::node* rules = root.get("golden");
@@ -135,7 +136,7 @@ public:
                 auto list = names(t, "presets", "golden.presets");
                 if (!list.ok()) return list.error();
                 for (const auto& name : list.value())
-                    if (!library.find_preset(name) && !is_stage_preset(name, validation_presets_loaded(library)))
+                    if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
                         return error(t.get("presets"), "golden.presets", "unknown preset '" + name + "'");
                 rule.presets = list.value();
             }
@@ -145,7 +146,7 @@ public:
                 auto list = names(t, "except", "golden.except");
                 if (!list.ok()) return list.error();
                 for (const auto& name : list.value())
-                    if (!library.find_preset(name) && !is_stage_preset(name, validation_presets_loaded(library)))
+                    if (!library.find_preset(name) && !is_stage_preset(name, isolation_loaded))
                         return error(t.get("except"), "golden.except", "unknown preset '" + name + "'");
                 rule.except = list.value();
             }
