@@ -1,7 +1,9 @@
 // crtforge bench [--preset NAME ...] [--size WxH,...] [--input NAME] [--frame N] [--draws N] [--supersample N]
-//                [--repeats N] [--device NAME|INDEX]
+//                [--repeats N] [--device NAME|INDEX] [--uniforms LIST] [--versus-retroarch] [--keep-going]
 // Each pass of each preset's scene timed on Vulkan by GPU timestamps, as a ratio to a blit of the
-// same sizes measured in the same run (crtforge/validate/bench.hpp).
+// same sizes measured in the same run (crtforge/validate/bench.hpp). --versus-retroarch times each
+// preset twice, as RetroArch compiles a .slang pass and as crtforge exports it, and reports the
+// speed-up per preset and on average.
 #include <algorithm>
 
 #include <fmt/core.h>
@@ -32,6 +34,44 @@ int default_draws(int width, int height) {
 // fp64 reference of every preset would take minutes.
 int default_supersample(int width, int height) { return double(width) * height <= 1920.0 * 1080 ? 4 : 2; }
 
+using Variants = std::vector<std::pair<std::string, VariantOptions>>;  // by their --uniforms label
+
+// One preset at one size: each tier (or the preset as written) in each variant, printed as timed.
+// RetroArch's compile, when asked for, comes first: the others' frames are compared with its.
+Result<std::vector<SceneTiming>> time_preset(BenchSession& session, const Preset& preset, bool tiered, bool stage_costs,
+                                             const Variants& variants, BenchOptions options) {
+    std::vector<PresetTier> tiers;
+    if (tiered) tiers = preset_tiers(preset);
+    else tiers.push_back({QualityTier::Point, preset, {}, "point", ""});
+    std::vector<SceneTiming> out;
+    for (size_t t = 0; t < tiers.size(); ++t) {
+        std::optional<Image> retroarch_frame;  // this scene compiled as RetroArch does
+        double retroarch_ns = 0;
+        for (const auto& [label, variant] : variants) {
+            options.variant = variant;
+            options.uniforms_label = label;
+            options.stage_costs = stage_costs && tiers[t].name == "point";
+            auto timing = session.tier(tiers, t, options);
+            if (!timing.ok()) return timing.error();
+            if (label == "retroarch") {
+                retroarch_frame = session.last_frame();
+                retroarch_ns = timing.value().total_ns();
+            } else if (retroarch_frame) {
+                auto same = compare_on_8bit_display(session.last_frame(), *retroarch_frame);
+                if (!same.ok()) return same.error();
+                timing.value().vs_retroarch_compile = same.value();
+                timing.value().retroarch_compile_ns = retroarch_ns;
+            }
+            fmt::print("{}{}{}\n", timing.value().retimed ? "timed twice (the blits beside the first timing all ran slow):\n" : "",
+                       format_scene_timing(timing.value()),
+                       tiers[t].changes.empty() ? std::string() : "tier: " + join_list(tiers[t].changes) + "\n");
+            std::fflush(stdout);
+            out.push_back(std::move(timing.value()));
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
@@ -41,7 +81,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         std::string input = "pixel_art", device;
         int frame = 1, draws = 0, repeats = 5, supersample = 4;  // draws 0: default_draws()
         std::string out;
-        bool quick = false, no_tiers = false, stage_costs = false;
+        bool quick = false, no_tiers = false, stage_costs = false, versus_retroarch = false, keep_going = false;
         std::vector<std::string> uniforms{"default"};
     };
     auto o = std::make_shared<Options>();
@@ -57,12 +97,18 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
     cmd->add_option("--uniforms", o->uniforms,
-                    "Which params stay uniforms, one variant per entry: default, all, none, or uber (one shader for every preset: every stage behind a runtime switch; e.g. none,default,all,uber: what each live param costs, and what specialising saves)")
+                    "Which params stay uniforms, one variant per entry: default, all, none, uber (one shader for every preset: every stage behind a runtime switch; e.g. none,default,all,uber: what each live param costs, and what specialising saves), or retroarch (every param a uniform and no optimisation: glslang's SPIR-V as it is, as RetroArch compiles a .slang pass)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_flag("--no-tiers", o->no_tiers, "Time each preset as written, not each of its quality tiers (point, each filtered stage alone, filtered)");
     cmd->add_flag("--stage-costs", o->stage_costs,
                   "Also time each pass once per stage with that stage off, on the point tier: what each stage costs");
+    cmd->add_flag("--versus-retroarch", o->versus_retroarch,
+                  "Time each preset as RetroArch compiles it (--uniforms retroarch) and as crtforge exports it (spirv-opt, pow "
+                  "reduction, parameters baked: --uniforms none), untiered, and report the speed-up per preset and on average; "
+                  "the two frames must look the same on an 8-bit display");
+    cmd->add_flag("--keep-going", o->keep_going,
+                  "A preset that fails to compile or render is reported on one line and the others are timed; exit 1 at the end");
     cmd->add_flag("--quick", o->quick, "320x240, 5 draws, 3 repeats, 2x2 supersampling: every preset in well under a minute");
     auto* supersample = cmd->add_option("--supersample", o->supersample,
                                         "Error against the point-sampled fp64 reference and an N x N supersampled one (0: no error "
@@ -73,6 +119,10 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         auto lib = load_library(g, code, &o->presets);
         if (!lib) return code;
         const bool draws_given = draws->count() > 0, supersample_given = supersample->count() > 0;
+        if (o->versus_retroarch) {
+            o->uniforms = {"retroarch", "none"};
+            o->no_tiers = true;
+        }
         if (o->quick) {
             o->sizes = {"320x240"};
             if (!draws_given) o->draws = 5;
@@ -104,42 +154,38 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         options.frame = o->frame;
         options.repeats = o->repeats;
         options.vulkan.device = o->device;
-        std::vector<std::pair<std::string, VariantOptions>> variants;
+        Variants variants;
         for (const std::string& u : o->uniforms) {
-            if (u != "default" && u != "all" && u != "none" && u != "uber")
-                return report(make_error("'" + u + "' must be default, all, none or uber", {}, 0, "--uniforms"));
+            if (u != "default" && u != "all" && u != "none" && u != "uber" && u != "retroarch")
+                return report(make_error("'" + u + "' must be default, all, none, uber or retroarch", {}, 0, "--uniforms"));
             VariantFlags flags;
-            flags.uniforms = u;
+            flags.uniforms = u == "retroarch" ? "all" : u;
             auto parsed = flags.parse();
             if (!parsed.ok()) return report(parsed.error());
+            parsed.value().optimize = u != "retroarch";
             if (std::none_of(variants.begin(), variants.end(), [&](const auto& v) { return v.first == u; }))
                 variants.emplace_back(u, parsed.value());
         }
+        // RetroArch's compile first: every other variant of the scene is compared with its frame.
+        std::stable_partition(variants.begin(), variants.end(), [](const auto& v) { return v.first == "retroarch"; });
         std::vector<SceneTiming> timings;
         BenchSession session(*lib, options.vulkan);
+        int failed = 0;
         for (const auto& [width, height] : sizes)
-        for (const Preset* preset : presets) {
-            options.width = width;
-            options.height = height;
-            options.draws = draws_given || o->quick ? o->draws : default_draws(width, height);
-            options.supersample = supersample_given || o->quick ? o->supersample : default_supersample(width, height);
-            std::vector<PresetTier> tiers;
-            if (o->no_tiers) tiers.push_back({QualityTier::Point, *preset, {}, "point", ""});
-            else tiers = preset_tiers(*preset);
-            for (size_t t = 0; t < tiers.size(); ++t)
-            for (const auto& [label, variant] : variants) {
-                options.variant = variant;
-                options.uniforms_label = label;
-                options.stage_costs = o->stage_costs && tiers[t].name == "point";
-                auto timing = session.tier(tiers, t, options);
-                if (!timing.ok()) return report(timing.error());
-                fmt::print("{}{}{}\n", timing.value().retimed ? "timed twice (the blits beside the first timing all ran slow):\n" : "",
-                           format_scene_timing(timing.value()),
-                           tiers[t].changes.empty() ? std::string() : "tier: " + join_list(tiers[t].changes) + "\n");
-                std::fflush(stdout);
-                timings.push_back(std::move(timing.value()));
+            for (const Preset* preset : presets) {
+                options.width = width;
+                options.height = height;
+                options.draws = draws_given || o->quick ? o->draws : default_draws(width, height);
+                options.supersample = supersample_given || o->quick ? o->supersample : default_supersample(width, height);
+                auto timed = time_preset(session, *preset, !o->no_tiers, o->stage_costs, variants, options);
+                if (timed.ok()) {
+                    for (SceneTiming& timing : timed.value()) timings.push_back(std::move(timing));
+                    continue;
+                }
+                if (!o->keep_going) return report(timed.error());
+                report(timed.error());
+                ++failed;
             }
-        }
         // The summary: every ratio against the run's fastest blit of its shape (the tables above
         // were printed with the fastest known when each scene ran).
         for (SceneTiming& timing : timings) session.rebase(timing);
@@ -150,6 +196,10 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
                                              {"bench.md", markdown}, {"bench.svg", bench_svg(timings)}})
                 if (auto s = write_file_atomic(o->out + "/" + name, text); !s.ok()) return report(s.error());
             fmt::print("bench: {} scenes into {}/bench.json, bench.md, bench.svg\n", timings.size(), o->out);
+        }
+        if (failed > 0) {
+            fmt::print(stderr, "bench: {} of {} preset timings failed (above)\n", failed, presets.size() * sizes.size());
+            return kExitValidation;
         }
         return kExitOk;
     };

@@ -44,9 +44,10 @@ BoundedMemo<SpirvBinary>& compile_memo() {
     return memo;
 }
 
-Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
-                                   const std::string& name, const Cache& cache) {
-    const std::string key = Cache::key({"spirv", Cache::build_id(), compiler_versions(), shader_stage_name(stage), source});
+Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage, const std::string& name,
+                                   bool optimize, const Cache& cache) {
+    const std::string key = Cache::key({"spirv", Cache::build_id(), compiler_versions(), shader_stage_name(stage),
+                                        optimize ? "optimized" : "glslang", source});
     if (auto known = compile_memo().find(key)) return std::move(*known);
     auto remember = [&](const SpirvBinary& words) { compile_memo().put(key, words); };
     if (auto hit = cache.get("spirv", key); hit && hit->size() % 4 == 0 && !hit->empty()) {
@@ -61,6 +62,7 @@ Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
     CompileOptions options;
     options.stage = stage;
     options.source_name = name;
+    options.optimize = optimize;
     auto spirv = compile_to_spirv(source, options);
     if (!spirv.ok()) return spirv;
     cache.put("spirv", key, to_bytes(spirv.value()));
@@ -185,10 +187,11 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
     out.variant = std::move(variant.value());
     AssembledShader src = assemble(library, out.variant);
     out.fragment_glsl = src.fragment;
-    auto frag = compile_cached(src.fragment, ShaderStage::Fragment, "<preset " + out.variant.file_stem() + ">", cache);
+    auto frag = compile_cached(src.fragment, ShaderStage::Fragment, "<preset " + out.variant.file_stem() + ">",
+                               options.optimize, cache);
     if (!frag.ok()) return frag.error();
     out.fragment = std::move(frag.value());
-    auto vert = compile_cached(src.vertex, ShaderStage::Vertex, library.vertex_path(), cache);
+    auto vert = compile_cached(src.vertex, ShaderStage::Vertex, library.vertex_path(), options.optimize, cache);
     if (!vert.ok()) return vert.error();
     out.vertex = std::move(vert.value());
     auto reflection = reflect(out.fragment);

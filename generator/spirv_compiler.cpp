@@ -5,6 +5,7 @@
 #include "crtforge/cache.hpp"
 #include "crtforge/bounded_memo.hpp"
 #include "generator/spirv_debug_names.hpp"
+#include "generator/spirv_clamp_lowering.hpp"
 #include "generator/spirv_pow_reduction.hpp"
 
 #include <mutex>
@@ -220,6 +221,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     }
 
     if (options.optimize) {
+        lower_clamps(spirv);  // first: spirv-opt folds clamp by a rule that holds only when lo <= hi
         if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
         else return optimized.error();
         if (carry_names) {

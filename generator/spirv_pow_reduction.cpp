@@ -5,8 +5,10 @@
 // spirv-opt, and nothing in SPIRV-Tools or the drivers' compilers rewrites it (LLVM only does so
 // under fast-math, and Mesa's gallivm expands pow to log2, multiply, exp2: two polynomial
 // evaluations). x * sqrt(x) is one square root and one product on every GPU, and closer to the exact
-// value than exp2(1.5 * log2(x)). For x < 0, where GLSL leaves pow undefined, the even powers give
-// x * x (what the double-precision reference's std::pow gives) and the others NaN, as pow does.
+// value than exp2(1.5 * log2(x)). For x < 0, where GLSL leaves pow undefined, the integer powers give
+// the product (x * x * x for 3: what the double-precision reference's std::pow gives, and what
+// drivers that expand constant powers give; Mesa's exp2(3 * log2(x)) gives NaN) and the half powers
+// NaN, as pow does.
 #include "generator/spirv_pow_reduction.hpp"
 
 #include <bit>

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -620,4 +621,107 @@ void main() {
     CHECK_THAT(read_text_file(out / "bench.md").value(), Catch::Contains("| classic uniforms=none | 320x240 | 1 |") &&
                                                           Catch::Contains("| classic uniforms=uber | 320x240 | 1 |"));
     CHECK(test::run_crtforge("bench --quick --preset classic --uniforms some").exit_code == 2);
+}
+
+namespace {
+
+// A RetroArch pass whose parameters decide its work: a loop bound and a branch. Baked (crtforge's
+// export), the loop and the branch fold away; as uniforms (RetroArch's compile) they stay.
+const char* kParamHeavyPass = R"(#version 450
+layout(push_constant) uniform Push {
+    vec4 SourceSize;
+    float TAPS;
+    float WARM;
+} params;
+layout(std140, set = 0, binding = 0) uniform UBO {
+    mat4 MVP;
+} global;
+#pragma parameter TAPS "Taps" 3.0 1.0 8.0 1.0
+#pragma parameter WARM "Warm tint" 0.0 0.0 1.0 1.0
+#pragma stage vertex
+layout(location = 0) in vec4 Position;
+layout(location = 1) in vec2 TexCoord;
+layout(location = 0) out vec2 vTexCoord;
+void main() {
+    gl_Position = global.MVP * Position;
+    vTexCoord = TexCoord;
+}
+#pragma stage fragment
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 FragColor;
+layout(set = 0, binding = 2) uniform sampler2D Source;
+void main() {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < int(params.TAPS); ++i)
+        sum += texture(Source, vTexCoord + vec2(float(i) * params.SourceSize.z, 0.0)).rgb;
+    sum /= params.TAPS;
+    if (params.WARM > 0.5) sum *= vec3(1.1, 1.0, 0.8);
+    FragColor = vec4(pow(sum, vec3(2.0)), 1.0);
+}
+)";
+
+}  // namespace
+
+TEST_CASE("bench --versus-retroarch times an imported preset as RetroArch compiles it and as crtforge exports it", "[bench][retroarch][cli]") {
+    test::TempDir dir;
+    {
+        std::ofstream(dir / "taps.slang") << kParamHeavyPass;
+        std::ofstream(dir / "taps.slangp") << "shaders = 1\nshader0 = taps.slang\nscale_type0 = viewport\n";
+    }
+    auto run = test::run_crtforge("bench --versus-retroarch --preset " + (dir / "taps.slangp") +
+                                  " --size 96x64 --draws 1 --repeats 1 --out " + (dir / "out"));
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    auto json = nlohmann::json::parse(read_text_file(dir / "out/bench.json").value());
+    REQUIRE(json.size() == 2);
+    // RetroArch's compile first, untiered, every parameter a uniform and glslang's code as it is.
+    CHECK(json[0]["uniforms"] == "retroarch");
+    CHECK(json[0]["tier"] == "");
+    CHECK(json[0]["speedupVsRetroarchCompile"].is_null());
+    CHECK(json[1]["uniforms"] == "none");
+    // The two compiles are told apart by what they hand the driver, not by a timing.
+    CHECK(json[1]["shader"]["instructions"].get<int>() < json[0]["shader"]["instructions"].get<int>());
+    CHECK(json[1]["shader"]["transcendentals"].get<int>() < json[0]["shader"]["transcendentals"].get<int>());  // pow(x, 2) reduced
+    CHECK(json[1]["retroarchCompileNs"].get<double>() == Approx(json[0]["sceneNs"].get<double>()));
+    CHECK(json[1]["speedupVsRetroarchCompile"].get<double>() ==
+          Approx(json[0]["sceneNs"].get<double>() / json[1]["sceneNs"].get<double>()));
+    CHECK(json[1]["frameVsRetroarchCompile"]["psnr"].get<double>() >= 50.0);  // the same picture
+    CHECK(json[1]["errorVsPoint"].is_null());  // an imported pass has no double-precision model
+    const std::string md = read_text_file(dir / "out/bench.md").value();
+    CHECK_THAT(md, Catch::Contains("### Against RetroArch's compile") && Catch::Contains("| taps uniforms=none | 96x64 | 1 |") &&
+                       Catch::Contains("Speed-up over 1 scenes: mean"));
+    CHECK_THAT(run.out, Catch::Contains("x RetroArch's compile ("));
+}
+
+TEST_CASE("bench --keep-going reports a preset that fails and times the others", "[bench][retroarch][cli]") {
+    test::TempDir dir;
+    {
+        std::ofstream(dir / "taps.slang") << kParamHeavyPass;
+        std::ofstream(dir / "taps.slangp") << "shaders = 1\nshader0 = taps.slang\n";
+        // Imports (the file parses) but cannot compile: an undeclared name in the fragment stage.
+        std::string broken = kParamHeavyPass;
+        broken.replace(broken.find("sum /= params.TAPS;"), 19, "sum /= undeclared;");
+        std::ofstream(dir / "broken.slang") << broken;
+        std::ofstream(dir / "broken.slangp") << "shaders = 1\nshader0 = broken.slang\n";
+    }
+    const std::string presets = (dir / "broken.slangp") + "," + (dir / "taps.slangp");
+    auto stops = test::run_crtforge("bench --no-tiers --supersample 0 --size 32x32 --draws 1 --repeats 1 --preset " + presets);
+    CHECK(stops.exit_code != 0);
+    CHECK_THAT(stops.out, !Catch::Contains("taps at 32x32"));
+    auto goes_on = test::run_crtforge("bench --keep-going --no-tiers --supersample 0 --size 32x32 --draws 1 --repeats 1 --preset " + presets);
+    CHECK(goes_on.exit_code == 1);
+    CHECK_THAT(goes_on.out, Catch::Contains("taps at 32x32"));
+    CHECK_THAT(goes_on.err, Catch::Contains("undeclared") && Catch::Contains("bench: 1 of 2 preset timings failed"));
+}
+
+TEST_CASE("two renders compare as an 8-bit display shows them", "[bench][retroarch]") {
+    Image a = Image::make(16, 16, {0.5f, 1.5f, std::nanf(""), 1.0f});
+    Image b = Image::make(16, 16, {0.5f + 0.4f / 255.0f, 1.0f, 0.0f, 1.0f});
+    auto same = compare_on_8bit_display(a, b);
+    REQUIRE(same.ok());
+    CHECK(same.value().psnr >= 100.0);  // a clamped value, a NaN shown as 0 and a sub-step difference
+    b.rgba[0] = 0.5f + 1.0f / 255.0f;
+    auto step = compare_on_8bit_display(a, b);
+    REQUIRE(step.ok());
+    CHECK(step.value().max_abs == Approx(1.0 / 255.0));
 }

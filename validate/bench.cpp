@@ -185,7 +185,7 @@ struct BenchSession::Reference {
 
 struct BenchSession::State {
     ConsumerEngines engines;
-    SpirvBinary blit_fragment;
+    SpirvBinary blit_fragment, blit_vertex;
     std::string references_of;  // the preset, size, frame and input of every picture in `references`
     std::map<std::string, Reference> references;
     size_t reference_renders = 0;
@@ -208,6 +208,16 @@ BenchSession::BenchSession(const TemplateLibrary& library, EngineOptions vulkan)
 BenchSession::~BenchSession() = default;
 
 size_t BenchSession::reference_renders() const { return state_->reference_renders; }
+const Image& BenchSession::last_frame() const { return state_->jobs.frame; }
+
+Result<ImageMetrics> compare_on_8bit_display(const Image& test, const Image& reference) {
+    auto display = [](const Image& image) {
+        Image out = image;
+        for (float& v : out.rgba) v = std::isnan(v) ? 0.0f : std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
+        return out;
+    };
+    return compare_images(display(test), display(reference));
+}
 
 namespace {
 
@@ -353,6 +363,9 @@ Result<SceneJobs> scene_jobs(const Preset& preset, const std::vector<CompiledVar
     scene.width = o.width;
     scene.height = o.height;
     scene.frames = {o.frame};
+    auto luts = read_file_luts(preset);  // an imported preset's LUT pictures
+    if (!luts.ok()) return luts.error();
+    scene.file_luts = std::move(luts.value());
     auto rendered = run_scene(scene, [&](TargetRenderRequest r) -> Result<Image> {
         auto job = vulkan_job(std::move(r));
         if (!job.ok()) return job.error();
@@ -440,10 +453,18 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
         auto blit_fragment = compile_to_spirv(kBlitFragment, blit_options);
         if (!blit_fragment.ok()) return blit_fragment.error();
         state_->blit_fragment = std::move(blit_fragment.value());
+        // The library's full-screen triangle: a program pass (an imported RetroArch shader) has a
+        // vertex stage of its own, which reads its uniform block; the blit has none.
+        blit_options.stage = ShaderStage::Vertex;
+        blit_options.source_name = library_.vertex_path();
+        auto blit_vertex = compile_to_spirv(library_.vertex_source(), blit_options);
+        if (!blit_vertex.ok()) return blit_vertex.error();
+        state_->blit_vertex = std::move(blit_vertex.value());
     }
     auto engine = state_->engines.vulkan();
     if (!engine.ok()) return engine.error();
-    const std::string jobs_key = reference_key(preset, o, 0) + "|" + o.variant.uniforms.str() + "|" + precision_name(o.variant.precision);
+    const std::string jobs_key = reference_key(preset, o, 0) + "|" + o.variant.uniforms.str() + "|" + precision_name(o.variant.precision) +
+                                 (o.variant.optimize ? "|optimized" : "|glslang");
     if (state_->jobs_key != jobs_key) {
         state_->jobs_key.clear();
         auto run = scene_jobs(preset, compiled.value(), state_->engines, o);
@@ -464,7 +485,7 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
     out.draws = o.draws;
     auto blit_job = [&](const Image& input, int width, int height, OutputFormat format) {
         RenderJob job;
-        job.vertex_spirv = compiled.value().front().vertex;
+        job.vertex_spirv = state_->blit_vertex;
         job.fragment_spirv = state_->blit_fragment;
         job.input = input;
         job.width = width;
@@ -502,8 +523,11 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
         t.blit_ns = state_->fastest(shape_of(t), times.value().fastest_blit);
         out.passes.push_back(std::move(t));
     }
-    // Speed against error: the frame just rendered on Vulkan against the two references.
-    if (o.supersample > 0) {
+    // Speed against error: the frame just rendered on Vulkan against the two references. An
+    // imported RetroArch pass (a whole program) has no double-precision model: timed only.
+    const bool modelled = std::none_of(compiled.value().begin(), compiled.value().end(),
+                                       [](const CompiledVariant& pass) { return pass.variant.program_form() != nullptr; });
+    if (o.supersample > 0 && modelled) {
         for (int n : {1, o.supersample}) {
             if (n == 1 && !o.point_reference) continue;
             auto reference = this->reference(n == 1 ? preset : supersampled, o, n);
@@ -583,6 +607,9 @@ std::string format_scene_timing(const SceneTiming& t) {
     if (t.vs_point) s += error_line("point-sampled fp64:", *t.vs_point);
     if (t.point_ties > 0) s += fmt::format("{} pixels sample a discontinuity (ties: judged against the nearest jittered reference)\n", t.point_ties);
     if (t.vs_supersampled) s += error_line(fmt::format("{0}x{0} supersampled fp64:", t.supersample).c_str(), *t.vs_supersampled);
+    if (t.retroarch_compile_ns > 0)
+        s += fmt::format("{:.2f}x RetroArch's compile ({:.1f} us per frame); the frame against its frame, on 8 bits: PSNR {:.1f} dB\n",
+                         t.speedup_vs_retroarch(), t.retroarch_compile_ns / 1000, t.vs_retroarch_compile ? t.vs_retroarch_compile->psnr : 0.0);
     return s;
 }
 

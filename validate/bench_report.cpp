@@ -16,6 +16,9 @@ namespace {
 using json = nlohmann::ordered_json;
 
 constexpr double kPlotWidth = 900;
+// Two compiles of one scene draw the same picture when their 8-bit frames agree this well (an
+// optimiser's reassociation moves a value by an ulp, which can flip a rounding to 1/255).
+constexpr double kSamePicturePsnr = 50;
 
 // Costs and errors compare only at one display size: a blit's cost and the aliasing both change with it.
 bool same_display(const SceneTiming& a, const SceneTiming& b) { return a.width == b.width && a.height == b.height; }
@@ -120,6 +123,9 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
                        {"errorRows", t.error_rows ? t.error_rows : t.height},
                        {"pointTies", t.point_ties},
                        {"stageCosts", stage_costs_json(t.stage_costs)},
+                       {"retroarchCompileNs", t.retroarch_compile_ns > 0 ? json(t.retroarch_compile_ns) : json(nullptr)},
+                       {"speedupVsRetroarchCompile", t.retroarch_compile_ns > 0 ? json(t.speedup_vs_retroarch()) : json(nullptr)},
+                       {"frameVsRetroarchCompile", metrics_json(t.vs_retroarch_compile)},
                        {"pareto", std::find(front.begin(), front.end(), i) != front.end()}});
     }
     return out.dump(2) + "\n";
@@ -168,12 +174,45 @@ std::string markdown_of_display(const std::vector<SceneTiming>& timings) {
 
 }  // namespace
 
+namespace {
+
+// --versus-retroarch: per scene, RetroArch's compile against each other variant, then the means.
+std::string versus_retroarch_markdown(const std::vector<SceneTiming>& timings) {
+    std::string md = "| preset | display | passes | RetroArch's compile (us per frame) | crtforge (us per frame) | speed-up | "
+                     "same picture (PSNR on 8 bits) |\n|---|---|---:|---:|---:|---:|---:|\n";
+    std::vector<double> speedups;
+    std::string slower, different;
+    for (const SceneTiming& t : timings) {
+        if (t.retroarch_compile_ns <= 0) continue;
+        const double x = t.speedup_vs_retroarch();
+        speedups.push_back(x);
+        const double psnr = t.vs_retroarch_compile ? t.vs_retroarch_compile->psnr : 0;
+        md += fmt::format("| {} | {}x{} | {} | {:.1f} | {:.1f} | {:.2f}x | {:.1f} dB |\n", t.label(), t.width, t.height, t.passes.size(),
+                          t.retroarch_compile_ns / 1000, t.total_ns() / 1000, x, psnr);
+        if (x < 1) slower += fmt::format("{}{} ({:.2f}x)", slower.empty() ? "" : ", ", t.label(), x);
+        if (psnr < kSamePicturePsnr) different += fmt::format("{}{} ({:.1f} dB)", different.empty() ? "" : ", ", t.label(), psnr);
+    }
+    double sum = 0, log_sum = 0;
+    for (double x : speedups) sum += x, log_sum += std::log(x);
+    const double lowest = *std::min_element(speedups.begin(), speedups.end());
+    md += fmt::format("\nSpeed-up over {} scenes: mean {:.3f}x, geometric mean {:.3f}x, lowest {:.2f}x; slower than RetroArch's compile: {}.\n",
+                      speedups.size(), sum / double(speedups.size()), std::exp(log_sum / double(speedups.size())), lowest,
+                      slower.empty() ? "none" : slower);
+    if (!different.empty()) md += fmt::format("Pictures that differ (below {:.0f} dB): {}.\n", kSamePicturePsnr, different);
+    return md;
+}
+
+}  // namespace
+
 std::string bench_markdown(const std::vector<SceneTiming>& timings) {
     const auto groups = by_display(timings);
-    if (groups.size() < 2) return markdown_of_display(timings);
     std::string md;
-    for (const auto& group : groups)
-        md += fmt::format("{}### {}x{}\n\n{}", md.empty() ? "" : "\n", group.front().width, group.front().height, markdown_of_display(group));
+    if (groups.size() < 2) md = markdown_of_display(timings);
+    else
+        for (const auto& group : groups)
+            md += fmt::format("{}### {}x{}\n\n{}", md.empty() ? "" : "\n", group.front().width, group.front().height, markdown_of_display(group));
+    if (std::any_of(timings.begin(), timings.end(), [](const SceneTiming& t) { return t.retroarch_compile_ns > 0; }))
+        md += "\n### Against RetroArch's compile (glslang alone, parameters as uniforms)\n\n" + versus_retroarch_markdown(timings);
     return md;
 }
 

@@ -33,6 +33,9 @@ struct UniformSelection {
 struct VariantOptions {
     UniformSelection uniforms;
     Precision precision = Precision::High;
+    // false: each pass as glslang makes it, with no spirv-opt and no pow reduction — how RetroArch
+    // compiles a .slang pass (the baseline `crtforge bench --versus-retroarch` times export against).
+    bool optimize = true;
 };
 
 struct VariantParam {

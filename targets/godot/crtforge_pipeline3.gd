@@ -28,7 +28,7 @@ export var seconds = 0.0 setget set_seconds  # a 64-bit float: exact enough for 
 export var pixel_aspect = Vector2(1, 1)
 export var screen_aspect = Vector2(0, 0)  # (0, 0): the source's display aspect
 export var fit = "stretch"  # stretch | aspect | integer
-export var passes = []  # per pass: alias, scale, hdr, input, textures, frame_count_mod, frame_count
+export var passes = []  # per pass: alias, scale, hdr, input, textures, frame_count_mod, frame_count, sizes
 export var feedback = []  # aliases of passes read as the previous frame
 export var history = 0  # frames of the original kept
 export var luts = {}  # name -> {path, filter, wrap}
@@ -260,6 +260,10 @@ func _layout():
 	for i in range(passes.size()):
 		var viewport = get_node(passes[i]["alias"])
 		_resize(viewport, viewport.get_node("Pass"), sizes[i])
+		if passes[i].get("sizes", false):  # a program pass: its vertex stage has no other way to know them
+			var material = viewport.get_node("Pass").material
+			material.set_shader_param("outputSize", sizes[i])
+			material.set_shader_param("viewportSize", screen.size)
 	for alias in feedback:
 		var copy = get_node("previous-" + alias)
 		_resize(copy, copy.get_node("Copy"), get_node(alias).size)

@@ -1,4 +1,5 @@
 #include "targets/godot/godot_compiler.hpp"
+#include "targets/godot/godot3_syntax.hpp"
 #include "targets/float_literals.hpp"
 #include "crtforge/inert_text.hpp"
 
@@ -211,8 +212,17 @@ void GodotCompiler::prepare() {
             v.name = get_name(out.id).empty() ? "crt_varying_" + std::to_string(v.location) : get_name(out.id);
             set_name(out.id, v.name);
             set_remapped_variable_state(out.id, true);
-            const bool flat = has_decoration(out.id, spv::DecorationFlat) || get_type(out.base_type_id).basetype != spirv_cross::SPIRType::Float;
-            v.declaration = "varying " + std::string(flat ? "flat " : "") + variable_decl(get_type(out.type_id), v.name, out.id) + ";";
+            const spirv_cross::SPIRType& type = get_type(out.type_id);
+            const bool integer = type.basetype == spirv_cross::SPIRType::Int || type.basetype == spirv_cross::SPIRType::UInt;
+            const bool flat = has_decoration(out.id, spv::DecorationFlat) || type.basetype != spirv_cross::SPIRType::Float;
+            v.declaration = "varying " + std::string(flat ? "flat " : "") + variable_decl(type, v.name, out.id) + ";";
+            if (integer && options_.godot_version < 4) {
+                if (!type.array.empty() || type.columns > 1)
+                    throw spirv_cross::CompilerError("Godot 3 has no integer varyings, and an array of them (" + v.name + ") has no float carrier");
+                v.integer_type = type_to_glsl(type);
+                v.carrier_type = type.vecsize == 1 ? "float" : "vec" + std::to_string(type.vecsize);
+                v.declaration = "varying flat " + v.carrier_type + " " + v.carrier() + ";";
+            }
             varyings_.push_back(std::move(v));
         }
     }
@@ -301,8 +311,9 @@ std::string GodotCompiler::compile_godot() {
     out = std::regex_replace(out, sized_matrix, "mat$1");
     if (stage_ == ShaderStage::Vertex) out = vertex_text(out);
     if (options_.godot_version >= 4) return out;
+    out = with_integer_varyings_carried(out);
     if (screen_mode()) out = with_screen_reads_flipped(out);
-    return with_loop_increments(out);
+    return godot3::with_godot3_syntax(out);
 }
 
 std::map<std::string, bool> GodotCompiler::border_textures() const {
@@ -359,12 +370,41 @@ std::string GodotCompiler::vertex_text(std::string text) const {
     return text;
 }
 
+std::string GodotCompiler::with_integer_varyings_carried(std::string text) const {
+    std::string locals, stores;
+    for (const Varying& v : varyings_) {
+        if (v.integer_type.empty()) continue;
+        if (stage_ == ShaderStage::Vertex) {
+            locals += "    " + v.integer_type + " " + v.name + ";\n";
+            stores += "    " + v.carrier() + " = " + v.carrier_type + "(" + v.name + ");\n";
+        } else {
+            locals += "    " + v.integer_type + " " + v.name + " = " + v.integer_type + "(" + v.carrier() + ");\n";
+        }
+    }
+    if (locals.empty()) return text;
+    const std::string entry = stage_ == ShaderStage::Vertex ? "void vertex()\n{\n" : "void fragment()\n{\n";
+    const size_t body = text.find(entry);
+    if (body == std::string::npos) throw spirv_cross::CompilerError("no " + entry.substr(5, entry.find('(') - 5) + "() to carry integer varyings in");
+    if (stage_ == ShaderStage::Vertex) {
+        // The stores go where vertex() ends: its closing brace, the first at the start of a line.
+        const size_t close = text.find("\n}", body);
+        if (close == std::string::npos) throw spirv_cross::CompilerError("no end of vertex()");
+        if (text.substr(body, close - body).find("return;") != std::string::npos)
+            throw spirv_cross::CompilerError("a vertex stage that returns early cannot carry its integer varyings in Godot 3");
+        text.insert(close + 1, stores);
+    }
+    text.insert(body + entry.size(), locals);
+    return text;
+}
+
 std::string GodotCompiler::builtin_to_glsl(spv::BuiltIn builtin, spv::StorageClass storage) {
     switch (builtin) {
         // Vulkan's gl_FragCoord: pixel centres at +0.5 from the top-left. FRAGCOORD (and SCREEN_UV)
         // count rows from the bottom in the Compatibility renderer's SubViewports and from the top in
         // Forward+'s; the node's UV is top-down in both, and the pass's node fills its viewport.
         case spv::BuiltInFragCoord:
+            // Godot 3's SCREEN_UV counts rows from the bottom in every renderer (crt_flip_y: the header's).
+            if (screen_mode() && options_.godot_version < 4) return "vec4(crt_flip_y(SCREEN_UV) / SCREEN_PIXEL_SIZE, FRAGCOORD.zw)";
             return screen_mode() ? "vec4(SCREEN_UV / SCREEN_PIXEL_SIZE, FRAGCOORD.zw)"
                                  : "vec4(UV * " + builtin_expression("outputSize") + ", FRAGCOORD.zw)";
         case spv::BuiltInPosition: return "crt_position";
@@ -401,41 +441,6 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
         out.append(text, last, at - last);
         out += "textureLod(SCREEN_TEXTURE, crt_flip_y(" + text.substr(arg, end - arg) + ")" + (function == "texture" ? ", 0.0" : "");
         last = end;
-    }
-    out.append(text, last, std::string::npos);
-    return out;
-}
-
-std::string GodotCompiler::with_loop_increments(const std::string& text) {
-    // Godot 3's parser wants an expression after a for loop's second ';' ("Expected expression,
-    // found: QUESTION"), which SPIRV-Cross leaves out when the loop steps inside its body. An
-    // increment of zero changes nothing: `x += 0` on the loop's own variable, or on a variable
-    // declared for the purpose when the loop declares none.
-    // SPIRV-Cross writes `for (;;)` for a loop it cannot put in for's three parts (one whose exit
-    // test is not at its head). Godot 3.2.3 refuses that in some places ("Expected expression" at
-    // atari-ntsc's cell-list loop, nested in an if) and takes it in others; with all three parts,
-    // `true` the condition, it takes it everywhere.
-    static const std::regex loop(R"(for \(([^;]*); ?([^;]*); ?\))");
-    static const std::regex declared(R"(^(int|uint|float) (\w+))");
-    std::string out;
-    size_t last = 0;
-    int spare = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), loop); it != std::sregex_iterator(); ++it) {
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        std::string init = (*it)[1].str(), step;
-        std::smatch var;
-        if (std::regex_search(init, var, declared)) {
-            step = var[2].str() + (var[1] == "float" ? " += 0.0" : var[1] == "uint" ? " += 0u" : " += 0");
-        } else if (init.empty()) {
-            const std::string name = "crtforge_loop" + std::to_string(spare++);
-            init = "int " + name + " = 0";
-            step = name + " += 0";
-        } else {
-            throw spirv_cross::CompilerError("a for loop with no increment and an initialiser Godot 3 cannot extend: " + init);
-        }
-        const std::string condition = (*it)[2].str().empty() ? std::string("true") : (*it)[2].str();
-        out += "for (" + init + "; " + condition + "; " + step + ")";
-        last = static_cast<size_t>(it->position() + it->length());
     }
     out.append(text, last, std::string::npos);
     return out;
@@ -526,7 +531,12 @@ void GodotCompiler::emit_header() {
         statement("uniform vec2 outputSize = vec2(0.0);");
         statement("uniform vec2 viewportSize = vec2(0.0);");
         statement("// What the vertex stage hands the fragment stage.");
-        for (const Varying& v : varyings_) statement(v.declaration);
+        for (const Varying& v : varyings_) {
+            if (!v.integer_type.empty())
+                statement("// ", v.integer_type, " ", v.name, ": Godot 3 has no integer varyings; carried as ", v.carrier_type,
+                          " (exact up to 2^24)");
+            statement(v.declaration);
+        }
     }
     for (const std::string& texture : variant_.textures) {
         const PassInput* input = variant_.pass->find_input(texture);

@@ -20,6 +20,11 @@ struct Varying {
     uint32_t location = 0;
     std::string declaration;  // "varying flat vec2 noise_div;"
     std::string name;
+    // Godot 3 has no integer varyings: an int / uint (vector) travels as the float (vector) of its
+    // value in `crt_carried_<name>`, and each stage keeps a local `<integer_type> <name>`.
+    std::string integer_type;  // "int", "ivec2", "uint", ...: empty where the varying is carried as it is
+    std::string carrier_type;  // "float", "vec2", ...
+    std::string carrier() const { return "crt_carried_" + name; }
 };
 
 class GodotCompiler : public spirv_cross::CompilerGLSL {
@@ -49,10 +54,11 @@ private:
     std::string uniform_declaration(const VariantParam& p) const;
     std::string builtin_expression(const std::string& member) const;
     std::string builtin_expression_fragment_size() const;
-    static std::string with_loop_increments(const std::string& text);  // Godot 3's for-loop syntax
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
     std::string vertex_text(std::string text) const;  // vertex(): RetroArch's quad from UV, clip position dropped
+    // Godot 3: each integer varying's local in vertex() and fragment(), and its float carrier.
+    std::string with_integer_varyings_carried(std::string text) const;
     // clamp_to_border emulated in the shader: each read of such a texture times the share inside it.
     std::string with_border_emulated(const std::string& text) const;
     std::map<std::string, bool> border_textures() const;  // Godot name (TEXTURE for the source) -> linear

@@ -165,11 +165,6 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
 
 Result<TargetOutput> generate(const TargetInput& input, int version) {
     const std::string preset = input.variant->file_stem();
-    // Godot 3 does not translate a program pass's vertex stage yet: refused, never emitted wrong.
-    if (const FormSpec* form = input.variant->program_form(); form && version < 4)
-        return make_error("pass '" + input.variant->pass->alias + "' is a whole program (" + form->vertex_path +
-                              "): Godot 3's canvas_item shaders do not run its vertex stage yet",
-                          form->where.file, form->where.line, "form." + form->name);
     const std::string ext = shader_extension(version);
     TargetOutput out;
     auto node = generate_shader(input, {version, Mode::NodeTexture});

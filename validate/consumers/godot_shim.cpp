@@ -65,7 +65,6 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
         std::smatch m;
         static const std::regex varying_re(R"(^varying\s+(flat\s+)?(\w+)\s+(\w+)\s*(\[\s*(\d+)\s*\])?\s*;\s*$)");
         if (std::regex_match(line, m, varying_re)) {
-            if (version < 4) return make_validation_error("the shim knows varyings in Godot 4 shaders only", "<godot shader>", number);
             const std::string decl = m[2].str() + " " + m[3].str() + m[4].str() + ";\n";
             const std::string at = "layout(location = " + std::to_string(next_location) + ") " + m[1].str();
             fragment_varyings += at + "in " + decl;
@@ -97,7 +96,8 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
     if (!saw_type) return make_validation_error("no `shader_type canvas_item;` line", "<godot shader>", 1);
     if (!saw_fragment) return make_validation_error("no `void fragment()`", "<godot shader>", number);
     // A program pass's screen shader reads the screen texture at its own varyings, not SCREEN_UV.
-    shim.screen_mode = source.find("SCREEN_UV") != std::string::npos || !sampler.empty();
+    shim.screen_mode = source.find("SCREEN_UV") != std::string::npos || !sampler.empty() ||
+                       (version < 4 && source.find("SCREEN_TEXTURE") != std::string::npos);
 
     const std::string texture = shim.screen_mode ? (version >= 4 ? sampler : std::string("SCREEN_TEXTURE")) : "TEXTURE";
     if (texture.empty()) return make_validation_error("screen mode without a hint_screen_texture sampler", "<godot shader>", 1);

@@ -96,6 +96,12 @@ struct SceneTiming {
     // Pixels of those rows whose point sample sits exactly on a discontinuity (the point reference
     // flips under a jitter of 1/16384 px): each judged against the nearest of the three renders.
     int point_ties = 0;
+    // With `crtforge bench --versus-retroarch`: this variant's frame against the same scene compiled
+    // as RetroArch compiles it (shown on an 8-bit display: a speed-up only counts when the picture
+    // is the same), and that compile's scene time.
+    std::optional<ImageMetrics> vs_retroarch_compile;
+    double retroarch_compile_ns = 0;
+    double speedup_vs_retroarch() const { return retroarch_compile_ns > 0 && total_ns() > 0 ? retroarch_compile_ns / total_ns() : 0; }
 };
 
 // One benchmark run: the Vulkan engine, the blit it compares against and the reference pictures
@@ -118,6 +124,8 @@ public:
     Result<SceneTiming> tier(const std::vector<PresetTier>& tiers, size_t index, const BenchOptions& options);
     // How many reference pictures the session has rendered (each distinct one once).
     size_t reference_renders() const;
+    // The frame the last scene()/tier() rendered (the timed frame on Vulkan, as drawn).
+    const Image& last_frame() const;
     // `timing`'s blits set to the fastest the session has measured of each shape: a scene timed
     // early in a run is compared against the same baseline as one timed late.
     void rebase(SceneTiming& timing) const;
@@ -164,5 +172,8 @@ struct TierPick {
 std::vector<TierPick> pick_tiers(const std::vector<SceneTiming>& timings);
 std::string bench_markdown(const std::vector<SceneTiming>& timings);
 std::string bench_svg(const std::vector<SceneTiming>& timings);
+// Two renders of one scene on an 8-bit display (values clamped to 0..1, a NaN shown as 0, 1/255
+// steps) compared: how `--versus-retroarch` checks that a compile changed the speed, not the picture.
+Result<ImageMetrics> compare_on_8bit_display(const Image& test, const Image& reference);
 
 }  // namespace crtforge

@@ -1,6 +1,6 @@
 #version 450
 
-vec4 _2429;
+vec4 _2433;
 
 layout(binding = 0, std140) uniform CrtParams
 {
@@ -27,10 +27,10 @@ void main()
     vec2 _705 = vTexCoord * crt.outputSize;
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q.xy;
-    vec2 _1235 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
+    vec2 _1237 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
     vec4 q_1;
-    q_1.z = _1235.x;
-    q_1.w = _1235.y;
+    q_1.z = _1237.x;
+    q_1.w = _1237.y;
     vec2 sampleUv = (q_1.wz * 0.5) + vec2(0.5);
     float sampleUv_x = sampleUv.x;
     float sampleUv_y = sampleUv.y;
@@ -55,10 +55,10 @@ void main()
         continue;
     }
     int x = int(_705.x) - 10;
-    float _1466 = _705.y;
-    vec3 color_2 = (s_1.xyz * s.w) * fma(0.03, mod(_1466 - 4.0, -5.0), fma(-0.001, float(x / (-3)), fma(0.01, float(x % crt.bandWidth), fma(0.02, float(x / crt.bandWidth), 1.0))));
+    float _1468 = _705.y;
+    vec3 color_2 = (s_1.xyz * s.w) * fma(0.03, mod(_1468 - 4.0, -5.0), fma(-0.001, float(x / (-3)), fma(0.01, float(x % crt.bandWidth), fma(0.02, float(x / crt.bandWidth), 1.0))));
     vec3 tint;
-    switch (int(_1466) & 3)
+    switch (int(_1468) & 3)
     {
         case 0:
         {
@@ -121,7 +121,7 @@ void main()
             color = crt.edgeColor.zyx;
             break;
         }
-        color = (fma(color_2, tint, vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * clamp(1.5 - max(d.x, d.y), 0.8, 0.2)) * fma(crt.pulseDepth, sin(fma(_1466, 0.025, crt.time * crt.pulseRate)), 1.0);
+        color = (fma(color_2, tint, vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * fma(crt.pulseDepth, sin(fma(_1468, 0.025, crt.time * crt.pulseRate)), 1.0);
         break;
     } while(false);
     vec4 c = vec4(color, 1.0);

@@ -19,9 +19,9 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec2 d = abs((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale;
-    vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - clamp(1.5 - max(d.x, d.y), 0.8, 0.2))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.025 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
-    vec4 _515 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.025 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
+    vec4 _519 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? vec4(0.0).x : _515.x, cond.y ? vec4(0.0).y : _515.y, cond.z ? vec4(0.0).z : _515.z, cond.w ? vec4(0.0).w : _515.w);
+    fragColor = vec4(cond.x ? vec4(0.0).x : _519.x, cond.y ? vec4(0.0).y : _519.y, cond.z ? vec4(0.0).z : _519.z, cond.w ? vec4(0.0).w : _519.w);
 }
 

@@ -36,12 +36,11 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
   let texel = textureSample(source, source_sampler, vTexCoord);
   let d = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _429 = 1.5 - max(d.x, d.y);
-  let _482 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let color = (texel.xyz * (1.0 - min(max(_429, 0.8), 0.2))) * fma(crt.pulseDepth, sin(_482), 1.0);
+  let _486 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * fma(crt.pulseDepth, sin(_486), 1.0);
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
   let cond = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _518 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
-  fragColor = _518;
+  let _522 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
+  fragColor = _522;
   return fragColor;
 }

@@ -1,0 +1,181 @@
+// Godot 3's parser: see godot3_syntax.hpp.
+#include "targets/godot/godot3_syntax.hpp"
+
+#include <algorithm>
+#include <regex>
+#include <vector>
+
+#include <spirv_cross/spirv_common.hpp>
+
+namespace crtforge::godot::godot3 {
+
+namespace {
+
+// The index of the bracket closing the one at `open` ('(' or '{'), or npos.
+size_t matching(const std::string& text, size_t open) {
+    const char in = text[open], out = in == '(' ? ')' : '}';
+    int depth = 0;
+    for (size_t i = open; i < text.size(); ++i) {
+        if (text[i] == in) ++depth;
+        else if (text[i] == out && --depth == 0) return i;
+    }
+    return std::string::npos;
+}
+
+// `text` split at the `separator`s outside any brackets.
+std::vector<std::string> split_top_level(const std::string& text, char separator) {
+    std::vector<std::string> parts(1);
+    int depth = 0;
+    for (char c : text) {
+        if (c == '(' || c == '[' || c == '{') ++depth;
+        if (c == ')' || c == ']' || c == '}') --depth;
+        if (c == separator && depth == 0) parts.emplace_back();
+        else parts.back() += c;
+    }
+    return parts;
+}
+
+// The bodies ({ .. }) of the loops that start in [first, end) of `text`: for, while and do.
+std::vector<std::pair<size_t, size_t>> loop_bodies(const std::string& text, size_t first, size_t end) {
+    static const std::regex loop(R"(\b(for|while) \(|\bdo\b)");
+    std::vector<std::pair<size_t, size_t>> out;
+    const std::string part = text.substr(first, end - first);
+    for (auto it = std::sregex_iterator(part.begin(), part.end(), loop); it != std::sregex_iterator(); ++it) {
+        size_t after = first + static_cast<size_t>(it->position() + it->length());
+        if ((*it)[1].matched) {  // for / while: the body follows the header's ')'
+            const size_t close = matching(text, after - 1);
+            if (close == std::string::npos) continue;
+            after = close + 1;
+        }
+        const size_t brace = text.find_first_not_of(" \t\n", after);
+        if (brace == std::string::npos || text[brace] != '{') continue;  // a do-while's closing while (..);
+        const size_t close = matching(text, brace);
+        if (close != std::string::npos) out.emplace_back(brace, close);
+    }
+    return out;
+}
+
+std::string trimmed(const std::string& s) {
+    const size_t first = s.find_first_not_of(" \t\n"), last = s.find_last_not_of(" \t\n");
+    return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
+}
+
+}  // namespace
+
+std::string with_godot3_syntax(const std::string& text) {
+    return with_unsigned_literals_spelled(with_loop_increments(with_loop_steps_in_body(with_constant_arrays_local(text))));
+}
+
+std::string with_constant_arrays_local(const std::string& text) {
+    static const std::regex constant(R"(^const (\w+ (\w+)\[\d+\] = .*;)$)");
+    struct Constant {
+        std::string declaration, name;
+    };
+    std::vector<Constant> constants;
+    std::string rest;  // the text without them
+    size_t at = 0;
+    while (at < text.size()) {
+        size_t end = text.find('\n', at);
+        end = end == std::string::npos ? text.size() : end + 1;
+        const std::string line = text.substr(at, end - at - (text[end - 1] == '\n' ? 1 : 0));
+        std::smatch m;
+        if (std::regex_match(line, m, constant)) constants.push_back({m[1].str(), m[2].str()});
+        else rest.append(text, at, end - at);
+        at = end;
+    }
+    if (constants.empty()) return text;
+    // SPIRV-Cross prints a function as its signature at the start of a line, then "{" and "}"
+    // alone on lines of their own.
+    std::string out;
+    size_t last = 0;
+    for (size_t open = rest.find("\n{\n"); open != std::string::npos; open = rest.find("\n{\n", open + 1)) {
+        if (rest[open - 1] != ')') continue;  // a struct's braces, not a function's
+        const size_t close = rest.find("\n}\n", open);
+        if (close == std::string::npos) break;
+        const std::string body = rest.substr(open, close - open);
+        std::string locals;
+        for (const Constant& c : constants)
+            if (std::regex_search(body, std::regex("\\b" + c.name + "\\b"))) locals += "    " + c.declaration + "\n";
+        out.append(rest, last, open + 3 - last);
+        out += locals;
+        last = open + 3;
+    }
+    out.append(rest, last, std::string::npos);
+    return out;
+}
+
+std::string with_loop_steps_in_body(const std::string& text) {
+    std::string out = text;
+    for (size_t at = out.find("for ("); at != std::string::npos; at = out.find("for (", at + 1)) {
+        const size_t open = at + 4, close = matching(out, open);
+        if (close == std::string::npos) throw spirv_cross::CompilerError("an unbalanced for loop");
+        const std::vector<std::string> parts = split_top_level(out.substr(open + 1, close - open - 1), ';');
+        if (parts.size() != 3) continue;
+        const std::vector<std::string> steps = split_top_level(parts[2], ',');
+        if (steps.size() < 2) continue;
+        const size_t brace = out.find_first_not_of(" \t\n", close + 1);
+        if (brace == std::string::npos || out[brace] != '{') throw spirv_cross::CompilerError("a for loop with a comma list of steps and no braces");
+        const size_t end = matching(out, brace);
+        if (end == std::string::npos) throw spirv_cross::CompilerError("an unbalanced for loop body");
+        std::string inline_steps;  // the steps as statements, on one line
+        for (const std::string& step : steps) inline_steps += trimmed(step) + "; ";
+        // The body's closing brace sits on a line of its own, indented as the loop.
+        const size_t line = out.rfind('\n', end) + 1;
+        out.insert(line, out.substr(line, end - line) + "    " + trimmed(inline_steps) + "\n");
+        // Each `continue` of this loop (not of a loop inside it) takes the steps first.
+        const std::vector<std::pair<size_t, size_t>> inner = loop_bodies(out, brace + 1, line);
+        for (size_t c = line; c > brace;) {
+            const size_t found = out.rfind("continue;", c - 1);
+            if (found == std::string::npos || found <= brace) break;
+            c = found;
+            const bool nested = std::any_of(inner.begin(), inner.end(), [&](const auto& r) { return found > r.first && found < r.second; });
+            if (!nested) out.replace(found, 9, "{ " + inline_steps + "continue; }");
+        }
+        out.replace(open + 1, close - open - 1, parts[0] + ";" + parts[1] + "; ");
+    }
+    return out;
+}
+
+std::string with_unsigned_literals_spelled(const std::string& text) {
+    // Godot 3's parser reads 4u as the int 4 ("Invalid arguments to operator '%' :uint and int"):
+    // uint(4) is the same constant in a form it types right.
+    static const std::regex literal(R"(\b((?:0[xX][0-9a-fA-F]+)|[0-9]+)[uU]\b)");
+    return std::regex_replace(text, literal, "uint($1)");
+}
+
+std::string with_loop_increments(const std::string& text) {
+    // Godot 3's parser wants an expression after a for loop's second ';' ("Expected expression,
+    // found: QUESTION"), which SPIRV-Cross leaves out when the loop steps inside its body. An
+    // increment of zero changes nothing: `x += 0` on the loop's own variable, or on a variable
+    // declared for the purpose when the loop declares none.
+    // SPIRV-Cross writes `for (;;)` for a loop it cannot put in for's three parts (one whose exit
+    // test is not at its head). Godot 3.2.3 refuses that in some places ("Expected expression" at
+    // atari-ntsc's cell-list loop, nested in an if) and takes it in others; with all three parts,
+    // `true` the condition, it takes it everywhere.
+    static const std::regex loop(R"(for \(([^;]*); ?([^;]*); ?\))");
+    static const std::regex declared(R"(^(int|uint|float) (\w+))");
+    std::string out;
+    size_t last = 0;
+    int spare = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), loop); it != std::sregex_iterator(); ++it) {
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        std::string init = (*it)[1].str(), step;
+        std::smatch var;
+        if (std::regex_search(init, var, declared)) {
+            step = var[2].str() + (var[1] == "float" ? " += 0.0" : var[1] == "uint" ? " += 0u" : " += 0");
+        } else if (init.empty()) {
+            const std::string name = "crtforge_loop" + std::to_string(spare++);
+            init = "int " + name + " = 0";
+            step = name + " += 0";
+        } else {
+            throw spirv_cross::CompilerError("a for loop with no increment and an initialiser Godot 3 cannot extend: " + init);
+        }
+        const std::string condition = (*it)[2].str().empty() ? std::string("true") : (*it)[2].str();
+        out += "for (" + init + "; " + condition + "; " + step + ")";
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    return out;
+}
+
+}  // namespace crtforge::godot::godot3

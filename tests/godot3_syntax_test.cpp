@@ -1,0 +1,66 @@
+// Godot 3's parser needs more than Godot 4's (targets/godot/godot3_syntax.cpp): each rewrite on the
+// text shapes SPIRV-Cross prints. Real Godot 3 runs the rewritten shaders in the corpus tests.
+#include <catch2/catch.hpp>
+
+#include <spirv_cross/spirv_common.hpp>
+
+#include "targets/godot/godot3_syntax.hpp"
+
+using namespace crtforge::godot::godot3;
+
+TEST_CASE("Godot 3: global const arrays are declared in each function that reads them", "[godot][godot3-syntax]") {
+    const std::string text = "shader_type canvas_item;\n"
+                             "const float _12[3] = float[](1.0, 2.0, 3.0);\n"
+                             "const vec2 _20[2] = vec2[](vec2(0.5), vec2(1.0));\n"
+                             "struct S\n{\n    float a;\n};\n"
+                             "float pick(int i)\n{\n    return _12[i];\n}\n"
+                             "void fragment()\n{\n    COLOR = vec4(_20[1], pick(2), _12[0]);\n}\n";
+    const std::string out = with_constant_arrays_local(text);
+    CHECK(out.find("\nconst ") == std::string::npos);
+    CHECK(out == "shader_type canvas_item;\n"
+                 "struct S\n{\n    float a;\n};\n"
+                 "float pick(int i)\n{\n    float _12[3] = float[](1.0, 2.0, 3.0);\n    return _12[i];\n}\n"
+                 "void fragment()\n{\n    float _12[3] = float[](1.0, 2.0, 3.0);\n    vec2 _20[2] = vec2[](vec2(0.5), vec2(1.0));\n"
+                 "    COLOR = vec4(_20[1], pick(2), _12[0]);\n}\n");
+    CHECK(with_constant_arrays_local("void fragment()\n{\n}\n") == "void fragment()\n{\n}\n");
+}
+
+TEST_CASE("Godot 3: a comma list of loop steps runs at the end of the body and before each of its continues", "[godot][godot3-syntax]") {
+    const std::string text = "    for (int i = 0; i < 4; j = k, i++)\n"
+                             "    {\n"
+                             "        if (i == 1)\n"
+                             "        {\n"
+                             "            continue;\n"
+                             "        }\n"
+                             "        for (int m = 0; m < 2; m++)\n"
+                             "        {\n"
+                             "            continue;\n"
+                             "        }\n"
+                             "        k = i;\n"
+                             "    }\n";
+    CHECK(with_loop_steps_in_body(text) == "    for (int i = 0; i < 4; )\n"
+                                          "    {\n"
+                                          "        if (i == 1)\n"
+                                          "        {\n"
+                                          "            { j = k; i++; continue; }\n"
+                                          "        }\n"
+                                          "        for (int m = 0; m < 2; m++)\n"
+                                          "        {\n"
+                                          "            continue;\n"  // the inner loop's own
+                                          "        }\n"
+                                          "        k = i;\n"
+                                          "        j = k; i++;\n"
+                                          "    }\n");
+    // A single step is Godot 3's own syntax: untouched.
+    const std::string single = "for (int i = 0; i < 4; i++)\n{\n}\n";
+    CHECK(with_loop_steps_in_body(single) == single);
+    CHECK_THROWS_AS(with_loop_steps_in_body("for (int i = 0; i < 4; j = k, i++)\n    x = 1;\n"), spirv_cross::CompilerError);
+}
+
+TEST_CASE("Godot 3: loops get a step and a condition, unsigned literals a type", "[godot][godot3-syntax]") {
+    CHECK(with_loop_increments("for (int i = 0; i < 4; )") == "for (int i = 0; i < 4; i += 0)");
+    CHECK(with_loop_increments("for (;;)") == "for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)");
+    CHECK(with_unsigned_literals_spelled("x % 4u + 0xFFu + y2u + 10") == "x % uint(4) + uint(0xFF) + y2u + 10");
+    // All of them, in order: the moved steps leave a loop that then gets its zero step.
+    CHECK(with_godot3_syntax("for (int i = 0; i < 4; j = k, i++)\n{\n}\n") == "for (int i = 0; i < 4; i += 0)\n{\n    j = k; i++;\n}\n");
+}
