@@ -96,7 +96,7 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 5), beside the first of a size eight more)")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--device", o->device, "Vulkan device (see 'crtforge devices'); default: lavapipe");
     cmd->add_option("--out", o->out, "Also write bench.json, bench.md and bench.svg (error against cost, Pareto front) here");
-    cmd->add_option("--uniforms", o->uniforms,
+    auto* uniforms = cmd->add_option("--uniforms", o->uniforms,
                     "Which params stay uniforms, one variant per entry: default, all, none, uber (one shader for every preset: every stage behind a runtime switch; e.g. none,default,all,uber: what each live param costs, and what specialising saves), or retroarch (every param a uniform and no optimisation: glslang's SPIR-V as it is, as RetroArch compiles a .slang pass)")
         ->delimiter(',')
         ->capture_default_str();
@@ -106,7 +106,8 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_flag("--versus-retroarch", o->versus_retroarch,
                   "Time each preset as RetroArch compiles it (--uniforms retroarch) and as crtforge exports it (spirv-opt, pow "
                   "reduction, parameters baked: --uniforms none), untiered, and report the speed-up per preset and on average; "
-                  "the two frames must look the same on an 8-bit display");
+                  "the two frames must look the same on an 8-bit display")
+        ->excludes(uniforms);
     cmd->add_flag("--keep-going", o->keep_going,
                   "A preset that fails to compile or render is reported on one line and the others are timed; exit 1 at the end");
     cmd->add_flag("--quick", o->quick, "320x240, 5 draws, 3 repeats, 2x2 supersampling: every preset in well under a minute");

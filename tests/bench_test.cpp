@@ -691,6 +691,12 @@ TEST_CASE("bench --versus-retroarch times an imported preset as RetroArch compil
     CHECK_THAT(md, Catch::Contains("### Against RetroArch's compile") && Catch::Contains("| taps uniforms=none | 96x64 | 1 |") &&
                        Catch::Contains("Speed-up over 1 scenes: mean"));
     CHECK_THAT(run.out, Catch::Contains("x RetroArch's compile ("));
+
+    // It chooses the variants itself: a --uniforms beside it is refused, not overridden.
+    auto both = test::run_crtforge("bench --versus-retroarch --uniforms all --preset " + (dir / "taps.slangp") + " --out " + (dir / "out2"));
+    CHECK(both.exit_code == 2);
+    CHECK_THAT(both.err, Catch::Contains("--uniforms"));
+    CHECK_FALSE(std::filesystem::exists(dir / "out2"));
 }
 
 TEST_CASE("bench --keep-going reports a preset that fails and times the others", "[bench][retroarch][cli]") {

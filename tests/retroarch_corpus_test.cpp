@@ -217,22 +217,6 @@ void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& p
     }
 }
 
-}  // namespace
-
-TEST_CASE("WebGPU renders RetroArch's clamp_to_border like Vulkan: the WGSL fades to the border, the host clamps to the edge",
-          "[retroarch][corpus-command][wgsl][dawn]") {
-    test::TempDir dir;
-    write(dir / "shaders/zoom.slang", zoom_out_pass());
-    write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
-    write(dir / "nearest.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\n");
-    // Two passes: the second reads the first's output (clamp_to_border by default) outside it.
-    write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nscale_type0 = source\n"
-                                "shader1 = shaders/zoom.slang\nfilter_linear1 = true\n");
-    write(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
-    check_all_agree(dir, {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"}, TargetId::Wgsl);
-}
-
-namespace {
 
 // linear.slangp (a zoom out, read linearly outside the texture: clamp_to_border) and chain.slangp
 // (the zoom, then bands of three rows by gl_FragCoord and columns by the output size the vertex
@@ -264,6 +248,23 @@ void write_feedback_library(const test::TempDir& dir) {
 }
 
 }  // namespace
+
+TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in the WGSL, the host clamping to the edge, feedback",
+          "[retroarch][corpus-command][wgsl][dawn]") {
+    test::TempDir dir;
+    write(dir / "shaders/zoom.slang", zoom_out_pass());
+    write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
+    write(dir / "nearest.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\n");
+    // Two passes: the second reads the first's output (clamp_to_border by default) outside it.
+    write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nscale_type0 = source\n"
+                                "shader1 = shaders/zoom.slang\nfilter_linear1 = true\n");
+    write(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
+    check_all_agree(dir, {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"}, TargetId::Wgsl);
+    // The npm scene package runs a multi-pass preset with feedback as Vulkan does.
+    write_feedback_library(dir);
+    check_all_agree(dir, {"feedback.slangp"}, TargetId::Wgsl, 3);
+}
+
 
 TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border",
           "[retroarch][corpus-command][godot4]") {
