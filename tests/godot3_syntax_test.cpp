@@ -64,3 +64,12 @@ TEST_CASE("Godot 3: loops get a step and a condition, unsigned literals a type",
     // All of them, in order: the moved steps leave a loop that then gets its zero step.
     CHECK(with_godot3_syntax("for (int i = 0; i < 4; j = k, i++)\n{\n}\n") == "for (int i = 0; i < 4; i += 0)\n{\n    j = k; i++;\n}\n");
 }
+
+TEST_CASE("Godot 3: an array assigned whole is copied element by element", "[godot][godot3-syntax]") {
+    const std::string text = "void fragment()\n{\n    float _347[3] = float[](1.0, 2.0, 3.0);\n    float phase[3] = float[](0.0, 0.0, 0.0);\n"
+                             "    float x = 1.0;\n    float y;\n    if (x > 0.5)\n    {\n        phase = _347;\n    }\n    y = x;\n}\n";
+    CHECK(with_array_copies_elementwise(text) ==
+          "void fragment()\n{\n    float _347[3] = float[](1.0, 2.0, 3.0);\n    float phase[3] = float[](0.0, 0.0, 0.0);\n"
+          "    float x = 1.0;\n    float y;\n    if (x > 0.5)\n    {\n"
+          "        for (int crt_element = 0; crt_element < 3; crt_element++) { phase[crt_element] = _347[crt_element]; }\n    }\n    y = x;\n}\n");
+}

@@ -311,3 +311,32 @@ TEST_CASE("a curated slice of RetroArch's CRT presets renders alike through Vulk
         }
     }
 }
+
+TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the screen and keeps textureSize", "[retroarch][import][godot]") {
+    test::TempDir dir;
+    write(dir / "shaders/fetch.slang",
+          test::slang_program({"", "", "", "",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "void main() {\n"
+                               "    ivec2 size = textureSize(Source, 0);\n"
+                               "    ivec2 p = clamp(ivec2(gl_FragCoord.xy) / 2, ivec2(0), size - 1);\n"
+                               "    FragColor = vec4(texelFetch(Source, p, 0).rgb, 1.0);\n"
+                               "}\n"}));
+    write(dir / "fetch.slangp", "shaders = 1\nshader0 = shaders/fetch.slang\n");
+    auto lib = import_into(dir / "fetch.slangp", dir / "overlay", dir.path(), "fetch");
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    auto compiled = compile_scene(*lib.value(), *lib.value()->find_preset("fetch"), {}, Cache());
+    REQUIRE(compiled.ok());
+    auto out = emit_target(compiled.value().front(), TargetId::Godot3, Cache());
+    INFO((out.ok() ? std::string() : out.error().str()));
+    REQUIRE(out.ok());
+    std::string screen;
+    for (const auto& f : out.value().files)
+        if (f.role == "screenShader") screen = f.data;
+    INFO(screen);
+    // Rows count from the bottom in Godot 3's screen texture: row y of the effect is size.y - 1 - y.
+    CHECK_THAT(screen, Catch::Contains("texelFetch(SCREEN_TEXTURE, ivec2((") && Catch::Contains(").x, textureSize(SCREEN_TEXTURE, 0).y - 1 - ("));
+    CHECK_THAT(screen, Catch::Contains("textureSize(SCREEN_TEXTURE, 0)"));
+    CHECK(screen.find("crt_flip_y(SCREEN_UV)") != std::string::npos);  // its gl_FragCoord, counted from the top
+}

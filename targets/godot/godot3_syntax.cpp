@@ -2,6 +2,7 @@
 #include "targets/godot/godot3_syntax.hpp"
 
 #include <algorithm>
+#include <map>
 #include <regex>
 #include <vector>
 
@@ -63,7 +64,29 @@ std::string trimmed(const std::string& s) {
 }  // namespace
 
 std::string with_godot3_syntax(const std::string& text) {
-    return with_unsigned_literals_spelled(with_loop_increments(with_loop_steps_in_body(with_constant_arrays_local(text))));
+    return with_unsigned_literals_spelled(
+        with_loop_increments(with_loop_steps_in_body(with_array_copies_elementwise(with_constant_arrays_local(text)))));
+}
+
+std::string with_array_copies_elementwise(const std::string& text) {
+    static const std::regex declared(R"(\b\w+ (\w+)\[(\d+)\](?= =|;))");
+    std::map<std::string, std::string> lengths;  // array name -> its length
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), declared); it != std::sregex_iterator(); ++it)
+        lengths[(*it)[1].str()] = (*it)[2].str();
+    if (lengths.empty()) return text;
+    static const std::regex copy(R"((^|\n)([ \t]*)(\w+) = (\w+);(?=\n))");
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), copy); it != std::sregex_iterator(); ++it) {
+        auto to = lengths.find((*it)[3].str()), from = lengths.find((*it)[4].str());
+        if (to == lengths.end() || from == lengths.end() || to->second != from->second) continue;
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        out += (*it)[1].str() + (*it)[2].str() + "for (int crt_element = 0; crt_element < " + to->second + "; crt_element++) { " +
+               to->first + "[crt_element] = " + from->first + "[crt_element]; }";
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    return out;
 }
 
 std::string with_constant_arrays_local(const std::string& text) {

@@ -13,6 +13,9 @@ std::string with_godot3_syntax(const std::string& text);
 // Global `const T name[N] = T[](...);` arrays (Godot 3: "Expected initialization of constant")
 // become the same array declared at the top of each function that reads it.
 std::string with_constant_arrays_local(const std::string& text);
+// `a = b;` of two arrays ("Expected '[' or '.'": Godot 3 assigns arrays only element by element)
+// becomes a loop over their elements.
+std::string with_array_copies_elementwise(const std::string& text);
 // A for loop whose steps are a comma list (`i++, j = k`: "Expected ')' after third expression")
 // takes its steps at the end of its body; a body that continues cannot, and is refused.
 std::string with_loop_steps_in_body(const std::string& text);

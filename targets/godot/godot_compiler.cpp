@@ -418,7 +418,9 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
     // effects' top-down coordinates back to the bottom-up ones Godot 3's screen texture is read
     // with, and its full-resolution level: SCREEN_TEXTURE has mipmaps, and a coordinate quantised
     // per mask cell (or bent by the barrel) would otherwise pick a blurred level where its
-    // derivatives jump. Any other read of the screen is refused.
+    // derivatives jump. texelFetch(SCREEN_TEXTURE, p, lod) reads row size.y - 1 - p.y, written out
+    // in place (Godot 3's own functions cannot see SCREEN_TEXTURE); textureSize needs no flip. Any
+    // other read of the screen is refused.
     static const std::regex read(R"(\b(\w+)\(SCREEN_TEXTURE, )");
     std::string out;
     size_t last = 0;
@@ -426,7 +428,8 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
         const size_t at = static_cast<size_t>(it->position());
         if (at < last) continue;  // inside a coordinate already rewritten
         const std::string function = (*it)[1].str();
-        if (function != "texture" && function != "textureLod")
+        if (function == "textureSize") continue;
+        if (function != "texture" && function != "textureLod" && function != "texelFetch")
             throw spirv_cross::CompilerError("Godot 3's screen mode cannot flip a " + function + " of SCREEN_TEXTURE");
         const size_t arg = at + static_cast<size_t>(it->length());
         int depth = 0;
@@ -439,6 +442,15 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
         if (end >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
         if (function == "texture" && text[end] != ')') throw spirv_cross::CompilerError("a biased screen texture read");
         out.append(text, last, at - last);
+        if (function == "texelFetch") {
+            const size_t lod_end = text.find(')', end);  // SPIRV-Cross writes the level as a literal or a name
+            if (text[end] != ',' || lod_end == std::string::npos) throw spirv_cross::CompilerError("a texelFetch of SCREEN_TEXTURE without its level");
+            const std::string p = "(" + text.substr(arg, end - arg) + ")", lod = text.substr(end + 1, lod_end - end - 1);
+            if (lod.find('(') != std::string::npos) throw spirv_cross::CompilerError("a texelFetch of SCREEN_TEXTURE at a computed level");
+            out += "texelFetch(SCREEN_TEXTURE, ivec2(" + p + ".x, textureSize(SCREEN_TEXTURE," + lod + ").y - 1 - " + p + ".y)," + lod;
+            last = lod_end;
+            continue;
+        }
         out += "textureLod(SCREEN_TEXTURE, crt_flip_y(" + text.substr(arg, end - arg) + ")" + (function == "texture" ? ", 0.0" : "");
         last = end;
     }
