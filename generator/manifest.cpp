@@ -85,6 +85,9 @@ json pass_manifest(const CompiledVariant& compiled) {
     out["scale"] = json{{"x", scale_json(pass.scale_x)}, {"y", scale_json(pass.scale_y)}};
     out["format"] = pixel_format_name(pass.format);
     out["frameCountMod"] = pass.frame_count_mod;
+    // The pass's main input, read or not: its size is the pass's sourceSize and the base of a
+    // source scale (a RetroArch pass may read only Original or a LUT and still scale by it).
+    if (const PassInput* main = pass.find_input(kSourceTextureName)) out["input"] = main->from.str();
     json stages = json::array();
     for (const ResolvedStage& rs : pass.stages) stages.push_back(json{{"stage", rs.stage->name}, {"form", rs.form->name}});
     out["stages"] = std::move(stages);

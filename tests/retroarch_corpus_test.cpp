@@ -237,6 +237,22 @@ void write_program_library(const test::TempDir& dir) {
                                 "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");
 }
 
+// original.slangp: a second pass that reads only Original (not its own input, whose size is still
+// its SourceSize) and sizes its stripes by FinalViewportSize, which the host must set.
+void write_original_library(const test::TempDir& dir) {
+    write(dir / "shaders/zoom.slang", zoom_out_pass());
+    write(dir / "shaders/original.slang",
+          test::slang_program({"vec4 FinalViewportSize; ", "", "", "",
+                               "layout(set = 0, binding = 3) uniform sampler2D Original;\n"
+                               "void main() {\n"
+                               "    float stripe = mod(floor(vTexCoord.x * params.FinalViewportSize.x / 8.0), 2.0);\n"
+                               "    float texel = params.SourceSize.z * 40.0;  // the first pass's width: 1 / 32\n"
+                               "    FragColor = vec4(texture(Original, vTexCoord).rgb * (0.5 + 0.5 * stripe) + vec3(texel - 1.25), 1.0);\n"
+                               "}\n"}));
+    write(dir / "original.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nscale_type0 = source\nscale0 = 1.0\n"
+                                   "shader1 = shaders/original.slang\nfilter_linear1 = false\n");
+}
+
 // feedback.slangp: three passes, the second reading its own last output (trailFeedback).
 void write_feedback_library(const test::TempDir& dir) {
     write(dir / "shaders/zoom.slang", zoom_out_pass());
@@ -260,9 +276,11 @@ TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in
                                 "shader1 = shaders/zoom.slang\nfilter_linear1 = true\n");
     write(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
     check_all_agree(dir, {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"}, TargetId::Wgsl);
-    // The npm scene package runs a multi-pass preset with feedback as Vulkan does.
+    // The npm scene package runs a multi-pass preset with feedback as Vulkan does, and a pass that
+    // reads only Original and the final viewport's size.
     write_feedback_library(dir);
-    check_all_agree(dir, {"feedback.slangp"}, TargetId::Wgsl, 3);
+    write_original_library(dir);
+    check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Wgsl, 3);
 }
 
 
@@ -272,7 +290,8 @@ TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyin
     write_program_library(dir);
     check_all_agree(dir, {"chain.slangp", "linear.slangp"}, TargetId::Godot4);
     write_feedback_library(dir);
-    check_all_agree(dir, {"feedback.slangp"}, TargetId::Godot4, 3);
+    write_original_library(dir);
+    check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot4, 3);
 }
 
 TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border",
@@ -281,5 +300,6 @@ TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyin
     write_program_library(dir);
     write_feedback_library(dir);
     check_all_agree(dir, {"chain.slangp", "linear.slangp"}, TargetId::Godot3);
-    check_all_agree(dir, {"feedback.slangp"}, TargetId::Godot3, 3);
+    write_original_library(dir);
+    check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot3, 3);
 }

@@ -197,9 +197,10 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
     // for the others) -> `target` (GPUTextureView of `format`). `width` x `height` is the size drawn
     // (the whole target, or `viewport` = { x, y, width, height } inside it, cleared to black
     // around it); `time` in seconds; `frameCount` the frame number (already reduced by the pass's
-    // frameCountMod).
-    encode(encoder, { source, textures = {}, target: view, width, height, viewport = null, time = 0, frameCount = 0 }) {
-      if (!source || !view) throw new Error('crt-webgpu: encode needs `source` (GPUTexture) and `target` (GPUTextureView)');
+    // frameCountMod); `viewportSize` the screen's [width, height] the scene's last pass draws
+    // (default: the size drawn).
+    encode(encoder, { source, textures = {}, target: view, width, height, viewport = null, time = 0, frameCount = 0, viewportSize }) {
+      if (!source || !view) throw new Error('crt-webgpu: encode needs `source` (GPUTexture: the main input, read or not) and `target` (GPUTextureView)');
       if (!(width > 0 && height > 0)) throw new Error('crt-webgpu: encode needs the drawn `width` and `height` in pixels');
       const bound = { ...textures, source };
       const unfilterable = new Set();
@@ -215,7 +216,8 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
       const { pipeline, bindGroupLayout } = pipelineFor(unfilterable);
 
       if (layout) {
-        fillUniforms({ outputSize: [width, height], sourceSize: [source.width, source.height], time: shaderTime(time), frameCount });
+        fillUniforms({ outputSize: [width, height], sourceSize: [source.width, source.height], time: shaderTime(time), frameCount,
+                       viewportSize: viewportSize ?? [width, height] });
         device.queue.writeBuffer(uniformBuffer, 0, uniformBytes);
       }
 
@@ -308,12 +310,15 @@ function parseFrom(from) {
   return { kind: 'pass', name: from };
 }
 
+// What feeds a pass's main input ("source"), read by its shader or not.
+const mainInput = (pass) => pass.input ?? pass.textures.find((t) => t.name === 'source')?.from ?? 'original';
+
 // Every pass's output size: a factor of its main input (source), of the screen (viewport), or
 // absolute pixels; the last pass's is the screen's.
 export function passSizes(passes, source, screen) {
   const sizes = new Map();
   const out = passes.map((pass) => {
-    const from = parseFrom(pass.textures.find((t) => t.name === 'source')?.from ?? 'original');
+    const from = parseFrom(mainInput(pass));
     const input = (from.kind === 'pass' || from.kind === 'feedback') && sizes.has(from.name) ? sizes.get(from.name) : source;
     const axis = (s, inputExtent, screenExtent) => {
       const base = s.type === 'source' ? inputExtent : s.type === 'viewport' ? screenExtent : 1;
@@ -458,9 +463,10 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
       passes.forEach((pass, i) => {
         const bound = {};
         for (const t of pass.textures) bound[t.name] = resolve(parseFrom(t.from));
-        const { source: main, ...textures } = bound;
+        const { source: read, ...textures } = bound;
+        const main = read ?? resolve(parseFrom(mainInput(pass)));  // its size is sourceSize
         const frameCount = pass.frameCountMod > 0 ? frame % pass.frameCountMod : frame;
-        const common = { source: main, textures, time: seconds, frameCount };
+        const common = { source: main, textures, time: seconds, frameCount, viewportSize: [screen.width, screen.height] };
         if (outputs.has(pass.alias))
           runners[i].encode(encoder, { ...common, target: outputs.get(pass.alias).createView(), width: sizes[i].width, height: sizes[i].height });
         if (pass.alias === lastAlias) {
@@ -490,13 +496,16 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
 
 // ---- LUTs: the PNGs of luts/ as textures, in a browser and in Node alike ----
 
-// An 8-bit RGB or RGBA, non-interlaced PNG (what crtforge writes for LUTs) as RGBA8 texels, read
-// with the platform's own DecompressionStream: no canvas, no colour management, bytes as stored.
+// A PNG as RGBA8 texels, read with the platform's own DecompressionStream: no canvas, no colour
+// management, bytes as stored. Every colour type (grey, RGB, palette, grey + alpha, RGBA), bit
+// depth (1 to 16: a 16-bit sample keeps its high byte) and Adam7 interlacing: crtforge writes 8-bit
+// RGB(A) LUTs, and an imported RetroArch preset ships the library's own PNGs as they are.
 export async function decodePng(bytes, name = 'PNG') {
   const u8 = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
   const be32 = (at) => ((u8[at] << 24) | (u8[at + 1] << 16) | (u8[at + 2] << 8) | u8[at + 3]) >>> 0;
   if (u8.length < 8 || be32(0) !== 0x89504e47) throw new Error(`crt-webgpu: ${name} is not a PNG file`);
-  let width = 0, height = 0, channels = 0;
+  const CHANNELS = { 0: 1, 2: 3, 3: 1, 4: 2, 6: 4 };
+  let width = 0, height = 0, depth = 0, colour = 0, interlace = 0, palette = null, transparency = null;
   const chunks = [];
   for (let at = 8; at + 8 <= u8.length;) {
     const length = be32(at), type = String.fromCharCode(...u8.subarray(at + 4, at + 8));
@@ -504,38 +513,77 @@ export async function decodePng(bytes, name = 'PNG') {
     if (type === 'IHDR') {
       width = be32(at + 8);
       height = be32(at + 12);
-      const depth = body[8], colour = body[9], interlace = body[12];
-      channels = colour === 6 ? 4 : colour === 2 ? 3 : 0;
-      if (depth !== 8 || !channels || interlace) throw new Error(`crt-webgpu: ${name}: only 8-bit RGB/RGBA non-interlaced PNGs are read`);
-    } else if (type === 'IDAT') chunks.push(body);
+      [depth, colour, interlace] = [body[8], body[9], body[12]];
+      const depths = colour === 0 ? [1, 2, 4, 8, 16] : colour === 3 ? [1, 2, 4, 8] : [8, 16];
+      if (!(colour in CHANNELS) || !depths.includes(depth) || interlace > 1)
+        throw new Error(`crt-webgpu: ${name}: colour type ${colour} at ${depth} bits (interlace ${interlace}) is not a valid PNG`);
+    } else if (type === 'PLTE') palette = body;
+    else if (type === 'tRNS') transparency = body;
+    else if (type === 'IDAT') chunks.push(body);
     else if (type === 'IEND') break;
     at += 12 + length;
   }
   if (!width || !height) throw new Error(`crt-webgpu: ${name} has no IHDR chunk`);
+  if (colour === 3 && !palette) throw new Error(`crt-webgpu: ${name}: a palette PNG without its PLTE chunk`);
   const inflated = new Blob(chunks).stream().pipeThrough(new DecompressionStream('deflate'));
   const raw = new Uint8Array(await new Response(inflated).arrayBuffer());
-  const stride = width * channels;
-  if (raw.length < height * (stride + 1)) throw new Error(`crt-webgpu: ${name} holds fewer rows than its header says`);
+  const channels = CHANNELS[colour];
+  const bpp = Math.max(1, (channels * depth) >> 3);  // the filters' byte distance
+  const maxSample = (1 << Math.min(depth, 8)) - 1;
+  // Sample k of pixel x in an unfiltered row, scaled to 0..255 (a palette index as it is).
+  const sample = (row, x, k) => {
+    if (depth === 16) return row[(x * channels + k) * 2];
+    if (depth === 8) return row[x * channels + k];
+    const bit = (x * channels + k) * depth, v = (row[bit >> 3] >> (8 - depth - (bit & 7))) & maxSample;
+    return colour === 3 ? v : Math.round((v * 255) / maxSample);
+  };
   const out = new Uint8Array(width * height * 4);
-  let prior = new Uint8Array(stride);
-  for (let y = 0; y < height; ++y) {
-    const filter = raw[y * (stride + 1)], line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
-    const row = new Uint8Array(stride);
-    for (let i = 0; i < stride; ++i) {
-      const a = i >= channels ? row[i - channels] : 0, b = prior[i], c = i >= channels ? prior[i - channels] : 0;
-      let p = 0;
-      if (filter === 1) p = a;
-      else if (filter === 2) p = b;
-      else if (filter === 3) p = (a + b) >> 1;
-      else if (filter === 4) {
-        const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
-        p = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
-      }
-      row[i] = (line[i] + p) & 0xff;
+  const put = (row, x, px, py) => {
+    const o = (py * width + px) * 4;
+    if (colour === 3) {
+      const i = sample(row, x, 0);
+      if (3 * i + 2 >= palette.length) throw new Error(`crt-webgpu: ${name}: palette index ${i} past its PLTE chunk`);
+      out[o] = palette[3 * i];
+      out[o + 1] = palette[3 * i + 1];
+      out[o + 2] = palette[3 * i + 2];
+      out[o + 3] = transparency && i < transparency.length ? transparency[i] : 255;
+    } else if (channels >= 3) {
+      out[o] = sample(row, x, 0);
+      out[o + 1] = sample(row, x, 1);
+      out[o + 2] = sample(row, x, 2);
+      out[o + 3] = channels === 4 ? sample(row, x, 3) : 255;
+    } else {
+      out[o] = out[o + 1] = out[o + 2] = sample(row, x, 0);
+      out[o + 3] = channels === 2 ? sample(row, x, 1) : 255;
     }
-    for (let x = 0; x < width; ++x)
-      for (let k = 0; k < 4; ++k) out[(y * width + x) * 4 + k] = k < channels ? row[x * channels + k] : 255;
-    prior = row;
+  };
+  // Adam7: seven sub-images (x0, y0, dx, dy), each filtered on its own; or the whole image once.
+  const passes = interlace ? [[0, 0, 8, 8], [4, 0, 8, 8], [0, 4, 4, 8], [2, 0, 4, 4], [0, 2, 2, 4], [1, 0, 2, 2], [0, 1, 1, 2]] : [[0, 0, 1, 1]];
+  let at = 0;
+  for (const [x0, y0, dx, dy] of passes) {
+    const w = Math.ceil((width - x0) / dx), h = Math.ceil((height - y0) / dy);
+    if (w <= 0 || h <= 0) continue;
+    const stride = Math.ceil((w * channels * depth) / 8);
+    if (raw.length < at + h * (stride + 1)) throw new Error(`crt-webgpu: ${name} holds fewer rows than its header says`);
+    let prior = new Uint8Array(stride);
+    for (let y = 0; y < h; ++y, at += stride + 1) {
+      const filter = raw[at], line = raw.subarray(at + 1, at + 1 + stride);
+      const row = new Uint8Array(stride);
+      for (let i = 0; i < stride; ++i) {
+        const a = i >= bpp ? row[i - bpp] : 0, b = prior[i], c = i >= bpp ? prior[i - bpp] : 0;
+        let p = 0;
+        if (filter === 1) p = a;
+        else if (filter === 2) p = b;
+        else if (filter === 3) p = (a + b) >> 1;
+        else if (filter === 4) {
+          const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
+          p = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+        }
+        row[i] = (line[i] + p) & 0xff;
+      }
+      for (let x = 0; x < w; ++x) put(row, x, x0 + x * dx, y0 + y * dy);
+      prior = row;
+    }
   }
   return { width, height, data: out };
 }

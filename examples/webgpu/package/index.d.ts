@@ -161,6 +161,8 @@ export interface CrtPass {
     viewport?: Rect | null;
     time?: number;
     frameCount?: number;
+    /** The screen's [width, height] a scene's last pass draws (default: [width, height]). */
+    viewportSize?: [number, number];
   }): void;
   compilationInfo(): Promise<CompilationMessage[]>;
   destroy(): void;
