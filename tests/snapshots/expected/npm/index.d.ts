@@ -81,6 +81,8 @@ export interface ManifestPass {
   scale?: { x: PassScale; y: PassScale };
   format?: 'rgba8' | 'srgba8' | 'rgba16f' | 'rgba32f' | string;
   frameCountMod?: number;
+  /** What feeds the pass's main input, read by its shader or not ("original", a pass alias, ...). */
+  input?: string;
   stages: Array<{ stage: string; form: string }>;
   baked: Record<string, ParamValue | string | boolean>;
   uniformBlock?: UniformBlock;
@@ -89,7 +91,7 @@ export interface ManifestPass {
 }
 
 export interface ManifestLut {
-  /** Path of the LUT's PNG (8-bit RGBA), relative to the package root. */
+  /** Path of the LUT's PNG (any PNG: crtforge's are 8-bit RGBA, an imported preset's as the library has them), relative to the package root. */
   file: string;
   filter: 'nearest' | 'linear';
   wrap: string;
