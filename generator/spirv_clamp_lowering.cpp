@@ -92,30 +92,18 @@ size_t lower_clamps(SpirvBinary& words) {
     if (glsl_set == 0) return 0;
     const Constants constants = gather_constants(words, *parsed);
 
-    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
-    out.reserve(words.size() + 16);
-    uint32_t bound = words[3];
-    size_t rewritten = 0;
-    for (const detail::SpirvInstruction& in : *parsed) {
+    return detail::rewrite_instructions(words, *parsed, [&](const detail::SpirvInstruction& in, SpirvBinary& out, uint32_t& bound) {
         const size_t a = in.offset;
         // OpExtInst type result set instruction x lo hi
-        if (in.opcode == spv::OpExtInst && in.count == 8 && words[a + 3] == glsl_set) {
-            const auto [max, min] = max_min_of(words[a + 4]);
-            if (max != 0 && !ordered(constants, words[a + 4], words[a + 6], words[a + 7])) {
-                const uint32_t type = words[a + 1], result = words[a + 2], x = words[a + 5], lo = words[a + 6], hi = words[a + 7];
-                const uint32_t raised = bound++;
-                out.insert(out.end(), {(7u << 16) | spv::OpExtInst, type, raised, glsl_set, max, x, lo});
-                out.insert(out.end(), {(7u << 16) | spv::OpExtInst, type, result, glsl_set, min, raised, hi});
-                ++rewritten;
-                continue;
-            }
-        }
-        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(a), words.begin() + static_cast<std::ptrdiff_t>(a + in.count));
-    }
-    if (rewritten == 0) return 0;
-    out[3] = bound;
-    words = std::move(out);
-    return rewritten;
+        if (in.opcode != spv::OpExtInst || in.count != 8 || words[a + 3] != glsl_set) return false;
+        const auto [max, min] = max_min_of(words[a + 4]);
+        if (max == 0 || ordered(constants, words[a + 4], words[a + 6], words[a + 7])) return false;
+        const uint32_t type = words[a + 1], result = words[a + 2], x = words[a + 5], lo = words[a + 6], hi = words[a + 7];
+        const uint32_t raised = bound++;
+        out.insert(out.end(), {(7u << 16) | spv::OpExtInst, type, raised, glsl_set, max, x, lo});
+        out.insert(out.end(), {(7u << 16) | spv::OpExtInst, type, result, glsl_set, min, raised, hi});
+        return true;
+    });
 }
 
 }  // namespace crtforge

@@ -131,27 +131,14 @@ size_t reduce_constant_powers(SpirvBinary& words) {
     const ConstantFacts facts = gather(words, *parsed);
     if (facts.glsl_set == 0) return 0;
 
-    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
-    out.reserve(words.size() + 16);
-    uint32_t bound = words[3];
-    PowWriter writer(out, facts.glsl_set, bound);
-    size_t rewritten = 0;
-    for (const Instruction& in : *parsed) {
+    return detail::rewrite_instructions(words, *parsed, [&](const Instruction& in, SpirvBinary& out, uint32_t& bound) {
         const size_t a = in.offset;
         // OpExtInst type result set instruction x exponent
-        if (in.opcode == spv::OpExtInst && in.count == 7 && words[a + 3] == facts.glsl_set && words[a + 4] == GLSLstd450Pow) {
-            auto exponent = facts.values.find(words[a + 6]);
-            if (exponent != facts.values.end() && writer.write(words[a + 1], words[a + 2], words[a + 5], exponent->second)) {
-                ++rewritten;
-                continue;
-            }
-        }
-        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(a), words.begin() + static_cast<std::ptrdiff_t>(a + in.count));
-    }
-    if (rewritten == 0) return 0;
-    out[3] = bound;
-    words = std::move(out);
-    return rewritten;
+        if (in.opcode != spv::OpExtInst || in.count != 7 || words[a + 3] != facts.glsl_set || words[a + 4] != GLSLstd450Pow) return false;
+        auto exponent = facts.values.find(words[a + 6]);
+        PowWriter writer(out, facts.glsl_set, bound);
+        return exponent != facts.values.end() && writer.write(words[a + 1], words[a + 2], words[a + 5], exponent->second);
+    });
 }
 
 }  // namespace crtforge

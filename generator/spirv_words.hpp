@@ -44,4 +44,28 @@ inline std::string spirv_literal_string(const SpirvBinary& words, size_t first, 
     return out;
 }
 
+// The module rewritten instruction by instruction: `rewrite(in, out, bound)` either appends the
+// instructions that replace `in` to `out` (taking new ids from `bound`) and returns true, or
+// returns false to keep `in` as it is. Returns how many it replaced; with none, `words` is left
+// untouched. The id bound in the header is updated.
+template <typename Rewrite>
+size_t rewrite_instructions(SpirvBinary& words, const std::vector<SpirvInstruction>& list, Rewrite&& rewrite) {
+    SpirvBinary out(words.begin(), words.begin() + kSpirvHeaderWords);
+    out.reserve(words.size() + 16);
+    uint32_t bound = words[3];
+    size_t rewritten = 0;
+    for (const SpirvInstruction& in : list) {
+        if (rewrite(in, out, bound)) {
+            ++rewritten;
+            continue;
+        }
+        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
+                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
+    }
+    if (rewritten == 0) return 0;
+    out[3] = bound;
+    words = std::move(out);
+    return rewritten;
+}
+
 }  // namespace crtforge::detail

@@ -627,38 +627,18 @@ namespace {
 
 // A RetroArch pass whose parameters decide its work: a loop bound and a branch. Baked (crtforge's
 // export), the loop and the branch fold away; as uniforms (RetroArch's compile) they stay.
-const char* kParamHeavyPass = R"(#version 450
-layout(push_constant) uniform Push {
-    vec4 SourceSize;
-    float TAPS;
-    float WARM;
-} params;
-layout(std140, set = 0, binding = 0) uniform UBO {
-    mat4 MVP;
-} global;
-#pragma parameter TAPS "Taps" 3.0 1.0 8.0 1.0
-#pragma parameter WARM "Warm tint" 0.0 0.0 1.0 1.0
-#pragma stage vertex
-layout(location = 0) in vec4 Position;
-layout(location = 1) in vec2 TexCoord;
-layout(location = 0) out vec2 vTexCoord;
-void main() {
-    gl_Position = global.MVP * Position;
-    vTexCoord = TexCoord;
-}
-#pragma stage fragment
-layout(location = 0) in vec2 vTexCoord;
-layout(location = 0) out vec4 FragColor;
-layout(set = 0, binding = 2) uniform sampler2D Source;
-void main() {
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < int(params.TAPS); ++i)
-        sum += texture(Source, vTexCoord + vec2(float(i) * params.SourceSize.z, 0.0)).rgb;
-    sum /= params.TAPS;
-    if (params.WARM > 0.5) sum *= vec3(1.1, 1.0, 0.8);
-    FragColor = vec4(pow(sum, vec3(2.0)), 1.0);
-}
-)";
+const std::string kParamHeavyPass = test::slang_program(
+    {"float TAPS; float WARM; ",
+     "#pragma parameter TAPS \"Taps\" 3.0 1.0 8.0 1.0\n#pragma parameter WARM \"Warm tint\" 0.0 0.0 1.0 1.0\n", "", "",
+     "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+     "void main() {\n"
+     "    vec3 sum = vec3(0.0);\n"
+     "    for (int i = 0; i < int(params.TAPS); ++i)\n"
+     "        sum += texture(Source, vTexCoord + vec2(float(i) * params.SourceSize.z, 0.0)).rgb;\n"
+     "    sum /= params.TAPS;\n"
+     "    if (params.WARM > 0.5) sum *= vec3(1.1, 1.0, 0.8);\n"
+     "    FragColor = vec4(pow(sum, vec3(2.0)), 1.0);\n"
+     "}\n"});
 
 }  // namespace
 
@@ -705,7 +685,7 @@ TEST_CASE("bench --keep-going reports a preset that fails and times the others",
         std::ofstream(dir / "taps.slang") << kParamHeavyPass;
         std::ofstream(dir / "taps.slangp") << "shaders = 1\nshader0 = taps.slang\n";
         // Imports (the file parses) but cannot compile: an undeclared name in the fragment stage.
-        std::string broken = kParamHeavyPass;
+        std::string broken = kParamHeavyPass;  // a copy
         broken.replace(broken.find("sum /= params.TAPS;"), 19, "sum /= undeclared;");
         std::ofstream(dir / "broken.slang") << broken;
         std::ofstream(dir / "broken.slangp") << "shaders = 1\nshader0 = broken.slang\n";

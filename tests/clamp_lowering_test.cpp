@@ -13,17 +13,6 @@ namespace {
 
 using namespace crtforge;
 
-SpirvBinary compile(const std::string& source, ShaderStage stage, bool optimize) {
-    CompileOptions options;
-    options.stage = stage;
-    options.optimize = optimize;
-    options.source_name = "<clamp test>";
-    auto spirv = compile_to_spirv(source, options);
-    INFO((spirv.ok() ? std::string() : spirv.error().str()));
-    REQUIRE(spirv.ok());
-    return spirv.value();
-}
-
 size_t count(const std::string& text, const std::string& what) {
     size_t n = 0;
     for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
@@ -44,7 +33,7 @@ void main() {
 }  // namespace
 
 TEST_CASE("a clamp with bounds not known to be in order becomes min(max()), an ordered one stays clamp", "[compile][clamp]") {
-    const std::string text = disassemble_spirv(compile(R"(#version 450
+    const std::string text = disassemble_spirv(test::compile_glsl_or_fail(R"(#version 450
 layout(location = 0) in vec2 vTexCoord;
 layout(location = 0) out vec4 fragColor;
 layout(std140, set = 0, binding = 0) uniform P { float lo; int n; } p;
@@ -72,8 +61,8 @@ TEST_CASE("swapped clamp bounds draw the same once optimised as glslang's module
     Image drawn[2];
     for (bool optimize : {false, true}) {
         auto job = test::frame_job<RenderJob>(Image{}, width, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
-        job.vertex_spirv = compile(test::shipped_library().vertex_source(), ShaderStage::Vertex, optimize);
-        job.fragment_spirv = compile(kSwappedClamp, ShaderStage::Fragment, optimize);
+        job.vertex_spirv = test::compile_glsl_or_fail(test::shipped_library().vertex_source(), ShaderStage::Vertex, optimize);
+        job.fragment_spirv = test::compile_glsl_or_fail(kSwappedClamp, ShaderStage::Fragment, optimize);
         drawn[optimize] = test::require_image(engine.value()->render(job), width, 1);
     }
     for (int px = 0; px < width; ++px) {

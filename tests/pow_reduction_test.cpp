@@ -14,16 +14,6 @@ namespace {
 
 using namespace crtforge;
 
-SpirvBinary compile_optimized(const std::string& source, ShaderStage stage) {
-    CompileOptions options;
-    options.stage = stage;
-    options.source_name = "<pow test>";
-    auto spirv = compile_to_spirv(source, options);
-    INFO((spirv.ok() ? std::string() : spirv.error().str()));
-    REQUIRE(spirv.ok());
-    return spirv.value();
-}
-
 size_t count(const std::string& text, const std::string& what) {
     size_t n = 0;
     for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
@@ -44,7 +34,7 @@ std::string powers_shader(const std::string& e0, const std::string& e1, const st
 }  // namespace
 
 TEST_CASE("pow with a constant exponent becomes sqrt and products, the others stay pow", "[compile][pow]") {
-    const std::string text = disassemble_spirv(compile_optimized(R"(#version 450
+    const std::string text = disassemble_spirv(test::compile_glsl_or_fail(R"(#version 450
 layout(location = 0) in vec2 vTexCoord;
 layout(location = 0) out vec4 fragColor;
 layout(std140, set = 0, binding = 0) uniform P { float e; } p;
@@ -74,8 +64,8 @@ TEST_CASE("the rewritten powers compute what std::pow does, on lavapipe", "[comp
     for (const Case& c : {Case{{"0.5", "1.5", "2.0", "2.5"}, {0.5, 1.5, 2.0, 2.5}},
                           Case{{"3.0", "4.0", "-0.5", "1.7"}, {3.0, 4.0, -0.5, 1.7}}}) {
         auto job = test::frame_job<RenderJob>(Image{}, width, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
-        job.vertex_spirv = compile_optimized(test::shipped_library().vertex_source(), ShaderStage::Vertex);  // the generator's
-        job.fragment_spirv = compile_optimized(powers_shader(c.glsl[0], c.glsl[1], c.glsl[2], c.glsl[3]), ShaderStage::Fragment);
+        job.vertex_spirv = test::compile_glsl_or_fail(test::shipped_library().vertex_source(), ShaderStage::Vertex);  // the generator's
+        job.fragment_spirv = test::compile_glsl_or_fail(powers_shader(c.glsl[0], c.glsl[1], c.glsl[2], c.glsl[3]), ShaderStage::Fragment);
         const Image out = test::require_image(engine.value()->render(job), width, 1);
         for (int px = 0; px < width; ++px) {
             const double x = (px + 0.5) / width * 2.0 - 0.5;

@@ -109,6 +109,16 @@ CommandResult run_crtforge(const std::string& args, const std::string& env) {
     return run_command(env + (env.empty() ? "" : " ") + std::string("'") + CRTFORGE_BINARY + "' " + args);
 }
 
+SpirvBinary compile_glsl_or_fail(const std::string& source, ShaderStage stage, bool optimize) {
+    CompileOptions options;
+    options.stage = stage;
+    options.optimize = optimize;
+    options.source_name = "<test shader>";
+    auto spirv = compile_to_spirv(source, options);
+    if (!spirv.ok()) FAIL(spirv.error().str());
+    return std::move(spirv.value());
+}
+
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset_name,
                                 const VariantOptions& options) {
     const Preset* preset = lib.find_preset(preset_name);

@@ -92,6 +92,10 @@ std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const s
 // The emitted file with this manifest role ("shader", "screenShader", ...); fails the test if none.
 const OutputFile& file_with_role(const TargetOutput& out, const std::string& role);
 
+// GLSL 450 through glslang (and, with `optimize`, spirv-opt and crtforge's SPIR-V rewrites);
+// fails the test on any error.
+SpirvBinary compile_glsl_or_fail(const std::string& source, ShaderStage stage, bool optimize = true);
+
 // Compiles and emits one preset through every target; fails the test on any error.
 CompiledVariant compile_or_fail(const TemplateLibrary& lib, const std::string& preset,
                                 const VariantOptions& options = {});
