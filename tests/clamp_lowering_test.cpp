@@ -13,12 +13,6 @@ namespace {
 
 using namespace crtforge;
 
-size_t count(const std::string& text, const std::string& what) {
-    size_t n = 0;
-    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
-    return n;
-}
-
 // RetroArch's Advanced_CRT_shader_whkrmrgks0 writes clamp(0.0, 1.0, t) for clamp(t, 0.0, 1.0): lo
 // above hi wherever t < 1. t runs over the columns from -0.5 to 1.5.
 const char* kSwappedClamp = R"(#version 450
@@ -47,10 +41,10 @@ void main() {
 }
 )", ShaderStage::Fragment, true));
     INFO(text);
-    CHECK(count(text, " FClamp ") == 1);
-    CHECK(count(text, " SClamp ") == 0);
-    CHECK(count(text, " FMin ") >= 2);
-    CHECK(count(text, " SMin ") >= 1);
+    CHECK(test::count_of(text, " FClamp ") == 1);
+    CHECK(test::count_of(text, " SClamp ") == 0);
+    CHECK(test::count_of(text, " FMin ") >= 2);
+    CHECK(test::count_of(text, " SMin ") >= 1);
 }
 
 TEST_CASE("swapped clamp bounds draw the same once optimised as glslang's module draws, on lavapipe", "[compile][clamp][runtime][vulkan]") {

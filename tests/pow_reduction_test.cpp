@@ -14,12 +14,6 @@ namespace {
 
 using namespace crtforge;
 
-size_t count(const std::string& text, const std::string& what) {
-    size_t n = 0;
-    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
-    return n;
-}
-
 // x runs over the output's columns: x = (column + 0.5) / width * 2 - 0.5, so some bases are negative.
 std::string powers_shader(const std::string& e0, const std::string& e1, const std::string& e2, const std::string& e3) {
     return "#version 450\n"
@@ -46,10 +40,10 @@ void main() {
 }
 )", ShaderStage::Fragment));
     INFO(text);
-    CHECK(count(text, " Pow ") == 3);           // vec3(2, 2, 3), 1.7 and the uniform
-    CHECK(count(text, " Sqrt ") == 3);          // 1.5, 0.5, 2.5
-    CHECK(count(text, " InverseSqrt ") == 1);   // -0.5
-    CHECK(count(text, "OpFMul") >= 4);          // x*sqrt(x), x*x and x*x*sqrt(x), (x*x)^2
+    CHECK(test::count_of(text, " Pow ") == 3);           // vec3(2, 2, 3), 1.7 and the uniform
+    CHECK(test::count_of(text, " Sqrt ") == 3);          // 1.5, 0.5, 2.5
+    CHECK(test::count_of(text, " InverseSqrt ") == 1);   // -0.5
+    CHECK(test::count_of(text, "OpFMul") >= 4);          // x*sqrt(x), x*x and x*x*sqrt(x), (x*x)^2
 }
 
 TEST_CASE("the rewritten powers compute what std::pow does, on lavapipe", "[compile][pow][runtime][vulkan]") {

@@ -109,6 +109,12 @@ CommandResult run_crtforge(const std::string& args, const std::string& env) {
     return run_command(env + (env.empty() ? "" : " ") + std::string("'") + CRTFORGE_BINARY + "' " + args);
 }
 
+size_t count_of(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
+
 SpirvBinary compile_glsl_or_fail(const std::string& source, ShaderStage stage, bool optimize) {
     CompileOptions options;
     options.stage = stage;

@@ -92,6 +92,9 @@ std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const s
 // The emitted file with this manifest role ("shader", "screenShader", ...); fails the test if none.
 const OutputFile& file_with_role(const TargetOutput& out, const std::string& role);
 
+// How often `what` occurs in `text` (not overlapping).
+size_t count_of(const std::string& text, const std::string& what);
+
 // GLSL 450 through glslang (and, with `optimize`, spirv-opt and crtforge's SPIR-V rewrites);
 // fails the test on any error.
 SpirvBinary compile_glsl_or_fail(const std::string& source, ShaderStage stage, bool optimize = true);
