@@ -412,7 +412,7 @@ std::string GodotCompiler::builtin_to_glsl(spv::BuiltIn builtin, spv::StorageCla
     }
 }
 
-std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
+std::string GodotCompiler::with_screen_reads_flipped(const std::string& source) {
     // texture(SCREEN_TEXTURE, p) -> textureLod(SCREEN_TEXTURE, crt_flip_y(p), 0.0) and
     // textureLod(SCREEN_TEXTURE, p, lod) -> textureLod(SCREEN_TEXTURE, crt_flip_y(p), lod): the
     // effects' top-down coordinates back to the bottom-up ones Godot 3's screen texture is read
@@ -421,6 +421,21 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
     // derivatives jump. texelFetch(SCREEN_TEXTURE, p, lod) reads row size.y - 1 - p.y, written out
     // in place (Godot 3's own functions cannot see SCREEN_TEXTURE); textureSize needs no flip. Any
     // other read of the screen is refused.
+    std::function<std::string(const std::string&)> flip_fetches = [&](const std::string& from) {
+        return rewrite_calls(from, "texelFetch", [&](const std::vector<std::string>& a) {
+            std::vector<std::string> args;
+            for (const std::string& arg : a) args.push_back(flip_fetches(arg));
+            if (args.size() == 3 && args[0] == "SCREEN_TEXTURE") {
+                const std::string p = "(" + args[1] + ")";
+                return "texelFetch(SCREEN_TEXTURE, ivec2(" + p + ".x, textureSize(SCREEN_TEXTURE, " + args[2] + ").y - 1 - " + p + ".y), " +
+                       args[2] + ")";
+            }
+            std::string call = "texelFetch(";
+            for (size_t i = 0; i < args.size(); ++i) call += (i ? ", " : "") + args[i];
+            return call + ")";
+        });
+    };
+    const std::string text = flip_fetches(source);
     static const std::regex read(R"(\b(\w+)\(SCREEN_TEXTURE, )");
     std::string out;
     size_t last = 0;
@@ -428,8 +443,8 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
         const size_t at = static_cast<size_t>(it->position());
         if (at < last) continue;  // inside a coordinate already rewritten
         const std::string function = (*it)[1].str();
-        if (function == "textureSize") continue;
-        if (function != "texture" && function != "textureLod" && function != "texelFetch")
+        if (function == "textureSize" || function == "texelFetch") continue;  // no flip / flipped above
+        if (function != "texture" && function != "textureLod")
             throw spirv_cross::CompilerError("Godot 3's screen mode cannot flip a " + function + " of SCREEN_TEXTURE");
         const size_t arg = at + static_cast<size_t>(it->length());
         int depth = 0;
@@ -442,15 +457,6 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& text) {
         if (end >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
         if (function == "texture" && text[end] != ')') throw spirv_cross::CompilerError("a biased screen texture read");
         out.append(text, last, at - last);
-        if (function == "texelFetch") {
-            const size_t lod_end = text.find(')', end);  // SPIRV-Cross writes the level as a literal or a name
-            if (text[end] != ',' || lod_end == std::string::npos) throw spirv_cross::CompilerError("a texelFetch of SCREEN_TEXTURE without its level");
-            const std::string p = "(" + text.substr(arg, end - arg) + ")", lod = text.substr(end + 1, lod_end - end - 1);
-            if (lod.find('(') != std::string::npos) throw spirv_cross::CompilerError("a texelFetch of SCREEN_TEXTURE at a computed level");
-            out += "texelFetch(SCREEN_TEXTURE, ivec2(" + p + ".x, textureSize(SCREEN_TEXTURE," + lod + ").y - 1 - " + p + ".y)," + lod;
-            last = lod_end;
-            continue;
-        }
         out += "textureLod(SCREEN_TEXTURE, crt_flip_y(" + text.substr(arg, end - arg) + ")" + (function == "texture" ? ", 0.0" : "");
         last = end;
     }
