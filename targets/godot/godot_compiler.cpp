@@ -1,5 +1,6 @@
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot3_syntax.hpp"
+#include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/float_literals.hpp"
 #include "crtforge/inert_text.hpp"
 
@@ -44,6 +45,11 @@ std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
     out.insert(out.end(), moved.begin(), moved.end());
     out.insert(out.end(), body.begin(), body.end());
     return out;
+}
+
+std::vector<uint32_t> with_square_matrices(std::vector<uint32_t> words) {
+    square_matrices(words);
+    return words;
 }
 
 // Every call of `function` in `text`, its top-level arguments handed to `rewrite`, which returns
@@ -116,7 +122,7 @@ constexpr const char* kTau = "6.28318530717959";
 
 GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
                              ShaderStage stage, std::vector<Varying> varyings)
-    : CompilerGLSL(without_undefined_values(std::move(spirv))), variant_(variant), options_(options), stage_(stage),
+    : CompilerGLSL(without_undefined_values(with_square_matrices(std::move(spirv)))), variant_(variant), options_(options), stage_(stage),
       program_(variant.program_form() != nullptr), varyings_(std::move(varyings)) {}
 
 std::string GodotCompiler::builtin_expression_fragment_size() const {
@@ -304,7 +310,8 @@ std::string GodotCompiler::compile_godot() {
         out.insert(close, "    COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);  // screen mode: the bezel's alpha over black\n");
     }
     out = with_border_emulated(without_texel_offsets(out));
-    // Godot's matrices are square: matNxN is matN, and a non-square one has no Godot type.
+    // Godot's matrices are square: matNxN is matN; a non-square one was padded to square in the
+    // SPIR-V (spirv_square_matrices), so one here is a bug, refused rather than emitted.
     static const std::regex sized_matrix(R"(\bmat([234])x([234])\b)");
     for (auto it = std::sregex_iterator(out.begin(), out.end(), sized_matrix); it != std::sregex_iterator(); ++it)
         if ((*it)[1] != (*it)[2]) throw spirv_cross::CompilerError("Godot has no non-square matrix type (" + it->str() + ")");
