@@ -12,6 +12,7 @@
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/targets.hpp"
 #include "targets/float_literals.hpp"
+#include "targets/spirv_flat_arrays.hpp"
 
 namespace crtforge::detail {
 
@@ -32,12 +33,15 @@ std::string replace_block_access(const std::string& text, const std::string& ins
                                  const std::function<std::string(const std::string& member)>& replace);
 
 // Compiles `module` with a Compiler (CompilerGLSL or a subclass) after `configure(compiler)` set
-// its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0").
+// its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0"). With
+// `flat_arrays`, arrays of arrays are flattened first (spirv_flat_arrays), for languages without them.
 template <typename Compiler, typename Configure>
 Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, const std::string& target,
-                                  Configure&& configure, const char* instance_name = nullptr) {
+                                  Configure&& configure, const char* instance_name = nullptr, bool flat_arrays = false) {
     try {
-        Compiler compiler(module);
+        SpirvBinary words = module;
+        if (flat_arrays) flatten_arrays_of_arrays(words);
+        Compiler compiler(std::move(words));
         configure(compiler);
         apply_readable_names(compiler, instance_name);
         return shorten_float_literals(compiler.compile());

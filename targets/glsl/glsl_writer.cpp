@@ -68,7 +68,7 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
                 ? spirv_cross::CompilerGLSL::Options::Highp : spirv_cross::CompilerGLSL::Options::Mediump;
             o.emit_uniform_buffer_as_plain_uniforms = options.plain_uniforms;
             c.set_common_options(o);
-        }, options.plain_uniforms ? kPlainBlockMarker : nullptr);
+        }, options.plain_uniforms ? kPlainBlockMarker : nullptr, /*flat_arrays*/ options.es ? options.version < 310 : options.version < 430);
     });
     if (!out.ok()) return out;
     if (!options.es)

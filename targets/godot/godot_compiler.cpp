@@ -1,6 +1,7 @@
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot3_syntax.hpp"
 #include "targets/godot/spirv_square_matrices.hpp"
+#include "targets/spirv_flat_arrays.hpp"
 #include "targets/float_literals.hpp"
 #include "crtforge/inert_text.hpp"
 
@@ -47,7 +48,10 @@ std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
     return out;
 }
 
-std::vector<uint32_t> with_square_matrices(std::vector<uint32_t> words) {
+// Godot's language has neither non-square matrices nor arrays of arrays: both are rewritten in the
+// SPIR-V into forms it has (spirv_square_matrices, spirv_flat_arrays).
+std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words) {
+    detail::flatten_arrays_of_arrays(words);
     square_matrices(words);
     return words;
 }
@@ -122,7 +126,7 @@ constexpr const char* kTau = "6.28318530717959";
 
 GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
                              ShaderStage stage, std::vector<Varying> varyings)
-    : CompilerGLSL(without_undefined_values(with_square_matrices(std::move(spirv)))), variant_(variant), options_(options), stage_(stage),
+    : CompilerGLSL(without_undefined_values(in_godot_types(std::move(spirv)))), variant_(variant), options_(options), stage_(stage),
       program_(variant.program_form() != nullptr), varyings_(std::move(varyings)) {}
 
 std::string GodotCompiler::builtin_expression_fragment_size() const {
