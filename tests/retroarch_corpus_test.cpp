@@ -237,6 +237,28 @@ void write_program_library(const test::TempDir& dir) {
                                 "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");
 }
 
+// tables.slangp: what Godot's language and GLSL 3.30 / ES 3.00 have no type for, as RetroArch's
+// shaders write it: a mask table as an array of arrays read at the output pixel's cell (crt-geom), four
+// taps as the columns of a mat4x3 blended by a vec4 and weighed by luma (xbr, crt-hyllian).
+void write_tables_library(const test::TempDir& dir) {
+    write(dir / "shaders/tables.slang",
+          test::slang_program({"vec4 OutputSize; ", "", "", "",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "const vec3 kMasks[3][2] = vec3[3][2](vec3[2](vec3(1.0, 0.2, 1.0), vec3(0.2, 1.0, 0.2)),\n"
+                               "    vec3[2](vec3(0.6), vec3(0.3, 0.2, 0.9)), vec3[2](vec3(0.2, 0.2, 1.0), vec3(1.0, 1.0, 0.2)));\n"
+                               "void main() {\n"
+                               "    ivec2 cell = ivec2(vTexCoord * params.OutputSize.xy) % ivec2(3, 2);\n"
+                               "    vec2 dx = vec2(params.SourceSize.z, 0.0);\n"
+                               "    mat4x3 taps = mat4x3(texture(Source, vTexCoord - dx).rgb, texture(Source, vTexCoord).rgb,\n"
+                               "                         texture(Source, vTexCoord + dx).rgb, texture(Source, vTexCoord + 2.0 * dx).rgb);\n"
+                               "    vec3 blend = taps * vec4(0.15, 0.45, 0.3, 0.1);\n"
+                               "    vec4 lumas = vec3(0.299, 0.587, 0.114) * taps;\n"
+                               "    float edge = clamp(abs(lumas.z - lumas.x) * 2.0, 0.0, 1.0);\n"
+                               "    FragColor = vec4(mix(blend, taps[1], edge) * kMasks[cell.x][cell.y], 1.0);\n"
+                               "}\n"}));
+    write(dir / "tables.slangp", "shaders = 1\nshader0 = shaders/tables.slang\nfilter_linear0 = false\n");
+}
+
 // original.slangp: a second pass that reads only Original (not its own input, whose size is still
 // its SourceSize) and sizes its stripes by FinalViewportSize, which the host must set.
 void write_original_library(const test::TempDir& dir) {
@@ -284,22 +306,32 @@ TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in
 }
 
 
-TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border",
+TEST_CASE("GLSL ES 3.00 and GLSL 3.30 run a pass with a non-square matrix and an array of arrays (flattened) like Vulkan",
+          "[retroarch][corpus-command][flat-arrays]") {
+    test::TempDir dir;
+    write_tables_library(dir);
+    check_all_agree(dir, {"tables.slangp"}, TargetId::GlslEs300);
+    check_all_agree(dir, {"tables.slangp"}, TargetId::Glsl330);
+}
+
+TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays",
           "[retroarch][corpus-command][godot4]") {
     test::TempDir dir;
     write_program_library(dir);
-    check_all_agree(dir, {"chain.slangp", "linear.slangp"}, TargetId::Godot4);
+    write_tables_library(dir);
+    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot4);
     write_feedback_library(dir);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot4, 3);
 }
 
-TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border",
+TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays",
           "[retroarch][corpus-command][godot3]") {
     test::TempDir dir;
     write_program_library(dir);
     write_feedback_library(dir);
-    check_all_agree(dir, {"chain.slangp", "linear.slangp"}, TargetId::Godot3);
+    write_tables_library(dir);
+    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot3);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot3, 3);
 }
