@@ -191,17 +191,18 @@ std::string trail_pass() {
                                 "}\n"});
 }
 
-// Runs `presets` of the library in `dir` on Vulkan and `target` (a 32x24 source on a 64x48
+// Runs `presets` of the library in `dir` on Vulkan and `target` (a 32x24 source on a 64x48 or the given
 // display, frame `frame`) and checks every pass compiles and every preset agrees with Vulkan.
-void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& presets, TargetId target, int frame = 0) {
+void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& presets, TargetId target, int frame = 0,
+                     int display_width = 64, int display_height = 48) {
     CorpusRequest request;
     request.root = dir.path();
     request.presets = presets;
     request.targets = {TargetId::Spirv, target};
     request.source_width = 32;
     request.source_height = 24;
-    request.display_width = 64;
-    request.display_height = 48;
+    request.display_width = display_width;
+    request.display_height = display_height;
     request.frame = frame;
     auto run = run_corpus(request, Cache());
     INFO((run.ok() ? std::string() : run.error().str()));
@@ -219,8 +220,9 @@ void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& p
 
 
 // linear.slangp (a zoom out, read linearly outside the texture: clamp_to_border) and chain.slangp
-// (the zoom, then bands of three rows by gl_FragCoord and columns by the output size the vertex
-// stage reads).
+// (the zoom, then bands of three rows by gl_FragCoord, columns by the output size the vertex
+// stage reads, and a mask's triads by floor(gl_FragCoord.x - 0.5), which only exact pixel centres
+// count right).
 void write_program_library(const test::TempDir& dir) {
     write(dir / "shaders/zoom.slang", zoom_out_pass());
     write(dir / "shaders/rows.slang",
@@ -230,7 +232,8 @@ void write_program_library(const test::TempDir& dir) {
                                "void main() {\n"
                                "    float band = mod(floor(gl_FragCoord.y / 3.0), 2.0);\n"
                                "    float column = mod(floor(vPixel.x / 4.0), 2.0);\n"
-                               "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.5 * band + 0.25 * column), 1.0);\n"
+                               "    float triad = mod(floor(gl_FragCoord.x - 0.5), 3.0);  // a mask's column: exact centres only\n"
+                               "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.5 * band + 0.25 * column) * (0.5 + 0.25 * triad), 1.0);\n"
                                "}\n"}));
     write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
     write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
@@ -319,7 +322,9 @@ TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyin
     test::TempDir dir;
     write_program_library(dir);
     write_tables_library(dir);
-    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot4);
+    // 100 columns: (i + 0.5) / 100 is inexact, so an interpolated coordinate times the width misses
+    // the pixel centre by an ulp (64 would hide it).
+    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot4, 0, 100, 75);
     write_feedback_library(dir);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot4, 3);
@@ -331,7 +336,7 @@ TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyin
     write_program_library(dir);
     write_feedback_library(dir);
     write_tables_library(dir);
-    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot3);
+    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot3, 0, 100, 75);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot3, 3);
 }

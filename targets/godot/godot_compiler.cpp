@@ -413,11 +413,15 @@ std::string GodotCompiler::builtin_to_glsl(spv::BuiltIn builtin, spv::StorageCla
         // Vulkan's gl_FragCoord: pixel centres at +0.5 from the top-left. FRAGCOORD (and SCREEN_UV)
         // count rows from the bottom in the Compatibility renderer's SubViewports and from the top in
         // Forward+'s; the node's UV is top-down in both, and the pass's node fills its viewport.
-        case spv::BuiltInFragCoord:
+        // The interpolated UV * size lands an ulp either side of the centre, which a shader's
+        // floor(gl_FragCoord.x - 0.5) (a mask's column) turns into a whole pixel: the centre is
+        // rebuilt exactly, floor() + 0.5, as the rasteriser gives it.
+        case spv::BuiltInFragCoord: {
+            auto centre = [](const std::string& pixel) { return "vec4(floor(" + pixel + ") + vec2(0.5), FRAGCOORD.zw)"; };
             // Godot 3's SCREEN_UV counts rows from the bottom in every renderer (crt_flip_y: the header's).
-            if (screen_mode() && options_.godot_version < 4) return "vec4(crt_flip_y(SCREEN_UV) / SCREEN_PIXEL_SIZE, FRAGCOORD.zw)";
-            return screen_mode() ? "vec4(SCREEN_UV / SCREEN_PIXEL_SIZE, FRAGCOORD.zw)"
-                                 : "vec4(UV * " + builtin_expression("outputSize") + ", FRAGCOORD.zw)";
+            if (screen_mode() && options_.godot_version < 4) return centre("crt_flip_y(SCREEN_UV) / SCREEN_PIXEL_SIZE");
+            return screen_mode() ? centre("SCREEN_UV / SCREEN_PIXEL_SIZE") : centre("UV * " + builtin_expression("outputSize"));
+        }
         case spv::BuiltInPosition: return "crt_position";
         default: return CompilerGLSL::builtin_to_glsl(builtin, storage);
     }
