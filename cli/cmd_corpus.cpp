@@ -1,7 +1,9 @@
 // crtforge corpus DIR [--root R] [--report OUT] [--only P,...] [--target T,...|--vulkan-only] [--shard i/n] [-j N]
 //                [--source-size WxH] [--size WxH] [--frame N] [--min-psnr DB] [--smooth] [--retroarch DIR]
+//                [--uniforms default|none|all|NAMES] [--optimised-jit]
 // Every .slangp under DIR through import, SPIR-V, each target's emitter and consumer, a render by
 // each consumer judged against Vulkan: the dashboard of validate/corpus_report.cpp.
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,7 +23,8 @@ namespace {
 struct CorpusArgs {
     std::string dir, root, report, shard = "1/1", source_size = "160x120", size = "320x240", device, retroarch;
     std::vector<std::string> targets, only;
-    bool vulkan_only = false, smooth = false;
+    bool vulkan_only = false, smooth = false, optimised_jit = false;
+    std::string uniforms = "default";
     unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
     int frame = 2;
     double min_psnr = 40.0, fail_under = 0.0;
@@ -82,6 +85,13 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_option("--device", a->device, "Vulkan device name or index (default: lavapipe)");
     cmd->add_option("--retroarch", a->retroarch,
                     "A folder of RetroArch's renders of the judged frame (<dir>/<preset path>.png, at --size, from the same input): adds the RetroArch column");
+    cmd->add_option("--uniforms", a->uniforms,
+                    "Which params stay uniforms: default (every param, live, as export writes them), none (the preset's values baked: "
+                    "smaller shaders, the quick sweep), all or NAME,NAME,...")
+        ->capture_default_str();
+    cmd->add_flag("--optimised-jit", a->optimised_jit,
+                  "With --vulkan-only on lavapipe: let LLVM optimise each pipeline it compiles (by default the sweep sets "
+                  "GALLIVM_PERF=nopt: three small frames per preset do not repay LLVM's optimisation of Mega Bezel's shaders)");
     cmd->add_option("--fail-under", a->fail_under, "Exit 1 when fewer than this percentage of the presets render on Vulkan")
         ->check(CLI::Range(0.0, 100.0));
     return [&g, a]() {
@@ -127,6 +137,16 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
         request.smooth = a->smooth;
         request.vulkan.device = a->device;
         request.retroarch_dir = a->retroarch;
+        auto uniforms = UniformSelection::parse(a->uniforms);
+        if (!uniforms.ok()) return report(make_error(uniforms.error().message, {}, 0, "--uniforms"));
+        if (uniforms.value().mode == UniformSelection::Mode::Uber)
+            return report(make_error("the uber-shader is not a corpus variant: give default, none, all or names", {}, 0, "--uniforms"));
+        request.uniforms = uniforms.value();
+        if (a->optimised_jit && !a->vulkan_only) return report(make_error("only with --vulkan-only", {}, 0, "--optimised-jit"));
+        // lavapipe JIT-compiles every pipeline with LLVM, optimising by default: for a sweep that draws
+        // three small frames per preset, that compile is most of the run. A GALLIVM_PERF the user
+        // set is theirs; the loader has not read it yet (no Vulkan instance exists before the run).
+        if (a->vulkan_only && !a->optimised_jit) ::setenv("GALLIVM_PERF", "nopt", /*overwrite*/ 0);
         if (!a->retroarch.empty() && !std::filesystem::is_directory(a->retroarch, ec))
             return report(make_error("is not a folder", a->retroarch, 0, "--retroarch"));
         // Check the output folder before the long run, not after it.

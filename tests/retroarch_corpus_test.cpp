@@ -340,3 +340,28 @@ TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyin
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot3, 3);
 }
+
+TEST_CASE("corpus --vulkan-only --uniforms none: the quick sweep bakes each preset's values, says so in its report, and refuses what it cannot run",
+          "[retroarch][corpus-command]") {
+    test::TempDir dir;
+    write_library(dir);
+    const std::string base = "corpus '" + dir.path() + "' --only good/plain.slangp,good/wide.slangp -j 1";
+    auto swept = test::run_crtforge(base + " --vulkan-only --uniforms none --report '" + (dir / "report") + "'");
+    INFO(swept.out << swept.err);
+    REQUIRE(swept.exit_code == 0);
+    std::ifstream in(dir / "report/corpus.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(json.find("\"uniforms\": \"none\"") != std::string::npos);
+    CHECK(json.find("\"agrees\": 2") != std::string::npos);
+    CHECK(json.find("\"glsl330\"") == std::string::npos);  // Vulkan only
+
+    auto uber = test::run_crtforge(base + " --vulkan-only --uniforms uber");
+    CHECK(uber.exit_code == 2);
+    CHECK(uber.err.find("--uniforms") != std::string::npos);
+    auto jit = test::run_crtforge(base + " --target glsl330 --optimised-jit");
+    CHECK(jit.exit_code == 2);
+    CHECK(jit.err.find("'--optimised-jit': only with --vulkan-only") != std::string::npos);
+    auto names = test::run_crtforge(base + " --vulkan-only --uniforms 'GAIN,' --report '" + (dir / "named") + "'");
+    INFO(names.err);
+    CHECK(names.exit_code == 0);
+}

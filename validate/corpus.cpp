@@ -121,7 +121,9 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
     std::vector<CompiledVariant> passes(preset->passes.size());  // the scene renders them once all compiled
     std::vector<bool> compiled(preset->passes.size(), false);
     for (size_t i = 0; i < preset->passes.size(); ++i) {
-        auto pass = compile_variant(lib, *preset, VariantOptions{}, cache, i);
+        VariantOptions variant;
+        variant.uniforms = request.uniforms;
+        auto pass = compile_variant(lib, *preset, variant, cache, i);
         if (pass.ok()) {
             passes[i] = std::move(pass.value());
             compiled[i] = true;

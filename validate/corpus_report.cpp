@@ -114,7 +114,8 @@ std::string corpus_json(const CorpusReport& report) {
                {"display", fmt::format("{}x{}", s.display_width, s.display_height)},
                {"frame", s.frame},
                {"minPsnr", s.min_psnr},
-               {"smooth", s.smooth}}},
+               {"smooth", s.smooth},
+               {"uniforms", s.uniforms.str()}}},
              {"summary", tally_json(all, report.targets)},
              {"rows", rows}};
     return out.dump(1) + "\n";
@@ -128,9 +129,10 @@ std::string corpus_html(const CorpusReport& report) {
     h += fmt::format(
         "<p>{} presets in this report (shard {}/{} of {}). Each is imported, compiled to SPIR-V pass by pass, emitted and "
         "compiled by every target's consumer pass by pass, and rendered by each consumer: frame {} of the generated "
-        "pixel_art input at {}x{} on a {}x{} display, judged against the Vulkan render (agrees at PSNR &ge; {} dB).</p>\n",
+        "pixel_art input at {}x{} on a {}x{} display, judged against the Vulkan render (agrees at PSNR &ge; {} dB); "
+        "parameters as uniforms: {}.</p>\n",
         report.rows.size(), report.shard_index, report.shard_count, report.total_presets, s.frame, s.source_width, s.source_height,
-        s.display_width, s.display_height, s.min_psnr);
+        s.display_width, s.display_height, s.min_psnr, html_escape(s.uniforms.str()));
 
     Tally all;
     std::map<std::string, Tally> folders;

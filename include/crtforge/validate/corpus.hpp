@@ -14,6 +14,7 @@
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/targets.hpp"
+#include "crtforge/variant.hpp"
 #include "crtforge/validate/validation.hpp"
 
 namespace crtforge {
@@ -31,6 +32,7 @@ struct CorpusRequest {
     EngineOptions vulkan;
     bool smooth = false;                // RetroArch's video_smooth for filters the presets leave unset
     std::string retroarch_dir;          // RetroArch's renders (<dir>/<preset path>.png), "" = none
+    UniformSelection uniforms;          // which params stay uniforms in every pass (default: all of a preset's, live)
 };
 
 // One target's outcome for one preset. The status is the furthest step reached:
