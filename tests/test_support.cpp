@@ -179,6 +179,27 @@ Image require_image(Result<Image> image, int width, int height) {
     return std::move(image).value();
 }
 
+Image draw_fragment(RenderEngine& engine, const SpirvBinary& fragment, bool optimize, int width, int height) {
+    auto job = frame_job<RenderJob>(Image{}, width, height, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
+    job.vertex_spirv = compile_glsl_or_fail(shipped_library().vertex_source(), ShaderStage::Vertex, optimize);
+    job.fragment_spirv = fragment;
+    return require_image(engine.render(job), width, height);
+}
+
+void check_same_picture(const Image& drawn, const Image& expected, double margin) {
+    REQUIRE(drawn.width == expected.width);
+    REQUIRE(drawn.height == expected.height);
+    double sum = 0.0;
+    for (int y = 0; y < expected.height; ++y)
+        for (int x = 0; x < expected.width; ++x)
+            for (int ch = 0; ch < 3; ++ch) {
+                INFO(x << "," << y << " channel " << ch);
+                CHECK(drawn.pixel(x, y)[ch] == Approx(expected.pixel(x, y)[ch]).margin(margin));
+                sum += expected.pixel(x, y)[ch];
+            }
+    CHECK(sum > 0.1 * expected.width * expected.height);
+}
+
 const OutputFile& file_with_role(const TargetOutput& out, const std::string& role) {
     for (const auto& f : out.files)
         if (f.manifest_role() == role) return f;

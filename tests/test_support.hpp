@@ -86,6 +86,13 @@ Job frame_job(Image input, int width, int height, OutputFormat format, SamplerFi
 // to be width x height and consistent.
 Image require_image(Result<Image> image, int width, int height);
 
+// `fragment` drawn by `engine` over a width x height rgba16f target, behind the shipped vertex
+// stage compiled alike (`optimize`): how a SPIR-V rewrite is compared with glslang's own module.
+Image draw_fragment(RenderEngine& engine, const SpirvBinary& fragment, bool optimize, int width, int height);
+// Every rgb value of `drawn` within `margin` of `expected`'s, and `expected` not near black (so the
+// comparison compared a picture).
+void check_same_picture(const Image& drawn, const Image& expected, double margin);
+
 // The golden plan of a golden directory; fails the test on any error.
 std::vector<GoldenEntry> golden_plan_or_fail(const TemplateLibrary& lib, const std::string& golden_dir);
 
