@@ -11,7 +11,6 @@
 //   one: a pointer to a row is never emitted, its loads and stores become per-leaf ones.
 #include "targets/spirv_flat_arrays.hpp"
 
-#define SPV_ENABLE_UTILITY_CODE
 #include <spirv_cross/spirv.hpp>
 #include <spirv_cross/spirv_cross_error_handling.hpp>
 
@@ -23,6 +22,7 @@
 #include <vector>
 
 #include "generator/spirv_words.hpp"
+#include "targets/spirv_facts.hpp"
 
 namespace crtforge::detail {
 namespace {
@@ -54,8 +54,8 @@ public:
     size_t flat_count() const { return flat_.size(); }
 
     SpirvBinary run() {
-        for (const auto& [s, members] : structs_)
-            if (blocks_.count(s) && holds_flat(s, 0)) refuse("in a uniform or storage block (the host fixes its layout)");
+        for (const auto& [s, members] : f_.structs)
+            if (f_.blocks.count(s) && holds_flat(s, 0)) refuse("in a uniform or storage block (the host fixes its layout)");
         SpirvBinary out(w_.begin(), w_.begin() + kSpirvHeaderWords);
         size_t late_at = 0;
         for (const SpirvInstruction& in : list_) {
@@ -75,70 +75,38 @@ public:
 private:
     void gather() {
         bound_ = w_[3];
-        for (const SpirvInstruction& in : list_) {
-            const size_t a = in.offset;
-            auto at = [&](size_t i) { return i < in.count ? w_[a + i] : 0u; };
-            const auto op = static_cast<spv::Op>(in.opcode);
-            switch (op) {
-                case spv::OpTypeInt: if (at(2) == 32) int_types_.insert(at(1)); break;
-                case spv::OpTypeArray: arrays_[at(1)] = {at(2), at(3)}; break;
-                case spv::OpTypeRuntimeArray: runtime_arrays_[at(1)] = at(2); break;
-                case spv::OpTypeStruct: structs_[at(1)].assign(w_.begin() + static_cast<long>(a + 2), w_.begin() + static_cast<long>(a + in.count)); break;
-                case spv::OpTypePointer: pointers_[at(1)] = {at(2), at(3)}; break;
-                case spv::OpDecorate:
-                    if (at(2) == spv::DecorationBlock || at(2) == spv::DecorationBufferBlock) blocks_.insert(at(1));
-                    break;
-                case spv::OpConstant:
-                    if (int_types_.count(at(1)) && in.count == 4) int_values_[at(2)] = at(3);
-                    break;
-                case spv::OpConstantComposite:
-                    composites_[at(2)].assign(w_.begin() + static_cast<long>(a + 3), w_.begin() + static_cast<long>(a + in.count));
-                    break;
-                case spv::OpConstantNull: nulls_.insert(at(2)); break;
-                default: break;
-            }
-            bool has_result = false, has_type = false;
-            spv::HasResultAndType(op, &has_result, &has_type);
-            if (has_result && has_type && in.count >= 3) value_types_[at(2)] = at(1);
-        }
-        for (const auto& [id, array] : arrays_) {
-            if (!arrays_.count(array.first) && !runtime_arrays_.count(array.first)) continue;
+        f_ = gather_spirv_facts(w_, list_);
+        for (const auto& [id, array] : f_.arrays) {
+            if (!element(array.first)) continue;
             Flat f;
-            for (uint32_t t = id; arrays_.count(t) || runtime_arrays_.count(t); t = element(t)) {
-                auto length = int_values_.find(arrays_.count(t) ? arrays_.at(t).second : 0);
-                if (length == int_values_.end()) refuse("an array of arrays sized at run time or by a specialisation constant");
+            for (uint32_t t = id; element(t); t = element(t)) {
+                auto length = f_.int_values.find(f_.arrays.count(t) ? f_.arrays.at(t).second : 0);
+                if (length == f_.int_values.end()) refuse("an array of arrays sized at run time or by a specialisation constant");
                 f.dims.push_back(length->second);
-                f.length_type = value_types_.at(length->first);
+                f.length_type = f_.type_of(length->first);
                 f.leaf = element(t);
             }
             flat_[id] = f;
         }
-        for (const auto& [id, element] : runtime_arrays_)
-            if (arrays_.count(element)) refuse("a runtime-sized array of arrays");
+        for (const auto& [id, element] : f_.runtime_arrays)
+            if (f_.arrays.count(element)) refuse("a runtime-sized array of arrays");
     }
 
-    uint32_t element(uint32_t array) const {
-        if (auto a = arrays_.find(array); a != arrays_.end()) return a->second.first;
-        if (auto r = runtime_arrays_.find(array); r != runtime_arrays_.end()) return r->second;
-        return 0;
-    }
+    uint32_t element(uint32_t array) const { return f_.element(array); }
     bool holds_flat(uint32_t type, int depth) const {
         if (depth > 64) return false;
         if (flat_.count(type)) return true;
         if (uint32_t e = element(type)) return holds_flat(e, depth + 1);
-        if (auto s = structs_.find(type); s != structs_.end())
+        if (auto s = f_.structs.find(type); s != f_.structs.end())
             for (uint32_t m : s->second)
                 if (holds_flat(m, depth + 1)) return true;
         return false;
     }
-    uint32_t type_of(uint32_t value) const {
-        auto t = value_types_.find(value);
-        return t == value_types_.end() ? 0 : t->second;
-    }
+    uint32_t type_of(uint32_t value) const { return f_.type_of(value); }
     // How many leaves a value of `type` holds once flat (1 for a non-array).
     uint32_t leaves(uint32_t type) const {
         if (auto f = flat_.find(type); f != flat_.end()) return f->second.total();
-        if (auto a = arrays_.find(type); a != arrays_.end()) return int_values_.count(a->second.second) ? int_values_.at(a->second.second) : 1;
+        if (auto a = f_.arrays.find(type); a != f_.arrays.end()) return f_.int_values.count(a->second.second) ? f_.int_values.at(a->second.second) : 1;
         return 1;
     }
     uint32_t leaf_of(uint32_t type) const {
@@ -155,8 +123,8 @@ private:
         const uint32_t id = bound_++;
         declarations(out).insert(declarations(out).end(), {(4u << 16) | spv::OpConstant, type, id, value});
         constants_[{type, value}] = id;
-        int_values_[id] = value;
-        value_types_[id] = type;
+        f_.int_values[id] = value;
+        f_.value_types[id] = type;
         return id;
     }
     uint32_t null_of(SpirvBinary& out, uint32_t type) {
@@ -167,11 +135,11 @@ private:
         return null_of_[type] = id;
     }
     uint32_t pointer_to(SpirvBinary& out, uint32_t storage, uint32_t type) {
-        for (const auto& [id, p] : pointers_)
+        for (const auto& [id, p] : f_.pointers)
             if (p.first == storage && p.second == type) return id;
         const uint32_t id = bound_++;
         declarations(out).insert(declarations(out).end(), {(4u << 16) | spv::OpTypePointer, id, storage, type});
-        pointers_[id] = {storage, type};
+        f_.pointers[id] = {storage, type};
         return id;
     }
     static void emit(SpirvBinary& out, spv::Op op, const std::vector<uint32_t>& operands) {
@@ -183,13 +151,13 @@ private:
     void constant_leaves(SpirvBinary& out, uint32_t c, uint32_t type, std::vector<uint32_t>& into) {
         const uint32_t e = element(type);
         if (e == 0) return into.push_back(c);
-        if (nulls_.count(c)) {
+        if (f_.constant_nulls.count(c)) {
             const uint32_t n = leaves(type), leaf_null = null_of(out, leaf_of(type));
             into.insert(into.end(), n, leaf_null);
             return;
         }
-        auto parts = composites_.find(c);
-        if (parts == composites_.end()) refuse("a constant row it cannot read");
+        auto parts = f_.constant_composites.find(c);
+        if (parts == f_.constant_composites.end()) refuse("a constant row it cannot read");
         for (uint32_t part : parts->second) constant_leaves(out, part, e, into);
     }
     // The leaves of a value of array type `type` (already flat in form), extracted one by one.
@@ -237,7 +205,7 @@ private:
             p.indices.push_back(index);
             if (uint32_t e = element(type)) {
                 type = e;
-            } else if (auto s = structs_.find(type); s != structs_.end()) {
+            } else if (auto s = f_.structs.find(type); s != f_.structs.end()) {
                 if (!index.value || *index.value >= s->second.size()) refuse("a struct index it cannot read");
                 type = s->second[*index.value];
             } else {
@@ -294,8 +262,8 @@ private:
     std::vector<Index> ids_to_indices(const std::vector<uint32_t>& inst, size_t first) const {
         std::vector<Index> out;
         for (size_t i = first; i < inst.size(); ++i) {
-            auto v = int_values_.find(inst[i]);
-            out.push_back({inst[i], v == int_values_.end() ? std::nullopt : std::optional<uint32_t>(v->second), type_of(inst[i])});
+            auto v = f_.int_values.find(inst[i]);
+            out.push_back({inst[i], v == f_.int_values.end() ? std::nullopt : std::optional<uint32_t>(v->second), type_of(inst[i])});
         }
         return out;
     }
@@ -423,8 +391,8 @@ private:
                     indices.insert(indices.begin(), row->second.indices.begin(), row->second.indices.end());
                     base = row->second.base;
                 }
-                auto pointer = pointers_.find(type_of(base));
-                if (pointer == pointers_.end()) return keep();
+                auto pointer = f_.pointers.find(type_of(base));
+                if (pointer == f_.pointers.end()) return keep();
                 return access_chain(out, op, inst[1], inst[2], base, pointer->second.first, pointer->second.second, indices);
             }
             case spv::OpLoad:  // type result pointer [memory access]
@@ -446,7 +414,7 @@ private:
                 }
                 return keep();
             case spv::OpConstant:  // reusable from here on (a later one would be a forward reference)
-                if (int_values_.count(inst[2])) constants_.emplace(std::make_pair(inst[1], inst[3]), inst[2]);
+                if (f_.int_values.count(inst[2])) constants_.emplace(std::make_pair(inst[1], inst[3]), inst[2]);
                 return keep();
             case spv::OpFunctionCall:
             case spv::OpCopyObject:
@@ -463,14 +431,10 @@ private:
 
     const SpirvBinary& w_;
     const std::vector<SpirvInstruction>& list_;
+    SpirvFacts f_;  // the module as it was, and the constants and pointer types added since
     uint32_t bound_ = 0;
     bool in_functions_ = false;
-    std::set<uint32_t> int_types_, blocks_, nulls_;
-    std::map<uint32_t, std::pair<uint32_t, uint32_t>> arrays_;    // id -> {element, length constant}
-    std::map<uint32_t, uint32_t> runtime_arrays_;                 // id -> element
-    std::map<uint32_t, std::vector<uint32_t>> structs_, composites_;
-    std::map<uint32_t, std::pair<uint32_t, uint32_t>> pointers_;  // id -> {storage class, pointee}
-    std::map<uint32_t, uint32_t> int_values_, value_types_, null_of_;
+    std::map<uint32_t, uint32_t> null_of_;
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> constants_;  // {type, value} -> constant id
     std::map<uint32_t, Flat> flat_;
     std::map<uint32_t, RowPointer> rows_;

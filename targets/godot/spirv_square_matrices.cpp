@@ -13,7 +13,7 @@
 // Matrix types are not aggregates: SPIR-V forbids two declarations of the same matrix type, so
 // every matrix type that ends up matN (an existing mat4 and a padded mat4x3, say) is merged into
 // whichever of them the module declares first.
-#define SPV_ENABLE_UTILITY_CODE
+#define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType
 #include "targets/godot/spirv_square_matrices.hpp"
 
 #include <algorithm>
@@ -27,6 +27,7 @@
 #include <spirv_cross/spirv_cross_error_handling.hpp>
 
 #include "generator/spirv_words.hpp"
+#include "targets/spirv_facts.hpp"
 
 namespace crtforge::godot {
 namespace {
@@ -41,54 +42,14 @@ struct Padding {
     uint32_t column = 0;  // its column type, vecR
 };
 
-// What the rewrite needs to know of the module as it was.
-struct ModuleFacts {
-    std::map<uint32_t, std::pair<uint32_t, uint32_t>> vectors;   // id -> {component type, count}
-    std::map<uint32_t, std::pair<uint32_t, uint32_t>> matrices;  // id -> {column type, columns}
-    std::map<uint32_t, std::pair<uint32_t, uint32_t>> pointers;  // id -> {storage class, pointee}
-    std::map<uint32_t, uint32_t> arrays;                         // id -> element type (sized or runtime)
-    std::map<uint32_t, std::vector<uint32_t>> structs;           // id -> member types
-    std::set<uint32_t> blocks;                                   // structs decorated Block / BufferBlock
-    std::map<uint32_t, uint32_t> int_constants;                  // 32-bit integer constants
-    std::map<uint32_t, size_t> declared_at;                      // type id -> offset of its declaration
-    std::map<uint32_t, std::vector<uint32_t>> constant_composites;  // id -> constituents
-    std::set<uint32_t> constant_nulls;
-    std::map<uint32_t, uint32_t> value_types;                    // result id -> result type
-    std::map<uint32_t, Padding> padded;                          // non-square matrix type -> padding
+// What the rewrite needs to know of the module as it was, and the matrix types it pads.
+struct ModuleFacts : detail::SpirvFacts {
+    std::map<uint32_t, Padding> padded;  // non-square matrix type -> padding
 };
 
 ModuleFacts gather(const SpirvBinary& w, const std::vector<detail::SpirvInstruction>& list) {
     ModuleFacts f;
-    std::set<uint32_t> int32_types;
-    for (const detail::SpirvInstruction& in : list) {
-        const size_t a = in.offset;
-        const auto op = static_cast<spv::Op>(in.opcode);
-        auto at = [&](size_t i) { return i < in.count ? w[a + i] : 0u; };
-        switch (op) {
-            case spv::OpTypeInt: if (at(2) == 32) int32_types.insert(at(1)); break;
-            case spv::OpTypeVector: f.vectors[at(1)] = {at(2), at(3)}; break;
-            case spv::OpTypeMatrix: f.matrices[at(1)] = {at(2), at(3)}; break;
-            case spv::OpTypePointer: f.pointers[at(1)] = {at(2), at(3)}; break;
-            case spv::OpTypeArray:
-            case spv::OpTypeRuntimeArray: f.arrays[at(1)] = at(2); break;
-            case spv::OpTypeStruct: f.structs[at(1)].assign(w.begin() + static_cast<long>(a + 2), w.begin() + static_cast<long>(a + in.count)); break;
-            case spv::OpDecorate:
-                if (at(2) == spv::DecorationBlock || at(2) == spv::DecorationBufferBlock) f.blocks.insert(at(1));
-                break;
-            case spv::OpConstant:
-                if (int32_types.count(at(1)) && in.count == 4) f.int_constants[at(2)] = at(3);
-                break;
-            case spv::OpConstantComposite:
-                f.constant_composites[at(2)].assign(w.begin() + static_cast<long>(a + 3), w.begin() + static_cast<long>(a + in.count));
-                break;
-            case spv::OpConstantNull: f.constant_nulls.insert(at(2)); break;
-            default: break;
-        }
-        if (op >= spv::OpTypeVoid && op <= spv::OpTypeForwardPointer && in.count >= 2) f.declared_at[at(1)] = a;
-        bool has_result = false, has_type = false;
-        spv::HasResultAndType(op, &has_result, &has_type);
-        if (has_result && has_type && in.count >= 3) f.value_types[at(2)] = at(1);
-    }
+    static_cast<detail::SpirvFacts&>(f) = detail::gather_spirv_facts(w, list);
     for (const auto& [id, matrix] : f.matrices) {
         auto column = f.vectors.find(matrix.first);
         if (column == f.vectors.end()) continue;
@@ -102,7 +63,7 @@ ModuleFacts gather(const SpirvBinary& w, const std::vector<detail::SpirvInstruct
 bool holds_padded(const ModuleFacts& f, uint32_t type, int depth = 0) {
     if (depth > 64) return false;
     if (f.padded.count(type)) return true;
-    if (auto a = f.arrays.find(type); a != f.arrays.end()) return holds_padded(f, a->second, depth + 1);
+    if (uint32_t e = f.element(type)) return holds_padded(f, e, depth + 1);
     if (auto s = f.structs.find(type); s != f.structs.end())
         return std::any_of(s->second.begin(), s->second.end(), [&](uint32_t m) { return holds_padded(f, m, depth + 1); });
     return false;
@@ -278,10 +239,7 @@ private:
         return true;
     }
 
-    uint32_t value_type(uint32_t value) const {
-        auto t = f_.value_types.find(value);
-        return t == f_.value_types.end() ? 0 : t->second;
-    }
+    uint32_t value_type(uint32_t value) const { return f_.type_of(value); }
     uint32_t original_type(const std::vector<uint32_t>& inst) const { return value_type(inst.size() > 2 ? inst[2] : 0); }
     const Padding* padding_of_type(uint32_t type) const {
         auto p = f_.padded.find(type);
@@ -317,15 +275,15 @@ private:
             if (auto p = padding_of_type(type)) {
                 if (i + 1 == inst.size()) return p;
                 type = p->column;
-            } else if (auto a = f_.arrays.find(type); a != f_.arrays.end()) {
-                type = a->second;
+            } else if (uint32_t e = f_.element(type)) {
+                type = e;
             } else if (auto m = f_.matrices.find(type); m != f_.matrices.end()) {
                 type = m->second.first;
             } else if (auto s = f_.structs.find(type); s != f_.structs.end()) {
                 uint32_t index = inst[i];
                 if (ids) {
-                    auto c = f_.int_constants.find(inst[i]);
-                    if (c == f_.int_constants.end()) return nullptr;
+                    auto c = f_.int_values.find(inst[i]);
+                    if (c == f_.int_values.end()) return nullptr;
                     index = c->second;
                 }
                 if (index >= s->second.size()) return nullptr;
