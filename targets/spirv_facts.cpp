@@ -5,6 +5,18 @@
 
 namespace crtforge::detail {
 
+bool hands_pointers_on(uint32_t opcode) {
+    switch (static_cast<spv::Op>(opcode)) {
+        case spv::OpFunctionCall:
+        case spv::OpCopyObject:
+        case spv::OpCopyMemory:
+        case spv::OpCopyMemorySized:
+        case spv::OpSelect:
+        case spv::OpPhi: return true;
+        default: return false;
+    }
+}
+
 SpirvFacts gather_spirv_facts(const SpirvBinary& w, const std::vector<SpirvInstruction>& list) {
     SpirvFacts f;
     std::set<uint32_t> int_types;

@@ -39,6 +39,10 @@ struct SpirvFacts {
     }
 };
 
+// Whether an instruction of `opcode` can hand a pointer on (a call, a copy, a select, a phi): where
+// a rewrite that retypes some pointers must refuse rather than leave a user of the old type.
+bool hands_pointers_on(uint32_t opcode);
+
 SpirvFacts gather_spirv_facts(const SpirvBinary& words, const std::vector<SpirvInstruction>& list);
 
 }  // namespace crtforge::detail

@@ -416,16 +416,11 @@ private:
             case spv::OpConstant:  // reusable from here on (a later one would be a forward reference)
                 if (f_.int_values.count(inst[2])) constants_.emplace(std::make_pair(inst[1], inst[3]), inst[2]);
                 return keep();
-            case spv::OpFunctionCall:
-            case spv::OpCopyObject:
-            case spv::OpCopyMemory:
-            case spv::OpCopyMemorySized:
-            case spv::OpSelect:
-            case spv::OpPhi:
-                for (size_t i = 1; i < inst.size(); ++i)
-                    if (rows_.count(inst[i])) refuse("a pointer to a row passed on (only loads and stores through it are)");
+            default:
+                if (hands_pointers_on(op))
+                    for (size_t i = 1; i < inst.size(); ++i)
+                        if (rows_.count(inst[i])) refuse("a pointer to a row passed on (only loads and stores through it are)");
                 return keep();
-            default: return keep();
         }
     }
 

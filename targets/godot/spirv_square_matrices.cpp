@@ -215,16 +215,11 @@ public:
                 if (auto c = column_pointers_.find(inst[1]); c != column_pointers_.end())
                     inst[2] = pad(out, bound, inst[2], c->second.rows, c->second.n);
                 return keep(out, inst);
-            case spv::OpFunctionCall:
-            case spv::OpCopyObject:
-            case spv::OpCopyMemory:
-            case spv::OpCopyMemorySized:
-            case spv::OpSelect:
-            case spv::OpPhi:
-                for (size_t i = 1; i < inst.size(); ++i)
-                    if (column_pointers_.count(inst[i])) refuse("a pointer to one of its columns passed on");
+            default:
+                if (detail::hands_pointers_on(op))
+                    for (size_t i = 1; i < inst.size(); ++i)
+                        if (column_pointers_.count(inst[i])) refuse("a pointer to one of its columns passed on");
                 return keep(out, inst);
-            default: return keep(out, inst);
         }
     }
 
