@@ -4,8 +4,13 @@
 
 #include <spirv_cross/spirv_common.hpp>
 
+#include "crtforge/runtime/render_engine.hpp"
+#include "crtforge/spirv_compiler.hpp"
 #include "targets/godot/godot3_syntax.hpp"
+#include "targets/godot/spirv_constant_indices.hpp"
+#include "tests/test_support.hpp"
 
+using namespace crtforge;
 using namespace crtforge::godot::godot3;
 
 TEST_CASE("Godot 3: global const arrays are declared in each function that reads them", "[godot][godot3-syntax]") {
@@ -72,4 +77,37 @@ TEST_CASE("Godot 3: an array assigned whole is copied element by element", "[god
           "void fragment()\n{\n    float _347[3] = float[](1.0, 2.0, 3.0);\n    float phase[3] = float[](0.0, 0.0, 0.0);\n"
           "    float x = 1.0;\n    float y;\n    if (x > 0.5)\n    {\n"
           "        for (int crt_element = 0; crt_element < 3; crt_element++) { phase[crt_element] = _347[crt_element]; }\n    }\n    y = x;\n}\n");
+}
+
+TEST_CASE("Godot 3: a vector indexed by a loop counter is unrolled to constant indices, drawing what glslang's module draws",
+          "[godot][godot3][compile][runtime][vulkan]") {
+    const char* source = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+void main() {
+    vec3 base = vec3(vTexCoord, 1.0 - vTexCoord.x);
+    vec3 lifted;
+    for (int i = 0; i < 3; ++i) lifted[i] = pow(base[i], 1.0 + 0.5 * float(i));
+    mat3 m = mat3(base, lifted, base.zxy);
+    vec3 columns = vec3(0.0);
+    for (int i = 0; i < 3; ++i) columns += m[i] * 0.25;
+    fragColor = vec4(lifted * 0.5 + columns * 0.5, 1.0);
+}
+)";
+    const SpirvBinary glslang = test::compile_glsl_or_fail(source, ShaderStage::Fragment, true);
+    REQUIRE(godot::has_variable_vector_index(glslang));
+    SpirvBinary unrolled = glslang;
+    REQUIRE(godot::with_loops_unrolled_for_constant_indices(unrolled));
+    CHECK_FALSE(godot::has_variable_vector_index(unrolled));
+    const Status valid = validate_spirv(unrolled);
+    INFO((valid.ok() ? std::string() : valid.error().str()));
+    CHECK(valid.ok());
+    SpirvBinary again = unrolled;
+    CHECK_FALSE(godot::with_loops_unrolled_for_constant_indices(again));  // nothing left: untouched
+    CHECK(again == unrolled);
+    auto engine = create_vulkan_engine(EngineOptions{"", /*validation*/ true});
+    INFO((engine.ok() ? std::string() : engine.error().str()));
+    REQUIRE(engine.ok());
+    test::check_same_picture(test::draw_fragment(*engine.value(), unrolled, true, 48, 8),
+                             test::draw_fragment(*engine.value(), glslang, true, 48, 8), 1e-3);
 }

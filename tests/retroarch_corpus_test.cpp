@@ -242,7 +242,8 @@ void write_program_library(const test::TempDir& dir) {
 
 // tables.slangp: what Godot's language and GLSL 3.30 / ES 3.00 have no type for, as RetroArch's
 // shaders write it: a mask table as an array of arrays read at the output pixel's cell (crt-geom), four
-// taps as the columns of a mat4x3 blended by a vec4 and weighed by luma (xbr, crt-hyllian).
+// taps as the columns of a mat4x3 blended by a vec4 and weighed by luma (xbr, crt-hyllian), a
+// vector indexed by a loop counter (crt-yo6's per-channel reads).
 void write_tables_library(const test::TempDir& dir) {
     write(dir / "shaders/tables.slang",
           test::slang_program({"vec4 OutputSize; ", "", "", "",
@@ -257,7 +258,9 @@ void write_tables_library(const test::TempDir& dir) {
                                "    vec3 blend = taps * vec4(0.15, 0.45, 0.3, 0.1);\n"
                                "    vec4 lumas = vec3(0.299, 0.587, 0.114) * taps;\n"
                                "    float edge = clamp(abs(lumas.z - lumas.x) * 2.0, 0.0, 1.0);\n"
-                               "    FragColor = vec4(mix(blend, taps[1], edge) * kMasks[cell.x][cell.y], 1.0);\n"
+                               "    vec3 lifted;  // a vector indexed by a loop counter (Godot 3: constants only)\n"
+                               "    for (int i = 0; i < 3; ++i) lifted[i] = pow(blend[i], 1.0 + 0.25 * float(i));\n"
+                               "    FragColor = vec4(mix(lifted, taps[1], edge) * kMasks[cell.x][cell.y], 1.0);\n"
                                "}\n"}));
     write(dir / "tables.slangp", "shaders = 1\nshader0 = shaders/tables.slang\nfilter_linear0 = false\n");
 }

@@ -1,5 +1,6 @@
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot3_syntax.hpp"
+#include "targets/godot/spirv_constant_indices.hpp"
 #include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/spirv_flat_arrays.hpp"
 #include "targets/float_literals.hpp"
@@ -50,9 +51,10 @@ std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
 
 // Godot's language has neither non-square matrices nor arrays of arrays: both are rewritten in the
 // SPIR-V into forms it has (spirv_square_matrices, spirv_flat_arrays).
-std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words) {
+std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words, int godot_version) {
     detail::flatten_arrays_of_arrays(words);
     square_matrices(words);
+    if (godot_version < 4) with_loops_unrolled_for_constant_indices(words);  // Godot 3 indexes by constants only
     return words;
 }
 
@@ -126,7 +128,7 @@ constexpr const char* kTau = "6.28318530717959";
 
 GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
                              ShaderStage stage, std::vector<Varying> varyings)
-    : CompilerGLSL(without_undefined_values(in_godot_types(std::move(spirv)))), variant_(variant), options_(options), stage_(stage),
+    : CompilerGLSL(without_undefined_values(in_godot_types(std::move(spirv), options.godot_version))), variant_(variant), options_(options), stage_(stage),
       program_(variant.program_form() != nullptr), varyings_(std::move(varyings)) {}
 
 std::string GodotCompiler::builtin_expression_fragment_size() const {
