@@ -53,12 +53,9 @@ TEST_CASE("swapped clamp bounds draw the same once optimised as glslang's module
     REQUIRE(engine.ok());
     constexpr int width = 64;
     Image drawn[2];
-    for (bool optimize : {false, true}) {
-        auto job = test::frame_job<RenderJob>(Image{}, width, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
-        job.vertex_spirv = test::compile_glsl_or_fail(test::shipped_library().vertex_source(), ShaderStage::Vertex, optimize);
-        job.fragment_spirv = test::compile_glsl_or_fail(kSwappedClamp, ShaderStage::Fragment, optimize);
-        drawn[optimize] = test::require_image(engine.value()->render(job), width, 1);
-    }
+    for (bool optimize : {false, true})
+        drawn[optimize] = test::draw_fragment(*engine.value(), test::compile_glsl_or_fail(kSwappedClamp, ShaderStage::Fragment, optimize),
+                                              optimize, width, 1);
     for (int px = 0; px < width; ++px) {
         const double t = (px + 0.5) / width * 2.0 - 0.5;
         INFO("t = " << t);

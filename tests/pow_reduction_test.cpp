@@ -57,10 +57,9 @@ TEST_CASE("the rewritten powers compute what std::pow does, on lavapipe", "[comp
     };
     for (const Case& c : {Case{{"0.5", "1.5", "2.0", "2.5"}, {0.5, 1.5, 2.0, 2.5}},
                           Case{{"3.0", "4.0", "-0.5", "1.7"}, {3.0, 4.0, -0.5, 1.7}}}) {
-        auto job = test::frame_job<RenderJob>(Image{}, width, 1, OutputFormat::Rgba16Float, SamplerFilter::Nearest);
-        job.vertex_spirv = test::compile_glsl_or_fail(test::shipped_library().vertex_source(), ShaderStage::Vertex);  // the generator's
-        job.fragment_spirv = test::compile_glsl_or_fail(powers_shader(c.glsl[0], c.glsl[1], c.glsl[2], c.glsl[3]), ShaderStage::Fragment);
-        const Image out = test::require_image(engine.value()->render(job), width, 1);
+        const Image out = test::draw_fragment(
+            *engine.value(), test::compile_glsl_or_fail(powers_shader(c.glsl[0], c.glsl[1], c.glsl[2], c.glsl[3]), ShaderStage::Fragment),
+            /*optimize: the generator's*/ true, width, 1);
         for (int px = 0; px < width; ++px) {
             const double x = (px + 0.5) / width * 2.0 - 0.5;
             for (int ch = 0; ch < 4; ++ch) {

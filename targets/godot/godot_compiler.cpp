@@ -49,15 +49,6 @@ std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
     return out;
 }
 
-// Godot's language has neither non-square matrices nor arrays of arrays: both are rewritten in the
-// SPIR-V into forms it has (spirv_square_matrices, spirv_flat_arrays).
-std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words, int godot_version) {
-    detail::flatten_arrays_of_arrays(words);
-    square_matrices(words);
-    if (godot_version < 4) with_loops_unrolled_for_constant_indices(words);  // Godot 3 indexes by constants only
-    return words;
-}
-
 // Every call of `function` in `text`, its top-level arguments handed to `rewrite`, which returns
 // the replacement of the whole call.
 std::string rewrite_calls(const std::string& text, const std::string& function,
@@ -126,9 +117,16 @@ constexpr const char* kTau = "6.28318530717959";
 
 }  // namespace
 
+std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words, int godot_version) {
+    detail::flatten_arrays_of_arrays(words);
+    square_matrices(words);
+    if (godot_version < 4) with_loops_unrolled_for_constant_indices(words);  // Godot 3 indexes by constants only
+    return words;
+}
+
 GodotCompiler::GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
                              ShaderStage stage, std::vector<Varying> varyings)
-    : CompilerGLSL(without_undefined_values(in_godot_types(std::move(spirv), options.godot_version))), variant_(variant), options_(options), stage_(stage),
+    : CompilerGLSL(without_undefined_values(std::move(spirv))), variant_(variant), options_(options), stage_(stage),
       program_(variant.program_form() != nullptr), varyings_(std::move(varyings)) {}
 
 std::string GodotCompiler::builtin_expression_fragment_size() const {

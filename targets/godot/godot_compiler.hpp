@@ -27,9 +27,16 @@ struct Varying {
     std::string carrier() const { return "crt_carried_" + name; }
 };
 
+// The module rewritten into types Godot's language has (throws spirv_cross::CompilerError naming
+// what cannot be): arrays of arrays flattened (spirv_flat_arrays), non-square matrices padded
+// (spirv_square_matrices), and for Godot 3, loops unrolled where a vector is indexed by a variable
+// (spirv_constant_indices). Run once per module; GodotCompiler takes its result.
+std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words, int godot_version);
+
 class GodotCompiler : public spirv_cross::CompilerGLSL {
 public:
-    // `stage`: Fragment for fragment() (with the header), Vertex for a program pass's vertex().
+    // `spirv`: a module in_godot_types() rewrote. `stage`: Fragment for fragment() (with the
+    // header), Vertex for a program pass's vertex().
     GodotCompiler(std::vector<uint32_t> spirv, const Variant& variant, const godot::Options& options,
                   ShaderStage stage = ShaderStage::Fragment, std::vector<Varying> varyings = {});
 

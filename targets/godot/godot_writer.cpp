@@ -163,7 +163,29 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
     }
 }
 
-Result<TargetOutput> generate(const TargetInput& input, int version) {
+// `module` in Godot's types (in_godot_types), or the construct that cannot be.
+Result<SpirvBinary> in_godot_types_or_error(const SpirvBinary& module, ShaderStage stage, int version) {
+    try {
+        return in_godot_types(module, version);
+    } catch (const std::exception& e) {
+        return make_validation_error(fmt::format("SPIRV-Cross cannot express the {} shader in Godot {}: {}",
+                                                 stage == ShaderStage::Vertex ? "vertex" : "fragment", version, e.what()));
+    }
+}
+
+Result<TargetOutput> generate(const TargetInput& original, int version) {
+    // The SPIR-V is rewritten into Godot's types once, for the node and the screen shader alike.
+    TargetInput input = original;
+    Result<SpirvBinary> vertex_module = SpirvBinary{}, fragment_module = SpirvBinary{};
+    if (original.variant->program_form() && original.vertex) {
+        vertex_module = in_godot_types_or_error(*original.vertex, ShaderStage::Vertex, version);
+        if (!vertex_module.ok()) return vertex_module.error();
+        input.vertex = &vertex_module.value();
+    }
+    fragment_module = in_godot_types_or_error(*original.fragment, ShaderStage::Fragment, version);
+    if (!fragment_module.ok()) return fragment_module.error();
+    input.fragment = &fragment_module.value();
+
     const std::string preset = input.variant->file_stem();
     const std::string ext = shader_extension(version);
     TargetOutput out;

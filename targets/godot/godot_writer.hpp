@@ -18,7 +18,7 @@ struct Options {
     Mode mode = Mode::NodeTexture;
 };
 
-// The shader text for one mode.
+// The shader text for one mode, from modules already in Godot's types (in_godot_types).
 Result<std::string> generate_shader(const TargetInput& input, const Options& options);
 
 // Both modes, the ShaderMaterial resource (.tres) of the node-texture shader, and a README: the
