@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <regex>
 #include <array>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -33,18 +34,47 @@ std::string line_directive(int line, const std::string& file) {
 }
 
 
+bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
 // Whether `name` occurs in `text` as a whole identifier.
 bool mentions(const std::string& text, const std::string& name) {
-    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1))
-        if ((at == 0 || !ident(text[at - 1])) && (at + name.size() == text.size() || !ident(text[at + name.size()]))) return true;
+        if ((at == 0 || !is_identifier_char(text[at - 1])) && (at + name.size() == text.size() || !is_identifier_char(text[at + name.size()]))) return true;
     return false;
+}
+
+// The identifiers of `text`, but for its `#pragma` lines (an imported program keeps its
+// `#pragma parameter` lines, which name every parameter of its includes). Comments, macros and
+// the code an `#if` leaves out count: a superset is safe here.
+std::set<std::string> identifiers_in(const std::string& text) {
+    std::set<std::string> out;
+    bool line_start = true;
+    for (size_t at = 0; at < text.size();) {
+        const char c = text[at];
+        if (c == '\n') line_start = true;
+        else if (line_start && c == '#') {
+            size_t word = at + 1;
+            while (word < text.size() && (text[word] == ' ' || text[word] == '\t')) ++word;
+            if (text.compare(word, 6, "pragma") == 0) {
+                at = std::min(text.find('\n', at), text.size());
+                continue;
+            }
+            line_start = false;
+        } else if (c != ' ' && c != '\t') line_start = false;
+        if (!is_identifier_char(c)) { ++at; continue; }
+        size_t end = at;
+        while (end < text.size() && is_identifier_char(text[end])) ++end;
+        if (!std::isdigit(static_cast<unsigned char>(text[at]))) out.emplace(text, at, end - at);
+        at = end;
+    }
+    return out;
 }
 
 // The uniform block, baked constants and samplers. A snippet's fragment shader also gets its
 // input and output; a program declares its own. `program_stage`: the text of a program's stage,
 // which gets only the samplers it names (a vertex shader rarely samples).
-std::string declarations(const Variant& variant, const std::string* program_stage = nullptr) {
+std::string declarations(const Variant& variant, const std::string* program_stage = nullptr,
+                         BakedParams as = BakedParams::Constants) {
     std::string out;
     if (!program_stage) {
         out += fmt::format("layout(location = 0) in vec2 {};\n", kTexCoordName);
@@ -73,13 +103,23 @@ std::string declarations(const Variant& variant, const std::string* program_stag
         out += "};\n";
     }
     auto baked = variant.baked();
+    // A program's stage gets the baked params it names, no others: a pass that two presets share
+    // then compiles to the same module wherever the values it reads agree (a preset's stage
+    // switch and its hundreds of other params would otherwise each leave a constant behind).
+    if (program_stage) {
+        const std::set<std::string> named = identifiers_in(*program_stage);
+        baked.erase(std::remove_if(baked.begin(), baked.end(), [&](const VariantParam* p) { return !named.count(p->spec->name); }),
+                    baked.end());
+    }
     if (!baked.empty()) {
-        out += "\n// Fixed by the preset: compile-time constants, folded away by the optimiser.\n";
+        const bool variables = as == BakedParams::Variables;
+        out += variables ? "\n// Fixed by the preset: never written, folded away by the optimiser.\n"
+                         : "\n// Fixed by the preset: compile-time constants, folded away by the optimiser.\n";
         for (const VariantParam* p : baked) {
             int index = p->spec->type == ParamType::Enum
                             ? p->spec->enum_index(std::get<std::string>(p->value)) : -1;
             std::string note = p->spec->type == ParamType::Enum ? "  // " + std::get<std::string>(p->value) : "";
-            out += fmt::format("const {} {} = {};{}\n", glsl_type_for(p->spec->type), p->spec->name,
+            out += fmt::format("{}{} {} = {};{}\n", variables ? "" : "const ", glsl_type_for(p->spec->type), p->spec->name,
                                value_to_glsl(p->value, p->spec->type, index), note);
         }
     }
@@ -231,11 +271,11 @@ std::string main_body(const Variant& variant) {
 }
 
 // A program form: its two files after the declarations, each with #line back to its file.
-AssembledShader assemble_program(const std::string& header, const Variant& variant, const FormSpec& form) {
+AssembledShader assemble_program(const std::string& header, const Variant& variant, const FormSpec& form, BakedParams baked) {
     AssembledShader out;
-    out.fragment = header + declarations(variant, &form.fragment_source) + "\n" + line_directive(1, form.fragment_path) +
+    out.fragment = header + declarations(variant, &form.fragment_source, baked) + "\n" + line_directive(1, form.fragment_path) +
                    form.fragment_source;
-    out.vertex = header + declarations(variant, &form.vertex_source) + "\n" + line_directive(1, form.vertex_path) +
+    out.vertex = header + declarations(variant, &form.vertex_source, baked) + "\n" + line_directive(1, form.vertex_path) +
                  form.vertex_source;
     return out;
 }
@@ -246,7 +286,7 @@ const char* builtin_glsl_type(Builtin builtin) {
     return builtin == Builtin::Time ? "float" : builtin == Builtin::FrameCount ? "int" : "vec2";
 }
 
-AssembledShader assemble(const TemplateLibrary& library, const Variant& variant) {
+AssembledShader assemble(const TemplateLibrary& library, const Variant& variant, BakedParams baked) {
     const Preset& preset = *variant.preset;
     std::string src;
     src += "#version 450\n";
@@ -261,7 +301,7 @@ AssembledShader assemble(const TemplateLibrary& library, const Variant& variant)
     if (variant.options.precision == Precision::Medium) src += "precision mediump float;\n";
     for (const VariantStage& ss : variant.stages)
         for (const FormSpec* form : ss.forms) src += fmt::format("#define CRT_FORM_{}_{} 1\n", ss.stage->name, form->name);
-    if (const FormSpec* program = variant.program_form()) return assemble_program(src, variant, *program);
+    if (const FormSpec* program = variant.program_form()) return assemble_program(src, variant, *program, baked);
     src += declarations(variant);
 
     // Each included file starts on its own line with a #line directive naming it, so glslang

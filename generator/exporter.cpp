@@ -44,10 +44,30 @@ BoundedMemo<SpirvBinary>& compile_memo() {
     return memo;
 }
 
+// `source` as the compile cache knows it: the file names of its `#line` directives left out. The
+// module holds none of them (only a failed compile's message does, and failures are not kept), and
+// they name the folder a preset was assembled in — a new temporary one each time `corpus` imports
+// it, which would miss the cache on every run. (A shader that reads `__FILE__` keeps them.)
+std::string cache_source(const std::string& source) {
+    if (source.find("__FILE__") != std::string::npos) return source;
+    std::string out;
+    out.reserve(source.size());
+    for (size_t at = 0; at < source.size();) {
+        const size_t end = std::min(source.find('\n', at), source.size());
+        std::string_view line(source.data() + at, end - at);
+        if (line.rfind("#line ", 0) == 0)
+            if (const size_t quote = line.find('"'); quote != std::string_view::npos) line = line.substr(0, quote);
+        out += line;
+        out += '\n';
+        at = end + 1;
+    }
+    return out;
+}
+
 Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage, const std::string& name,
-                                   bool optimize, const Cache& cache) {
+                                   bool optimize, bool local_names, const Cache& cache) {
     const std::string key = Cache::key({"spirv", Cache::build_id(), compiler_versions(), shader_stage_name(stage),
-                                        optimize ? "optimized" : "glslang", source});
+                                        optimize ? "optimized" : "glslang", local_names ? "names" : "", cache_source(source)});
     if (auto known = compile_memo().find(key)) return std::move(*known);
     auto remember = [&](const SpirvBinary& words) { compile_memo().put(key, words); };
     if (auto hit = cache.get("spirv", key); hit && hit->size() % 4 == 0 && !hit->empty()) {
@@ -63,6 +83,7 @@ Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
     options.stage = stage;
     options.source_name = name;
     options.optimize = optimize;
+    options.local_names = local_names;
     auto spirv = compile_to_spirv(source, options);
     if (!spirv.ok()) return spirv;
     cache.put("spirv", key, to_bytes(spirv.value()));
@@ -185,15 +206,26 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
     if (!variant.ok()) return variant.error();
     CompiledVariant out;
     out.variant = std::move(variant.value());
-    AssembledShader src = assemble(library, out.variant);
-    out.fragment_glsl = src.fragment;
-    auto frag = compile_cached(src.fragment, ShaderStage::Fragment, "<preset " + out.variant.file_stem() + ">",
-                               options.optimize, cache);
-    if (!frag.ok()) return frag.error();
-    out.fragment = std::move(frag.value());
-    auto vert = compile_cached(src.vertex, ShaderStage::Vertex, library.vertex_path(), options.optimize, cache);
-    if (!vert.ok()) return vert.error();
-    out.vertex = std::move(vert.value());
+    auto compile_stages = [&](BakedParams baked) -> Status {
+        AssembledShader src = assemble(library, out.variant, baked);
+        out.fragment_glsl = src.fragment;
+        auto frag = compile_cached(src.fragment, ShaderStage::Fragment, "<preset " + out.variant.file_stem() + ">",
+                                   options.optimize, options.local_names, cache);
+        if (!frag.ok()) return frag.error();
+        out.fragment = std::move(frag.value());
+        auto vert = compile_cached(src.vertex, ShaderStage::Vertex, library.vertex_path(), options.optimize, options.local_names, cache);
+        if (!vert.ok()) return vert.error();
+        out.vertex = std::move(vert.value());
+        return Ok{};
+    };
+    // A program's baked params are constants (the quickest to optimise); one that leans on them
+    // being no constant expressions, as its uniforms are, gets variables it never writes, and an
+    // error then is its own (assembler.hpp, BakedParams).
+    if (auto s = compile_stages(BakedParams::Constants); !s.ok()) {
+        const bool retry = out.variant.program_form() && !out.variant.baked().empty();
+        if (!retry) return s.error();
+        if (auto again = compile_stages(BakedParams::Variables); !again.ok()) return again.error();
+    }
     auto reflection = reflect(out.fragment);
     if (!reflection.ok()) return reflection.error();
     out.reflection = std::move(reflection.value());

@@ -6,6 +6,8 @@
 
 #include <fstream>
 
+#include <fmt/format.h>
+
 #include "crtforge/runtime/image_compare.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -202,6 +204,139 @@ TEST_CASE("an imported RetroArch preset maps its passes, textures, semantics and
             CHECK(p[2] == Approx(first * 0.25f).margin(1.5 / 255));
             CHECK(p[3] == 1.0f);  // RetroArch's display ignores the last pass's alpha
         }
+    }
+}
+
+// The vertex stage that passes the quad through, and the fragment stage's interface up to main().
+const std::string kPassThroughStages = R"(#pragma stage vertex
+layout(location = 0) in vec4 Position;
+layout(location = 1) in vec2 TexCoord;
+layout(location = 0) out vec2 vTexCoord;
+void main() {
+    gl_Position = global.MVP * Position;
+    vTexCoord = TexCoord;
+}
+#pragma stage fragment
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 FragColor;
+layout(set = 0, binding = 2) uniform sampler2D Source;
+)";
+
+// A pass two presets share, which reads one of the parameters its include declares.
+const std::string kSharedPass = std::string(R"(#version 450
+layout(push_constant) uniform Push {
+    vec4 SourceSize;
+    vec4 OriginalSize;
+    float READ;
+    float UNREAD;
+    float SET;
+} params;
+layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; float UNREAD_TOO; } global;
+#pragma parameter READ "Read by the pass" 0.5 0.0 1.0 0.05
+#pragma parameter UNREAD "Declared, never read" 0.5 0.0 1.0 0.05
+#pragma parameter UNREAD_TOO "Declared, never read" 0.5 0.0 1.0 0.05
+#pragma parameter SET "0: none, 1..2: a row of the table" 0.0 0.0 2.0 1.0
+)") + kPassThroughStages + R"(const vec3 kTable[2] = vec3[2](vec3(0.5), vec3(0.25));
+void main() {
+    vec2 textureSize = params.OriginalSize.xy;  // a local named like the builtin the size is read with (yee64)
+    // An index valid only while SET is no constant expression (crt-sony-megatron's pattern).
+    const uint set = uint(params.SET);
+    const vec3 tint = set == 0u ? vec3(1.0) : kTable[set - 1u];
+    FragColor = vec4(texture(Source, vTexCoord).rgb * params.READ * tint + (params.SourceSize.z + textureSize.x) * 0.0, 1.0);
+}
+)";
+
+// The same reads, with a local that takes the instance's name: the struct stays, shadowed there.
+const std::string kShadowingPass = std::string(R"(#version 450
+layout(push_constant) uniform Push { float READ; } params;
+layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
+#pragma parameter READ "Read by the pass" 0.5 0.0 1.0 0.05
+)") + kPassThroughStages + R"(float halve(float params) { return params * 0.5; }
+void main() {
+    FragColor = vec4(texture(Source, vTexCoord).rgb * halve(params.READ * 2.0), 1.0);
+}
+)";
+
+TEST_CASE("an imported pass reads its block members in place and holds only the constants it names: shared passes compile alike",
+          "[retroarch][import]") {
+    test::TempDir dir;
+    write(dir / "shaders/shared.slang", kSharedPass);
+    write(dir / "shaders/shadowing.slang", kShadowingPass);
+    auto preset_text = [](const std::string& shader, double read, double unread) {
+        return fmt::format("shaders = 1\nshader0 = ../shaders/{}\nREAD = {}\nUNREAD = {}\nUNREAD_TOO = {}\n", shader, read, unread, unread);
+    };
+    write(dir / "presets/a.slangp", preset_text("shared.slang", 0.75, 0.25));
+    write(dir / "presets/b.slangp", preset_text("shared.slang", 0.75, 0.5));
+    write(dir / "presets/c.slangp", preset_text("shared.slang", 0.5, 0.25));
+    write(dir / "presets/shadow.slangp", preset_text("shadowing.slang", 0.75, 0.25));
+    VariantOptions baked;
+    baked.uniforms = UniformSelection::parse("none").value();
+    auto compile = [&](const std::string& name) -> std::pair<std::shared_ptr<TemplateLibrary>, CompiledVariant> {
+        auto lib = import_into(dir / ("presets/" + name + ".slangp"), dir / ("overlay-" + name), dir.path());
+        INFO((lib.ok() ? std::string() : lib.error().str()));
+        REQUIRE(lib.ok());
+        const Preset* preset = lib.value()->find_preset(name);
+        REQUIRE(preset);
+        auto compiled = compile_variant(*lib.value(), *preset, baked, Cache());
+        INFO((compiled.ok() ? std::string() : compiled.error().str()));
+        REQUIRE(compiled.ok());
+        return {lib.value(), std::move(compiled.value())};
+    };
+    const auto a = compile("a"), b = compile("b"), c = compile("c"), shadow = compile("shadow");
+
+    // The reads are in place, with no struct; the unread parameters are not in the pass at all.
+    CHECK(a.second.fragment_glsl.find("struct CrtRetroArch_") == std::string::npos);
+    CHECK(a.second.fragment_glsl.find("UNREAD") == std::string::npos);
+    // Presets that differ only in what the pass does not read share its module; a value it
+    // reads makes another one.
+    CHECK(a.second.fragment == b.second.fragment);
+    CHECK(a.second.fragment != c.second.fragment);
+    // The table read compiles, with the baked params variables the pass never writes (as
+    // constants, `SET - 1` is an index out of range).
+    CHECK(a.second.fragment_glsl.find("\nfloat SET = 0.0;") != std::string::npos);
+    CHECK(a.second.fragment_glsl.find("\nfloat READ = 0.75;") != std::string::npos);
+    // A local named like the instance keeps the struct (the local shadows it where declared); its
+    // baked params are constants, which compile there.
+    CHECK(shadow.second.fragment_glsl.find("struct CrtRetroArch_params") != std::string::npos);
+    CHECK(shadow.second.fragment_glsl.find("\nconst float READ = 0.75;") != std::string::npos);
+
+    // And each draws what its values say: READ 0.75 of a flat 0.8 (the shadowing pass halves twice READ).
+    const Image input = Image::make(16, 16, {0.8f, 0.8f, 0.8f, 1.0f});
+    TargetRenderer renderer;
+    for (const auto* one : {&a, &c, &shadow}) {
+        const Preset* preset = one->first->find_preset(one == &a ? "a" : one == &c ? "c" : "shadow");
+        auto images = render_imported(renderer, *one->first, *preset, TargetId::Spirv, input, 16, 16, {0});
+        INFO((images.ok() ? std::string() : images.error().str()));
+        REQUIRE(images.ok());
+        const double expected = 0.8 * (one == &c ? 0.5 : 0.75);
+        CHECK(images.value().front().rgba[0] == Approx(expected).margin(1.0 / 255));
+    }
+}
+
+TEST_CASE("a pass imported into another folder is the same compile cache entry", "[retroarch][import][cache]") {
+    // `corpus` imports each preset into a new temporary folder: the #line file names differ from
+    // run to run, and the compile cache must not key on them.
+    test::TempDir dir;
+    std::string shader = kSharedPass;
+    const std::string unique = "0.5 0.0 1.0 0.05\n#pragma parameter UNREAD";  // a value no other test compiles
+    shader.replace(shader.find(unique), unique.size(), "0.3125 0.0 1.0 0.05\n#pragma parameter UNREAD");
+    write(dir / "shaders/shared.slang", shader);
+    write(dir / "presets/only.slangp", "shaders = 1\nshader0 = ../shaders/shared.slang\n");
+    const Cache cache(dir / "cache");
+    auto entries = [&]() {
+        size_t n = 0;
+        std::error_code ec;
+        for (auto it = std::filesystem::directory_iterator(dir / "cache/spirv", ec); !ec && it != std::filesystem::directory_iterator(); ++it) ++n;
+        return n;
+    };
+    for (const char* folder : {"overlay-1", "elsewhere/overlay-2"}) {
+        auto lib = import_into(dir / "presets/only.slangp", dir / folder, dir.path());
+        REQUIRE(lib.ok());
+        auto compiled = compile_variant(*lib.value(), *lib.value()->find_preset("only"), {}, cache);
+        INFO((compiled.ok() ? std::string() : compiled.error().str()));
+        REQUIRE(compiled.ok());
+        CHECK(compiled.value().fragment_glsl.find(std::string(folder) + "/stages/") != std::string::npos);  // the names are there
+        CHECK(entries() == 2);  // the pass's two stages, once
     }
 }
 

@@ -117,12 +117,15 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
     const Preset* preset = found.value();
     row.passes = preset->passes.size();
 
-    // SPIR-V, pass by pass: every pass that compiles is still emitted for the targets.
+    // SPIR-V, pass by pass: every pass that compiles is still emitted for the targets. Vulkan alone
+    // renders the SPIR-V as it is: it needs no readable names.
+    const bool spirv_only = std::all_of(request.targets.begin(), request.targets.end(), [](TargetId t) { return t == TargetId::Spirv; });
     std::vector<CompiledVariant> passes(preset->passes.size());  // the scene renders them once all compiled
     std::vector<bool> compiled(preset->passes.size(), false);
     for (size_t i = 0; i < preset->passes.size(); ++i) {
         VariantOptions variant;
         variant.uniforms = request.uniforms;
+        variant.local_names = !spirv_only;
         auto pass = compile_variant(lib, *preset, variant, cache, i);
         if (pass.ok()) {
             passes[i] = std::move(pass.value());

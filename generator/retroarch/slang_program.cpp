@@ -23,7 +23,9 @@ using Tokens = std::vector<GlslToken>;
 constexpr const char* kPrologue =
     "#define _HAS_ORIGINALASPECT_UNIFORMS\n"
     "#define _HAS_FRAMETIME_UNIFORMS\n"
-    "#define CRT_RA_SIZE(t) vec4(vec2(textureSize(t, 0)), 1.0 / vec2(textureSize(t, 0)))\n";
+    // A function, not a macro: a size is read where the shader reads it, and a shader may have a
+    // local named `textureSize` there (yee64); the builtin is seen from here.
+    "vec4 CRT_RA_SIZE(sampler2D t) { vec2 size = vec2(textureSize(t, 0)); return vec4(size, 1.0 / size); }\n";
 constexpr const char* kShaderMain = "crt_retroarch_main";
 // RetroArch's MVP for every pass: the orthographic projection of 0..1 onto clip space (y down in
 // Vulkan, as crtforge's full-screen triangle).
@@ -356,15 +358,43 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
         auto r = renamed.find(name);
         return r == renamed.end() ? name : r->second;
     };
-    // An instance block becomes a struct and a global of it, initialised from what crtforge
-    // provides: `params.X` reads a field, also where a macro builds the access.
+    // An instance block's reads, `params.X` (also where a macro built them), become what crtforge
+    // provides for X, in place: a module then holds only the values its code reads, so passes
+    // that two presets share with the same values read compile to the same module. A shader
+    // that uses the instance otherwise (passes it whole, declares the name again) gets a struct
+    // and a global of it, initialised with every member.
+    std::map<size_t, std::string> inlined;  // the instance token's index -> the member's value
+    std::set<size_t> member_tokens;        // the `.` and member tokens that go with it
     for (const Block& b : d.blocks) {
         if (b.instance.empty()) continue;
+        std::map<std::string, std::string> value_of;
+        for (const Member& m : b.members) value_of[m.name] = tr.expression(m);  // every member: its param and texture are the pass's
+        std::map<size_t, std::string> reads;
+        std::set<size_t> read_tokens;
+        bool only_member_reads = true;
+        for (size_t i = 0; i < t.size() && only_member_reads; ++i) {
+            if (t[i].kind != Kind::Identifier || t[i].text != b.instance) continue;
+            const long before = previous_significant(t, i);
+            if (before >= 0 && t[static_cast<size_t>(before)].text == ".") continue;  // another struct's field of that name
+            const size_t dot = next_significant(t, i);
+            const size_t member = dot < t.size() ? next_significant(t, dot) : t.size();
+            if (member >= t.size() || t[dot].text != "." || !value_of.count(t[member].text)) {
+                only_member_reads = false;
+                break;
+            }
+            reads[i] = "(" + value_of.at(t[member].text) + ")";
+            for (size_t k = i + 1; k <= member; ++k) read_tokens.insert(k);
+        }
+        if (only_member_reads) {
+            inlined.insert(reads.begin(), reads.end());
+            member_tokens.insert(read_tokens.begin(), read_tokens.end());
+            continue;
+        }
         std::string type = "CrtRetroArch_" + b.instance, fields, values;
         while (taken.count(type)) type += "_";
         for (const Member& m : b.members) {
             fields += fmt::format(" {} {}{};", m.type, m.name, m.array);  // a field keeps its name: no rename reaches past a dot
-            values += (values.empty() ? "" : ", ") + tr.expression(m);
+            values += (values.empty() ? "" : ", ") + value_of.at(m.name);
         }
         t[b.start] = {Kind::Identifier, fmt::format("struct {0} {{{1} }}; {0} {2} = {0}({3});{4}", type, fields,
                                                     renamed_name(b.instance), values, line_breaks(t, b.start, b.start))};
@@ -373,6 +403,14 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
     Tokens out;
     for (size_t i = 0; i < t.size(); ++i) {
         GlslToken token = t[i];
+        if (auto read = inlined.find(i); read != inlined.end()) {
+            out.push_back({Kind::Identifier, read->second});
+            continue;
+        }
+        if (member_tokens.count(i)) {
+            if (token.kind == Kind::Space) out.push_back(token);  // line breaks keep the lines where they were
+            continue;
+        }
         if (token.kind != Kind::Identifier) { out.push_back(token); continue; }
         const long before = previous_significant(t, i);
         const bool after_dot = before >= 0 && t[static_cast<size_t>(before)].text == ".";

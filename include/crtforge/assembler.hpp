@@ -24,9 +24,16 @@ struct AssembledShader {
     std::string vertex;    // the full-screen triangle
 };
 
+// How a program form gets its baked params. Constants fold soonest; but a program is written for
+// its params as uniforms, which are no constant expressions, and may lean on that (an array
+// indexed by `set - 1` in the branch `set == 0` never takes: an error once `set` is a constant).
+// Variables it never writes are what a uniform is, and spirv-opt folds them all the same.
+enum class BakedParams { Constants, Variables };
+
 // A snippet stage's forms run in the generated main(); a program form (FormSpec::program()) is the
-// pass's whole vertex and fragment shader, after the same declarations.
-AssembledShader assemble(const TemplateLibrary& library, const Variant& variant);
+// pass's whole vertex and fragment shader, after the same declarations, with only the baked
+// params it names.
+AssembledShader assemble(const TemplateLibrary& library, const Variant& variant, BakedParams baked = BakedParams::Constants);
 
 // The GLSL type of a builtin's uniform member: vec2, float (time) or int (frameCount).
 const char* builtin_glsl_type(Builtin builtin);

@@ -36,6 +36,10 @@ struct VariantOptions {
     // false: each pass as glslang makes it, with no spirv-opt and no pow reduction — how RetroArch
     // compiles a .slang pass (the baseline `crtforge bench --versus-retroarch` times export against).
     bool optimize = true;
+    // Each SSA value keeps its template local's name (spirv_debug_names): what the text emitters
+    // print. It costs spirv-opt a second run; a render from the SPIR-V alone (the Vulkan-only
+    // sweep) needs no names and gets the same instructions without them.
+    bool local_names = true;
 };
 
 struct VariantParam {
