@@ -1,6 +1,7 @@
 // compile_variant -> emit_target -> run_export: the in-memory export pipeline, with the
 // content-hash cache in front of the two expensive steps (glslang+spirv-opt and SPIRV-Cross).
 #include "crtforge/exporter.hpp"
+#include "crtforge/parallel.hpp"
 #include "crtforge/bounded_memo.hpp"
 #include "crtforge/version.hpp"
 
@@ -9,7 +10,6 @@
 #include <atomic>
 #include <filesystem>
 #include <mutex>
-#include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -424,50 +424,86 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
     ExportResult result;
     json manifest = manifest_head(request.options, targets);
 
-    // Each preset is compiled and emitted on a worker thread (glslang, SPIRV-Tools and SPIRV-Cross
-    // objects are per-thread); results are gathered in preset order, so output stays deterministic.
+    // Every pass of every preset is compiled and emitted for the targets on a worker thread
+    // (glslang, SPIRV-Tools and SPIRV-Cross objects are per-thread), so one many-pass preset uses
+    // every core; each preset's LUTs, manifest entry and scene files follow once its passes are
+    // in. Results are gathered in order, so output stays deterministic.
+    struct PassOutput {
+        std::optional<Diagnostic> compile_error, emit_error;
+        std::optional<CompiledVariant> compiled;
+        std::vector<TargetOutput> outputs;  // per target, in `targets` order
+    };
+    std::vector<std::pair<size_t, size_t>> pass_items;  // (preset, pass)
+    std::vector<std::vector<PassOutput>> pass_outputs(presets.size());
+    for (size_t i = 0; i < presets.size(); ++i) {
+        pass_outputs[i].resize(presets[i]->passes.size());
+        for (size_t pass = 0; pass < presets[i]->passes.size(); ++pass) pass_items.emplace_back(i, pass);
+    }
+    parallel_for(pass_items.size(), hardware_threads(), [&](size_t item) {
+        const auto [i, pass] = pass_items[item];
+        PassOutput& po = pass_outputs[i][pass];
+        auto compiled = compile_variant(library, *presets[i], request.options, cache, pass);
+        if (!compiled.ok()) {
+            po.compile_error = compiled.error();
+            return;
+        }
+        po.compiled = std::move(compiled.value());
+        for (TargetId target : targets) {
+            auto out = emit_target(*po.compiled, target, cache);
+            if (!out.ok()) {
+                Diagnostic d = out.error();
+                d.message = "preset " + presets[i]->name + (presets[i]->single_pass() ? "" : ", pass " + po.compiled->variant.pass->alias) +
+                            ", target " + target_info(target).name + ": " + d.message;
+                po.emit_error = d;
+                return;
+            }
+            po.outputs.push_back(std::move(out.value()));
+        }
+    });
+
     struct PresetOutput {
         std::optional<Diagnostic> error;
         json entry;
         std::map<std::string, std::string> files;
     };
     std::vector<PresetOutput> outputs(presets.size());
-    auto work = [&](size_t i) {
+    parallel_for(presets.size(), hardware_threads(), [&](size_t i) {
         const Preset* preset = presets[i];
         PresetOutput& po = outputs[i];
-        auto compiled = compile_scene(library, *preset, request.options, cache);
-        if (!compiled.ok()) {
-            po.error = compiled.error();
-            return;
-        }
+        // The first failing pass in order: a compile error before any emitter's, as a scene
+        // compiles whole before it is emitted.
+        for (const PassOutput& pass : pass_outputs[i])
+            if (pass.compile_error) {
+                po.error = pass.compile_error;
+                return;
+            }
+        for (const PassOutput& pass : pass_outputs[i])
+            if (pass.emit_error) {
+                po.error = pass.emit_error;
+                return;
+            }
+        std::vector<CompiledVariant> compiled;
+        for (PassOutput& pass : pass_outputs[i]) compiled.push_back(std::move(*pass.compiled));
         auto luts = lut_files(*preset);
         if (!luts.ok()) {
             po.error = luts.error();
             return;
         }
         place_lut_files(*preset, luts.value(), po.files);
-        po.entry = detail::preset_manifest(*preset, compiled.value());
+        po.entry = detail::preset_manifest(*preset, compiled);
         std::map<TargetId, std::vector<TargetOutput>> per_target;
-        for (size_t pass = 0; pass < compiled.value().size(); ++pass) {
-            const CompiledVariant& variant = compiled.value()[pass];
+        for (size_t pass = 0; pass < compiled.size(); ++pass) {
             json files = json::object();
-            for (TargetId target : targets) {
-                auto out = emit_target(variant, target, cache);
-                if (!out.ok()) {
-                    Diagnostic d = out.error();
-                    d.message = "preset " + preset->name + (preset->single_pass() ? "" : ", pass " + variant.variant.pass->alias) +
-                                ", target " + target_info(target).name + ": " + d.message;
-                    po.error = d;
-                    return;
-                }
-                files[target_info(target).name] = place_target_files(variant, target, out.value(), po.files);
-                per_target[target].push_back(std::move(out.value()));
+            for (size_t t = 0; t < targets.size(); ++t) {
+                TargetOutput& out = pass_outputs[i][pass].outputs[t];
+                files[target_info(targets[t]).name] = place_target_files(compiled[pass], targets[t], out, po.files);
+                per_target[targets[t]].push_back(std::move(out));
             }
             po.entry["passes"][pass]["targets"] = std::move(files);
         }
         // Whole-scene files (Godot's .tscn), after every pass of every target.
         for (TargetId target : targets) {
-            auto scene = generate_target_scene(target, *preset, compiled.value(), per_target[target], luts.value());
+            auto scene = generate_target_scene(target, *preset, compiled, per_target[target], luts.value());
             if (!scene.ok()) {
                 Diagnostic d = scene.error();
                 d.message = "preset " + preset->name + ", " + d.message;
@@ -483,17 +519,7 @@ Result<ExportResult> run_export(const TemplateLibrary& library, const ExportRequ
             }
             po.entry["scene"]["targets"][target_info(target).name] = std::move(roles);
         }
-    };
-    std::atomic<size_t> next{0};
-    auto worker = [&] {
-        for (size_t i = next++; i < presets.size(); i = next++) work(i);
-    };
-    const unsigned threads = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(),
-                                                              static_cast<unsigned>(presets.size())));
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
+    });
 
     for (size_t i = 0; i < presets.size(); ++i) {
         if (outputs[i].error) return *outputs[i].error;  // the first failing preset, in order

@@ -1,7 +1,7 @@
 #include "targets/cross_compile.hpp"
 #include "generator/reserved_words.hpp"
+#include "targets/word_scan.hpp"
 
-#include <regex>
 #include <set>
 
 #include "crtforge/assembler.hpp"
@@ -25,16 +25,7 @@ void rename_reserved_words(spirv_cross::Compiler& compiler) {
 
 std::string replace_block_access(const std::string& text, const std::string& instance,
                                  const std::function<std::string(const std::string& member)>& replace) {
-    const std::regex access("\\b" + instance + "\\.(\\w+)");
-    std::string out;
-    size_t last = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), access); it != std::sregex_iterator(); ++it) {
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        out += replace((*it)[1].str());
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    out.append(text, last, std::string::npos);
-    return out;
+    return replace_member_access(text, instance, replace);
 }
 
 void apply_readable_names(spirv_cross::CompilerGLSL& compiler, const char* instance_name) {

@@ -6,6 +6,7 @@
 
 #include "crtforge/validate/target_render.hpp"
 #include "targets/float_literals.hpp"
+#include "targets/word_scan.hpp"
 #include "targets/glsl/glsl_writer.hpp"
 #include "tests/test_support.hpp"
 
@@ -62,6 +63,21 @@ TEST_CASE("vertex shaders for y-up APIs are flipped, SPIR-V is not", "[targets]"
     const std::string hlsl = emit_target(c, TargetId::Hlsl50, Cache()).value().files.front().data;
     CHECK_THAT(hlsl, Catch::Contains("SV_VertexID"));
     CHECK_THAT(hlsl, Catch::Contains("gl_Position.y = -gl_Position.y"));
+}
+
+TEST_CASE("the emitters' word scans rewrite whole words and whole member accesses only", "[targets][readable]") {
+    using crtforge::detail::replace_member_access;
+    using crtforge::detail::rewrite_words;
+    auto ids = [](std::string_view w) -> std::optional<std::string> {
+        if (w.size() > 1 && w[0] == '_' && w.find_first_not_of("0123456789", 1) == std::string_view::npos) return "_v" + std::string(w.substr(1));
+        return std::nullopt;
+    };
+    CHECK(rewrite_words("_12 = a_12 + _12x + _3.x + (_45);", ids) == "_v12 = a_12 + _12x + _v3.x + (_v45);");
+    CHECK(rewrite_words("", ids).empty());
+    CHECK(rewrite_words("_7", ids) == "_v7");
+    auto block = [](const std::string& m) { return "U_" + m; };
+    CHECK(replace_member_access("ubo.a + myubo.b + ubo.c1.x + ubo. d + ubo.", "ubo", block) == "U_a + myubo.b + U_c1.x + ubo. d + ubo.");
+    CHECK(replace_member_access("f(ubo.ubo.a)", "ubo", block) == "f(U_ubo.a)");
 }
 
 TEST_CASE("float constants print at the shortest text that reads back as the same float32", "[targets][readable]") {

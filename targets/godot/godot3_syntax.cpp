@@ -1,5 +1,6 @@
 // Godot 3's parser: see godot3_syntax.hpp.
 #include "targets/godot/godot3_syntax.hpp"
+#include "targets/word_scan.hpp"
 
 #include <algorithm>
 #include <map>
@@ -162,8 +163,15 @@ std::string with_loop_steps_in_body(const std::string& text) {
 std::string with_unsigned_literals_spelled(const std::string& text) {
     // Godot 3's parser reads 4u as the int 4 ("Invalid arguments to operator '%' :uint and int"):
     // uint(4) is the same constant in a form it types right.
-    static const std::regex literal(R"(\b((?:0[xX][0-9a-fA-F]+)|[0-9]+)[uU]\b)");
-    return std::regex_replace(text, literal, "uint($1)");
+    return crtforge::detail::rewrite_words(text, [](std::string_view word) -> std::optional<std::string> {
+        if (word.size() < 2 || (word.back() != 'u' && word.back() != 'U')) return std::nullopt;
+        const std::string_view number = word.substr(0, word.size() - 1);
+        const bool hex = number.size() > 2 && number[0] == '0' && (number[1] == 'x' || number[1] == 'X') &&
+                         number.find_first_not_of("0123456789abcdefABCDEF", 2) == std::string_view::npos;
+        const bool decimal = number.find_first_not_of("0123456789") == std::string_view::npos;
+        if (!hex && !decimal) return std::nullopt;
+        return "uint(" + std::string(number) + ")";
+    });
 }
 
 std::string with_loop_increments(const std::string& text) {

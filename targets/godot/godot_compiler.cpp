@@ -4,11 +4,13 @@
 #include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/spirv_flat_arrays.hpp"
 #include "targets/float_literals.hpp"
+#include "targets/word_scan.hpp"
 #include "crtforge/inert_text.hpp"
 
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <cctype>
 #include <regex>
 
 #include <fmt/format.h>
@@ -53,15 +55,17 @@ std::vector<uint32_t> without_undefined_values(std::vector<uint32_t> words) {
 // the replacement of the whole call.
 std::string rewrite_calls(const std::string& text, const std::string& function,
                           const std::function<std::string(const std::vector<std::string>&)>& rewrite) {
-    const std::regex call("\\b" + function + "\\(");
+    // A plain scan, not std::regex: this runs over every pass's whole text several times (and on
+    // each argument again for the border emulation), where a regex cost a third of an export.
+    const std::string call = function + "(";
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     std::string out;
     size_t last = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), call); it != std::sregex_iterator(); ++it) {
-        const size_t at = static_cast<size_t>(it->position());
-        if (at < last) continue;
+    for (size_t at = text.find(call); at != std::string::npos; at = text.find(call, at + 1)) {
+        if (at < last || (at > 0 && word(text[at - 1]))) continue;
         std::vector<std::string> args(1);
         int depth = 0;
-        size_t end = at + static_cast<size_t>(it->length());
+        size_t end = at + call.size();
         for (; end < text.size(); ++end) {
             const char c = text[end];
             if (depth == 0 && c == ')') break;
@@ -316,10 +320,12 @@ std::string GodotCompiler::compile_godot() {
     out = with_border_emulated(without_texel_offsets(out));
     // Godot's matrices are square: matNxN is matN; a non-square one was padded to square in the
     // SPIR-V (spirv_square_matrices), so one here is a bug, refused rather than emitted.
-    static const std::regex sized_matrix(R"(\bmat([234])x([234])\b)");
-    for (auto it = std::sregex_iterator(out.begin(), out.end(), sized_matrix); it != std::sregex_iterator(); ++it)
-        if ((*it)[1] != (*it)[2]) throw spirv_cross::CompilerError("Godot has no non-square matrix type (" + it->str() + ")");
-    out = std::regex_replace(out, sized_matrix, "mat$1");
+    auto dimension = [](char c) { return c >= '2' && c <= '4'; };
+    out = crtforge::detail::rewrite_words(out, [&](std::string_view word) -> std::optional<std::string> {
+        if (word.size() != 6 || word.substr(0, 3) != "mat" || !dimension(word[3]) || word[4] != 'x' || !dimension(word[5])) return std::nullopt;
+        if (word[3] != word[5]) throw spirv_cross::CompilerError("Godot has no non-square matrix type (" + std::string(word) + ")");
+        return std::string(word.substr(0, 4));
+    });
     if (stage_ == ShaderStage::Vertex) out = vertex_text(out);
     if (options_.godot_version >= 4) return out;
     out = with_integer_varyings_carried(out);
@@ -363,8 +369,11 @@ std::string GodotCompiler::with_border_emulated(const std::string& text) const {
 std::string GodotCompiler::vertex_text(std::string text) const {
     // SPIRV-Cross names values by their ids, which the fragment stage's compile reuses: the vertex
     // stage's become _v<id>.
-    static const std::regex id_name(R"(\b_(\d+)\b)");
-    text = std::regex_replace(text, id_name, "_v$1");
+    text = crtforge::detail::rewrite_words(text, [](std::string_view word) -> std::optional<std::string> {
+        const bool id = word.size() > 1 && word[0] == '_' && word.find_first_not_of("0123456789", 1) == std::string_view::npos;
+        if (!id) return std::nullopt;
+        return "_v" + std::string(word.substr(1));
+    });
     // The import draws RetroArch's quad as a full-screen triangle, its corner from gl_VertexIndex
     // (generator/retroarch/slang_program.cpp); a canvas_item's own quad has that corner as UV.
     for (const auto& [corner, uv] : {std::pair<std::string, std::string>{"float((gl_VertexID << 1) & 2)", "UV.x"},

@@ -1,0 +1,24 @@
+// Words of generated shader text — maximal runs of letters, digits and '_', what a regex's
+// \b…\b sees — found by a plain scan. The emitters rewrite every pass's whole text several times;
+// std::regex there cost a fifth of an export of a many-pass preset.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace crtforge::detail {
+
+inline bool is_word_char(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+// `text` with each word for which `rewrite(word)` gives a value replaced by it.
+std::string rewrite_words(const std::string& text, const std::function<std::optional<std::string>(std::string_view word)>& rewrite);
+
+// `text` with each `instance.member` (instance a whole word) replaced by `replace(member)`.
+std::string replace_member_access(const std::string& text, const std::string& instance,
+                                  const std::function<std::string(const std::string& member)>& replace);
+
+}  // namespace crtforge::detail
