@@ -368,3 +368,11 @@ TEST_CASE("corpus --vulkan-only --uniforms none: the quick sweep bakes each pres
     INFO(names.err);
     CHECK(names.exit_code == 0);
 }
+
+TEST_CASE("GLSL ES 3.00 and WebGL 2 count gl_FragCoord's rows from the top as Vulkan does (ES has no origin_upper_left)",
+          "[retroarch][corpus-command][gl-es]") {
+    test::TempDir dir;
+    write_program_library(dir);  // chain.slangp: bands of three rows by gl_FragCoord.y, triads by its x
+    check_all_agree(dir, {"chain.slangp"}, TargetId::GlslEs300);
+    check_all_agree(dir, {"chain.slangp"}, TargetId::WebGl2);
+}

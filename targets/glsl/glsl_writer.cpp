@@ -1,5 +1,6 @@
 #include "targets/glsl/glsl_writer.hpp"
 
+#include <algorithm>
 #include <regex>
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 
 #include "crtforge/uniforms.hpp"
 #include "targets/cross_compile.hpp"
+#include "targets/word_scan.hpp"
 
 namespace crtforge::glsl {
 
@@ -30,6 +32,42 @@ std::string with_fragcoord_from_top(const std::string& text) {
         at = end + 1;
     }
     return text.substr(0, at) + "layout(origin_upper_left) in vec4 gl_FragCoord;\n" + text.substr(at);
+}
+
+// GLSL ES has no origin_upper_left either: a shader that reads gl_FragCoord reads, in its place, a
+// global that main() fills first with the row counted from the top of the pass's output, as
+// Vulkan counts it, by `outputSize` (exact in every pass but a last pass the host letterboxes,
+// whose rows then count from the picture's edge, not the display's). `declaration` declares
+// what `output_size` names where the shader itself does not (empty: it does).
+Result<std::string> with_es_fragcoord_from_top(const std::string& text, const std::string& output_size, const std::string& declaration) {
+    bool reads = false;
+    std::string out = detail::rewrite_words(text, [&](std::string_view word) -> std::optional<std::string> {
+        if (word != "gl_FragCoord") return std::nullopt;
+        reads = true;
+        return std::string("crt_FragCoord");
+    });
+    if (!reads) return text;
+    const std::string main = "\nvoid main()\n{\n";
+    const size_t body = out.find(main);
+    size_t at = 0;
+    while (at < out.size() && (out[at] == '#' || out.compare(at, 10, "precision ") == 0)) {
+        const size_t end = out.find('\n', at);
+        if (end == std::string::npos) break;
+        at = end + 1;
+    }
+    if (body == std::string::npos || at == 0 || body < at)
+        return make_validation_error("SPIRV-Cross's GLSL ES fragment shader did not have the expected shape (gl_FragCoord from the top)");
+    out.insert(body + main.size(), "    crt_FragCoord = vec4(gl_FragCoord.x, " + output_size + ".y - gl_FragCoord.y, gl_FragCoord.zw);\n");
+    out.insert(at, declaration + "highp vec4 crt_FragCoord;  // gl_FragCoord with rows from the top, as in Vulkan\n");
+    return out;
+}
+
+// The uniform block's declaration as SPIRV-Cross printed it in `text` (empty: none there).
+std::string block_declaration(const std::string& text) {
+    const size_t start = text.find(std::string("layout(std140) uniform ") + kUniformBlockName + "\n");
+    const std::string end = std::string("} ") + kUniformInstanceName + ";\n";
+    const size_t stop = start == std::string::npos ? start : text.find(end, start);
+    return stop == std::string::npos ? std::string() : text.substr(start, stop + end.size() - start);
 }
 
 }  // namespace
@@ -80,6 +118,37 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
             if (f.data.find(kPlainBlockMarker) != std::string::npos)
                 return make_validation_error("SPIRV-Cross's plain uniform block did not have the expected shape (" + language + ", WebGL 2)");
         }
+    }
+    const auto& builtins = input.variant->builtins;
+    if (options.es && std::find(builtins.begin(), builtins.end(), Builtin::OutputSize) != builtins.end()) {
+        std::string vertex_block;
+        for (const OutputFile& f : out.value().files)
+            if (f.stage == ShaderStage::Vertex) vertex_block = block_declaration(f.data);
+        for (OutputFile& f : out.value().files) {
+            if (f.stage != ShaderStage::Fragment) continue;
+            const std::string name = builtin_name(Builtin::OutputSize);
+            std::string output_size = name, declaration;
+            if (options.plain_uniforms) {
+                // A plain uniform the fragment stage did not keep: the vertex stage's, if any, is
+                // highp as this one (ES links uniforms of one name and precision across stages).
+                if (f.data.find("uniform vec2 " + name + ";\n") == std::string::npos) declaration = "uniform highp vec2 " + name + ";\n";
+            } else {
+                output_size = std::string(kUniformInstanceName) + "." + name;
+                // A fragment stage that reads no member has no block: the vertex stage's declaration,
+                // the same text, links; none, or a mediump stage (whose members would differ in
+                // precision), keeps gl_FragCoord as GL counts it (docs/retroarch.md, Not yet).
+                if (block_declaration(f.data).empty()) {
+                    const bool highp = f.data.find("precision highp float;") != std::string::npos;
+                    if (vertex_block.empty() || !highp) continue;
+                    declaration = vertex_block;
+                }
+            }
+            auto flipped = with_es_fragcoord_from_top(f.data, output_size, declaration);
+            if (!flipped.ok()) return flipped.error();
+            f.data = std::move(flipped.value());
+        }
+    }
+    if (options.plain_uniforms) {
         for (const VariantParam* p : input.variant->uniforms())
             out.value().bindings.push_back({p->spec->name, "plain uniform: set by name, e.g. glUniform*(glGetUniformLocation(program, \"" + p->spec->name + "\"), ...)"});
         for (Builtin b : input.variant->builtins)
@@ -106,9 +175,9 @@ std::vector<TargetInfo> records() {
         {TargetId::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)", {"vertex", "fragment"}, "gl",
          [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v4"},
         {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)", {"vertex", "fragment"}, "gl-es",
-         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v3"},
+         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v4"},
         {TargetId::WebGl2, "webgl2", "WebGL 2 (GLSL ES 3.00, params as plain uniforms set by name)", {"vertex", "fragment"},
-         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v2"},
+         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v3"},
     };
 }
 
