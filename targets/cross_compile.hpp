@@ -44,7 +44,7 @@ Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, 
         Compiler compiler(std::move(words));
         configure(compiler);
         apply_readable_names(compiler, instance_name);
-        return shorten_float_literals(compiler.compile());
+        return without_splat_selects(shorten_float_literals(compiler.compile()));
     } catch (const std::exception& e) {
         return make_validation_error("SPIRV-Cross cannot express the " + std::string(shader_stage_name(stage)) +
                                      " shader in " + target + ": " + e.what());

@@ -91,4 +91,86 @@ std::string shorten_float_literals(const std::string& source) {
     return out;
 }
 
+namespace {
+
+// The length of the float literal at `at` (digits, '.', an exponent, HLSL's `f`), 0 if none.
+size_t literal_length(const std::string& text, size_t at) {
+    size_t i = at;
+    const size_t n = text.size();
+    while (i < n && (is_digit(text[i]) || text[i] == '.')) ++i;
+    if (i == at || text.find_first_of("0123456789", at) >= i) return 0;
+    if (i < n && (text[i] == 'e' || text[i] == 'E')) {
+        size_t j = i + 1;
+        if (j < n && (text[j] == '+' || text[j] == '-')) ++j;
+        if (j < n && is_digit(text[j])) {
+            i = j;
+            while (i < n && is_digit(text[i])) ++i;
+        }
+    }
+    if (i < n && (text[i] == 'f' || text[i] == 'F')) ++i;
+    return i < n && is_word_char(text[i]) ? 0 : i - at;
+}
+
+// The length of a component selection `.x` (one of xyzw) at `at` that ends the expression there.
+size_t component_length(const std::string& text, size_t at) {
+    const size_t n = text.size();
+    if (at + 1 >= n || text[at] != '.' || std::string_view("xyzw").find(text[at + 1]) == std::string_view::npos) return 0;
+    if (at + 2 < n && (is_word_char(text[at + 2]) || text[at + 2] == '.')) return 0;
+    return 2;
+}
+
+}  // namespace
+
+std::string without_splat_selects(const std::string& source) {
+    std::string out;
+    out.reserve(source.size());
+    const size_t n = source.size();
+    for (size_t i = 0; i < n;) {
+        const char c = source[i];
+        if ((c == '/' && i + 1 < n && (source[i + 1] == '/' || source[i + 1] == '*')) || (c == '#' && (i == 0 || source[i - 1] == '\n'))) {
+            const bool block = source[i + 1] == '*';
+            const size_t end = block ? source.find("*/", i + 2) : source.find('\n', i);
+            const size_t stop = end == std::string::npos ? n : end + (block ? 2 : 0);
+            out.append(source, i, stop - i);
+            i = stop;
+            continue;
+        }
+        const bool boundary = i == 0 || (!is_word_char(source[i - 1]) && source[i - 1] != '.');
+        // GLSL, Godot: vecN(L).c, where L may be negative (kept in parentheses).
+        if (boundary && source.compare(i, 3, "vec") == 0 && i + 4 < n && source[i + 3] >= '2' && source[i + 3] <= '4' && source[i + 4] == '(') {
+            const size_t value = i + 5;
+            const bool negative = value < n && source[value] == '-';
+            const size_t length = literal_length(source, value + (negative ? 1 : 0));
+            const size_t close = value + (negative ? 1 : 0) + length;
+            if (length && close < n && source[close] == ')')
+                if (const size_t component = component_length(source, close + 1)) {
+                    const std::string literal = source.substr(value, close - value);
+                    out += negative ? "(" + literal + ")" : literal;
+                    i = close + 1 + component;
+                    continue;
+                }
+        }
+        // HLSL: L.xxxx.c (a unary minus before it applies after the selection, as before).
+        if (boundary && is_digit(c))
+            if (const size_t length = literal_length(source, i)) {
+                size_t at = i + length;
+                size_t splat = 0;
+                if (at < n && source[at] == '.')
+                    while (at + 1 + splat < n && source[at + 1 + splat] == 'x') ++splat;
+                if (splat >= 2 && splat <= 4)
+                    if (const size_t component = component_length(source, at + 1 + splat)) {
+                        out.append(source, i, length);
+                        i = at + 1 + splat + component;
+                        continue;
+                    }
+                out.append(source, i, length);
+                i += length;
+                continue;
+            }
+        out += c;
+        ++i;
+    }
+    return out;
+}
+
 }  // namespace crtforge::detail

@@ -12,4 +12,10 @@ namespace crtforge::detail {
 // form would need an exponent are left as they are, so the program means exactly what it meant.
 std::string shorten_float_literals(const std::string& source);
 
+// `source` with a component of a constant splat written as the constant: SPIRV-Cross prints a
+// select of a constant vector component by component as `c.x ? vec4(0.0).x : v.x` (GLSL, Godot)
+// or `0.0f.xxxx.x` (HLSL); these read `0.0` (a negative one `(-1.0)`). Comments and preprocessor
+// lines are left as they are.
+std::string without_splat_selects(const std::string& source);
+
 }  // namespace crtforge::detail

@@ -80,6 +80,19 @@ TEST_CASE("the emitters' word scans rewrite whole words and whole member accesse
     CHECK(replace_member_access("f(ubo.ubo.a)", "ubo", block) == "f(U_ubo.a)");
 }
 
+TEST_CASE("a component of a constant splat prints as the constant", "[targets][readable]") {
+    using crtforge::detail::without_splat_selects;
+    CHECK(without_splat_selects("o = vec4(c.x ? vec4(0.0).x : v.x, c.y ? vec3(-1.5).y : v.y);") == "o = vec4(c.x ? 0.0 : v.x, c.y ? (-1.5) : v.y);");
+    CHECK(without_splat_selects("o = float4(c.x ? 0.0f.xxxx.x : v.x, c.w ? 2.5f.xxx.z : v.w);") == "o = float4(c.x ? 0.0f : v.x, c.w ? 2.5f : v.w);");
+    CHECK(without_splat_selects("x = vec4(1e-05).w;") == "x = 1e-05;");
+    // Left as they are: not a splat of one literal, a selection of more than one component or
+    // followed by more, integer and boolean vectors, words that end in vec, comments.
+    for (const char* kept : {"vec4(a).x", "vec4(0.0, 1.0).x", "vec4(0.0).xy", "vec4(0.0).x.x", "ivec4(0).x", "dvec2(0.0).x",
+                             "myvec4(0.0).x", "v.vec4(0.0).x", "0.0f.xxxx", "0.0f.xxxx.xy", "s.f0.xxxx.x", "// vec4(0.0).x\n",
+                             "#define Z vec4(0.0).x\n", "vec4(0.0).x_"})
+        CHECK(without_splat_selects(kept) == kept);
+}
+
 TEST_CASE("float constants print at the shortest text that reads back as the same float32", "[targets][readable]") {
     using crtforge::detail::shorten_float_literals;
     CHECK(shorten_float_literals("x = 0.300000011920928955078125 * y;") == "x = 0.3 * y;");

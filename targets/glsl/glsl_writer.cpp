@@ -171,13 +171,13 @@ std::vector<TargetInfo> records() {
     // Bump a fingerprint whenever that target's output changes for the same SPIR-V.
     return {
         {TargetId::Glsl450, "glsl450", "GLSL 4.50 core (OpenGL 4.5)", {"vertex", "fragment"}, "gl",
-         [](const TargetInput& in) { return generate(in, {450, false}); }, "glsl450/spirv-cross-2021.01.15/v3"},
+         [](const TargetInput& in) { return generate(in, {450, false}); }, "glsl450/spirv-cross-2021.01.15/v4"},
         {TargetId::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)", {"vertex", "fragment"}, "gl",
-         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v4"},
+         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v5"},
         {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)", {"vertex", "fragment"}, "gl-es",
-         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v4"},
+         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v5"},
         {TargetId::WebGl2, "webgl2", "WebGL 2 (GLSL ES 3.00, params as plain uniforms set by name)", {"vertex", "fragment"},
-         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v3"},
+         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v4"},
     };
 }
 

@@ -298,7 +298,7 @@ void GodotCompiler::prepare() {
 
 std::string GodotCompiler::compile_godot() {
     prepare();
-    std::string text = detail::shorten_float_literals(compile());
+    std::string text = detail::without_splat_selects(detail::shorten_float_literals(compile()));
     for (const std::string& name : bool_members_) {
         const std::string test = std::string(kBlockMarker) + "." + name + " != 0u";
         for (size_t at = text.find(test); at != std::string::npos; at = text.find(test, at + name.size()))

@@ -84,9 +84,9 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
 std::vector<TargetInfo> records() {
     return {
         {TargetId::Hlsl50, "hlsl50", "HLSL Shader Model 5.0 (Direct3D 11)", {"vertex", "fragment"}, "hlsl",
-         [](const TargetInput& in) { return generate(in, {50}); }, "hlsl50/spirv-cross-2021.01.15/v3"},
+         [](const TargetInput& in) { return generate(in, {50}); }, "hlsl50/spirv-cross-2021.01.15/v4"},
         {TargetId::Hlsl60, "hlsl60", "HLSL Shader Model 6.0 (Direct3D 12, DXC)", {"vertex", "fragment"}, "hlsl",
-         [](const TargetInput& in) { return generate(in, {60}); }, "hlsl60/spirv-cross-2021.01.15/v3"},
+         [](const TargetInput& in) { return generate(in, {60}); }, "hlsl60/spirv-cross-2021.01.15/v4"},
     };
 }
 

@@ -73,6 +73,6 @@ void main()
     vec4 c = vec4(color, 1.0);
     vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_4 = isnan(c);
-    fragColor = vec4(cond_4.x ? vec4(0.0).x : _824.x, cond_4.y ? vec4(0.0).y : _824.y, cond_4.z ? vec4(0.0).z : _824.z, cond_4.w ? vec4(0.0).w : _824.w);
+    fragColor = vec4(cond_4.x ? 0.0 : _824.x, cond_4.y ? 0.0 : _824.y, cond_4.z ? 0.0 : _824.z, cond_4.w ? 0.0 : _824.w);
 }
 

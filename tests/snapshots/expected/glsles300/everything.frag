@@ -129,6 +129,6 @@ void main()
     vec4 c = vec4(color, 1.0);
     vec4 _1835 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_4 = isnan(c);
-    fragColor = vec4(cond_4.x ? vec4(0.0).x : _1835.x, cond_4.y ? vec4(0.0).y : _1835.y, cond_4.z ? vec4(0.0).z : _1835.z, cond_4.w ? vec4(0.0).w : _1835.w);
+    fragColor = vec4(cond_4.x ? 0.0 : _1835.x, cond_4.y ? 0.0 : _1835.y, cond_4.z ? 0.0 : _1835.z, cond_4.w ? 0.0 : _1835.w);
 }
 

@@ -59,6 +59,6 @@ void main()
     vec4 c = vec4(color * (0.1 * sum_2 + 1.0), 1.0);
     vec4 _650 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? vec4(0.0).x : _650.x, cond.y ? vec4(0.0).y : _650.y, cond.z ? vec4(0.0).z : _650.z, cond.w ? vec4(0.0).w : _650.w);
+    fragColor = vec4(cond.x ? 0.0 : _650.x, cond.y ? 0.0 : _650.y, cond.z ? 0.0 : _650.z, cond.w ? 0.0 : _650.w);
 }
 

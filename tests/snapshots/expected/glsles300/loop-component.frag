@@ -38,6 +38,6 @@ void main()
     vec4 c = vec4(s_1.xyz * s.w, 1.0);
     vec4 _457 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? vec4(0.0).x : _457.x, cond.y ? vec4(0.0).y : _457.y, cond.z ? vec4(0.0).z : _457.z, cond.w ? vec4(0.0).w : _457.w);
+    fragColor = vec4(cond.x ? 0.0 : _457.x, cond.y ? 0.0 : _457.y, cond.z ? 0.0 : _457.z, cond.w ? 0.0 : _457.w);
 }
 

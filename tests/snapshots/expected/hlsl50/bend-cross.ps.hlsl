@@ -80,7 +80,7 @@ void frag_main()
     float4 c = float4(color, 1.0f);
     float4 _824 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond_4 = isnan(c);
-    fragColor = float4(cond_4.x ? 0.0f.xxxx.x : _824.x, cond_4.y ? 0.0f.xxxx.y : _824.y, cond_4.z ? 0.0f.xxxx.z : _824.z, cond_4.w ? 0.0f.xxxx.w : _824.w);
+    fragColor = float4(cond_4.x ? 0.0f : _824.x, cond_4.y ? 0.0f : _824.y, cond_4.z ? 0.0f : _824.z, cond_4.w ? 0.0f : _824.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

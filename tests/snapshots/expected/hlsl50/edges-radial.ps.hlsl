@@ -28,7 +28,7 @@ void frag_main()
     float4 c = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - smoothstep(0.3f, 0.9f, length((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
     float4 _474 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f.xxxx.x : _474.x, cond.y ? 0.0f.xxxx.y : _474.y, cond.z ? 0.0f.xxxx.z : _474.z, cond.w ? 0.0f.xxxx.w : _474.w);
+    fragColor = float4(cond.x ? 0.0f : _474.x, cond.y ? 0.0f : _474.y, cond.z ? 0.0f : _474.z, cond.w ? 0.0f : _474.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -156,7 +156,7 @@ void frag_main()
     float4 c = float4(color, 1.0f);
     float4 _1835 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond_4 = isnan(c);
-    fragColor = float4(cond_4.x ? 0.0f.xxxx.x : _1835.x, cond_4.y ? 0.0f.xxxx.y : _1835.y, cond_4.z ? 0.0f.xxxx.z : _1835.z, cond_4.w ? 0.0f.xxxx.w : _1835.w);
+    fragColor = float4(cond_4.x ? 0.0f : _1835.x, cond_4.y ? 0.0f : _1835.y, cond_4.z ? 0.0f : _1835.z, cond_4.w ? 0.0f : _1835.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -66,7 +66,7 @@ void frag_main()
     float4 c = float4(color * mad(0.1f, sum_2, 1.0f), 1.0f);
     float4 _650 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f.xxxx.x : _650.x, cond.y ? 0.0f.xxxx.y : _650.y, cond.z ? 0.0f.xxxx.z : _650.z, cond.w ? 0.0f.xxxx.w : _650.w);
+    fragColor = float4(cond.x ? 0.0f : _650.x, cond.y ? 0.0f : _650.y, cond.z ? 0.0f : _650.z, cond.w ? 0.0f : _650.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

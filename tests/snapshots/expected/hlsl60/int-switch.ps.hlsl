@@ -81,7 +81,7 @@ void frag_main()
     float4 c = float4(mad(color, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx), 1.0f);
     float4 _791 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f.xxxx.x : _791.x, cond.y ? 0.0f.xxxx.y : _791.y, cond.z ? 0.0f.xxxx.z : _791.z, cond.w ? 0.0f.xxxx.w : _791.w);
+    fragColor = float4(cond.x ? 0.0f : _791.x, cond.y ? 0.0f : _791.y, cond.z ? 0.0f : _791.z, cond.w ? 0.0f : _791.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

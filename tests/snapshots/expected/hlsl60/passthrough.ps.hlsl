@@ -19,7 +19,7 @@ void frag_main()
     float4 c = source.Sample(_source_sampler, vTexCoord);
     float4 _122 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f.xxxx.x : _122.x, cond.y ? 0.0f.xxxx.y : _122.y, cond.z ? 0.0f.xxxx.z : _122.z, cond.w ? 0.0f.xxxx.w : _122.w);
+    fragColor = float4(cond.x ? 0.0f : _122.x, cond.y ? 0.0f : _122.y, cond.z ? 0.0f : _122.z, cond.w ? 0.0f : _122.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -51,6 +51,6 @@ void main()
     vec4 c = vec4(color * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift), 1.0);
     vec4 _791 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? vec4(0.0).x : _791.x, cond.y ? vec4(0.0).y : _791.y, cond.z ? vec4(0.0).z : _791.z, cond.w ? vec4(0.0).w : _791.w);
+    fragColor = vec4(cond.x ? 0.0 : _791.x, cond.y ? 0.0 : _791.y, cond.z ? 0.0 : _791.z, cond.w ? 0.0 : _791.w);
 }
 

@@ -68,6 +68,6 @@ void fragment()
     vec4 c = vec4(color_1, 1.0);
     vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_5 = isnan(c);
-    COLOR = vec4(cond_5.x ? vec4(0.0).x : _824.x, cond_5.y ? vec4(0.0).y : _824.y, cond_5.z ? vec4(0.0).z : _824.z, cond_5.w ? vec4(0.0).w : _824.w);
+    COLOR = vec4(cond_5.x ? 0.0 : _824.x, cond_5.y ? 0.0 : _824.y, cond_5.z ? 0.0 : _824.z, cond_5.w ? 0.0 : _824.w);
 }
 

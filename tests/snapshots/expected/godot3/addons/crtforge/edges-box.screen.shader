@@ -26,6 +26,6 @@ void fragment()
     vec4 c = vec4((textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0).xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * (pulseDepth * sin((crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE)).y * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
     vec4 _519 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    COLOR = vec4(cond.x ? vec4(0.0).x : _519.x, cond.y ? vec4(0.0).y : _519.y, cond.z ? vec4(0.0).z : _519.z, cond.w ? vec4(0.0).w : _519.w);
+    COLOR = vec4(cond.x ? 0.0 : _519.x, cond.y ? 0.0 : _519.y, cond.z ? 0.0 : _519.z, cond.w ? 0.0 : _519.w);
 }
 

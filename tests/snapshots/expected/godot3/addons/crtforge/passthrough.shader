@@ -11,6 +11,6 @@ void fragment()
     vec4 c = texture(TEXTURE, UV);
     vec4 _122 = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    COLOR = vec4(cond.x ? vec4(0.0).x : _122.x, cond.y ? vec4(0.0).y : _122.y, cond.z ? vec4(0.0).z : _122.z, cond.w ? vec4(0.0).w : _122.w);
+    COLOR = vec4(cond.x ? 0.0 : _122.x, cond.y ? 0.0 : _122.y, cond.z ? 0.0 : _122.z, cond.w ? 0.0 : _122.w);
 }
 
