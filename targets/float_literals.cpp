@@ -13,6 +13,27 @@ namespace {
 bool is_word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 
+// Where the exponent (e-5, E+12) at `i` ends: `i` itself if none is there.
+size_t exponent_end(const std::string& text, size_t i) {
+    const size_t n = text.size();
+    if (i >= n || (text[i] != 'e' && text[i] != 'E')) return i;
+    size_t j = i + 1;
+    if (j < n && (text[j] == '+' || text[j] == '-')) ++j;
+    if (j >= n || !is_digit(text[j])) return i;
+    while (j < n && is_digit(text[j])) ++j;
+    return j;
+}
+
+// Where the comment or preprocessor line at `i` ends (kept as it is): `i` itself if none starts there.
+size_t inert_end(const std::string& text, size_t i) {
+    const size_t n = text.size();
+    const bool line = (text[i] == '/' && i + 1 < n && text[i + 1] == '/') || (text[i] == '#' && (i == 0 || text[i - 1] == '\n'));
+    const bool block = text[i] == '/' && i + 1 < n && text[i + 1] == '*';
+    if (!line && !block) return i;
+    const size_t end = block ? text.find("*/", i + 2) : text.find('\n', i);
+    return end == std::string::npos ? n : end + (block ? 2 : 0);
+}
+
 // The shortest text for the literal `token`, or `token` itself when it must stay.
 std::string shorter(const std::string& token) {
     if (token.find_first_of(".eE") == std::string::npos) return token;  // an integer
@@ -36,23 +57,7 @@ std::string shorten_float_literals(const std::string& source) {
     while (i < n) {
         const char c = source[i];
         // Comments and preprocessor lines are copied as they are.
-        if (c == '/' && i + 1 < n && source[i + 1] == '/') {
-            const size_t end = source.find('\n', i);
-            const size_t stop = end == std::string::npos ? n : end;
-            out.append(source, i, stop - i);
-            i = stop;
-            continue;
-        }
-        if (c == '/' && i + 1 < n && source[i + 1] == '*') {
-            const size_t end = source.find("*/", i + 2);
-            const size_t stop = end == std::string::npos ? n : end + 2;
-            out.append(source, i, stop - i);
-            i = stop;
-            continue;
-        }
-        if (c == '#' && (i == 0 || source[i - 1] == '\n')) {
-            const size_t end = source.find('\n', i);
-            const size_t stop = end == std::string::npos ? n : end;
+        if (const size_t stop = inert_end(source, i); stop != i) {
             out.append(source, i, stop - i);
             i = stop;
             continue;
@@ -71,14 +76,7 @@ std::string shorten_float_literals(const std::string& source) {
         }
         const size_t start = i;
         while (i < n && (is_digit(source[i]) || source[i] == '.')) ++i;
-        if (i < n && (source[i] == 'e' || source[i] == 'E')) {
-            size_t j = i + 1;
-            if (j < n && (source[j] == '+' || source[j] == '-')) ++j;
-            if (j < n && is_digit(source[j])) {
-                i = j;
-                while (i < n && is_digit(source[i])) ++i;
-            }
-        }
+        i = exponent_end(source, i);
         const std::string token = source.substr(start, i - start);
         size_t suffix_end = i;
         while (suffix_end < n && is_word_char(source[suffix_end])) ++suffix_end;
@@ -99,14 +97,7 @@ size_t literal_length(const std::string& text, size_t at) {
     const size_t n = text.size();
     while (i < n && (is_digit(text[i]) || text[i] == '.')) ++i;
     if (i == at || text.find_first_of("0123456789", at) >= i) return 0;
-    if (i < n && (text[i] == 'e' || text[i] == 'E')) {
-        size_t j = i + 1;
-        if (j < n && (text[j] == '+' || text[j] == '-')) ++j;
-        if (j < n && is_digit(text[j])) {
-            i = j;
-            while (i < n && is_digit(text[i])) ++i;
-        }
-    }
+    i = exponent_end(text, i);
     if (i < n && (text[i] == 'f' || text[i] == 'F')) ++i;
     return i < n && is_word_char(text[i]) ? 0 : i - at;
 }
@@ -127,10 +118,7 @@ std::string without_splat_selects(const std::string& source) {
     const size_t n = source.size();
     for (size_t i = 0; i < n;) {
         const char c = source[i];
-        if ((c == '/' && i + 1 < n && (source[i + 1] == '/' || source[i + 1] == '*')) || (c == '#' && (i == 0 || source[i - 1] == '\n'))) {
-            const bool block = source[i + 1] == '*';
-            const size_t end = block ? source.find("*/", i + 2) : source.find('\n', i);
-            const size_t stop = end == std::string::npos ? n : end + (block ? 2 : 0);
+        if (const size_t stop = inert_end(source, i); stop != i) {
             out.append(source, i, stop - i);
             i = stop;
             continue;
