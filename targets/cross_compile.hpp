@@ -13,6 +13,7 @@
 #include "crtforge/targets.hpp"
 #include "targets/float_literals.hpp"
 #include "targets/spirv_flat_arrays.hpp"
+#include "targets/spirv_gather_lowering.hpp"
 
 namespace crtforge::detail {
 
@@ -34,13 +35,16 @@ std::string replace_block_access(const std::string& text, const std::string& ins
 
 // Compiles `module` with a Compiler (CompilerGLSL or a subclass) after `configure(compiler)` set
 // its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0"). With
-// `flat_arrays`, arrays of arrays are flattened first (spirv_flat_arrays), for languages without them.
+// `flat_arrays`, arrays of arrays are flattened first (spirv_flat_arrays), for languages without them;
+// with `lower_gathers`, textureGather becomes four reads (spirv_gather_lowering).
 template <typename Compiler, typename Configure>
 Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, const std::string& target,
-                                  Configure&& configure, const char* instance_name = nullptr, bool flat_arrays = false) {
+                                  Configure&& configure, const char* instance_name = nullptr, bool flat_arrays = false,
+                                  bool lower_gathers = false) {
     try {
         SpirvBinary words = module;
         if (flat_arrays) flatten_arrays_of_arrays(words);
+        if (lower_gathers) lower_texture_gathers(words);
         Compiler compiler(std::move(words));
         configure(compiler);
         apply_readable_names(compiler, instance_name);

@@ -265,6 +265,22 @@ void write_tables_library(const test::TempDir& dir) {
     write(dir / "tables.slangp", "shaders = 1\nshader0 = shaders/tables.slang\nfilter_linear0 = false\n");
 }
 
+// gather.slangp: textureGather of each channel, at the pass's pixel and between texels, weighed
+// so that the order of the four texels shows (GLSL 3.30, ES 3.00 and Godot have no gather).
+void write_gather_library(const test::TempDir& dir) {
+    write(dir / "shaders/gather.slang",
+          test::slang_program({"", "", "", "",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "void main() {\n"
+                               "    vec4 r = textureGather(Source, vTexCoord, 0);\n"
+                               "    vec4 g = textureGather(Source, vTexCoord + vec2(0.3, 0.7) * params.SourceSize.zw, 1);\n"
+                               "    vec4 b = textureGather(Source, vTexCoord - vec2(0.6, 0.2) * params.SourceSize.zw, 2);\n"
+                               "    FragColor = vec4(dot(r, vec4(0.4, 0.3, 0.2, 0.1)), dot(g, vec4(0.05, 0.15, 0.3, 0.5)),\n"
+                               "                     dot(b, vec4(0.6, 0.1, 0.25, 0.05)), 1.0);\n"
+                               "}\n"}));
+    write(dir / "gather.slangp", "shaders = 1\nshader0 = shaders/gather.slang\nfilter_linear0 = true\nwrap_mode0 = repeat\n");
+}
+
 // original.slangp: a second pass that reads only Original (not its own input, whose size is still
 // its SourceSize) and sizes its stripes by FinalViewportSize, which the host must set.
 void write_original_library(const test::TempDir& dir) {
@@ -320,26 +336,28 @@ TEST_CASE("GLSL ES 3.00 and GLSL 3.30 run a pass with a non-square matrix and an
     check_all_agree(dir, {"tables.slangp"}, TargetId::Glsl330);
 }
 
-TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays",
+TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays, textureGather",
           "[retroarch][corpus-command][godot4]") {
     test::TempDir dir;
     write_program_library(dir);
     write_tables_library(dir);
+    write_gather_library(dir);
     // 100 columns: (i + 0.5) / 100 is inexact, so an interpolated coordinate times the width misses
     // the pixel centre by an ulp (64 would hide it).
-    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot4, 0, 100, 75);
+    check_all_agree(dir, {"chain.slangp", "gather.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot4, 0, 100, 75);
     write_feedback_library(dir);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot4, 3);
 }
 
-TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays",
+TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays, textureGather",
           "[retroarch][corpus-command][godot3]") {
     test::TempDir dir;
     write_program_library(dir);
     write_feedback_library(dir);
     write_tables_library(dir);
-    check_all_agree(dir, {"chain.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot3, 0, 100, 75);
+    write_gather_library(dir);
+    check_all_agree(dir, {"chain.slangp", "gather.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot3, 0, 100, 75);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot3, 3);
 }
@@ -375,4 +393,10 @@ TEST_CASE("GLSL ES 3.00 and WebGL 2 count gl_FragCoord's rows from the top as Vu
     write_program_library(dir);  // chain.slangp: bands of three rows by gl_FragCoord.y, triads by its x
     check_all_agree(dir, {"chain.slangp"}, TargetId::GlslEs300);
     check_all_agree(dir, {"chain.slangp"}, TargetId::WebGl2);
+}
+
+TEST_CASE("GLSL 3.30, ES 3.00 and WebGL 2 run textureGather as four reads of its footprint, like Vulkan", "[retroarch][corpus-command][gather]") {
+    test::TempDir dir;
+    write_gather_library(dir);
+    for (TargetId target : {TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2}) check_all_agree(dir, {"gather.slangp"}, target, 0, 100, 75);
 }

@@ -106,7 +106,8 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
                 ? spirv_cross::CompilerGLSL::Options::Highp : spirv_cross::CompilerGLSL::Options::Mediump;
             o.emit_uniform_buffer_as_plain_uniforms = options.plain_uniforms;
             c.set_common_options(o);
-        }, options.plain_uniforms ? kPlainBlockMarker : nullptr, /*flat_arrays*/ options.es ? options.version < 310 : options.version < 430);
+        }, options.plain_uniforms ? kPlainBlockMarker : nullptr, /*flat_arrays*/ options.es ? options.version < 310 : options.version < 430,
+           /*lower_gathers*/ options.es ? options.version < 310 : options.version < 400);
     });
     if (!out.ok()) return out;
     if (!options.es)
@@ -173,11 +174,11 @@ std::vector<TargetInfo> records() {
         {TargetId::Glsl450, "glsl450", "GLSL 4.50 core (OpenGL 4.5)", {"vertex", "fragment"}, "gl",
          [](const TargetInput& in) { return generate(in, {450, false}); }, "glsl450/spirv-cross-2021.01.15/v4"},
         {TargetId::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)", {"vertex", "fragment"}, "gl",
-         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v5"},
+         [](const TargetInput& in) { return generate(in, {330, false}); }, "glsl330/spirv-cross-2021.01.15/v6"},
         {TargetId::GlslEs300, "glsles300", "GLSL ES 3.00 (OpenGL ES 3.0 / WebGL 2)", {"vertex", "fragment"}, "gl-es",
-         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v5"},
+         [](const TargetInput& in) { return generate(in, {300, true}); }, "glsles300/spirv-cross-2021.01.15/v6"},
         {TargetId::WebGl2, "webgl2", "WebGL 2 (GLSL ES 3.00, params as plain uniforms set by name)", {"vertex", "fragment"},
-         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v4"},
+         "gl-es-plain", [](const TargetInput& in) { return generate(in, {300, true, true, true}); }, "webgl2/spirv-cross-2021.01.15/v5"},
     };
 }
 

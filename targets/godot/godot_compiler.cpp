@@ -3,6 +3,7 @@
 #include "targets/godot/spirv_constant_indices.hpp"
 #include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/spirv_flat_arrays.hpp"
+#include "targets/spirv_gather_lowering.hpp"
 #include "targets/float_literals.hpp"
 #include "targets/word_scan.hpp"
 #include "crtforge/inert_text.hpp"
@@ -124,6 +125,7 @@ constexpr const char* kTau = "6.28318530717959";
 std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words, int godot_version) {
     detail::flatten_arrays_of_arrays(words);
     square_matrices(words);
+    detail::lower_texture_gathers(words);  // Godot's language has no textureGather with a component
     if (godot_version < 4) with_loops_unrolled_for_constant_indices(words);  // Godot 3 indexes by constants only
     return words;
 }

@@ -219,10 +219,10 @@ std::vector<TargetInfo> records() {
     return {
         {TargetId::Godot4, "godot4", "Godot 4 canvas_item .gdshader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot4", [](const TargetInput& in) { return generate(in, 4); },
-         "godot4/spirv-cross-2021.01.15/v11", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
+         "godot4/spirv-cross-2021.01.15/v12", [](const SceneTargetInput& in) { return generate_scene(in, 4); }},
         {TargetId::Godot3, "godot3", "Godot 3 canvas_item .shader + ShaderMaterial (node and screen modes)",
          {"shader", "screenShader"}, "godot3", [](const TargetInput& in) { return generate(in, 3); },
-         "godot3/spirv-cross-2021.01.15/v11", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
+         "godot3/spirv-cross-2021.01.15/v12", [](const SceneTargetInput& in) { return generate_scene(in, 3); }},
     };
 }
 
