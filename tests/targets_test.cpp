@@ -7,6 +7,7 @@
 #include "crtforge/validate/target_render.hpp"
 #include "targets/float_literals.hpp"
 #include "targets/word_scan.hpp"
+#include "targets/spirv_gather_lowering.hpp"
 #include "targets/glsl/glsl_writer.hpp"
 #include "tests/test_support.hpp"
 
@@ -146,4 +147,32 @@ TEST_CASE("the webgl2 target declares params and builtins as plain uniforms set 
                              "uniform CrtParams blk;\n\nvoid main() { x = blk.gain * blk.outputSize.x; }\n";
     CHECK(flatten_plain_uniform_block(text, "blk") ==
           "#version 300 es\nuniform mediump float gain;\nuniform highp vec2 outputSize;\n\nvoid main() { x = gain * outputSize.x; }\n");
+}
+
+TEST_CASE("textureGather lowered to four reads is a valid module, and a gather with offsets is left as it was", "[targets][gather]") {
+    const char* gathers = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+void main() {
+    fragColor = textureGather(source, vTexCoord, 0) * 0.5 + textureGather(source, vTexCoord.yx, 2) * 0.5;
+}
+)";
+    for (bool optimize : {false, true}) {
+        SpirvBinary module = test::compile_glsl_or_fail(gathers, ShaderStage::Fragment, optimize);
+        CHECK(crtforge::detail::lower_texture_gathers(module) == 2);
+        const auto valid = validate_spirv(module);
+        INFO((valid.ok() ? std::string() : valid.error().str()));
+        CHECK(valid.ok());
+    }
+    const char* offset = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+void main() { fragColor = textureGatherOffset(source, vTexCoord, ivec2(1, 0), 1); }
+)";
+    const SpirvBinary before = test::compile_glsl_or_fail(offset, ShaderStage::Fragment, true);
+    SpirvBinary after = before;
+    CHECK(crtforge::detail::lower_texture_gathers(after) == 0);
+    CHECK(after == before);
 }
