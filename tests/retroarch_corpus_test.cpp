@@ -240,45 +240,51 @@ void write_program_library(const test::TempDir& dir) {
                                 "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");
 }
 
+// NAME.slangp, one pass of the program shaders/NAME.slang (`push`: its push-constant members after
+// SourceSize; `fragment`: its fragment stage), with the preset's `keys` after shader0.
+void write_one_pass(const test::TempDir& dir, const std::string& name, const std::string& push, const std::string& fragment,
+                    const std::string& keys) {
+    write(dir / ("shaders/" + name + ".slang"), test::slang_program({push, "", "", "", fragment}));
+    write(dir / (name + ".slangp"), "shaders = 1\nshader0 = shaders/" + name + ".slang\n" + keys);
+}
+
 // tables.slangp: what Godot's language and GLSL 3.30 / ES 3.00 have no type for, as RetroArch's
 // shaders write it: a mask table as an array of arrays read at the output pixel's cell (crt-geom), four
 // taps as the columns of a mat4x3 blended by a vec4 and weighed by luma (xbr, crt-hyllian), a
 // vector indexed by a loop counter (crt-yo6's per-channel reads).
 void write_tables_library(const test::TempDir& dir) {
-    write(dir / "shaders/tables.slang",
-          test::slang_program({"vec4 OutputSize; ", "", "", "",
-                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-                               "const vec3 kMasks[3][2] = vec3[3][2](vec3[2](vec3(1.0, 0.2, 1.0), vec3(0.2, 1.0, 0.2)),\n"
-                               "    vec3[2](vec3(0.6), vec3(0.3, 0.2, 0.9)), vec3[2](vec3(0.2, 0.2, 1.0), vec3(1.0, 1.0, 0.2)));\n"
-                               "void main() {\n"
-                               "    ivec2 cell = ivec2(vTexCoord * params.OutputSize.xy) % ivec2(3, 2);\n"
-                               "    vec2 dx = vec2(params.SourceSize.z, 0.0);\n"
-                               "    mat4x3 taps = mat4x3(texture(Source, vTexCoord - dx).rgb, texture(Source, vTexCoord).rgb,\n"
-                               "                         texture(Source, vTexCoord + dx).rgb, texture(Source, vTexCoord + 2.0 * dx).rgb);\n"
-                               "    vec3 blend = taps * vec4(0.15, 0.45, 0.3, 0.1);\n"
-                               "    vec4 lumas = vec3(0.299, 0.587, 0.114) * taps;\n"
-                               "    float edge = clamp(abs(lumas.z - lumas.x) * 2.0, 0.0, 1.0);\n"
-                               "    vec3 lifted;  // a vector indexed by a loop counter (Godot 3: constants only)\n"
-                               "    for (int i = 0; i < 3; ++i) lifted[i] = pow(blend[i], 1.0 + 0.25 * float(i));\n"
-                               "    FragColor = vec4(mix(lifted, taps[1], edge) * kMasks[cell.x][cell.y], 1.0);\n"
-                               "}\n"}));
-    write(dir / "tables.slangp", "shaders = 1\nshader0 = shaders/tables.slang\nfilter_linear0 = false\n");
+    write_one_pass(dir, "tables", "vec4 OutputSize; ",
+                   "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                   "const vec3 kMasks[3][2] = vec3[3][2](vec3[2](vec3(1.0, 0.2, 1.0), vec3(0.2, 1.0, 0.2)),\n"
+                   "    vec3[2](vec3(0.6), vec3(0.3, 0.2, 0.9)), vec3[2](vec3(0.2, 0.2, 1.0), vec3(1.0, 1.0, 0.2)));\n"
+                   "void main() {\n"
+                   "    ivec2 cell = ivec2(vTexCoord * params.OutputSize.xy) % ivec2(3, 2);\n"
+                   "    vec2 dx = vec2(params.SourceSize.z, 0.0);\n"
+                   "    mat4x3 taps = mat4x3(texture(Source, vTexCoord - dx).rgb, texture(Source, vTexCoord).rgb,\n"
+                   "                         texture(Source, vTexCoord + dx).rgb, texture(Source, vTexCoord + 2.0 * dx).rgb);\n"
+                   "    vec3 blend = taps * vec4(0.15, 0.45, 0.3, 0.1);\n"
+                   "    vec4 lumas = vec3(0.299, 0.587, 0.114) * taps;\n"
+                   "    float edge = clamp(abs(lumas.z - lumas.x) * 2.0, 0.0, 1.0);\n"
+                   "    vec3 lifted;  // a vector indexed by a loop counter (Godot 3: constants only)\n"
+                   "    for (int i = 0; i < 3; ++i) lifted[i] = pow(blend[i], 1.0 + 0.25 * float(i));\n"
+                   "    FragColor = vec4(mix(lifted, taps[1], edge) * kMasks[cell.x][cell.y], 1.0);\n"
+                   "}\n",
+                   "filter_linear0 = false\n");
 }
 
 // gather.slangp: textureGather of each channel, at the pass's pixel and between texels, weighed
 // so that the order of the four texels shows (GLSL 3.30, ES 3.00 and Godot have no gather).
 void write_gather_library(const test::TempDir& dir) {
-    write(dir / "shaders/gather.slang",
-          test::slang_program({"", "", "", "",
-                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-                               "void main() {\n"
-                               "    vec4 r = textureGather(Source, vTexCoord, 0);\n"
-                               "    vec4 g = textureGather(Source, vTexCoord + vec2(0.3, 0.7) * params.SourceSize.zw, 1);\n"
-                               "    vec4 b = textureGather(Source, vTexCoord - vec2(0.6, 0.2) * params.SourceSize.zw, 2);\n"
-                               "    FragColor = vec4(dot(r, vec4(0.4, 0.3, 0.2, 0.1)), dot(g, vec4(0.05, 0.15, 0.3, 0.5)),\n"
-                               "                     dot(b, vec4(0.6, 0.1, 0.25, 0.05)), 1.0);\n"
-                               "}\n"}));
-    write(dir / "gather.slangp", "shaders = 1\nshader0 = shaders/gather.slang\nfilter_linear0 = true\nwrap_mode0 = repeat\n");
+    write_one_pass(dir, "gather", "",
+                   "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                   "void main() {\n"
+                   "    vec4 r = textureGather(Source, vTexCoord, 0);\n"
+                   "    vec4 g = textureGather(Source, vTexCoord + vec2(0.3, 0.7) * params.SourceSize.zw, 1);\n"
+                   "    vec4 b = textureGather(Source, vTexCoord - vec2(0.6, 0.2) * params.SourceSize.zw, 2);\n"
+                   "    FragColor = vec4(dot(r, vec4(0.4, 0.3, 0.2, 0.1)), dot(g, vec4(0.05, 0.15, 0.3, 0.5)),\n"
+                   "                     dot(b, vec4(0.6, 0.1, 0.25, 0.05)), 1.0);\n"
+                   "}\n",
+                   "filter_linear0 = true\nwrap_mode0 = repeat\n");
 }
 
 // original.slangp: a second pass that reads only Original (not its own input, whose size is still
