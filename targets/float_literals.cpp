@@ -1,5 +1,6 @@
 // Shortest round-trip float literals in SPIRV-Cross output (see float_literals.hpp).
 #include "targets/float_literals.hpp"
+#include "targets/word_scan.hpp"
 
 #include <cctype>
 #include <cstdlib>
@@ -10,7 +11,6 @@ namespace crtforge::detail {
 
 namespace {
 
-bool is_word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 
 // Where the exponent (e-5, E+12) at `i` ends: `i` itself if none is there.

@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <functional>
 #include <map>
-#include <cctype>
 #include <regex>
 
 #include <fmt/format.h>
@@ -59,11 +58,10 @@ std::string rewrite_calls(const std::string& text, const std::string& function,
     // A plain scan, not std::regex: this runs over every pass's whole text several times (and on
     // each argument again for the border emulation), where a regex cost a third of an export.
     const std::string call = function + "(";
-    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     std::string out;
     size_t last = 0;
     for (size_t at = text.find(call); at != std::string::npos; at = text.find(call, at + 1)) {
-        if (at < last || (at > 0 && word(text[at - 1]))) continue;
+        if (at < last || (at > 0 && detail::is_word_char(text[at - 1]))) continue;
         std::vector<std::string> args(1);
         int depth = 0;
         size_t end = at + call.size();
