@@ -114,12 +114,19 @@ std::string declarations(const Variant& variant, const std::string* program_stag
     if (!baked.empty()) {
         const bool variables = as == BakedParams::Variables;
         out += variables ? "\n// Fixed by the preset: never written, folded away by the optimiser.\n"
-                         : "\n// Fixed by the preset: compile-time constants, folded away by the optimiser.\n";
+               : as == BakedParams::Specialized ? "\n// Fixed by the preset: specialization constants, folded by the driver.\n"
+                                               : "\n// Fixed by the preset: compile-time constants, folded away by the optimiser.\n";
+        int spec_id = 0;
         for (const VariantParam* p : baked) {
             int index = p->spec->type == ParamType::Enum
                             ? p->spec->enum_index(std::get<std::string>(p->value)) : -1;
             std::string note = p->spec->type == ParamType::Enum ? "  // " + std::get<std::string>(p->value) : "";
-            out += fmt::format("{}{} {} = {};{}\n", variables ? "" : "const ", glsl_type_for(p->spec->type), p->spec->name,
+            const char* glsl_type = glsl_type_for(p->spec->type);
+            const bool scalar = std::string_view(glsl_type) == "float" || std::string_view(glsl_type) == "int" ||
+                                std::string_view(glsl_type) == "bool";
+            std::string qualifier = variables ? "" : "const ";
+            if (as == BakedParams::Specialized && scalar) qualifier = fmt::format("layout(constant_id = {}) const ", spec_id++);
+            out += fmt::format("{}{} {} = {};{}\n", qualifier, glsl_type, p->spec->name,
                                value_to_glsl(p->value, p->spec->type, index), note);
         }
     }

@@ -221,10 +221,13 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
     // A program's baked params are constants (the quickest to optimise); one that leans on them
     // being no constant expressions, as its uniforms are, gets variables it never writes, and an
     // error then is its own (assembler.hpp, BakedParams).
-    if (auto s = compile_stages(BakedParams::Constants); !s.ok()) {
-        const bool retry = out.variant.program_form() && !out.variant.baked().empty();
-        if (!retry) return s.error();
-        if (auto again = compile_stages(BakedParams::Variables); !again.ok()) return again.error();
+    const bool program_baked = out.variant.program_form() && !out.variant.baked().empty();
+    const bool specialized = options.specialize_baked && program_baked && compile_stages(BakedParams::Specialized).ok();
+    if (!specialized) {
+        if (auto s = compile_stages(BakedParams::Constants); !s.ok()) {
+            if (!program_baked) return s.error();
+            if (auto again = compile_stages(BakedParams::Variables); !again.ok()) return again.error();
+        }
     }
     auto reflection = reflect(out.fragment);
     if (!reflection.ok()) return reflection.error();

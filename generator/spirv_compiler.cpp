@@ -7,6 +7,7 @@
 #include "generator/spirv_debug_names.hpp"
 #include "generator/spirv_clamp_lowering.hpp"
 #include "generator/spirv_pow_reduction.hpp"
+#include "generator/spirv_spec_values.hpp"
 
 #include <mutex>
 #include <regex>
@@ -206,7 +207,10 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
 
     // The memo's key is the module without debug info (OpLine output, debug_lines, names its files:
     // it is not memoised).
+    // Specialization constants (BakedParams::Specialized) are keyed and optimised as 0: presets
+    // that differ only in their values share one optimisation, and get their values back after.
     std::string memo_key;
+    std::map<uint32_t, SpecValue> spec_values;
     if (options.optimize && !options.debug_lines) {
         SpirvBinary plain;
         if (spv_options.generateDebugInfo) {
@@ -216,8 +220,17 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
             spv::SpvBuildLogger plain_logger;
             glslang::GlslangToSpv(intermediate, plain, &plain_logger, &plain_options);
         }
-        memo_key = optimized_memo_key(spv_options.generateDebugInfo ? plain : spirv, carry_names);
-        if (auto known = optimized_memo().find(memo_key)) return std::move(*known);
+        SpirvBinary& keyed = spv_options.generateDebugInfo ? plain : spirv;
+        spec_values = spec_constant_values(keyed);
+        if (!spec_values.empty()) {
+            clear_spec_constant_values(spirv);
+            if (&keyed != &spirv) clear_spec_constant_values(keyed);
+        }
+        memo_key = optimized_memo_key(keyed, carry_names);
+        if (auto known = optimized_memo().find(memo_key)) {
+            write_spec_constant_values(*known, spec_values);
+            return std::move(*known);
+        }
     }
 
     if (options.optimize) {
@@ -239,6 +252,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     if (auto valid = validate_spirv(spirv); !valid.ok())
         return make_validation_error(valid.error().message + " (the generator produced invalid SPIR-V)", name);
     if (!memo_key.empty()) optimized_memo().put(memo_key, spirv);
+    write_spec_constant_values(spirv, spec_values);
     return spirv;
 }
 

@@ -4,7 +4,9 @@
 // renders on Vulkan, GL and HLSL alike; bad input is one line and writes nothing.
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <fstream>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -12,6 +14,7 @@
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/slang_import.hpp"
+#include "generator/spirv_spec_values.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -474,4 +477,80 @@ TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the s
     CHECK_THAT(screen, Catch::Contains("texelFetch(SCREEN_TEXTURE, ivec2((") && Catch::Contains(").x, textureSize(SCREEN_TEXTURE, 0).y - 1 - ("));
     CHECK_THAT(screen, Catch::Contains("textureSize(SCREEN_TEXTURE, 0)"));
     CHECK(screen.find("crt_flip_y(SCREEN_UV)") != std::string::npos);  // its gl_FragCoord, counted from the top
+}
+
+TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization constants: one optimisation for presets that share "
+          "the pass, the same picture as constants",
+          "[retroarch][import][specialize]") {
+    test::TempDir dir;
+    const std::string params = "#pragma parameter GAIN \"Gain\" 0.5 0.0 2.0 0.05\n#pragma parameter SWAP \"Swap\" 0.0 0.0 1.0 1.0\n";
+    write(dir / "shaders/gain.slang",
+          test::slang_program({"float GAIN; float SWAP; ", params, "", "",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "void main() {\n"
+                               "    vec3 c = texture(Source, vTexCoord).rgb * params.GAIN;\n"
+                               "    if (params.SWAP > 0.5) c = c.bgr;\n"
+                               "    FragColor = vec4(c, 1.0);\n"
+                               "}\n"}));
+    // A global constant made from a param: no specialization constant can be one (SPIR-V folds no
+    // float arithmetic of them), so this pass falls back to constants.
+    write(dir / "shaders/global.slang",
+          test::slang_program({"float GAIN; ", "#pragma parameter GAIN \"Gain\" 0.5 0.0 2.0 0.05\n", "", "",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "const float kHalfGain = params.GAIN * 0.5;\n"
+                               "void main() { FragColor = vec4(texture(Source, vTexCoord).rgb * kHalfGain, 1.0); }\n"}));
+    write(dir / "a.slangp", "shaders = 2\nshader0 = shaders/gain.slang\nscale_type0 = source\nshader1 = shaders/global.slang\n"
+                            "GAIN = 1.5\nSWAP = 1.0\n");
+    write(dir / "b.slangp", "shaders = 2\nshader0 = shaders/gain.slang\nscale_type0 = source\nshader1 = shaders/global.slang\n"
+                            "GAIN = 0.75\n");
+    auto baked = UniformSelection::parse("none");
+    REQUIRE(baked.ok());
+    VariantOptions constants;
+    constants.uniforms = baked.value();
+    constants.local_names = false;
+    VariantOptions specialized = constants;
+    specialized.specialize_baked = true;
+
+    TargetRenderer renderer;
+    test::SceneShot shot{[](int) -> Result<Image> { return make_test_input("pixel_art", 16, 12, 0); }, 16, 12, {0}};
+    std::vector<SpirvBinary> cleared;
+    std::vector<Image> pictures;
+    for (const std::string name : {"a", "b"}) {
+        auto lib = import_into(dir / (name + ".slangp"), dir / ("overlay_" + name), dir.path(), name);
+        INFO((lib.ok() ? std::string() : lib.error().str()));
+        REQUIRE(lib.ok());
+        const Preset& preset = *lib.value()->find_preset(name);
+        auto as_constants = compile_scene(*lib.value(), preset, constants, Cache());
+        auto as_spec = compile_scene(*lib.value(), preset, specialized, Cache());
+        INFO((as_spec.ok() ? std::string() : as_spec.error().str()));
+        REQUIRE(as_constants.ok());
+        REQUIRE(as_spec.ok());
+        // The first pass's params are specialization constants holding the preset's values ...
+        auto values = spec_constant_values(as_spec.value()[0].fragment);
+        std::set<float> held;
+        for (const auto& [id, value] : values) {
+            REQUIRE(value.words.size() == 1);
+            held.insert(std::bit_cast<float>(value.words[0]));
+        }
+        CHECK(held == (name == "a" ? std::set<float>{1.5f, 1.0f} : std::set<float>{0.75f, 0.0f}));
+        CHECK(spec_constant_values(as_constants.value()[0].fragment).empty());
+        // ... the second pass could not have them and has its constant.
+        CHECK(spec_constant_values(as_spec.value()[1].fragment).empty());
+        SpirvBinary module = as_spec.value()[0].fragment;
+        REQUIRE(clear_spec_constant_values(module));
+        cleared.push_back(std::move(module));
+
+        const Image by_constants = test::render_scene_or_fail(renderer, preset, as_constants.value(), shot).front();
+        const Image by_spec = test::render_scene_or_fail(renderer, preset, as_spec.value(), shot).front();
+        auto same = compare_images(by_spec, by_constants);
+        REQUIRE(same.ok());
+        CHECK(same.value().psnr >= 80.0);
+        pictures.push_back(by_spec);
+    }
+    // Both presets' first pass is one module but for its values (one optimisation), and the
+    // values took effect: the two pictures differ.
+    CHECK(cleared[0] == cleared[1]);
+    auto apart = compare_images(pictures[0], pictures[1]);
+    REQUIRE(apart.ok());
+    CHECK(apart.value().psnr < 20.0);
 }

@@ -126,6 +126,7 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
         VariantOptions variant;
         variant.uniforms = request.uniforms;
         variant.local_names = !spirv_only;
+        variant.specialize_baked = spirv_only;
         auto pass = compile_variant(lib, *preset, variant, cache, i);
         if (pass.ok()) {
             passes[i] = std::move(pass.value());

@@ -28,7 +28,10 @@ struct AssembledShader {
 // its params as uniforms, which are no constant expressions, and may lean on that (an array
 // indexed by `set - 1` in the branch `set == 0` never takes: an error once `set` is a constant).
 // Variables it never writes are what a uniform is, and spirv-opt folds them all the same.
-enum class BakedParams { Constants, Variables };
+// Specialized: the scalar ones as specialization constants (`layout(constant_id = N) const`), for
+// a render from the SPIR-V alone: the optimiser runs once for every preset that shares the text
+// (spirv_spec_values.hpp) and the driver folds the values when it builds the pipeline.
+enum class BakedParams { Constants, Variables, Specialized };
 
 // A snippet stage's forms run in the generated main(); a program form (FormSpec::program()) is the
 // pass's whole vertex and fragment shader, after the same declarations, with only the baked

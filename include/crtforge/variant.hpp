@@ -40,6 +40,10 @@ struct VariantOptions {
     // print. It costs spirv-opt a second run; a render from the SPIR-V alone (the Vulkan-only
     // sweep) needs no names and gets the same instructions without them.
     bool local_names = true;
+    // A program's baked params as specialization constants (BakedParams::Specialized), for a
+    // render from the SPIR-V alone (the Vulkan-only sweep): presets that share a pass's text then
+    // share its optimisation. Where the program needs them as constants, it falls back.
+    bool specialize_baked = false;
 };
 
 struct VariantParam {
