@@ -248,6 +248,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
             else return optimized.error();
         }
         reduce_constant_powers(spirv);  // last: the exponents are constants only once spirv-opt has folded
+        if (carry_names) name_unnamed_values(spirv);
     }
     if (auto valid = validate_spirv(spirv); !valid.ok())
         return make_validation_error(valid.error().message + " (the generator produced invalid SPIR-V)", name);

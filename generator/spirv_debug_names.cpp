@@ -14,8 +14,10 @@
 #include <string>
 #include <string_view>
 
+#include <glslang/SPIRV/GLSL.std.450.h>
 #include <glslang/SPIRV/NonSemanticShaderDebugInfo100.h>
 #define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType: which instructions define a typed value
+#define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType
 #include <glslang/SPIRV/spirv.hpp>
 
 namespace crtforge {
@@ -249,6 +251,135 @@ bool is_debug_instruction(const SpirvBinary& words, const Instruction& in, uint3
 
 }  // namespace
 
+// An OpName for each (id, name), appended to `out`.
+void append_names(SpirvBinary& out, const std::map<uint32_t, std::string>& names) {
+    for (const auto& [id, name] : names) {
+        const size_t first = out.size();
+        out.push_back(0u);
+        out.push_back(id);
+        append_string(out, name);
+        out[first] = (static_cast<uint32_t>(out.size() - first) << 16) | spv::OpName;
+    }
+}
+
+// What a value with no template name is, as a name. None is a function of GLSL, HLSL or WGSL
+// (a local named `length` would hide the function); a reserved one gets its `_` downstream.
+const char* kind_name(const SpirvBinary& words, const Instruction& in, uint32_t glsl_set) {
+    switch (in.opcode) {
+        case spv::OpFMul: case spv::OpIMul: case spv::OpVectorTimesScalar: case spv::OpMatrixTimesScalar:
+        case spv::OpVectorTimesMatrix: case spv::OpMatrixTimesVector: case spv::OpMatrixTimesMatrix:
+            return "product";
+        case spv::OpFAdd: case spv::OpIAdd: return "sum";
+        case spv::OpFSub: case spv::OpISub: return "difference";
+        case spv::OpFDiv: case spv::OpSDiv: case spv::OpUDiv: return "quotient";
+        case spv::OpFMod: case spv::OpFRem: case spv::OpSMod: case spv::OpSRem: case spv::OpUMod: return "remainder";
+        case spv::OpFNegate: case spv::OpSNegate: return "negated";
+        case spv::OpDot: return "dot_product";
+        case spv::OpSelect: return "chosen";
+        case spv::OpPhi: return "merged";
+        case spv::OpCompositeConstruct: return "composite";
+        case spv::OpCompositeExtract: case spv::OpVectorShuffle: return "part";
+        case spv::OpCompositeInsert: return "updated";
+        case spv::OpConvertFToS: case spv::OpConvertFToU: case spv::OpConvertSToF: case spv::OpConvertUToF:
+        case spv::OpUConvert: case spv::OpSConvert: case spv::OpFConvert: case spv::OpBitcast:
+            return "converted";
+        case spv::OpLoad: return "loaded";
+        case spv::OpUndef: return "undefined";
+        case spv::OpFunctionParameter: return "argument";
+        case spv::OpVariable: return "local";
+        case spv::OpImageQuerySize: case spv::OpImageQuerySizeLod: return "texture_size";
+        case spv::OpExtInst:
+            if (in.count < 5 || words[in.offset + 3] != glsl_set) break;
+            switch (words[in.offset + 4]) {
+                case GLSLstd450FClamp: case GLSLstd450SClamp: case GLSLstd450UClamp: case GLSLstd450NClamp: return "clamped";
+                case GLSLstd450FMix: return "blend";
+                case GLSLstd450Pow: return "power";
+                case GLSLstd450Exp: case GLSLstd450Exp2: return "exponential";
+                case GLSLstd450Log: case GLSLstd450Log2: return "logarithm";
+                case GLSLstd450Sqrt: return "root";
+                case GLSLstd450InverseSqrt: return "inverse_root";
+                case GLSLstd450Floor: return "floored";
+                case GLSLstd450Fract: return "fraction";
+                case GLSLstd450Sin: return "sine";
+                case GLSLstd450Cos: return "cosine";
+                case GLSLstd450FAbs: case GLSLstd450SAbs: return "magnitude";
+                case GLSLstd450FMin: case GLSLstd450SMin: case GLSLstd450UMin: case GLSLstd450NMin: return "smaller";
+                case GLSLstd450FMax: case GLSLstd450SMax: case GLSLstd450UMax: case GLSLstd450NMax: return "larger";
+                case GLSLstd450Length: return "magnitude";
+                case GLSLstd450Normalize: return "direction";
+                case GLSLstd450SmoothStep: return "smoothed";
+                default: break;
+            }
+            break;
+        default:
+            break;
+    }
+    return "value";
+}
+
+void drop_names_of_missing_ids(SpirvBinary& words) {
+    if (words.size() < detail::kSpirvHeaderWords || words[0] != spv::MagicNumber) return;
+    const auto parsed = detail::spirv_instructions(words);
+    if (!parsed) return;
+    std::set<uint32_t> defined;
+    for (const Instruction& in : *parsed) {
+        bool has_result = false, has_type = false;
+        spv::HasResultAndType(static_cast<spv::Op>(in.opcode), &has_result, &has_type);
+        const size_t at = in.offset + (has_type ? 2 : 1);
+        if (has_result && at < in.offset + in.count) defined.insert(words[at]);
+    }
+    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
+    out.reserve(words.size());
+    for (const Instruction& in : *parsed) {
+        const bool name = (in.opcode == spv::OpName || in.opcode == spv::OpMemberName) && in.count >= 3;
+        if (name && !defined.count(words[in.offset + 1])) continue;
+        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
+                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
+    }
+    words = std::move(out);
+}
+
+void name_unnamed_values(SpirvBinary& words) {
+    if (words.size() < detail::kSpirvHeaderWords || words[0] != spv::MagicNumber) return;
+    const auto parsed = detail::spirv_instructions(words);
+    if (!parsed || parsed->empty()) return;
+    const std::vector<Instruction>& list = *parsed;
+    std::set<uint32_t> named;
+    uint32_t glsl_set = 0;
+    for (const Instruction& in : list) {
+        if (in.opcode == spv::OpName && in.count >= 3) named.insert(words[in.offset + 1]);
+        if (in.opcode == spv::OpExtInstImport && in.count >= 3 &&
+            spirv_literal_string(words, in.offset + 2, in.offset + in.count) == "GLSL.std.450")
+            glsl_set = words[in.offset + 1];
+    }
+    std::map<uint32_t, std::string> names;
+    bool in_function = false;
+    for (const Instruction& in : list) {
+        if (in.opcode == spv::OpFunction) in_function = true;
+        if (in.opcode == spv::OpFunctionEnd) in_function = false;
+        const bool global_undef = in.opcode == spv::OpUndef;
+        if ((!in_function && !global_undef) || in.opcode == spv::OpFunction || in.opcode == spv::OpLabel) continue;
+        bool has_result = false, has_type = false;
+        spv::HasResultAndType(static_cast<spv::Op>(in.opcode), &has_result, &has_type);
+        if (!has_result || !has_type || in.count < 3) continue;
+        const uint32_t id = words[in.offset + 2];
+        if (!named.count(id)) names.emplace(id, kind_name(words, in, glsl_set));
+    }
+    if (names.empty()) return;
+    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
+    out.reserve(words.size() + names.size() * 4);
+    bool names_written = false;
+    for (const Instruction& in : list) {
+        if (!names_written && !precedes_names(in.opcode)) {
+            append_names(out, names);
+            names_written = true;
+        }
+        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
+                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
+    }
+    words = std::move(out);
+}
+
 void name_values_and_strip_debug_info(SpirvBinary& words) {
     if (words.size() < detail::kSpirvHeaderWords || words[0] != spv::MagicNumber) return;
     const auto parsed = detail::spirv_instructions(words);
@@ -264,13 +395,7 @@ void name_values_and_strip_debug_info(SpirvBinary& words) {
     for (const Instruction& in : list) {
         // The new OpNames open the names section: before the first instruction past the strings.
         if (!names_written && !precedes_names(in.opcode)) {
-            for (const auto& [id, name] : names) {
-                const size_t first = out.size();
-                out.push_back(0u);
-                out.push_back(id);
-                append_string(out, name);
-                out[first] = (static_cast<uint32_t>(out.size() - first) << 16) | spv::OpName;
-            }
+            append_names(out, names);
             names_written = true;
         }
         if (is_debug_instruction(words, in, facts.debug_set)) continue;

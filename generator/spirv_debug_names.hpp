@@ -10,4 +10,13 @@ namespace crtforge {
 // loses its OpLine/OpString/OpSource; one that does not parse is left as it is.
 void name_values_and_strip_debug_info(SpirvBinary& words);
 
+// Names each value that still has none after optimisation (what spirv-opt made of an expression:
+// a common subexpression, the output clamp, pow's reduction) after what it is — product, clamped,
+// chosen — so SPIRV-Cross prints `vec4 clamped` rather than `vec4 _122` (it numbers repeats).
+void name_unnamed_values(SpirvBinary& words);
+
+// Removes the OpNames of ids no instruction defines any more (a lowering pass that replaced the
+// values they named): spirv-val and the drivers refuse a name of nothing.
+void drop_names_of_missing_ids(SpirvBinary& words);
+
 }  // namespace crtforge

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "generator/spirv_debug_names.hpp"
 #include "generator/spirv_words.hpp"
 #include "targets/spirv_facts.hpp"
 
@@ -446,6 +447,7 @@ size_t flatten_arrays_of_arrays(SpirvBinary& words) {
     const size_t count = flattener.flat_count();
     if (count == 0) return 0;
     words = flattener.run();
+    drop_names_of_missing_ids(words);
     return count;
 }
 

@@ -19,8 +19,8 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var gl_Position: vec4<f32>;
   let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
   vTexCoord = uv;
-  let _92 = (uv * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  let difference = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(difference.x, difference.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
@@ -37,12 +37,12 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       break;
     }
     continuing {
-      let _170 = c[k];
-      c[k] = _170 + 0.125;
+      let loaded = c[k];
+      c[k] = loaded + 0.125;
       k = k + 1i;
     }
   }
-  let _186 = c;
-  fragColor = vec4<f32>(_186.x, _186.y, _186.z, 1.0);
+  let loaded_1 = c;
+  fragColor = vec4<f32>(loaded_1.x, loaded_1.y, loaded_1.z, 1.0);
   return fragColor;
 }

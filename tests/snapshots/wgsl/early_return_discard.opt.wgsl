@@ -23,15 +23,15 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var gl_Position: vec4<f32>;
   let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
   vTexCoord = uv;
-  let _92 = (uv * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  let difference = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(difference.x, difference.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
 @fragment
 fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
-  var _214: vec4<f32>;
+  var merged: vec4<f32>;
   switch (0u) {
     default: {
       if (vTexCoord.x < 0.25) {
@@ -45,11 +45,11 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       let cond = vTexCoord < p.a.xy;
       let cond_1 = vTexCoord > p.a.zw;
       if (any(vec4<bool>(cond.x, cond.y, cond_1.x, cond_1.y))) {
-        _214 = p.b;
+        merged = p.b;
       } else {
-        _214 = textureSample(source, source_sampler, vTexCoord);
+        merged = textureSample(source, source_sampler, vTexCoord);
       }
-      fragColor = _214;
+      fragColor = merged;
     }
   }
   return fragColor;

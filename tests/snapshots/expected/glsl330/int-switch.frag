@@ -17,13 +17,13 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec2 _322 = vTexCoord * crt.outputSize;
+    vec2 product = vTexCoord * crt.outputSize;
     vec4 texel = texture(source, vTexCoord);
-    int x = int(_322.x) - 12;
-    float _592 = _322.y;
-    vec3 color = texel.xyz * (0.03 * mod(_592 - 4.0, -6.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
+    int x = int(product.x) - 12;
+    float part = product.y;
+    vec3 color = texel.xyz * (0.03 * mod(part - 4.0, -6.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
     vec3 tint;
-    switch (int(_592) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {
@@ -53,8 +53,8 @@ void main()
         lift = color_y * color_y;
     }
     vec4 c = vec4(color * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift), 1.0);
-    vec4 _791 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? 0.0 : _791.x, cond.y ? 0.0 : _791.y, cond.z ? 0.0 : _791.z, cond.w ? 0.0 : _791.w);
+    fragColor = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

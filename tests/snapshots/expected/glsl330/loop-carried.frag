@@ -18,11 +18,11 @@ layout(location = 0) out vec4 fragColor;
 void main()
 {
     vec4 texel = texture(source, vTexCoord);
-    float _498 = dFdx(vTexCoord.x);
-    float _501 = dFdy(vTexCoord.y);
-    vec2 _506 = fwidth(vTexCoord);
-    vec4 texel_1 = texture(source, vTexCoord + (vec2(_498, _501) * 4.0));
-    vec3 color = mix(texel.xyz, texel_1.xyz, vec3(crt.tapMix * clamp(length(_506) * 100.0, 0.0, 1.0)));
+    float value = dFdx(vTexCoord.x);
+    float value_1 = dFdy(vTexCoord.y);
+    vec2 value_2 = fwidth(vTexCoord);
+    vec4 texel_1 = texture(source, vTexCoord + (vec2(value, value_1) * 4.0));
+    vec3 color = mix(texel.xyz, texel_1.xyz, vec3(crt.tapMix * clamp(length(value_2) * 100.0, 0.0, 1.0)));
     float sum_2;
     float sum_1;
     int k = 0;
@@ -58,8 +58,8 @@ void main()
         }
     }
     vec4 c = vec4(color * (0.1 * sum_2 + 1.0), 1.0);
-    vec4 _650 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? 0.0 : _650.x, cond.y ? 0.0 : _650.y, cond.z ? 0.0 : _650.z, cond.w ? 0.0 : _650.w);
+    fragColor = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

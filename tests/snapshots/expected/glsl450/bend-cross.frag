@@ -1,6 +1,6 @@
 #version 450
 
-vec4 _1031;
+vec4 undefined;
 
 layout(binding = 0, std140) uniform CrtParams
 {
@@ -19,17 +19,17 @@ void main()
 {
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q.xy;
-    vec2 _612 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
+    vec2 product = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
     vec4 q_1;
-    q_1.z = _612.x;
-    q_1.w = _612.y;
-    vec2 _619 = q_1.wz * 0.5;
-    vec2 sampleUv = _619 + vec2(0.5);
+    q_1.z = product.x;
+    q_1.w = product.y;
+    vec2 product_1 = q_1.wz * 0.5;
+    vec2 sampleUv = product_1 + vec2(0.5);
     vec4 texel = texture(source, sampleUv);
-    vec4 texel_1 = texture(source, _619 + vec2(0.5025, 0.5));
-    vec4 texel_2 = texture(source, _619 + vec2(0.4975, 0.5));
-    vec4 texel_3 = texture(source, _619 + vec2(0.5, 0.5025));
-    vec4 texel_4 = texture(source, _619 + vec2(0.5, 0.4975));
+    vec4 texel_1 = texture(source, product_1 + vec2(0.5025, 0.5));
+    vec4 texel_2 = texture(source, product_1 + vec2(0.4975, 0.5));
+    vec4 texel_3 = texture(source, product_1 + vec2(0.5, 0.5025));
+    vec4 texel_4 = texture(source, product_1 + vec2(0.5, 0.4975));
     vec3 color;
     do
     {

@@ -14,13 +14,13 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec2 _322 = vTexCoord * crt.outputSize;
+    vec2 product = vTexCoord * crt.outputSize;
     vec4 texel = texture(source, vTexCoord);
-    int x = int(_322.x) - 12;
-    float _592 = _322.y;
-    vec3 color = texel.xyz * fma(0.03, mod(_592 - 4.0, -6.0), fma(-0.001, float(x / (-3)), fma(0.01, float(x % crt.bandWidth), fma(0.02, float(x / crt.bandWidth), 1.0))));
+    int x = int(product.x) - 12;
+    float part = product.y;
+    vec3 color = texel.xyz * fma(0.03, mod(part - 4.0, -6.0), fma(-0.001, float(x / (-3)), fma(0.01, float(x % crt.bandWidth), fma(0.02, float(x / crt.bandWidth), 1.0))));
     vec3 tint;
-    switch (int(_592) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {

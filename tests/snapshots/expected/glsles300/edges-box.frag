@@ -20,8 +20,8 @@ void main()
 {
     vec2 d = abs((vTexCoord * 2.0) - vec2(1.0)) * crt.shapeScale;
     vec4 c = vec4((texture(source, vTexCoord).xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * (crt.pulseDepth * sin((vTexCoord * crt.outputSize).y * 0.025 + (crt.time * crt.pulseRate)) + 1.0), 1.0);
-    vec4 _519 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? 0.0 : _519.x, cond.y ? 0.0 : _519.y, cond.z ? 0.0 : _519.z, cond.w ? 0.0 : _519.w);
+    fragColor = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

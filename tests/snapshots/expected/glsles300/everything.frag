@@ -2,7 +2,7 @@
 precision highp float;
 precision highp int;
 
-vec4 _2433;
+vec4 undefined;
 
 layout(std140) uniform CrtParams
 {
@@ -26,13 +26,13 @@ layout(location = 0) out vec4 fragColor;
 
 void main()
 {
-    vec2 _705 = vTexCoord * crt.outputSize;
+    vec2 product = vTexCoord * crt.outputSize;
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q.xy;
-    vec2 _1237 = q.zw * (crt.bendAmount * dot(q_xy, q_xy) + 1.0);
+    vec2 product_1 = q.zw * (crt.bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_1;
-    q_1.z = _1237.x;
-    q_1.w = _1237.y;
+    q_1.z = product_1.x;
+    q_1.w = product_1.y;
     vec2 sampleUv = (q_1.wz * 0.5) + vec2(0.5);
     float sampleUv_x = sampleUv.x;
     float sampleUv_y = sampleUv.y;
@@ -56,11 +56,11 @@ void main()
         k = k_1;
         continue;
     }
-    int x = int(_705.x) - 10;
-    float _1468 = _705.y;
-    vec3 color_2 = (s_1.xyz * s.w) * (0.03 * mod(_1468 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
+    int x = int(product.x) - 10;
+    float part = product.y;
+    vec3 color_2 = (s_1.xyz * s.w) * (0.03 * mod(part - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % crt.bandWidth) + (0.02 * float(x / crt.bandWidth) + 1.0))));
     vec3 tint;
-    switch (int(_1468) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {
@@ -123,12 +123,12 @@ void main()
             color = crt.edgeColor.zyx;
             break;
         }
-        color = ((color_2 * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * (crt.pulseDepth * sin(_1468 * 0.025 + (crt.time * crt.pulseRate)) + 1.0);
+        color = ((color_2 * tint + vec3(((vTexCoord.y < 0.5) ? 0.01 : (-0.01)) * lift)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * (crt.pulseDepth * sin(part * 0.025 + (crt.time * crt.pulseRate)) + 1.0);
         break;
     } while(false);
     vec4 c = vec4(color, 1.0);
-    vec4 _1835 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_4 = isnan(c);
-    fragColor = vec4(cond_4.x ? 0.0 : _1835.x, cond_4.y ? 0.0 : _1835.y, cond_4.z ? 0.0 : _1835.z, cond_4.w ? 0.0 : _1835.w);
+    fragColor = vec4(cond_4.x ? 0.0 : clamped.x, cond_4.y ? 0.0 : clamped.y, cond_4.z ? 0.0 : clamped.z, cond_4.w ? 0.0 : clamped.w);
 }
 

@@ -1,4 +1,4 @@
-static float4 _1031;
+static float4 undefined;
 
 cbuffer CrtParams : register(b0)
 {
@@ -28,17 +28,17 @@ void frag_main()
 {
     float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
     float2 q_xy = q.xy;
-    float2 _612 = q.zw * mad(crt_bendAmount, dot(q_xy, q_xy), 1.0f);
+    float2 product = q.zw * mad(crt_bendAmount, dot(q_xy, q_xy), 1.0f);
     float4 q_1;
-    q_1.z = _612.x;
-    q_1.w = _612.y;
-    float2 _619 = q_1.wz * 0.5f;
-    float2 sampleUv = _619 + 0.5f.xx;
+    q_1.z = product.x;
+    q_1.w = product.y;
+    float2 product_1 = q_1.wz * 0.5f;
+    float2 sampleUv = product_1 + 0.5f.xx;
     float4 texel = source.Sample(_source_sampler, sampleUv);
-    float4 texel_1 = source.Sample(_source_sampler, _619 + float2(0.5025f, 0.5f));
-    float4 texel_2 = source.Sample(_source_sampler, _619 + float2(0.4975f, 0.5f));
-    float4 texel_3 = source.Sample(_source_sampler, _619 + float2(0.5f, 0.5025f));
-    float4 texel_4 = source.Sample(_source_sampler, _619 + float2(0.5f, 0.4975f));
+    float4 texel_1 = source.Sample(_source_sampler, product_1 + float2(0.5025f, 0.5f));
+    float4 texel_2 = source.Sample(_source_sampler, product_1 + float2(0.4975f, 0.5f));
+    float4 texel_3 = source.Sample(_source_sampler, product_1 + float2(0.5f, 0.5025f));
+    float4 texel_4 = source.Sample(_source_sampler, product_1 + float2(0.5f, 0.4975f));
     float3 color;
     do
     {
@@ -78,9 +78,9 @@ void frag_main()
         break;
     } while(false);
     float4 c = float4(color, 1.0f);
-    float4 _824 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond_4 = isnan(c);
-    fragColor = float4(cond_4.x ? 0.0f : _824.x, cond_4.y ? 0.0f : _824.y, cond_4.z ? 0.0f : _824.z, cond_4.w ? 0.0f : _824.w);
+    fragColor = float4(cond_4.x ? 0.0f : clamped.x, cond_4.y ? 0.0f : clamped.y, cond_4.z ? 0.0f : clamped.z, cond_4.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -27,9 +27,9 @@ void frag_main()
 {
     float2 d = abs((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale;
     float4 c = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - min(max(1.5f - max(d.x, d.y), 0.8f), 0.2f))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
-    float4 _519 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f : _519.x, cond.y ? 0.0f : _519.y, cond.z ? 0.0f : _519.z, cond.w ? 0.0f : _519.w);
+    fragColor = float4(cond.x ? 0.0f : clamped.x, cond.y ? 0.0f : clamped.y, cond.z ? 0.0f : clamped.z, cond.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

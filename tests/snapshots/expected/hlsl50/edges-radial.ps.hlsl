@@ -26,9 +26,9 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float4 c = float4((source.Sample(_source_sampler, vTexCoord).xyz * (1.0f - smoothstep(0.3f, 0.9f, length((vTexCoord * 2.0f) - 1.0f.xx) * crt_shapeScale))) * mad(crt_pulseDepth, sin(mad((vTexCoord * crt_outputSize).y, 0.025f, crt_time * crt_pulseRate)), 1.0f), 1.0f);
-    float4 _474 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f : _474.x, cond.y ? 0.0f : _474.y, cond.z ? 0.0f : _474.z, cond.w ? 0.0f : _474.w);
+    fragColor = float4(cond.x ? 0.0f : clamped.x, cond.y ? 0.0f : clamped.y, cond.z ? 0.0f : clamped.z, cond.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -43,13 +43,13 @@ float4 mod(float4 x, float4 y)
 
 void frag_main()
 {
-    float2 _322 = vTexCoord * crt_outputSize;
+    float2 product = vTexCoord * crt_outputSize;
     float4 texel = source.Sample(_source_sampler, vTexCoord);
-    int x = int(_322.x) - 12;
-    float _592 = _322.y;
-    float3 color = texel.xyz * mad(0.03f, mod(_592 - 4.0f, -6.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
+    int x = int(product.x) - 12;
+    float part = product.y;
+    float3 color = texel.xyz * mad(0.03f, mod(part - 4.0f, -6.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
     float3 tint;
-    switch (int(_592) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {
@@ -79,9 +79,9 @@ void frag_main()
         lift = color_y * color_y;
     }
     float4 c = float4(mad(color, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx), 1.0f);
-    float4 _791 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f : _791.x, cond.y ? 0.0f : _791.y, cond.z ? 0.0f : _791.z, cond.w ? 0.0f : _791.w);
+    fragColor = float4(cond.x ? 0.0f : clamped.x, cond.y ? 0.0f : clamped.y, cond.z ? 0.0f : clamped.z, cond.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -43,9 +43,9 @@ void frag_main()
         continue;
     }
     float4 c = float4(s_1.xyz * s.w, 1.0f);
-    float4 _457 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f : _457.x, cond.y ? 0.0f : _457.y, cond.z ? 0.0f : _457.z, cond.w ? 0.0f : _457.w);
+    fragColor = float4(cond.x ? 0.0f : clamped.x, cond.y ? 0.0f : clamped.y, cond.z ? 0.0f : clamped.z, cond.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

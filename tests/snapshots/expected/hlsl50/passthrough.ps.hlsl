@@ -17,9 +17,9 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float4 c = source.Sample(_source_sampler, vTexCoord);
-    float4 _122 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f : _122.x, cond.y ? 0.0f : _122.y, cond.z ? 0.0f : _122.z, cond.w ? 0.0f : _122.w);
+    fragColor = float4(cond.x ? 0.0f : clamped.x, cond.y ? 0.0f : clamped.y, cond.z ? 0.0f : clamped.z, cond.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

@@ -1,4 +1,4 @@
-static float4 _2433;
+static float4 undefined;
 
 cbuffer CrtParams : register(b0, space0)
 {
@@ -53,13 +53,13 @@ float4 mod(float4 x, float4 y)
 
 void frag_main()
 {
-    float2 _705 = vTexCoord * crt_outputSize;
+    float2 product = vTexCoord * crt_outputSize;
     float4 q = (float4(vTexCoord.xyyx) * 2.0f) - 1.0f.xxxx;
     float2 q_xy = q.xy;
-    float2 _1237 = q.zw * mad(crt_bendAmount, dot(q_xy, q_xy), 1.0f);
+    float2 product_1 = q.zw * mad(crt_bendAmount, dot(q_xy, q_xy), 1.0f);
     float4 q_1;
-    q_1.z = _1237.x;
-    q_1.w = _1237.y;
+    q_1.z = product_1.x;
+    q_1.w = product_1.y;
     float2 sampleUv = (q_1.wz * 0.5f) + 0.5f.xx;
     float sampleUv_x = sampleUv.x;
     float sampleUv_y = sampleUv.y;
@@ -83,11 +83,11 @@ void frag_main()
         k = k_1;
         continue;
     }
-    int x = int(_705.x) - 10;
-    float _1468 = _705.y;
-    float3 color_2 = (s_1.xyz * s.w) * mad(0.03f, mod(_1468 - 4.0f, -5.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
+    int x = int(product.x) - 10;
+    float part = product.y;
+    float3 color_2 = (s_1.xyz * s.w) * mad(0.03f, mod(part - 4.0f, -5.0f), mad(-0.001f, float(x / (-3)), mad(0.01f, float(x % crt_bandWidth), mad(0.02f, float(x / crt_bandWidth), 1.0f))));
     float3 tint;
-    switch (int(_1468) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {
@@ -150,13 +150,13 @@ void frag_main()
             color = crt_edgeColor.zyx;
             break;
         }
-        color = (mad(color_2, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx) * min(max(1.5f - max(d.x, d.y), 0.8f), 0.2f)) * mad(crt_pulseDepth, sin(mad(_1468, 0.025f, crt_time * crt_pulseRate)), 1.0f);
+        color = (mad(color_2, tint, (((vTexCoord.y < 0.5f) ? 0.01f : (-0.01f)) * lift).xxx) * min(max(1.5f - max(d.x, d.y), 0.8f), 0.2f)) * mad(crt_pulseDepth, sin(mad(part, 0.025f, crt_time * crt_pulseRate)), 1.0f);
         break;
     } while(false);
     float4 c = float4(color, 1.0f);
-    float4 _1835 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond_4 = isnan(c);
-    fragColor = float4(cond_4.x ? 0.0f : _1835.x, cond_4.y ? 0.0f : _1835.y, cond_4.z ? 0.0f : _1835.z, cond_4.w ? 0.0f : _1835.w);
+    fragColor = float4(cond_4.x ? 0.0f : clamped.x, cond_4.y ? 0.0f : clamped.y, cond_4.z ? 0.0f : clamped.z, cond_4.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

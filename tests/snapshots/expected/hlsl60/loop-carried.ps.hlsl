@@ -24,11 +24,11 @@ struct SPIRV_Cross_Output
 void frag_main()
 {
     float4 texel = source.Sample(_source_sampler, vTexCoord);
-    float _498 = ddx(vTexCoord.x);
-    float _501 = ddy(vTexCoord.y);
-    float2 _506 = fwidth(vTexCoord);
-    float4 texel_1 = source.Sample(_source_sampler, vTexCoord + (float2(_498, _501) * 4.0f));
-    float3 color = lerp(texel.xyz, texel_1.xyz, (crt_tapMix * clamp(length(_506) * 100.0f, 0.0f, 1.0f)).xxx);
+    float value = ddx(vTexCoord.x);
+    float value_1 = ddy(vTexCoord.y);
+    float2 value_2 = fwidth(vTexCoord);
+    float4 texel_1 = source.Sample(_source_sampler, vTexCoord + (float2(value, value_1) * 4.0f));
+    float3 color = lerp(texel.xyz, texel_1.xyz, (crt_tapMix * clamp(length(value_2) * 100.0f, 0.0f, 1.0f)).xxx);
     float sum_2;
     float sum_1;
     int k = 0;
@@ -64,9 +64,9 @@ void frag_main()
         }
     }
     float4 c = float4(color * mad(0.1f, sum_2, 1.0f), 1.0f);
-    float4 _650 = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
+    float4 clamped = clamp(c, (-65504.0f).xxxx, 65504.0f.xxxx);
     bool4 cond = isnan(c);
-    fragColor = float4(cond.x ? 0.0f : _650.x, cond.y ? 0.0f : _650.y, cond.z ? 0.0f : _650.z, cond.w ? 0.0f : _650.w);
+    fragColor = float4(cond.x ? 0.0f : clamped.x, cond.y ? 0.0f : clamped.y, cond.z ? 0.0f : clamped.z, cond.w ? 0.0f : clamped.w);
 }
 
 SPIRV_Cross_Output main(SPIRV_Cross_Input stage_input)

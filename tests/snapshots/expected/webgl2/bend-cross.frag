@@ -2,7 +2,7 @@
 precision highp float;
 precision highp int;
 
-vec4 _1031;
+vec4 undefined;
 
 uniform vec2 outputSize;
 uniform float bendAmount;
@@ -18,17 +18,17 @@ void main()
 {
     vec4 q = (vec4(vTexCoord.xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q.xy;
-    vec2 _612 = q.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
+    vec2 product = q.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_1;
-    q_1.z = _612.x;
-    q_1.w = _612.y;
-    vec2 _619 = q_1.wz * 0.5;
-    vec2 sampleUv = _619 + vec2(0.5);
+    q_1.z = product.x;
+    q_1.w = product.y;
+    vec2 product_1 = q_1.wz * 0.5;
+    vec2 sampleUv = product_1 + vec2(0.5);
     vec4 texel = texture(source, sampleUv);
-    vec4 texel_1 = texture(source, _619 + vec2(0.5025, 0.5));
-    vec4 texel_2 = texture(source, _619 + vec2(0.4975, 0.5));
-    vec4 texel_3 = texture(source, _619 + vec2(0.5, 0.5025));
-    vec4 texel_4 = texture(source, _619 + vec2(0.5, 0.4975));
+    vec4 texel_1 = texture(source, product_1 + vec2(0.5025, 0.5));
+    vec4 texel_2 = texture(source, product_1 + vec2(0.4975, 0.5));
+    vec4 texel_3 = texture(source, product_1 + vec2(0.5, 0.5025));
+    vec4 texel_4 = texture(source, product_1 + vec2(0.5, 0.4975));
     vec3 color;
     do
     {
@@ -68,8 +68,8 @@ void main()
         break;
     } while(false);
     vec4 c = vec4(color, 1.0);
-    vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_4 = isnan(c);
-    fragColor = vec4(cond_4.x ? 0.0 : _824.x, cond_4.y ? 0.0 : _824.y, cond_4.z ? 0.0 : _824.z, cond_4.w ? 0.0 : _824.w);
+    fragColor = vec4(cond_4.x ? 0.0 : clamped.x, cond_4.y ? 0.0 : clamped.y, cond_4.z ? 0.0 : clamped.z, cond_4.w ? 0.0 : clamped.w);
 }
 

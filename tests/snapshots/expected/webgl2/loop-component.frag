@@ -33,8 +33,8 @@ void main()
         continue;
     }
     vec4 c = vec4(s_1.xyz * s.w, 1.0);
-    vec4 _457 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? 0.0 : _457.x, cond.y ? 0.0 : _457.y, cond.z ? 0.0 : _457.z, cond.w ? 0.0 : _457.w);
+    fragColor = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

@@ -10,8 +10,8 @@ in vec2 vTexCoord;
 void main()
 {
     vec4 c = texture(source, vTexCoord);
-    vec4 _122 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    fragColor = vec4(cond.x ? 0.0 : _122.x, cond.y ? 0.0 : _122.y, cond.z ? 0.0 : _122.z, cond.w ? 0.0 : _122.w);
+    fragColor = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

@@ -32,8 +32,8 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var gl_Position: vec4<f32>;
   let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
   vTexCoord = uv;
-  let _92 = (uv * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  let difference = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(difference.x, difference.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
@@ -49,22 +49,22 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var color: vec3<f32>;
   var s_1: vec4<f32>;
   var k_1: i32;
-  let _705 = vTexCoord * crt.outputSize;
-  let _1223 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let q = _1223 - vec4<f32>(1.0);
+  let product = vTexCoord * crt.outputSize;
+  let product_1 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = product_1 - vec4<f32>(1.0);
   let q_xy = q.xy;
-  let _1237 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
+  let product_2 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
   var q_1 = vec4<f32>();
-  q_1.z = _1237.x;
+  q_1.z = product_2.x;
   var q_2 = q_1;
-  q_2.w = _1237.y;
+  q_2.w = product_2.y;
   let sampleUv = (q_2.wz * 0.5) + vec2<f32>(0.5);
-  let _721 = (sampleUv * 2.0) - vec2<f32>(1.0);
+  let difference = (sampleUv * 2.0) - vec2<f32>(1.0);
   let texel = textureSample(source, source_sampler, sampleUv);
-  let _1307 = length(fwidth(sampleUv)) * 100.0;
+  let product_3 = length(fwidth(sampleUv)) * 100.0;
   let texel_1 = textureSample(source, source_sampler, sampleUv + (vec2<f32>(dpdx(sampleUv.x), dpdy(sampleUv.y)) * 4.0));
-  let _1319 = crt.tapMix * clamp(_1307, 0.0, 1.0);
-  let color_1 = mix(texel.xyz, texel_1.xyz, vec3<f32>(_1319, _1319, _1319));
+  let product_4 = crt.tapMix * clamp(product_3, 0.0, 1.0);
+  let color_1 = mix(texel.xyz, texel_1.xyz, vec3<f32>(product_4, product_4, product_4));
   let s_2 = vec4<f32>(color_1.x, color_1.y, color_1.z, 1.0);
   s = s_2;
   k = 0i;
@@ -80,13 +80,14 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
       k = k_1;
     }
   }
-  let x = i32(_705.x) - 10i;
+  let x = i32(product.x) - 10i;
   let r_rem = x % crt.bandWidth;
   let r_1 = select(r_rem, r_rem + crt.bandWidth, (r_rem != i32()) & ((r_rem < i32()) != (crt.bandWidth < i32())));
-  let _1469 = _705.y - 4.0;
-  let _1483 = fma((-0.001), f32(x / (-3i)), fma(0.01, f32(r_1), fma(0.02, f32(x / crt.bandWidth), 1.0)));
-  let color_2 = (s_1.xyz * s.w) * fma(0.03, _1469 - (-5.0) * floor(_1469 / (-5.0)), _1483);
-  switch (i32(_705.y) & 3i) {
+  let difference_1 = product.y - 4.0;
+  let value = fma((-0.001), f32(x / (-3i)), fma(0.01, f32(r_1), fma(0.02, f32(x / crt.bandWidth), 1.0)));
+  let value_1 = fma(0.03, difference_1 - (-5.0) * floor(difference_1 / (-5.0)), value);
+  let color_2 = (s_1.xyz * s.w) * value_1;
+  switch (i32(product.y) & 3i) {
     case 0i: {
       tint = vec3<f32>(1.0, crt.pickDim, crt.pickDim);
     }
@@ -102,11 +103,11 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   } else {
     lift = color_2.y * color_2.y;
   }
-  let _1595 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
-  let d = abs(_721) * crt.shapeScale;
-  let color_3 = fma(color_2, tint, vec3<f32>(_1595, _1595, _1595)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2);
-  let _1732 = fma(crt.pulseDepth, sin(fma(_705.y, 0.025, crt.time * crt.pulseRate)), 1.0);
-  let color_4 = color_3 * _1732;
+  let product_5 = select((-0.01), 0.01, vTexCoord.y < 0.5) * lift;
+  let d = abs(difference) * crt.shapeScale;
+  let color_3 = fma(color_2, tint, vec3<f32>(product_5, product_5, product_5)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2);
+  let value_2 = fma(crt.pulseDepth, sin(fma(product.y, 0.025, crt.time * crt.pulseRate)), 1.0);
+  let color_4 = color_3 * value_2;
   switch (0u) {
     default: {
       let cond_2 = sampleUv.x < 0.0;
@@ -134,7 +135,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   }
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
   let cond_4 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _1838 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond_4);
-  fragColor = _1838;
+  let chosen = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond_4);
+  fragColor = chosen;
   return fragColor;
 }

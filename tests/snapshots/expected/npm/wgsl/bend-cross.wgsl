@@ -25,8 +25,8 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var gl_Position: vec4<f32>;
   let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
   vTexCoord = uv;
-  let _92 = (uv * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  let difference = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(difference.x, difference.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
@@ -36,23 +36,23 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var cond: bool;
   var cond_1: bool;
   var color: vec3<f32>;
-  let _598 = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
-  let q = _598 - vec4<f32>(1.0);
+  let product = vec4<f32>(vTexCoord.x, vTexCoord.y, vTexCoord.y, vTexCoord.x) * 2.0;
+  let q = product - vec4<f32>(1.0);
   let q_xy = q.xy;
-  let _612 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
+  let product_1 = q.zw * fma(crt.bendAmount, dot(q_xy, q_xy), 1.0);
   var q_1 = vec4<f32>();
-  q_1.z = _612.x;
+  q_1.z = product_1.x;
   var q_2 = q_1;
-  q_2.w = _612.y;
-  let _619 = q_2.wz * 0.5;
-  let sampleUv = _619 + vec2<f32>(0.5);
+  q_2.w = product_1.y;
+  let product_2 = q_2.wz * 0.5;
+  let sampleUv = product_2 + vec2<f32>(0.5);
   let texel = textureSample(source, source_sampler, sampleUv);
-  let texel_1 = textureSample(source, source_sampler, _619 + vec2<f32>(0.5025, 0.5));
-  let texel_2 = textureSample(source, source_sampler, _619 + vec2<f32>(0.4975, 0.5));
-  let texel_3 = textureSample(source, source_sampler, _619 + vec2<f32>(0.5, 0.5025));
-  let texel_4 = textureSample(source, source_sampler, _619 + vec2<f32>(0.5, 0.4975));
-  let _697 = (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25;
-  let color_1 = mix(texel.xyz, _697, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
+  let texel_1 = textureSample(source, source_sampler, product_2 + vec2<f32>(0.5025, 0.5));
+  let texel_2 = textureSample(source, source_sampler, product_2 + vec2<f32>(0.4975, 0.5));
+  let texel_3 = textureSample(source, source_sampler, product_2 + vec2<f32>(0.5, 0.5025));
+  let texel_4 = textureSample(source, source_sampler, product_2 + vec2<f32>(0.5, 0.4975));
+  let product_3 = (((texel_1.xyz + texel_2.xyz) + texel_3.xyz) + texel_4.xyz) * 0.25;
+  let color_1 = mix(texel.xyz, product_3, vec3<f32>(crt.tapMix, crt.tapMix, crt.tapMix));
   switch (0u) {
     default: {
       let cond_2 = sampleUv.x < 0.0;
@@ -80,7 +80,7 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   }
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
   let cond_4 = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _827 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond_4);
-  fragColor = _827;
+  let chosen = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond_4);
+  fragColor = chosen;
   return fragColor;
 }

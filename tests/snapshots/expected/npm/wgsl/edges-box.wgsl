@@ -26,8 +26,8 @@ fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOutput {
   var gl_Position: vec4<f32>;
   let uv = vec2<f32>(f32((i32(vertex_index) << 1u) & 2i), f32(i32(vertex_index) & 2i));
   vTexCoord = uv;
-  let _92 = (uv * 2.0) - vec2<f32>(1.0);
-  gl_Position = vec4<f32>(_92.x, _92.y, 0.0, 1.0);
+  let difference = (uv * 2.0) - vec2<f32>(1.0);
+  gl_Position = vec4<f32>(difference.x, difference.y, 0.0, 1.0);
   return VertexOutput(vTexCoord, gl_Position * vec4<f32>(1.0, -1.0, 1.0, 1.0));
 }
 
@@ -36,11 +36,11 @@ fn fs_main(@location(0) vTexCoord: vec2<f32>) -> @location(0) vec4<f32> {
   var fragColor: vec4<f32>;
   let texel = textureSample(source, source_sampler, vTexCoord);
   let d = abs((vTexCoord * 2.0) - vec2<f32>(1.0)) * crt.shapeScale;
-  let _486 = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
-  let color = (texel.xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * fma(crt.pulseDepth, sin(_486), 1.0);
+  let value = fma((vTexCoord * crt.outputSize).y, 0.025, crt.time * crt.pulseRate);
+  let color = (texel.xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * fma(crt.pulseDepth, sin(value), 1.0);
   let c = vec4<f32>(color.x, color.y, color.z, 1.0);
   let cond = (bitcast<vec4<u32>>(c) & vec4<u32>(0x7fffffffu)) > vec4<u32>(0x7f800000u);
-  let _522 = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
-  fragColor = _522;
+  let chosen = select(clamp(c, vec4<f32>((-65504.0)), vec4<f32>(65504.0)), vec4<f32>(0.0), cond);
+  fragColor = chosen;
   return fragColor;
 }

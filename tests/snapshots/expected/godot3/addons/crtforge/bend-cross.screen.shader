@@ -17,17 +17,17 @@ void fragment()
 {
     vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q_1.xy;
-    vec2 _612 = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
+    vec2 product = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_2 = vec4(0.0);
-    q_2.z = _612.x;
-    q_2.w = _612.y;
-    vec2 _619 = q_2.wz * 0.5;
-    vec2 sampleUv = _619 + vec2(0.5);
+    q_2.z = product.x;
+    q_2.w = product.y;
+    vec2 product_1 = q_2.wz * 0.5;
+    vec2 sampleUv = product_1 + vec2(0.5);
     vec4 texel = textureLod(SCREEN_TEXTURE, crt_flip_y(sampleUv), 0.0);
-    vec4 texel_1 = textureLod(SCREEN_TEXTURE, crt_flip_y(_619 + vec2(0.5025, 0.5)), 0.0);
-    vec4 texel_2 = textureLod(SCREEN_TEXTURE, crt_flip_y(_619 + vec2(0.4975, 0.5)), 0.0);
-    vec4 texel_3 = textureLod(SCREEN_TEXTURE, crt_flip_y(_619 + vec2(0.5, 0.5025)), 0.0);
-    vec4 texel_4 = textureLod(SCREEN_TEXTURE, crt_flip_y(_619 + vec2(0.5, 0.4975)), 0.0);
+    vec4 texel_1 = textureLod(SCREEN_TEXTURE, crt_flip_y(product_1 + vec2(0.5025, 0.5)), 0.0);
+    vec4 texel_2 = textureLod(SCREEN_TEXTURE, crt_flip_y(product_1 + vec2(0.4975, 0.5)), 0.0);
+    vec4 texel_3 = textureLod(SCREEN_TEXTURE, crt_flip_y(product_1 + vec2(0.5, 0.5025)), 0.0);
+    vec4 texel_4 = textureLod(SCREEN_TEXTURE, crt_flip_y(product_1 + vec2(0.5, 0.4975)), 0.0);
     vec3 color_1;
     do
     {
@@ -67,8 +67,8 @@ void fragment()
         break;
     } while(false);
     vec4 c = vec4(color_1, 1.0);
-    vec4 _824 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_5 = isnan(c);
-    COLOR = vec4(cond_5.x ? 0.0 : _824.x, cond_5.y ? 0.0 : _824.y, cond_5.z ? 0.0 : _824.z, cond_5.w ? 0.0 : _824.w);
+    COLOR = vec4(cond_5.x ? 0.0 : clamped.x, cond_5.y ? 0.0 : clamped.y, cond_5.z ? 0.0 : clamped.z, cond_5.w ? 0.0 : clamped.w);
 }
 

@@ -33,13 +33,13 @@ uniform float hostTime = -1.0;
 
 void fragment()
 {
-    vec2 _705 = UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))));
+    vec2 product = UV * round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))));
     vec4 q_1 = (vec4(UV.xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q_1.xy;
-    vec2 _1237 = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
+    vec2 product_1 = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);
     vec4 q_2 = vec4(0.0);
-    q_2.z = _1237.x;
-    q_2.w = _1237.y;
+    q_2.z = product_1.x;
+    q_2.w = product_1.y;
     vec2 sampleUv = (q_2.wz * 0.5) + vec2(0.5);
     float sampleUv_x = sampleUv.x;
     float sampleUv_y = sampleUv.y;
@@ -63,11 +63,11 @@ void fragment()
         k_2 = k_1_1;
         continue;
     }
-    int x = int(_705.x) - 10;
-    float _1468 = _705.y;
-    vec3 color_3 = (s_1_1.xyz * s_2.w) * (0.03 * mod(_1468 - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
+    int x = int(product.x) - 10;
+    float part = product.y;
+    vec3 color_3 = (s_1_1.xyz * s_2.w) * (0.03 * mod(part - 4.0, -5.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
     vec3 tint_1;
-    switch (int(_1468) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {
@@ -130,12 +130,12 @@ void fragment()
             color_1 = edgeColor.rgb.zyx;
             break;
         }
-        color_1 = ((color_3 * tint_1 + vec3(((UV.y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * (pulseDepth * sin(_1468 * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
+        color_1 = ((color_3 * tint_1 + vec3(((UV.y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * (pulseDepth * sin(part * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
         break;
     } while(false);
     vec4 c = vec4(color_1, 1.0);
-    vec4 _1835 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond_5 = isnan(c);
-    COLOR = vec4(cond_5.x ? 0.0 : _1835.x, cond_5.y ? 0.0 : _1835.y, cond_5.z ? 0.0 : _1835.z, cond_5.w ? 0.0 : _1835.w);
+    COLOR = vec4(cond_5.x ? 0.0 : clamped.x, cond_5.y ? 0.0 : clamped.y, cond_5.z ? 0.0 : clamped.z, cond_5.w ? 0.0 : clamped.w);
 }
 

@@ -13,13 +13,13 @@ uniform float pickDim : hint_range(0.0, 1.0, 0.01) = 0.6;
 
 void fragment()
 {
-    vec2 _322 = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
+    vec2 product = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
     vec4 texel = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
-    int x = int(_322.x) - 12;
-    float _592 = _322.y;
-    vec3 color = texel.xyz * (0.03 * mod(_592 - 4.0, -6.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
+    int x = int(product.x) - 12;
+    float part = product.y;
+    vec3 color = texel.xyz * (0.03 * mod(part - 4.0, -6.0) + ((-0.001) * float(x / (-3)) + (0.01 * float(x % bandWidth) + (0.02 * float(x / bandWidth) + 1.0))));
     vec3 tint_1;
-    switch (int(_592) & 3)
+    switch (int(part) & 3)
     {
         case 0:
         {
@@ -49,8 +49,8 @@ void fragment()
         lift_1 = color_y * color_y;
     }
     vec4 c = vec4(color * tint_1 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * lift_1), 1.0);
-    vec4 _791 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    COLOR = vec4(cond.x ? 0.0 : _791.x, cond.y ? 0.0 : _791.y, cond.z ? 0.0 : _791.z, cond.w ? 0.0 : _791.w);
+    COLOR = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

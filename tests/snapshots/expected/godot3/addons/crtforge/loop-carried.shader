@@ -13,11 +13,11 @@ uniform int loopCount : hint_range(0, 16, 1) = 5;
 void fragment()
 {
     vec4 texel = texture(TEXTURE, UV);
-    float _498 = dFdx(UV.x);
-    float _501 = dFdy(UV.y);
-    vec2 _506 = fwidth(UV);
-    vec4 texel_1 = texture(TEXTURE, UV + (vec2(_498, _501) * 4.0));
-    vec3 color = mix(texel.xyz, texel_1.xyz, vec3(tapMix * clamp(length(_506) * 100.0, 0.0, 1.0)));
+    float value = dFdx(UV.x);
+    float value_1 = dFdy(UV.y);
+    vec2 value_2 = fwidth(UV);
+    vec4 texel_1 = texture(TEXTURE, UV + (vec2(value, value_1) * 4.0));
+    vec3 color = mix(texel.xyz, texel_1.xyz, vec3(tapMix * clamp(length(value_2) * 100.0, 0.0, 1.0)));
     float sum_2_1;
     float sum_1_1;
     int k_1 = 0;
@@ -53,8 +53,8 @@ void fragment()
         }
     }
     vec4 c = vec4(color * (0.1 * sum_2_1 + 1.0), 1.0);
-    vec4 _650 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    COLOR = vec4(cond.x ? 0.0 : _650.x, cond.y ? 0.0 : _650.y, cond.z ? 0.0 : _650.z, cond.w ? 0.0 : _650.w);
+    COLOR = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 

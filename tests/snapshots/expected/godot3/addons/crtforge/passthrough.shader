@@ -9,8 +9,8 @@ shader_type canvas_item;
 void fragment()
 {
     vec4 c = texture(TEXTURE, UV);
-    vec4 _122 = clamp(c, vec4(-65504.0), vec4(65504.0));
+    vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
-    COLOR = vec4(cond.x ? 0.0 : _122.x, cond.y ? 0.0 : _122.y, cond.z ? 0.0 : _122.z, cond.w ? 0.0 : _122.w);
+    COLOR = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);
 }
 
