@@ -121,12 +121,11 @@ std::string declarations(const Variant& variant, const std::string* program_stag
             int index = p->spec->type == ParamType::Enum
                             ? p->spec->enum_index(std::get<std::string>(p->value)) : -1;
             std::string note = p->spec->type == ParamType::Enum ? "  // " + std::get<std::string>(p->value) : "";
-            const char* glsl_type = glsl_type_for(p->spec->type);
-            const bool scalar = std::string_view(glsl_type) == "float" || std::string_view(glsl_type) == "int" ||
-                                std::string_view(glsl_type) == "bool";
+            // A specialization constant is a scalar: a colour stays a constant.
             std::string qualifier = variables ? "" : "const ";
-            if (as == BakedParams::Specialized && scalar) qualifier = fmt::format("layout(constant_id = {}) const ", spec_id++);
-            out += fmt::format("{}{} {} = {};{}\n", qualifier, glsl_type, p->spec->name,
+            if (as == BakedParams::Specialized && p->spec->type != ParamType::Color)
+                qualifier = fmt::format("layout(constant_id = {}) const ", spec_id++);
+            out += fmt::format("{}{} {} = {};{}\n", qualifier, glsl_type_for(p->spec->type), p->spec->name,
                                value_to_glsl(p->value, p->spec->type, index), note);
         }
     }

@@ -220,7 +220,8 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
     };
     // A program's baked params are constants (the quickest to optimise); one that leans on them
     // being no constant expressions, as its uniforms are, gets variables it never writes, and an
-    // error then is its own (assembler.hpp, BakedParams).
+    // error then is its own (assembler.hpp, BakedParams). With specialize_baked they are
+    // specialization constants first, where the program allows them.
     const bool program_baked = out.variant.program_form() && !out.variant.baked().empty();
     const bool specialized = options.specialize_baked && program_baked && compile_stages(BakedParams::Specialized).ok();
     if (!specialized) {

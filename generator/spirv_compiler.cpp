@@ -206,9 +206,9 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
 
     // The memo's key is the module without debug info (OpLine output, debug_lines, names its files:
-    // it is not memoised).
-    // Specialization constants (BakedParams::Specialized) are keyed and optimised as 0: presets
-    // that differ only in their values share one optimisation, and get their values back after.
+    // it is not memoised), its specialization constants (BakedParams::Specialized) cleared: it is
+    // optimised with them cleared, so presets that differ only in those values share one
+    // optimisation, and each gets its values back after.
     std::string memo_key;
     std::map<uint32_t, SpecValue> spec_values;
     if (options.optimize && !options.debug_lines) {

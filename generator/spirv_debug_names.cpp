@@ -249,8 +249,6 @@ bool is_debug_instruction(const SpirvBinary& words, const Instruction& in, uint3
     }
 }
 
-}  // namespace
-
 // An OpName for each (id, name), appended to `out`.
 void append_names(SpirvBinary& out, const std::map<uint32_t, std::string>& names) {
     for (const auto& [id, name] : names) {
@@ -260,6 +258,34 @@ void append_names(SpirvBinary& out, const std::map<uint32_t, std::string>& names
         append_string(out, name);
         out[first] = (static_cast<uint32_t>(out.size() - first) << 16) | spv::OpName;
     }
+}
+
+// `words` with `names` as new OpNames opening the names section (before the first instruction
+// past the strings) and without the instructions `drop` picks; untouched when neither applies.
+template <typename Drop>
+void rewrite_names(SpirvBinary& words, const std::vector<Instruction>& list, const std::map<uint32_t, std::string>& names,
+                   Drop&& drop) {
+    bool names_written = names.empty();
+    detail::rewrite_instructions(words, list, [&](const Instruction& in, SpirvBinary& out, uint32_t&) {
+        const bool open_names = !names_written && !precedes_names(in.opcode);
+        const bool dropped = drop(in);
+        if (!open_names && !dropped) return false;
+        if (open_names) {
+            append_names(out, names);
+            names_written = true;
+        }
+        if (!dropped) detail::append_copy(out, words, in);
+        return true;
+    });
+}
+
+// The id `in` defines (after its result type where it has one), or 0; with `values_only`, 0 too
+// where it has no result type (a type, a label).
+uint32_t result_id(const SpirvBinary& words, const Instruction& in, bool values_only = false) {
+    bool has_result = false, has_type = false;
+    spv::HasResultAndType(static_cast<spv::Op>(in.opcode), &has_result, &has_type);
+    const size_t at = in.offset + (has_type ? 2 : 1);
+    return has_result && (has_type || !values_only) && at < in.offset + in.count ? words[at] : 0;
 }
 
 // What a value with no template name is, as a name. None is a function of GLSL, HLSL or WGSL
@@ -317,26 +343,20 @@ const char* kind_name(const SpirvBinary& words, const Instruction& in, uint32_t 
     return "value";
 }
 
-void drop_names_of_missing_ids(SpirvBinary& words) {
+}  // namespace
+
+void drop_annotations_of_missing_ids(SpirvBinary& words) {
     if (words.size() < detail::kSpirvHeaderWords || words[0] != spv::MagicNumber) return;
     const auto parsed = detail::spirv_instructions(words);
     if (!parsed) return;
     std::set<uint32_t> defined;
-    for (const Instruction& in : *parsed) {
-        bool has_result = false, has_type = false;
-        spv::HasResultAndType(static_cast<spv::Op>(in.opcode), &has_result, &has_type);
-        const size_t at = in.offset + (has_type ? 2 : 1);
-        if (has_result && at < in.offset + in.count) defined.insert(words[at]);
-    }
-    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
-    out.reserve(words.size());
-    for (const Instruction& in : *parsed) {
-        const bool name = (in.opcode == spv::OpName || in.opcode == spv::OpMemberName) && in.count >= 3;
-        if (name && !defined.count(words[in.offset + 1])) continue;
-        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
-                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
-    }
-    words = std::move(out);
+    for (const Instruction& in : *parsed)
+        if (const uint32_t id = result_id(words, in)) defined.insert(id);
+    rewrite_names(words, *parsed, {}, [&](const Instruction& in) {
+        const bool annotation = in.opcode == spv::OpName || in.opcode == spv::OpMemberName || in.opcode == spv::OpDecorate ||
+                                in.opcode == spv::OpMemberDecorate;
+        return annotation && in.count >= 3 && !defined.count(words[in.offset + 1]);
+    });
 }
 
 void name_unnamed_values(SpirvBinary& words) {
@@ -352,32 +372,18 @@ void name_unnamed_values(SpirvBinary& words) {
             spirv_literal_string(words, in.offset + 2, in.offset + in.count) == "GLSL.std.450")
             glsl_set = words[in.offset + 1];
     }
+    // Values inside functions (not a function's own id), and the module-scope undefined values
+    // SPIRV-Cross declares as globals.
     std::map<uint32_t, std::string> names;
     bool in_function = false;
     for (const Instruction& in : list) {
         if (in.opcode == spv::OpFunction) in_function = true;
         if (in.opcode == spv::OpFunctionEnd) in_function = false;
-        const bool global_undef = in.opcode == spv::OpUndef;
-        if ((!in_function && !global_undef) || in.opcode == spv::OpFunction || in.opcode == spv::OpLabel) continue;
-        bool has_result = false, has_type = false;
-        spv::HasResultAndType(static_cast<spv::Op>(in.opcode), &has_result, &has_type);
-        if (!has_result || !has_type || in.count < 3) continue;
-        const uint32_t id = words[in.offset + 2];
-        if (!named.count(id)) names.emplace(id, kind_name(words, in, glsl_set));
+        if ((!in_function && in.opcode != spv::OpUndef) || in.opcode == spv::OpFunction) continue;
+        const uint32_t id = result_id(words, in, /*values_only*/ true);
+        if (id && !named.count(id)) names.emplace(id, kind_name(words, in, glsl_set));
     }
-    if (names.empty()) return;
-    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
-    out.reserve(words.size() + names.size() * 4);
-    bool names_written = false;
-    for (const Instruction& in : list) {
-        if (!names_written && !precedes_names(in.opcode)) {
-            append_names(out, names);
-            names_written = true;
-        }
-        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
-                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
-    }
-    words = std::move(out);
+    rewrite_names(words, list, names, [](const Instruction&) { return false; });
 }
 
 void name_values_and_strip_debug_info(SpirvBinary& words) {
@@ -388,21 +394,7 @@ void name_values_and_strip_debug_info(SpirvBinary& words) {
     const DebugFacts facts = gather(words, list);
     const std::map<uint32_t, std::string> names = facts.debug_set ? value_names(words, list, facts)
                                                                   : std::map<uint32_t, std::string>{};
-
-    SpirvBinary out(words.begin(), words.begin() + detail::kSpirvHeaderWords);
-    out.reserve(words.size());
-    bool names_written = names.empty();
-    for (const Instruction& in : list) {
-        // The new OpNames open the names section: before the first instruction past the strings.
-        if (!names_written && !precedes_names(in.opcode)) {
-            append_names(out, names);
-            names_written = true;
-        }
-        if (is_debug_instruction(words, in, facts.debug_set)) continue;
-        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
-                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
-    }
-    words = std::move(out);
+    rewrite_names(words, list, names, [&](const Instruction& in) { return is_debug_instruction(words, in, facts.debug_set); });
 }
 
 }  // namespace crtforge

@@ -15,8 +15,8 @@ void name_values_and_strip_debug_info(SpirvBinary& words);
 // chosen — so SPIRV-Cross prints `vec4 clamped` rather than `vec4 _122` (it numbers repeats).
 void name_unnamed_values(SpirvBinary& words);
 
-// Removes the OpNames of ids no instruction defines any more (a lowering pass that replaced the
-// values they named): spirv-val and the drivers refuse a name of nothing.
-void drop_names_of_missing_ids(SpirvBinary& words);
+// Removes the OpNames and decorations of ids no instruction defines any more (a lowering pass
+// that replaced the values they named): spirv-val and the drivers refuse a name of nothing.
+void drop_annotations_of_missing_ids(SpirvBinary& words);
 
 }  // namespace crtforge

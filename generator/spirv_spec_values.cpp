@@ -1,5 +1,7 @@
 #include "generator/spirv_spec_values.hpp"
 
+#include <algorithm>
+
 #include <glslang/SPIRV/spirv.hpp>
 
 #include "generator/spirv_words.hpp"
@@ -21,9 +23,11 @@ std::map<uint32_t, uint32_t> spec_ids(const SpirvBinary& module, const std::vect
     return out;
 }
 
-// Calls `visit(instruction, spec id)` for each scalar specialization constant with a SpecId.
-template <typename Visit>
-bool for_each_spec_constant(const SpirvBinary& module, Visit&& visit) {
+// Calls `visit(instruction, spec id)` for each scalar specialization constant with a SpecId;
+// `visit` may change the instruction's words in place (never its length). False when `module`
+// cannot be read as instructions.
+template <typename Module, typename Visit>
+bool for_each_spec_constant(Module& module, Visit&& visit) {
     auto list = detail::spirv_instructions(module);
     if (!list) return false;
     const auto ids = spec_ids(module, *list);
@@ -50,35 +54,27 @@ std::map<uint32_t, SpecValue> spec_constant_values(const SpirvBinary& module) {
 }
 
 bool write_spec_constant_values(SpirvBinary& module, const std::map<uint32_t, SpecValue>& values) {
-    std::vector<std::pair<detail::SpirvInstruction, const SpecValue*>> edits;
-    const bool read = for_each_spec_constant(module, [&](const detail::SpirvInstruction& in, uint32_t spec_id) {
+    return for_each_spec_constant(module, [&](const detail::SpirvInstruction& in, uint32_t spec_id) {
         auto value = values.find(spec_id);
-        if (value != values.end()) edits.emplace_back(in, &value->second);
-    });
-    if (!read) return false;
-    for (const auto& [in, value] : edits) {
+        if (value == values.end()) return;
         const bool boolean = in.opcode != spv::OpSpecConstant;
-        const bool value_boolean = value->opcode != spv::OpSpecConstant;
         // The same SpecId is the same declaration: a type that changed is not this module's value.
-        if (boolean != value_boolean || (!boolean && value->words.size() != in.count - 3u)) continue;
+        if (boolean != (value->second.opcode != spv::OpSpecConstant)) return;
         if (boolean) {
-            module[in.offset] = (module[in.offset] & 0xffff0000u) | value->opcode;
-        } else {
-            for (size_t w = 0; w < value->words.size(); ++w) module[in.offset + 3 + w] = value->words[w];
+            module[in.offset] = (module[in.offset] & 0xffff0000u) | value->second.opcode;
+        } else if (value->second.words.size() == in.count - 3u) {
+            std::copy(value->second.words.begin(), value->second.words.end(), module.begin() + static_cast<std::ptrdiff_t>(in.offset + 3));
         }
-    }
-    return true;
+    });
 }
 
 bool clear_spec_constant_values(SpirvBinary& module) {
-    std::map<uint32_t, SpecValue> zeros;
-    for (const auto& [spec_id, value] : spec_constant_values(module)) {
-        SpecValue& zero = zeros[spec_id];
-        zero.opcode = value.opcode == spv::OpSpecConstant ? static_cast<uint16_t>(spv::OpSpecConstant)
-                                                          : static_cast<uint16_t>(spv::OpSpecConstantFalse);
-        zero.words.assign(value.words.size(), 0u);
-    }
-    return write_spec_constant_values(module, zeros);
+    return for_each_spec_constant(module, [&](const detail::SpirvInstruction& in, uint32_t) {
+        if (in.opcode == spv::OpSpecConstant)
+            std::fill(module.begin() + static_cast<std::ptrdiff_t>(in.offset + 3), module.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count), 0u);
+        else
+            module[in.offset] = (module[in.offset] & 0xffff0000u) | spv::OpSpecConstantFalse;
+    });
 }
 
 }  // namespace crtforge

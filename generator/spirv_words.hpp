@@ -1,10 +1,12 @@
-// A SPIR-V module as words: its instructions in order and its literal strings. Shared by the
-// reflection's name walk and the debug-name pass (spirv_debug_names), which must rewrite words
-// rather than read a model of the module.
+// A SPIR-V module as words: its instructions in order, its literal strings, and the rewrite every
+// SPIR-V pass of crtforge's own builds on (names, clamps, powers, gathers, matrices, arrays), which
+// must rewrite words rather than read a model of the module.
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,21 @@ inline std::string spirv_literal_string(const SpirvBinary& words, size_t first, 
     return out;
 }
 
+// Appends the instruction `opcode` with `operands` (its result type and id among them) to `out`.
+inline void append_instruction(SpirvBinary& out, uint32_t opcode, std::span<const uint32_t> operands) {
+    out.push_back((static_cast<uint32_t>(operands.size() + 1) << 16) | (opcode & 0xffffu));
+    out.insert(out.end(), operands.begin(), operands.end());
+}
+inline void append_instruction(SpirvBinary& out, uint32_t opcode, std::initializer_list<uint32_t> operands) {
+    append_instruction(out, opcode, std::span<const uint32_t>(operands.begin(), operands.size()));
+}
+
+// Appends `in`, an instruction of `words`, to `out` as it is.
+inline void append_copy(SpirvBinary& out, const SpirvBinary& words, const SpirvInstruction& in) {
+    out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
+               words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
+}
+
 // The module rewritten instruction by instruction: `rewrite(in, out, bound)` either appends the
 // instructions that replace `in` to `out` (taking new ids from `bound`) and returns true, or
 // returns false to keep `in` as it is. Returns how many it replaced; with none, `words` is left
@@ -59,8 +76,7 @@ size_t rewrite_instructions(SpirvBinary& words, const std::vector<SpirvInstructi
             ++rewritten;
             continue;
         }
-        out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(in.offset),
-                   words.begin() + static_cast<std::ptrdiff_t>(in.offset + in.count));
+        append_copy(out, words, in);
     }
     if (rewritten == 0) return 0;
     out[3] = bound;

@@ -143,10 +143,6 @@ private:
         f_.pointers[id] = {storage, type};
         return id;
     }
-    static void emit(SpirvBinary& out, spv::Op op, const std::vector<uint32_t>& operands) {
-        out.push_back((static_cast<uint32_t>(operands.size() + 1) << 16) | op);
-        out.insert(out.end(), operands.begin(), operands.end());
-    }
 
     // The leaves of a constant of `type`, in flat order (null constants as null leaves).
     void constant_leaves(SpirvBinary& out, uint32_t c, uint32_t type, std::vector<uint32_t>& into) {
@@ -166,7 +162,7 @@ private:
         std::vector<uint32_t> ids;
         for (uint32_t t = 0; t < leaves(type); ++t) {
             ids.push_back(bound_++);
-            emit(out, spv::OpCompositeExtract, {leaf_of(type), ids.back(), value, t});
+            append_instruction(out, spv::OpCompositeExtract, {leaf_of(type), ids.back(), value, t});
         }
         return ids;
     }
@@ -239,14 +235,14 @@ private:
             uint32_t term = value;
             if (f.total(k + 1) != 1) {
                 term = bound_++;
-                emit(out, spv::OpIMul, {type, term, value, constant(out, type, f.total(k + 1))});
+                append_instruction(out, spv::OpIMul, {type, term, value, constant(out, type, f.total(k + 1))});
             }
             if (sum == 0) {
                 sum = term;
                 continue;
             }
             const uint32_t next = bound_++;
-            emit(out, spv::OpIAdd, {type, next, sum, term});
+            append_instruction(out, spv::OpIAdd, {type, next, sum, term});
             sum = next;
         }
         return {sum, std::nullopt, type};
@@ -256,7 +252,7 @@ private:
         if (base.value) return {0, *base.value + t, base.type};
         if (t == 0) return base;
         const uint32_t id = bound_++;
-        emit(out, spv::OpIAdd, {base.type, id, base.id, constant(out, base.type, t)});
+        append_instruction(out, spv::OpIAdd, {base.type, id, base.id, constant(out, base.type, t)});
         return {id, std::nullopt, base.type};
     }
 
@@ -303,7 +299,7 @@ private:
         std::vector<uint32_t> operands{result_type, result, base};
         const auto ids = chain_operands(out, p.indices);
         operands.insert(operands.end(), ids.begin(), ids.end());
-        emit(out, op, operands);
+        append_instruction(out, op, operands);
     }
     // The pointer to leaf t of a row pointer.
     uint32_t row_leaf_pointer(SpirvBinary& out, const RowPointer& row, uint32_t t) {
@@ -314,7 +310,7 @@ private:
         std::vector<uint32_t> operands{pointer_to(out, row.storage, p.row->leaf), id, row.base};
         const auto ids = chain_operands(out, indices);
         operands.insert(operands.end(), ids.begin(), ids.end());
-        emit(out, spv::OpAccessChain, operands);
+        append_instruction(out, spv::OpAccessChain, operands);
         return id;
     }
 
@@ -324,7 +320,7 @@ private:
             case spv::OpTypeArray:
                 if (auto f = flat_.find(inst[1]); f != flat_.end()) {
                     const uint32_t total = constant(out, f->second.length_type, f->second.total());
-                    return emit(out, spv::OpTypeArray, {inst[1], f->second.leaf, total});
+                    return append_instruction(out, spv::OpTypeArray, {inst[1], f->second.leaf, total});
                 }
                 return keep();
             case spv::OpConstantComposite:
@@ -340,7 +336,7 @@ private:
                         else constant_leaves(out, inst[i], row, parts);
                         operands.insert(operands.end(), parts.begin(), parts.end());
                     }
-                    return emit(out, op, operands);
+                    return append_instruction(out, op, operands);
                 }
                 return keep();
             case spv::OpCompositeExtract: {  // type result composite literals...
@@ -349,7 +345,7 @@ private:
                     std::vector<uint32_t> operands{inst[1], inst[2], inst[3]};
                     const auto lits = literal_operands(p.indices);
                     operands.insert(operands.end(), lits.begin(), lits.end());
-                    return emit(out, op, operands);
+                    return append_instruction(out, op, operands);
                 }
                 std::vector<uint32_t> parts;
                 for (uint32_t t = 0; t < leaves(p.type); ++t) {
@@ -358,11 +354,11 @@ private:
                     operands.insert(operands.end(), lits.begin(), lits.end());
                     operands.push_back(*p.row_base.value + t);
                     parts.push_back(operands[1]);
-                    emit(out, op, operands);
+                    append_instruction(out, op, operands);
                 }
                 std::vector<uint32_t> operands{inst[1], inst[2]};
                 operands.insert(operands.end(), parts.begin(), parts.end());
-                return emit(out, spv::OpCompositeConstruct, operands);
+                return append_instruction(out, spv::OpCompositeConstruct, operands);
             }
             case spv::OpCompositeInsert: {  // type result object composite literals...
                 Path p = walk(out, inst[1], literals_to_indices(inst, 5));
@@ -370,7 +366,7 @@ private:
                 if (!p.row) {
                     std::vector<uint32_t> operands{inst[1], inst[2], inst[3], inst[4]};
                     operands.insert(operands.end(), lits.begin(), lits.end());
-                    return emit(out, op, operands);
+                    return append_instruction(out, op, operands);
                 }
                 const std::vector<uint32_t> parts = value_leaves(out, inst[3], p.type);
                 uint32_t into = inst[4];
@@ -379,7 +375,7 @@ private:
                     std::vector<uint32_t> operands{inst[1], id, parts[t], into};
                     operands.insert(operands.end(), lits.begin(), lits.end());
                     operands.push_back(*p.row_base.value + t);
-                    emit(out, op, operands);
+                    append_instruction(out, op, operands);
                     into = id;
                 }
                 return;
@@ -401,16 +397,16 @@ private:
                     std::vector<uint32_t> operands{inst[1], inst[2]};
                     for (uint32_t t = 0; t < leaves(inst[1]); ++t) {
                         const uint32_t leaf = bound_++, pointer = row_leaf_pointer(out, row->second, t);
-                        emit(out, spv::OpLoad, {leaf_of(inst[1]), leaf, pointer});
+                        append_instruction(out, spv::OpLoad, {leaf_of(inst[1]), leaf, pointer});
                         operands.push_back(leaf);
                     }
-                    return emit(out, spv::OpCompositeConstruct, operands);
+                    return append_instruction(out, spv::OpCompositeConstruct, operands);
                 }
                 return keep();
             case spv::OpStore:  // pointer object [memory access]
                 if (auto row = rows_.find(inst[1]); row != rows_.end()) {
                     const std::vector<uint32_t> parts = value_leaves(out, inst[2], type_of(inst[2]));
-                    for (uint32_t t = 0; t < parts.size(); ++t) emit(out, spv::OpStore, {row_leaf_pointer(out, row->second, t), parts[t]});
+                    for (uint32_t t = 0; t < parts.size(); ++t) append_instruction(out, spv::OpStore, {row_leaf_pointer(out, row->second, t), parts[t]});
                     return;
                 }
                 return keep();
@@ -447,7 +443,7 @@ size_t flatten_arrays_of_arrays(SpirvBinary& words) {
     const size_t count = flattener.flat_count();
     if (count == 0) return 0;
     words = flattener.run();
-    drop_names_of_missing_ids(words);
+    drop_annotations_of_missing_ids(words);  // the names of the values it replaced
     return count;
 }
 

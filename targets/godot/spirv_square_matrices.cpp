@@ -32,6 +32,8 @@
 namespace crtforge::godot {
 namespace {
 
+using detail::append_instruction;
+
 [[noreturn]] void refuse(const std::string& what) {
     throw spirv_cross::CompilerError("Godot has no non-square matrix type, and crtforge cannot pad " + what);
 }
@@ -102,18 +104,18 @@ public:
         // New declarations go before the first merged matrix type: a zero, each vecN (moved there when
         // the module declares it later), its zero vector, and pointers to it for column access chains.
         zero_ = bound++;
-        emit(declarations_, spv::OpConstantNull, {float_, zero_});
+        append_instruction(declarations_, spv::OpConstantNull, {float_, zero_});
         for (uint32_t n : sizes_) {
             auto found = wide_.find(n);
             if (found == wide_.end()) {
                 wide_[n] = bound++;
-                emit(declarations_, spv::OpTypeVector, {wide_[n], float_, n});
+                append_instruction(declarations_, spv::OpTypeVector, {wide_[n], float_, n});
             } else if (f_.declared_at.at(found->second) > insert_at_) {
                 moved_.insert(found->second);
-                emit(declarations_, spv::OpTypeVector, {found->second, float_, n});
+                append_instruction(declarations_, spv::OpTypeVector, {found->second, float_, n});
             }
             zero_vector_[n] = bound++;
-            emit(declarations_, spv::OpConstantNull, {wide_[n], zero_vector_[n]});
+            append_instruction(declarations_, spv::OpConstantNull, {wide_[n], zero_vector_[n]});
         }
         for (const auto& [id, pointer] : f_.pointers) {
             if (!holds_padded(f_, pointer.second) && !f_.padded.count(pointer.second)) continue;
@@ -121,7 +123,7 @@ public:
                 const auto key = std::make_pair(pointer.first, p.n);
                 if (column_pointer_.count(key)) continue;
                 column_pointer_[key] = bound++;
-                emit(declarations_, spv::OpTypePointer, {column_pointer_[key], pointer.first, wide_.at(p.n)});
+                append_instruction(declarations_, spv::OpTypePointer, {column_pointer_[key], pointer.first, wide_.at(p.n)});
             }
         }
     }
@@ -138,7 +140,7 @@ public:
             if (m->second != inst[1]) return true;  // merged into the first matN
             auto p = f_.padded.find(inst[1]);
             if (p == f_.padded.end()) return in.offset == insert_at_ ? keep(out, inst) : false;
-            emit(out, spv::OpTypeMatrix, {inst[1], wide_.at(p->second.n), p->second.n});
+            append_instruction(out, spv::OpTypeMatrix, {inst[1], wide_.at(p->second.n), p->second.n});
             return true;
         }
         if ((op == spv::OpName || op == spv::OpDecorate) && inst.size() >= 2 && merged_.count(inst[1]) && merged_.at(inst[1]) != inst[1])
@@ -224,10 +226,6 @@ public:
     }
 
 private:
-    static void emit(SpirvBinary& out, spv::Op op, std::initializer_list<uint32_t> operands) {
-        out.push_back((static_cast<uint32_t>(operands.size() + 1) << 16) | op);
-        out.insert(out.end(), operands.begin(), operands.end());
-    }
     static bool keep(SpirvBinary& out, std::vector<uint32_t>& inst) {
         inst[0] = (static_cast<uint32_t>(inst.size()) << 16) | (inst[0] & 0xffffu);
         out.insert(out.end(), inst.begin(), inst.end());
