@@ -182,7 +182,7 @@ std::string variant_fingerprint(const Variant& v) {
     out += fmt::format("frame_mod {};supersample {};", v.pass->frame_count_mod, v.pass->supersample);
     for (const PassInput& input : v.pass->inputs)
         out += text(input.binding) + text(input.from.str()) + filter_name(input.filter) + ":" + wrap_name(input.wrap) +
-               (input.mipmap ? ":mip;" : ";");
+               (input.mipmap ? std::string(":mip ") + filter_name(input.mip_filter) + ";" : std::string(";"));
     for (const std::string& t : v.textures) out += "texture " + text(t);
     for (Builtin b : v.builtins) out += fmt::format("builtin {};", static_cast<int>(b));
     for (const VariantParam& p : v.params) {

@@ -104,6 +104,7 @@ json pass_manifest(const CompiledVariant& compiled) {
             texture["filter"] = filter_name(input->filter);
             texture["wrap"] = wrap_name(input->wrap);
             texture["mipmap"] = input->mipmap;
+            if (input->mipmap) texture["mipFilter"] = filter_name(input->mip_filter);
         }
         textures.push_back(std::move(texture));
     }

@@ -139,8 +139,8 @@ Result<std::optional<int>> parse_supersample(const TomlReader& r, const toml::ta
     return std::optional<int>(static_cast<int>(*n.value()));
 }
 
-// filter, wrap and (with_mipmap) mipmap of a table, each where given: a pass's main input, one of
-// its [pass.textures] written as a table, or a LUT.
+// filter, wrap and (with_mipmap) mipmap and mip_filter of a table, each where given: a pass's main
+// input, one of its [pass.textures] written as a table, or a LUT.
 Result<TextureSampling> parse_sampling(const TomlReader& r, const toml::table& t, const std::string& field, bool with_mipmap) {
     TextureSampling out;
     auto filter = r.choice(t, "filter", field, kFilters);
@@ -153,13 +153,16 @@ Result<TextureSampling> parse_sampling(const TomlReader& r, const toml::table& t
     auto mipmap = r.boolean(t, "mipmap", field);
     if (!mipmap.ok()) return mipmap.error();
     out.mipmap = mipmap.value();
+    auto mip_filter = r.choice(t, "mip_filter", field, kFilters);
+    if (!mip_filter.ok()) return mip_filter.error();
+    if (mip_filter.value()) out.mip_filter = static_cast<Filter>(*mip_filter.value());
     return out;
 }
 
 Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t index, const TemplateLibrary* library) {
     const std::string prefix = "pass[" + std::to_string(index) + "]";
     if (auto s = r.only_keys(t, {"alias", "preset", "stages", "scale_type", "scale_type_x", "scale_type_y", "scale", "format",
-                                 "input", "filter", "wrap", "mipmap", "textures", "frame_count_mod", "supersample"},
+                                 "input", "filter", "wrap", "mipmap", "mip_filter", "textures", "frame_count_mod", "supersample"},
                              prefix);
         !s.ok())
         return s.error();
@@ -193,6 +196,7 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
     pass.filter = main_sampling.value().filter;
     pass.wrap = main_sampling.value().wrap;
     pass.mipmap = main_sampling.value().mipmap;
+    pass.mip_filter = main_sampling.value().mip_filter;
     if (const toml::node* textures = t.get("textures")) {
         const toml::table* tt = textures->as_table();
         if (!tt) return r.error(textures, field + ".textures", "must be a table of name = \"source\"");
@@ -205,8 +209,8 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
             }
             // { from = "source", filter = ..., wrap = ..., mipmap = ... }: how this texture is sampled.
             const toml::table* entry = node.as_table();
-            if (!entry) return r.error(&node, tfield, "must be a string naming a source, or { from = \"source\", filter, wrap, mipmap }");
-            if (auto k = r.only_keys(*entry, {"from", "filter", "wrap", "mipmap"}, tfield); !k.ok()) return k.error();
+            if (!entry) return r.error(&node, tfield, "must be a string naming a source, or { from = \"source\", filter, wrap, mipmap, mip_filter }");
+            if (auto k = r.only_keys(*entry, {"from", "filter", "wrap", "mipmap", "mip_filter"}, tfield); !k.ok()) return k.error();
             auto from = r.string(*entry, "from", tfield, true);
             if (!from.ok()) return from.error();
             pass.textures[key] = from.value();

@@ -526,6 +526,7 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
         if (!main_source.ok()) return main_source.error();
         pass.inputs.push_back({"source", main_source.value(), entry.filter.value_or(filter), entry.wrap.value_or(Wrap::ClampToEdge),
                                entry.mipmap.value_or(false), entry.line});
+        pass.inputs.back().mip_filter = entry.mip_filter.value_or(pass.inputs.back().filter);
         // The textures the enabled forms read, each bound by the pass.
         const std::vector<std::string> reads = pass.texture_names();
         for (const auto& [binding, text] : entry.textures) {
@@ -550,6 +551,8 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
                 input.wrap = how->second.wrap.value_or(input.wrap);
                 input.mipmap = how->second.mipmap.value_or(input.mipmap);
             }
+            const auto how = entry.texture_sampling.find(binding);
+            input.mip_filter = how != entry.texture_sampling.end() && how->second.mip_filter ? *how->second.mip_filter : input.filter;
             pass.inputs.push_back(std::move(input));
         }
         if (auto s = textures_bound(pass, file, entry.line, field + ".textures"); !s.ok()) return s.error();

@@ -380,6 +380,17 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job, 
                           {}, 0, "--size");
     if (job.frames.empty()) return std::vector<Image>{};
     const Preset& preset = *job.preset;
+    // The reference samples each texture at level 0: a level of detail needs the screen-space
+    // derivatives a rasteriser has and a per-pixel evaluation has not. A mipmapped read would make
+    // goldens the drivers never match, so it is refused.
+    for (const Pass& pass : preset.passes)
+        for (const PassInput& input : pass.inputs)
+            if (input.mipmap)
+                return make_error("pass '" + pass.alias + "' reads " + input.from.str() +
+                                      " through a mip chain, which the reference does not model: render it on Vulkan instead of "
+                                      "approving a golden",
+                                  pass.where.file, input.line ? input.line : pass.where.line,
+                                  "pass." + pass.alias + (input.binding == "source" ? ".mipmap" : ".textures." + input.binding));
     std::vector<Variant> variants;
     for (size_t i = 0; i < preset.passes.size(); ++i) {
         auto v = make_variant(*job.library, preset, {}, i);

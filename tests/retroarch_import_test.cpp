@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <bit>
+#include <optional>
 #include <fstream>
 #include <set>
 
@@ -553,4 +554,96 @@ TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization cons
     auto apart = compare_images(pictures[0], pictures[1]);
     REQUIRE(apart.ok());
     CHECK(apart.value().psnr < 20.0);
+}
+
+// A one-pixel checkerboard shown eight times smaller: through a mip chain every output pixel is
+// the board's mean (levels 1.. average it to 0.5 exactly); read at level 0 with a nearest filter
+// it stays black or white. The first pass copies the original (whose mip chain RetroArch never
+// makes, whatever mipmap_input0 says); the second reads that copy with mipmap_input1, the
+// original at level 0, and a LUT with board_mipmap.
+TEST_CASE("mipmap_input and NAME_mipmap sample through a mip chain on Vulkan, GL, the shipped WebGPU driver and Godot's LUTs",
+          "[retroarch][import][mipmap]") {
+    test::TempDir dir;
+    // Both passes: the stock vertex stage, then a fragment stage reading Source (and more).
+    const std::string head = R"(#version 450
+layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
+#pragma stage vertex
+layout(location = 0) in vec4 Position;
+layout(location = 1) in vec2 TexCoord;
+layout(location = 0) out vec2 vTexCoord;
+void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }
+#pragma stage fragment
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 FragColor;
+layout(set = 0, binding = 2) uniform sampler2D Source;
+)";
+    write(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
+    write(dir / "shaders/minify.slang", head + R"(layout(set = 0, binding = 3) uniform sampler2D Original;
+layout(set = 0, binding = 4) uniform sampler2D board;
+void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, vTexCoord).r, texture(board, vTexCoord).r, 1.0); }
+)");
+    Image checker = Image::make(256, 256);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x)
+            for (int c = 0; c < 4; ++c) checker.rgba[(static_cast<size_t>(y) * 256 + x) * 4 + c] = c == 3 || (x + y) % 2 ? 1.0f : 0.0f;
+    std::filesystem::create_directories(dir / "luts");
+    REQUIRE(write_png(dir / "luts/board.png", checker).ok());
+    write(dir / "presets/mip.slangp",
+          "shaders = 2\n"
+          "shader0 = ../shaders/copy.slang\n"
+          "filter_linear0 = false\n"
+          "mipmap_input0 = true\n"
+          "scale_type0 = source\n"
+          "shader1 = ../shaders/minify.slang\n"
+          "filter_linear1 = true\n"
+          "mipmap_input1 = true\n"
+          "scale_type1 = viewport\n"
+          "textures = board\n"
+          "board = ../luts/board.png\n"
+          "board_linear = true\n"
+          "board_mipmap = true\n");
+    auto lib = import_into(dir / "presets/mip.slangp", dir / "overlay", dir.path(), "mip");
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    const Preset* preset = lib.value()->find_preset("mip");
+    REQUIRE(preset);
+    REQUIRE(preset->passes.size() == 2);
+    CHECK_FALSE(preset->passes[0].inputs.front().mipmap);  // mipmap_input0: RetroArch's original has no chain
+    const PassInput& source = preset->passes[1].inputs.front();
+    CHECK(source.mipmap);
+    CHECK(source.filter == Filter::Linear);
+    CHECK(source.mip_filter == Filter::Nearest);  // no pass after it has a chain: RetroArch reads the nearest level
+    const PassInput* board = preset->passes[1].find_input("board");
+    REQUIRE(board);
+    CHECK(board->mipmap);
+    CHECK(board->mip_filter == Filter::Linear);  // a linear mipmapped LUT blends its levels
+    const PassInput* original = preset->passes[1].find_input("Original");
+    REQUIRE(original);
+    CHECK_FALSE(original->mipmap);
+    // 30 x 30: no level's texel centres line up with the display's. The original's nearest
+    // read lands on texel edges at some columns, where drivers may pick either neighbour: each
+    // target is judged on its own, and the chains' channels against Vulkan's. Vulkan runs under
+    // its validation layer: any message about the chain's barriers or blits fails the render.
+    TargetRenderer renderer(EngineOptions{"", /*validation*/ true});
+    std::optional<Image> vulkan;
+    // Godot's viewports have no mip chains: there only the LUT's channel is judged.
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
+        INFO(target_info(target).name);
+        auto images = render_imported(renderer, *lib.value(), *preset, target, checker, 30, 30, {1});
+        INFO((images.ok() ? std::string() : images.error().str()));
+        REQUIRE(images.ok());
+        const Image& v = images.value().front();
+        const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
+        double worst_mip = 0, extreme = 0, worst_vs_vulkan = 0;
+        for (size_t i = 0; i < v.pixel_count(); ++i) {
+            worst_mip = std::max({worst_mip, godot ? 0.0 : std::abs(v.rgba[i * 4] - 0.5), std::abs(v.rgba[i * 4 + 2] - 0.5)});
+            extreme += std::min(v.rgba[i * 4 + 1], 1.0f - v.rgba[i * 4 + 1]);  // 0 for black or white
+            if (vulkan)
+                for (int c : {godot ? 2 : 0, 2}) worst_vs_vulkan = std::max<double>(worst_vs_vulkan, std::abs(v.rgba[i * 4 + c] - vulkan->rgba[i * 4 + c]));
+        }
+        CHECK(worst_mip < 0.02);                  // the pass output's and the LUT's chains: grey
+        CHECK(extreme / v.pixel_count() < 0.01);  // the original at level 0, nearest: black or white
+        CHECK(worst_vs_vulkan < 0.02);
+        if (!vulkan) vulkan = v;
+    }
 }

@@ -524,9 +524,14 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
         out.passes.push_back(std::move(t));
     }
     // Speed against error: the frame just rendered on Vulkan against the two references. An
-    // imported RetroArch pass (a whole program) has no double-precision model: timed only.
-    const bool modelled = std::none_of(compiled.value().begin(), compiled.value().end(),
-                                       [](const CompiledVariant& pass) { return pass.variant.program_form() != nullptr; });
+    // imported RetroArch pass (a whole program) has no double-precision model, nor has a read
+    // through a mip chain: timed only.
+    const bool modelled =
+        std::none_of(compiled.value().begin(), compiled.value().end(),
+                     [](const CompiledVariant& pass) { return pass.variant.program_form() != nullptr; }) &&
+        std::none_of(preset.passes.begin(), preset.passes.end(), [](const Pass& pass) {
+            return std::any_of(pass.inputs.begin(), pass.inputs.end(), [](const PassInput& input) { return input.mipmap; });
+        });
     if (o.supersample > 0 && modelled) {
         for (int n : {1, o.supersample}) {
             if (n == 1 && !o.point_reference) continue;

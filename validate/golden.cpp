@@ -283,7 +283,8 @@ Result<std::string> golden_inputs_hash(const TemplateLibrary& library, const Gol
                                        pixel_format_name(pass.format), preset->filter == Filter::Nearest ? "nearest" : "linear",
                                        pass.frame_count_mod, pass.supersample);
         for (const PassInput& in : pass.inputs)
-            text += fmt::format(" [{} {} {} {} {}]", in.binding, in.from.str(), filter_name(in.filter), wrap_name(in.wrap), in.mipmap);
+            text += fmt::format(" [{} {} {} {} {}{}]", in.binding, in.from.str(), filter_name(in.filter), wrap_name(in.wrap), in.mipmap,
+                                in.mipmap ? std::string(" ") + filter_name(in.mip_filter) : std::string());
         for (const ResolvedStage& st : pass.stages) {
             text += "\n  " + st.stage->name + "/" + st.form->name;
             for (const auto& [name, value] : st.values) text += " " + name + "=" + value_to_exact_string(value);

@@ -155,10 +155,13 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             auto wrap = to_wrap(main.wrap, "pass." + pass.alias + ".wrap");
             if (!wrap.ok()) return wrap.error();
             pr.wrap = wrap.value();
+            pr.mipmap = main.mipmap;
+            pr.mip_filter = to_filter(main.mip_filter);
             for (size_t k = 1; k < pass.inputs.size(); ++k) {
                 auto w = to_wrap(pass.inputs[k].wrap, "pass." + pass.alias + ".textures." + pass.inputs[k].binding);
                 if (!w.ok()) return w.error();
-                pr.textures.push_back({pass.inputs[k].binding, resolve(pass.inputs[k].from), to_filter(pass.inputs[k].filter), w.value()});
+                pr.textures.push_back({pass.inputs[k].binding, resolve(pass.inputs[k].from), to_filter(pass.inputs[k].filter), w.value(),
+                                       pass.inputs[k].mipmap, to_filter(pass.inputs[k].mip_filter)});
             }
             pr.time = r.start_time + frame / preset.scene.fps;
             const long long count = static_cast<long long>(r.frame_count_base) + frame;

@@ -36,7 +36,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { createCrtScene, createLutTexture } from './crt-webgpu.mjs';
+import { createCrtScene, createLutTexture, mipmappedLuts } from './crt-webgpu.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -439,7 +439,9 @@ async function render() {
     crt = await pkg.loadCrtPreset(device, args.preset, { format: 'rgba16float' });
   } else {
     const luts = {};
-    for (const [name, bytes] of Object.entries(lutBytes)) luts[name] = await createLutTexture(device, bytes, preset.luts[name].file);
+    const mipmapped = mipmappedLuts(preset);
+    for (const [name, bytes] of Object.entries(lutBytes))
+      luts[name] = await createLutTexture(device, bytes, preset.luts[name].file, { mipmap: mipmapped.has(name) });
     crt = createCrtScene(device, { preset, wgsl, luts, format: 'rgba16float' });
   }
   for (const pass of crt.passes) {

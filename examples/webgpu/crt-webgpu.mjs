@@ -123,9 +123,11 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
     const wrap = t.wrap ?? 'clamp_to_edge';
     const address = wrap === 'clamp_to_border' && borderInShader.has(textureName) ? 'clamp-to-edge' : ADDRESS[wrap];
     if (!address) throw new Error(`crt-webgpu: texture '${textureName}' wraps '${t.wrap}', which WebGPU has no address mode for`);
-    const key = `${filter}/${address}`;
+    // A mip chain's levels blend as the manifest's mipFilter says (default: as the filter).
+    const mipmapFilter = t.mipmap ? (unfilterable ? 'nearest' : t.mipFilter ?? filter) : 'nearest';
+    const key = `${filter}/${address}/${mipmapFilter}`;
     if (!samplers.has(key))
-      samplers.set(key, device.createSampler({ magFilter: filter, minFilter: filter, addressModeU: address, addressModeV: address }));
+      samplers.set(key, device.createSampler({ magFilter: filter, minFilter: filter, mipmapFilter, addressModeU: address, addressModeV: address }));
     return samplers.get(key);
   }
 
@@ -334,6 +336,62 @@ export function passSizes(passes, source, screen) {
 
 const PASS_FORMAT = { rgba8: 'rgba8unorm', rgba8_srgb: 'rgba8unorm-srgb', rgba16f: 'rgba16float' };
 
+// ---- mip chains, as RetroArch makes them: each level a linear blit of the one above ----
+
+// floor(log2(max(width, height))) + 1 levels, level i max(1, size >> i).
+export function mipLevelCount(width, height) {
+  let levels = 1;
+  for (let size = Math.max(width, height); size > 1; size >>= 1) ++levels;
+  return levels;
+}
+
+// Level i drawn from level i - 1: each texel the linearly filtered sample of the level above at
+// the texel's centre, which is what a linear vkCmdBlitImage of the whole level does.
+const MIP_WGSL = `
+@group(0) @binding(0) var above: texture_2d<f32>;
+@group(0) @binding(1) var linearly: sampler;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+  let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+  return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
+  let size = max(textureDimensions(above) / 2u, vec2<u32>(1u));
+  return textureSampleLevel(above, linearly, at.xy / vec2<f32>(size), 0.0);
+}`;
+const mipMakers = new WeakMap();  // GPUDevice -> Map(format -> { pipeline, sampler })
+
+// Records the levels 1.. of `texture` (made with mipLevelCount levels and RENDER_ATTACHMENT usage)
+// from its level 0. A texture of one level records nothing.
+export function encodeMipmaps(device, encoder, texture) {
+  if (texture.mipLevelCount < 2) return;
+  if (!mipMakers.has(device)) mipMakers.set(device, new Map());
+  const makers = mipMakers.get(device);
+  if (!makers.has(texture.format)) {
+    const module = device.createShaderModule({ label: 'crt mip chain', code: MIP_WGSL });
+    makers.set(texture.format, {
+      pipeline: device.createRenderPipeline({
+        label: `crt mip chain ${texture.format}`, layout: 'auto',
+        vertex: { module, entryPoint: 'vs' }, fragment: { module, entryPoint: 'fs', targets: [{ format: texture.format }] },
+      }),
+      sampler: device.createSampler({ magFilter: 'linear', minFilter: 'linear' }),
+    });
+  }
+  const { pipeline, sampler } = makers.get(texture.format);
+  for (let level = 1; level < texture.mipLevelCount; ++level) {
+    const bindGroup = device.createBindGroup({
+      layout: pipeline.getBindGroupLayout(0),
+      entries: [{ binding: 0, resource: texture.createView({ baseMipLevel: level - 1, mipLevelCount: 1 }) }, { binding: 1, resource: sampler }],
+    });
+    const pass = encoder.beginRenderPass({
+      colorAttachments: [{ view: texture.createView({ baseMipLevel: level, mipLevelCount: 1 }), loadOp: 'clear', storeOp: 'store', clearValue: { r: 0, g: 0, b: 0, a: 0 } }],
+    });
+    pass.setPipeline(pipeline);
+    pass.setBindGroup(0, bindGroup);
+    pass.draw(3);
+    pass.end();
+  }
+}
+
 // The original's history is kept by drawing each frame's source into a texture of its own.
 const COPY_WGSL = `
 @group(0) @binding(0) var picture: texture_2d<f32>;
@@ -369,6 +427,17 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
       if (from.kind === 'lut' && !luts[from.name]) throw new Error(`crt-webgpu: pass ${pass.alias} reads LUT '${from.name}': pass its GPUTexture in luts`);
     }
   const feedback = new Set(passes.flatMap((p) => p.textures.map((t) => parseFrom(t.from)).filter((f) => f.kind === 'feedback').map((f) => f.name)));
+  // What some reader samples through a mip chain: those pass outputs (and their feedback copies)
+  // get one, filled after the pass draws; the original is copied into one each frame; a LUT must
+  // come with one (createLutTexture's mipmap option).
+  const mipmapped = passes.flatMap((p) => p.textures.filter((t) => t.mipmap).map((t) => parseFrom(t.from)));
+  const mipOutputs = new Set(mipmapped.filter((f) => f.kind === 'pass' || f.kind === 'feedback').map((f) => f.name));
+  const mipOriginal = mipmapped.some((f) => f.kind === 'original');
+  if (mipmapped.some((f) => f.kind === 'original' && f.back > 0))
+    throw new Error('crt-webgpu: a pass reads an earlier original (original@N) through a mip chain, which this driver does not make');
+  for (const f of mipmapped)
+    if (f.kind === 'lut' && luts[f.name].mipLevelCount < 2)
+      throw new Error(`crt-webgpu: LUT '${f.name}' is read through a mip chain: pass a GPUTexture that has one (createLutTexture(device, bytes, name, { mipmap: true }))`);
   const lastAlias = passes[passes.length - 1].alias;
   const historyFrames = scene.historyFrames ?? 0;
 
@@ -378,15 +447,19 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
   let sizeKey = '';
   let copy = null;            // the history copy pipeline, made on first use
   let frameCounter = 0;
+  let original = null;        // the source with a mip chain (mipOriginal)
 
   const usage = () => GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_SRC;
-  const texture = (label, size, fmt) => device.createTexture({ label, size: [size.width, size.height], format: fmt, usage: usage() });
+  const texture = (label, size, fmt, mip = false) => device.createTexture({
+    label, size: [size.width, size.height], format: fmt, usage: usage(), mipLevelCount: mip ? mipLevelCount(size.width, size.height) : 1,
+  });
 
   function destroyTextures() {
-    for (const t of [...outputs.values(), ...previous.values(), ...history]) t.destroy();
+    for (const t of [...outputs.values(), ...previous.values(), ...history, ...(original ? [original] : [])]) t.destroy();
     outputs = new Map();
     previous = new Map();
     history = [];
+    original = null;
   }
 
   // (Re)makes the pass textures when the sizes change; new textures read as zero (transparent
@@ -398,10 +471,12 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
     sizeKey = key;
     passes.forEach((pass, i) => {
       const fmt = PASS_FORMAT[pass.format ?? 'rgba8'];
-      if (pass.alias !== lastAlias || feedback.has(pass.alias)) outputs.set(pass.alias, texture(`crt ${pass.alias}`, sizes[i], fmt));
-      if (feedback.has(pass.alias)) previous.set(pass.alias, texture(`crt ${pass.alias}@previous`, sizes[i], fmt));
+      const mip = mipOutputs.has(pass.alias);
+      if (pass.alias !== lastAlias || feedback.has(pass.alias)) outputs.set(pass.alias, texture(`crt ${pass.alias}`, sizes[i], fmt, mip));
+      if (feedback.has(pass.alias)) previous.set(pass.alias, texture(`crt ${pass.alias}@previous`, sizes[i], fmt, mip));
     });
     for (let n = 0; n < historyFrames; ++n) history.push(texture(`crt original@${n + 1}`, source, 'rgba16float'));
+    if (mipOriginal) original = texture('crt original (mip chain)', source, 'rgba16float', true);
   }
 
   function copyInto(encoder, from, to) {
@@ -413,7 +488,7 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
       });
     }
     const bindGroup = device.createBindGroup({ layout: copy.getBindGroupLayout(0), entries: [{ binding: 0, resource: from.createView() }] });
-    const pass = encoder.beginRenderPass({ colorAttachments: [{ view: to.createView(), loadOp: 'clear', storeOp: 'store', clearValue: { r: 0, g: 0, b: 0, a: 0 } }] });
+    const pass = encoder.beginRenderPass({ colorAttachments: [{ view: to.createView({ mipLevelCount: 1 }), loadOp: 'clear', storeOp: 'store', clearValue: { r: 0, g: 0, b: 0, a: 0 } }] });
     pass.setPipeline(copy);
     pass.setBindGroup(0, bindGroup);
     pass.draw(3);
@@ -451,9 +526,13 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
       const screen = screenRect(scene, { width, height }, source, fit);
       const sizes = passSizes(passes, source, screen);
       prepare(sizes, source);
-      const resolve = (from) => {
+      if (original) {
+        copyInto(encoder, source, original);
+        encodeMipmaps(device, encoder, original);
+      }
+      const resolve = (from, mip = false) => {
         switch (from.kind) {
-          case 'original': return from.back === 0 ? source : history[from.back - 1];
+          case 'original': return from.back === 0 ? (mip && original ? original : source) : history[from.back - 1];
           case 'pass': return outputs.get(from.name);
           case 'feedback': return previous.get(from.name);
           case 'lut': return luts[from.name];
@@ -462,13 +541,16 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
       };
       passes.forEach((pass, i) => {
         const bound = {};
-        for (const t of pass.textures) bound[t.name] = resolve(parseFrom(t.from));
+        for (const t of pass.textures) bound[t.name] = resolve(parseFrom(t.from), t.mipmap);
         const { source: read, ...textures } = bound;
         const main = read ?? resolve(parseFrom(mainInput(pass)));  // its size is sourceSize
         const frameCount = pass.frameCountMod > 0 ? frame % pass.frameCountMod : frame;
         const common = { source: main, textures, time: seconds, frameCount, viewportSize: [screen.width, screen.height] };
-        if (outputs.has(pass.alias))
-          runners[i].encode(encoder, { ...common, target: outputs.get(pass.alias).createView(), width: sizes[i].width, height: sizes[i].height });
+        if (outputs.has(pass.alias)) {
+          const out = outputs.get(pass.alias);
+          runners[i].encode(encoder, { ...common, target: out.createView({ mipLevelCount: 1 }), width: sizes[i].width, height: sizes[i].height });
+          encodeMipmaps(device, encoder, out);
+        }
         if (pass.alias === lastAlias) {
           const full = screen.width === width && screen.height === height;
           display.encode(encoder, { ...common, target, width: screen.width, height: screen.height, viewport: full ? null : screen });
@@ -588,13 +670,25 @@ export async function decodePng(bytes, name = 'PNG') {
   return { width, height, data: out };
 }
 
-// A LUT's PNG bytes as an rgba8unorm texture (texel bytes exactly as in the file).
-export async function createLutTexture(device, bytes, name = 'LUT') {
+// The names of the LUTs a preset (a manifest entry) reads through a mip chain.
+export function mipmappedLuts(preset) {
+  return new Set(preset.passes.flatMap((p) => p.textures.filter((t) => t.mipmap).map((t) => parseFrom(t.from)).filter((f) => f.kind === 'lut').map((f) => f.name)));
+}
+
+// A LUT's PNG bytes as an rgba8unorm texture (texel bytes exactly as in the file); with
+// `mipmap`, with its mip chain (a preset whose passes read the LUT with mipmap: true needs it).
+export async function createLutTexture(device, bytes, name = 'LUT', { mipmap = false } = {}) {
   const image = await decodePng(bytes, name);
+  const levels = mipmap ? mipLevelCount(image.width, image.height) : 1;
   const texture = device.createTexture({
-    size: [image.width, image.height], format: 'rgba8unorm',
-    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+    size: [image.width, image.height], format: 'rgba8unorm', mipLevelCount: levels,
+    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST | (levels > 1 ? GPUTextureUsage.RENDER_ATTACHMENT : 0),
   });
   device.queue.writeTexture({ texture }, image.data, { bytesPerRow: image.width * 4 }, [image.width, image.height]);
+  if (levels > 1) {
+    const encoder = device.createCommandEncoder({ label: `crt mip chain of ${name}` });
+    encodeMipmaps(device, encoder, texture);
+    device.queue.submit([encoder.finish()]);
+  }
   return texture;
 }

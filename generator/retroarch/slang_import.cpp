@@ -298,21 +298,35 @@ private:
     }
 
     // How a texture is sampled, as `key = value` pairs: RetroArch's filter (unset: --smooth), wrap
-    // (unset: clamp_to_border) and mipmaps.
+    // (unset: clamp_to_border), mipmaps and, where it is not the filter, how their levels blend.
     std::vector<std::string> sampling(std::optional<bool> linear, const std::optional<std::string>& wrap,
-                                      std::optional<bool> mipmap) const {
+                                      std::optional<bool> mipmap, bool blend_levels = false) const {
         const bool lin = linear.value_or(options_.unset_filter == Filter::Linear);
         std::vector<std::string> keys{fmt::format("filter = \"{}\"", lin ? "linear" : "nearest"),
                                       fmt::format("wrap = \"{}\"", wrap_of(wrap))};
-        if (mipmap.value_or(false)) keys.push_back("mipmap = true");
+        if (mipmap.value_or(false)) {
+            keys.push_back("mipmap = true");
+            if (blend_levels != lin) keys.push_back(fmt::format("mip_filter = \"{}\"", blend_levels ? "linear" : "nearest"));
+        }
         return keys;
     }
+    // Whether RetroArch blends mip levels in what pass k samples through its own settings: only
+    // when its filter is not nearest (unset counts as linear here) and its own output has a chain
+    // (mipmap_input of pass k + 1): its pass_info.mip_filter. Pass k's main input and this frame's
+    // readers of pass k - 1 use it; readers of pass k's feedback use pass k's.
+    bool blends_levels(size_t k) const {
+        if (k >= preset_.passes.size()) return false;
+        const bool next_mipmapped = k + 1 < preset_.passes.size() && preset_.passes[k + 1].mipmap_input.value_or(false);
+        return preset_.passes[k].filter_linear.value_or(true) && next_mipmapped;
+    }
     // How readers sample pass k's output: as the pass after it declares (filter_linear, wrap_mode,
-    // mipmap_input of pass k + 1 describe the texture pass k produces); pass 0's govern the original.
-    std::vector<std::string> sampling_of_output(size_t producer_plus_one) const {
+    // mipmap_input of pass k + 1 describe the texture pass k produces); pass 0's filter and wrap
+    // govern the original, which has no mip chain in RetroArch whatever mipmap_input0 says.
+    // `blend_of`: the pass whose settings blend the levels (above).
+    std::vector<std::string> sampling_of_output(size_t producer_plus_one, size_t blend_of) const {
         if (producer_plus_one >= preset_.passes.size()) return sampling(std::nullopt, std::nullopt, std::nullopt);
         const SlangpPass& p = preset_.passes[producer_plus_one];
-        return sampling(p.filter_linear, p.wrap_mode, p.mipmap_input);
+        return sampling(p.filter_linear, p.wrap_mode, p.mipmap_input, blends_levels(blend_of));
     }
 
     // A pass's scale as RetroArch reads it: scale_typeN sets both axes and hides _x/_y, scaleN hides
@@ -372,7 +386,9 @@ private:
                                                    p.where.file, p.where.line, "shader" + std::to_string(i))
                                             .warning());
             if (std::string(format) != "rgba8") t += fmt::format("format = \"{}\"\n", format);
-            t += join_list(sampling(p.filter_linear, p.wrap_mode, p.mipmap_input), "\n") + "\n";
+            // RetroArch gives the original no mip chain: mipmap_input0 is never read.
+            const std::optional<bool> main_mipmap = i == 0 ? std::nullopt : p.mipmap_input;
+            t += join_list(sampling(p.filter_linear, p.wrap_mode, main_mipmap, blends_levels(i)), "\n") + "\n";
             if (p.frame_count_mod && *p.frame_count_mod > 0) t += fmt::format("frame_count_mod = {}\n", *p.frame_count_mod);
             if (!plan.program.textures.empty()) {
                 t += "[pass.textures]\n";
@@ -382,11 +398,13 @@ private:
                     std::vector<std::string> how;
                     if (from.rfind("original", 0) == 0) {
                         const SlangpPass& first = preset_.passes.front();
-                        how = sampling(first.filter_linear, first.wrap_mode, first.mipmap_input);
+                        how = sampling(first.filter_linear, first.wrap_mode, std::nullopt);  // no chain: above
                     } else if (auto lut = luts_.find(name); lut != luts_.end()) {
                         if (lut->second->mipmap.value_or(false)) how = {"mipmap = true"};  // filter, wrap: its [lut] section's
                     } else {
-                        how = sampling_of_output(pass_index_.at(from.substr(0, from.find('@'))) + 1);
+                        const size_t producer = pass_index_.at(from.substr(0, from.find('@')));
+                        const bool feedback = from.find('@') != std::string::npos;
+                        how = sampling_of_output(producer + 1, feedback ? producer : producer + 1);
                     }
                     t += name + " = { from = " + toml_string(from) + (how.empty() ? "" : ", " + join_list(how)) + " }\n";
                 }

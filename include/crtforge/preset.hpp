@@ -63,8 +63,12 @@ struct PassInput {
     TextureSource from;
     Filter filter = Filter::Linear;
     Wrap wrap = Wrap::ClampToEdge;
-    bool mipmap = false;  // sampled with a full mip chain (the model holds it; see docs/scenes.md)
+    bool mipmap = false;  // sampled through a full mip chain (docs/scenes.md)
     int line = 0;
+    // With mipmap, how levels blend: linear (trilinear with a linear filter) or the nearest level.
+    // Default: the filter. RetroArch blends a pass output's levels only when the reading pass's own
+    // output has a chain too (`mipmap_input` of the pass after the reader): the import says so.
+    Filter mip_filter = Filter::Linear;
 };
 
 // A preset's own settings for one stage, as written in its file (before inheritance).
@@ -82,6 +86,7 @@ struct TextureSampling {
     std::optional<Filter> filter;
     std::optional<Wrap> wrap;
     std::optional<bool> mipmap;
+    std::optional<Filter> mip_filter;
 };
 
 // One [[pass]] as written.
@@ -95,6 +100,7 @@ struct PassEntry {
     std::optional<Filter> filter;
     std::optional<Wrap> wrap;
     std::optional<bool> mipmap;
+    std::optional<Filter> mip_filter;
     std::map<std::string, std::string> textures;  // binding -> source, as written
     std::map<std::string, int> texture_lines;
     std::map<std::string, TextureSampling> texture_sampling;  // binding -> as written in its inline table

@@ -327,6 +327,8 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
             {"format", format_name(job.format)},
             {"filter", filter_name(job.filter)},
             {"wrap", wrap_name(job.wrap)},
+            {"mipmap", job.mipmap},
+            {"mip_filter", filter_name(job.mip_filter)},
             {"texture", job.uses_texture},
             {"uniform_binding", job.uniform_binding},
             {"texture_binding", job.texture_binding},
@@ -354,7 +356,9 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
             json entry = {{"binding", t.binding},
                           {"sampler_binding", t.sampler_binding},
                           {"filter", filter_name(t.filter)},
-                          {"wrap", wrap_name(t.wrap)}};
+                          {"wrap", wrap_name(t.wrap)},
+                          {"mipmap", t.mipmap},
+                          {"mip_filter", filter_name(t.mip_filter)}};
             if (!t.image->empty()) {
                 const fs::path file = dir / fmt::format("texture{}.f32", i);
                 if (auto s = write_file(file, t.image->rgba.data(), t.image->rgba.size() * sizeof(float)); !s.ok())

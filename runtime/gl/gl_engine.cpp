@@ -119,28 +119,39 @@ GLint gl_wrap(WrapMode wrap) {
 
 // The one upload path of the input and of every extra texture: `image` (empty = a 1x1
 // transparent-black texture, for shaders that sample nothing) bound to texture unit `unit`, where
-// it stays for the draw.
+// it stays for the draw. With `mipmap`, a full chain from glGenerateMipmap (Mesa fills each level
+// by a linear blit of the one above, as the Vulkan engine does); ES filters and renders only half
+// floats, so a chain there is RGBA16F.
 UniqueTexture create_sampled_texture(const GlContext& context, const Image& image, SamplerFilter filter, WrapMode wrap,
-                                     GLuint unit) {
+                                     bool mipmap, SamplerFilter mip_filter, GLuint unit) {
     const GlFunctions& gl = context.functions();
     const Image blank = Image::make(1, 1);
     const Image& source = image.empty() ? blank : image;
-    const TextureUpload upload = choose_upload(context, filter);
+    const TextureUpload upload = mipmap && context.is_es() ? TextureUpload{GL_RGBA16F, GL_HALF_FLOAT, TextureTexels::Rgba16Float}
+                                                           : choose_upload(context, filter);
     std::vector<unsigned char> texels(source.pixel_count() * vulkan::texel_bytes(upload.texels));
     vulkan::write_texels(source, upload.texels, texels.data());  // row 0 first: t = 0 is the top row
 
+    const GLsizei levels = mipmap ? static_cast<GLsizei>(mip_level_count(source.width, source.height)) : 1;
     UniqueTexture texture = make_texture(gl);
     gl.ActiveTexture(GL_TEXTURE0 + unit);
     gl.BindTexture(GL_TEXTURE_2D, texture.get());
-    gl.TexStorage2D(GL_TEXTURE_2D, 1, upload.internal_format, source.width, source.height);
+    gl.TexStorage2D(GL_TEXTURE_2D, levels, upload.internal_format, source.width, source.height);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, source.width, source.height, GL_RGBA, upload.type, texels.data());
-    const GLint gl_filter = filter == SamplerFilter::Linear ? GL_LINEAR : GL_NEAREST;
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, gl_filter);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, gl_filter);
+    const bool linear = filter == SamplerFilter::Linear;
+    GLint min_filter = linear ? GL_LINEAR : GL_NEAREST;
+    if (levels > 1) {
+        gl.GenerateMipmap(GL_TEXTURE_2D);
+        const bool blend = mip_filter == SamplerFilter::Linear;
+        min_filter = linear ? (blend ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST)
+                            : (blend ? GL_NEAREST_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
+    }
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(wrap));
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(wrap));
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
     gl.ActiveTexture(GL_TEXTURE0);
     return texture;
 }
@@ -242,11 +253,11 @@ private:
         gl.TexStorage2D(GL_TEXTURE_2D, 1, output_internal_format(job.format), job.width, job.height);
         // After the target, so each texture stays bound to its unit (unit 0 holds the input again).
         std::vector<UniqueTexture> textures;
-        textures.push_back(create_sampled_texture(*context_, job.input, job.filter, job.wrap, 0));
+        textures.push_back(create_sampled_texture(*context_, job.input, job.filter, job.wrap, job.mipmap, job.mip_filter, 0));
         for (size_t i = 0; i < job.textures.size(); ++i) {
             const TextureInput& t = job.textures[i];
             const auto unit = static_cast<GLuint>(i + 1);
-            textures.push_back(create_sampled_texture(*context_, *t.image, t.filter, t.wrap, unit));
+            textures.push_back(create_sampled_texture(*context_, *t.image, t.filter, t.wrap, t.mipmap, t.mip_filter, unit));
         }
 
         const UniqueFramebuffer framebuffer = make_framebuffer(gl);

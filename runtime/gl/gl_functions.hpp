@@ -65,6 +65,7 @@ namespace crtforge::gl {
     X(PFNGLBINDTEXTUREPROC, BindTexture, "glBindTexture")                          \
     X(PFNGLACTIVETEXTUREPROC, ActiveTexture, "glActiveTexture")                    \
     X(PFNGLTEXSTORAGE2DPROC, TexStorage2D, "glTexStorage2D")                       \
+    X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap, "glGenerateMipmap")                 \
     X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D, "glTexSubImage2D")                    \
     X(PFNGLTEXPARAMETERIPROC, TexParameteri, "glTexParameteri")                    \
     X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers, "glGenFramebuffers")              \

@@ -149,19 +149,22 @@ Status check_module(const std::vector<uint32_t>& spirv, ExecutionModel model, co
 }
 
 // The one format choice for the input and every extra texture: full float where the device can
-// sample (and filter) it; half float, which every Vulkan device can filter, otherwise. `field`
-// names the filter that could not be met.
-Result<TexturePlan> pick_texture_format(const VulkanContext& context, SamplerFilter filter, const std::string& field) {
+// sample (and filter) it; half float, which every Vulkan device can filter, otherwise. A mip
+// chain is made by linear blits: it needs blits and linear filtering whatever the pass's filter.
+// `field` names the filter that could not be met.
+Result<TexturePlan> pick_texture_format(const VulkanContext& context, SamplerFilter filter, bool mipmap,
+                                        const std::string& field) {
     VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    if (filter == SamplerFilter::Linear) needed |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    if (filter == SamplerFilter::Linear || mipmap) needed |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    if (mipmap) needed |= VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT;
     if ((context.optimal_tiling_features(VK_FORMAT_R32G32B32A32_SFLOAT) & needed) == needed) {
         return TexturePlan{VK_FORMAT_R32G32B32A32_SFLOAT, TextureTexels::Rgba32Float};
     }
     if ((context.optimal_tiling_features(VK_FORMAT_R16G16B16A16_SFLOAT) & needed) == needed) {
         return TexturePlan{VK_FORMAT_R16G16B16A16_SFLOAT, TextureTexels::Rgba16Float};
     }
-    return job_error(fmt::format("device '{}' cannot sample an RGBA32F or RGBA16F texture with this filter",
-                                 context.info().name),
+    return job_error(fmt::format("device '{}' cannot sample an RGBA32F or RGBA16F texture with this filter{}",
+                                 context.info().name, mipmap ? " and make its mip chain (linear blits)" : ""),
                      field);
 }
 
@@ -191,11 +194,12 @@ Result<JobPlan> check_job(const VulkanContext& context, const RenderJob& job) {
                                      output_format_name(job.format)),
                          "format");
     }
-    auto input = pick_texture_format(context, job.filter, "filter");
+    auto input = pick_texture_format(context, job.filter, job.mipmap, "filter");
     if (!input) return input.error();
     plan.textures.push_back(input.value());
     for (size_t i = 0; i < job.textures.size(); ++i) {
-        auto texture = pick_texture_format(context, job.textures[i].filter, detail::texture_field(i, "filter"));
+        auto texture = pick_texture_format(context, job.textures[i].filter, job.textures[i].mipmap,
+                                           detail::texture_field(i, "filter"));
         if (!texture) return texture.error();
         plan.textures.push_back(texture.value());
     }

@@ -1,5 +1,6 @@
 #include "runtime/vulkan/vulkan_commands.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "runtime/vulkan/vulkan_check.hpp"
@@ -11,9 +12,10 @@ namespace {
 constexpr VkImageSubresourceRange kColorRange{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
 constexpr VkImageSubresourceLayers kColorLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
 
+// `levels` mip levels from `first` (default: the one level of a target).
 void image_barrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkImageLayout to,
                    VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
-                   VkPipelineStageFlags dst_stage) {
+                   VkPipelineStageFlags dst_stage, uint32_t first = 0, uint32_t levels = 1) {
     VkImageMemoryBarrier barrier{};
     barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
     barrier.srcAccessMask = src_access;
@@ -24,6 +26,8 @@ void image_barrier(VkCommandBuffer commands, VkImage image, VkImageLayout from, 
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image;
     barrier.subresourceRange = kColorRange;
+    barrier.subresourceRange.baseMipLevel = first;
+    barrier.subresourceRange.levelCount = levels;
     vkCmdPipelineBarrier(commands, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
 }
 
@@ -39,21 +43,48 @@ VkBufferImageCopy whole_image(const DeviceImage& image) {
     return region;
 }
 
+// Level i of a mip chain from level i - 1, as RetroArch fills its chains: a linear blit of the
+// whole level onto the next one's size (halved, rounded down, at least 1). Level i - 1 ends in
+// TRANSFER_SRC_OPTIMAL, level i stays in TRANSFER_DST_OPTIMAL.
+void record_mip_level(VkCommandBuffer commands, const DeviceImage& texture, uint32_t level) {
+    auto extent = [&](uint32_t l) {
+        return VkOffset3D{static_cast<int32_t>(std::max(texture.extent.width >> l, 1u)),
+                          static_cast<int32_t>(std::max(texture.extent.height >> l, 1u)), 1};
+    };
+    image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, level - 1, 1);
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
+    blit.srcOffsets[1] = extent(level - 1);
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+    blit.dstOffsets[1] = extent(level);
+    vkCmdBlitImage(commands, texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, texture.image.get(),
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+}
+
 // Texels already on the device (an earlier job uploaded them) record nothing.
 void record_upload(VkCommandBuffer commands, const UploadedImage& texels) {
     if (texels.uploaded) return;
     const HostBuffer& staging = texels.staging;
     const DeviceImage& texture = texels.image;
+    const uint32_t levels = texture.levels;
     image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, levels);
     const VkBufferImageCopy region = whole_image(texture);
     vkCmdCopyBufferToImage(commands, staging.buffer.get(), texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            1, &region);
-    // Sampled from both stages' point of view: the vertex shader could sample too.
+    for (uint32_t level = 1; level < levels; ++level) record_mip_level(commands, texture, level);
+    // Sampled from both stages' point of view: the vertex shader could sample too. Every level but
+    // the last was a blit's source.
+    const VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    if (levels > 1)
+        image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_SHADER_READ_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, levels - 1);
     image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, levels - 1, 1);
 }
 
 void record_draw(VkCommandBuffer commands, const PassCommands& c) {

@@ -41,13 +41,15 @@ Result<JobResources> create_job_resources(const VulkanContext& context, const Re
     out.textures.reserve(job.textures.size() + 1);
     for (size_t i = 0; i <= job.textures.size(); ++i) {
         const TexturePlan& format = plan.textures[i];
-        auto texels = i == 0 ? create_uploaded_image(context, job.input, format.format, format.texels)
-                             : cache.get(context, job.textures[i - 1].image, format.format, format.texels);
+        const bool mipmap = i == 0 ? job.mipmap : job.textures[i - 1].mipmap;
+        auto texels = i == 0 ? create_uploaded_image(context, job.input, format.format, format.texels, mipmap)
+                             : cache.get(context, job.textures[i - 1].image, format.format, format.texels, mipmap);
         if (!texels) return texels.error();
         const SamplerFilter filter = i == 0 ? job.filter : job.textures[i - 1].filter;
         const WrapMode wrap = i == 0 ? job.wrap : job.textures[i - 1].wrap;
         const uint32_t binding = i == 0 ? job.texture_binding : job.textures[i - 1].binding;
-        auto texture = create_sampled_texture(context, std::move(texels).value(), filter, wrap, binding);
+        const SamplerFilter mip_filter = i == 0 ? job.mip_filter : job.textures[i - 1].mip_filter;
+        auto texture = create_sampled_texture(context, std::move(texels).value(), filter, wrap, mip_filter, binding);
         if (!texture) return texture.error();
         out.textures.push_back(std::move(texture).value());
     }

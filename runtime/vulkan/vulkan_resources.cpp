@@ -99,18 +99,19 @@ Status invalidate(const VulkanContext& context, const HostBuffer& buffer) {
 }
 
 Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat format, uint32_t width,
-                                        uint32_t height, VkImageUsageFlags usage) {
+                                        uint32_t height, VkImageUsageFlags usage, uint32_t levels) {
     const VkDevice device = context.device();
     DeviceImage out;
     out.format = format;
     out.extent = {width, height};
+    out.levels = levels;
 
     VkImageCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
     info.extent = {width, height, 1};
-    info.mipLevels = 1;
+    info.mipLevels = levels;
     info.arrayLayers = 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -138,7 +139,7 @@ Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat f
     view.image = image;
     view.viewType = VK_IMAGE_VIEW_TYPE_2D;
     view.format = format;
-    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, 1};
     VkImageView handle = VK_NULL_HANDLE;
     if (VkResult r = vkCreateImageView(device, &view, nullptr, &handle); r != VK_SUCCESS) {
         return vk_error("vkCreateImageView", r);
@@ -147,7 +148,8 @@ Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat f
     return out;
 }
 
-Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap) {
+Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap, bool mipmap,
+                                     SamplerFilter mip_filter) {
     const VkFilter vk_filter = filter == SamplerFilter::Linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     if (wrap == WrapMode::Repeat) address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
@@ -157,12 +159,12 @@ Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter
     info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
     info.magFilter = vk_filter;
     info.minFilter = vk_filter;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.mipmapMode = mipmap && mip_filter == SamplerFilter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     info.addressModeU = address;
     info.addressModeV = address;
     info.addressModeW = address;
     info.minLod = 0.0f;
-    info.maxLod = 0.0f;  // one level only
+    info.maxLod = mipmap ? VK_LOD_CLAMP_NONE : 0.0f;  // without mipmaps level 0 only
     info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
     VkSampler sampler = VK_NULL_HANDLE;
     if (VkResult r = vkCreateSampler(context.device(), &info, nullptr, &sampler); r != VK_SUCCESS) {
@@ -172,7 +174,7 @@ Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter
 }
 
 Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext& context, const Image& image,
-                                                             VkFormat format, TextureTexels texels) {
+                                                             VkFormat format, TextureTexels texels, bool mipmap) {
     auto out = std::make_shared<UploadedImage>();
     // A shader that samples nothing still gets a valid descriptor: a 1x1 transparent-black texture.
     const Image blank = Image::make(1, 1);
@@ -184,20 +186,22 @@ Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext
     write_texels(source, texels, out->staging.mapped);
     if (auto s = flush(context, out->staging); !s) return s.error();
 
+    const uint32_t levels = mipmap ? mip_level_count(source.width, source.height) : 1;
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (levels > 1) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // each level is blitted from the one above
     auto device_image = create_device_image(context, format, static_cast<uint32_t>(source.width),
-                                            static_cast<uint32_t>(source.height),
-                                            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+                                            static_cast<uint32_t>(source.height), usage, levels);
     if (!device_image) return device_image.error();
     out->image = std::move(device_image).value();
     return out;
 }
 
 Result<SampledTexture> create_sampled_texture(const VulkanContext& context, std::shared_ptr<UploadedImage> texels,
-                                              SamplerFilter filter, WrapMode wrap, uint32_t binding) {
+                                              SamplerFilter filter, WrapMode wrap, SamplerFilter mip_filter, uint32_t binding) {
     SampledTexture out;
     out.binding = binding;
     out.texels = std::move(texels);
-    auto sampler = create_sampler(context, filter, wrap);
+    auto sampler = create_sampler(context, filter, wrap, out.texels->image.levels > 1, mip_filter);
     if (!sampler) return sampler.error();
     out.sampler = std::move(sampler).value();
     return out;

@@ -30,20 +30,24 @@ Result<HostBuffer> create_host_buffer(const VulkanContext& context, VkDeviceSize
 Status flush(const VulkanContext& context, const HostBuffer& buffer);
 Status invalidate(const VulkanContext& context, const HostBuffer& buffer);
 
-// A single-mip, single-layer 2D image in device-local memory (optimal tiling) with a colour view.
+// A single-layer 2D image in device-local memory (optimal tiling) with a colour view of all its
+// `levels` mip levels (level 0 is extent).
 struct DeviceImage {
     UniqueMemory memory;  // declared first: released after the view and the image
     UniqueImage image;
     UniqueImageView view;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{};
+    uint32_t levels = 1;
 };
 
 Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat format, uint32_t width,
-                                        uint32_t height, VkImageUsageFlags usage);
+                                        uint32_t height, VkImageUsageFlags usage, uint32_t levels = 1);
 
-// `wrap` on every axis, unnormalised coordinates off, no mipmaps, no anisotropy.
-Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap);
+// `wrap` on every axis, unnormalised coordinates off, no anisotropy. Without `mipmap` only level
+// 0 is read; with it every level, blended as `mip_filter` says.
+Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap, bool mipmap,
+                                     SamplerFilter mip_filter);
 
 // A texture's texels on the device. `staging` holds them on their way up until the first command
 // buffer that uploads them has run (mark_uploaded() then releases it); after that the image is
@@ -60,9 +64,10 @@ struct UploadedImage {
 };
 
 // `image` (empty = a 1x1 transparent-black texture) written as `texels` into a staging buffer,
-// and a `format` image of its size to receive it.
+// and a `format` image of its size to receive it: with `mipmap`, with a full mip chain that the
+// upload fills (RenderJob::mipmap).
 Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext& context, const Image& image,
-                                                             VkFormat format, TextureTexels texels);
+                                                             VkFormat format, TextureTexels texels, bool mipmap);
 
 // One texture a pass samples: its texels (shared with the engine's upload cache, so a LUT that
 // every pass and frame reads goes up once) and its sampler.
@@ -72,7 +77,8 @@ struct SampledTexture {
     uint32_t binding = 0;  // of its combined image sampler in the job's set
 };
 
+// Samples every level of `texels` when it has more than one, blended as `mip_filter` says.
 Result<SampledTexture> create_sampled_texture(const VulkanContext& context, std::shared_ptr<UploadedImage> texels,
-                                              SamplerFilter filter, WrapMode wrap, uint32_t binding);
+                                              SamplerFilter filter, WrapMode wrap, SamplerFilter mip_filter, uint32_t binding);
 
 }  // namespace crtforge::vulkan

@@ -22,13 +22,14 @@ public:
     // `image`'s texels as `format` / `texels`: the ones already on the device, or new ones that the
     // next command buffer sampling them uploads. An image without identity (empty) is not kept.
     Result<std::shared_ptr<UploadedImage>> get(const VulkanContext& context, const SharedImage& image, VkFormat format,
-                                               TextureTexels texels);
+                                               TextureTexels texels, bool mipmap);
 
 private:
     struct Entry {
         std::shared_ptr<const Image> image;
         VkFormat format;
         TextureTexels texels;
+        bool mipmap;
         std::shared_ptr<UploadedImage> uploaded;
         VkDeviceSize bytes;
     };

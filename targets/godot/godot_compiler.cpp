@@ -584,8 +584,10 @@ void GodotCompiler::emit_header() {
         const PassInput* input = variant_.pass->find_input(texture);
         statement("// ", texture, ": ", input ? input->from.str() : std::string("set by the host"),
                   options_.godot_version >= 4 ? "" : " (set its filter and repeat flags on the texture)");
+        // A LUT read through a mip chain (the scene script makes one) blends its levels.
+        const bool mipmap = input && input->mipmap && input->from.kind == TextureSource::Kind::Lut;
         if (options_.godot_version >= 4)
-            statement("uniform sampler2D ", texture, " : filter_", filter_name(variant_.texture_filter(texture)),
+            statement("uniform sampler2D ", texture, " : filter_", filter_name(variant_.texture_filter(texture)), mipmap ? "_mipmap" : "",
                       input && input->wrap == Wrap::Repeat ? ", repeat_enable;" : ", repeat_disable;");
         else
             statement("uniform sampler2D ", texture, ";");

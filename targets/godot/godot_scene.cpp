@@ -51,6 +51,7 @@ json texture_spec(const PassInput& input) {
     if (input.from.kind != TextureSource::Kind::Original) spec["name"] = input.from.name;
     spec["filter"] = filter_name(input.filter);
     spec["wrap"] = wrap_name(input.wrap);
+    if (input.mipmap) spec["mipmap"] = true;
     return spec;
 }
 
@@ -72,8 +73,9 @@ std::vector<std::string> scene_notes(const SceneTargetInput& in, int version) {
         if (pass.format == PixelFormat::Rgba8Srgb)
             notes.push_back("pass " + pass.alias + " stores sRGB 8-bit; Godot viewports cannot: it is stored as float");
         for (const PassInput* input : read_inputs(*in.passes[i])) {
-            if (input->mipmap) notes.push_back("pass " + pass.alias + " reads " + input->from.str() +
-                                               " with mipmaps; Godot viewports have none: level 0 is read");
+            if (input->mipmap && input->from.kind != TextureSource::Kind::Lut)
+                notes.push_back("pass " + pass.alias + " reads " + input->from.str() +
+                                " with mipmaps; Godot viewports have none: level 0 is read (a LUT's chain is made)");
             if (version >= 4 && input != &pass.inputs.front()) continue;
             const std::string sampling = std::string(filter_name(input->filter)) + "/" + wrap_name(input->wrap);
             const std::string reader = "pass " + pass.alias + " (" + input->binding + ")";
@@ -206,6 +208,10 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int v
         if (data == in.lut_files.end()) return make_error("no file for LUT '" + lut.name + "'", lut.where.file, lut.where.line);
         files.push_back({ShaderStage::Fragment, ".png", data->second, "lut:" + lut.name, lut_path(preset, lut.name)});
         luts[lut.name] = {{"path", "res://" + lut_path(preset, lut.name)}, {"filter", filter_name(lut.filter)}, {"wrap", wrap_name(lut.wrap)}};
+        // A LUT some pass reads through a mip chain is loaded with one (Image.generate_mipmaps).
+        for (const Pass& pass : preset.passes)
+            for (const PassInput& input : pass.inputs)
+                if (input.mipmap && input.from.kind == TextureSource::Kind::Lut && input.from.name == lut.name) luts[lut.name]["mipmap"] = true;
     }
     const int history = preset.history_depth();
     auto index_of = [&](const std::string& alias) {

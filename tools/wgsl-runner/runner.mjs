@@ -255,6 +255,8 @@ function readTexture(spec, keys, defaults, maxDim, at = '') {
     samplerBinding: int(spec, keys.samplerBinding ?? 'sampler_binding', defaults.samplerBinding, 0, 1000, at),
     filter: oneOf(spec, 'filter', 'linear', FILTERS, at),
     wrap: oneOf(spec, 'wrap', 'clamp-to-edge', ADDRESS_MODES, at),
+    mipmap: spec.mipmap === true,
+    mipFilter: oneOf(spec, 'mip_filter', 'linear', FILTERS, at),
     width: 1,
     height: 1,
     pixels: new Float32Array(4),
@@ -275,15 +277,20 @@ function readTexture(spec, keys, defaults, maxDim, at = '') {
 
 // The one upload path of the input and of every extra texture. rgba32float when it can be
 // sampled with the filter (nearest always: as unfilterable-float with a non-filtering sampler);
-// otherwise rgba16float converted here. Adds its layout and bind group entries; returns the format.
-function addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy) {
+// otherwise rgba16float converted here. With `mipmap`, its mip chain is made by the shipped
+// driver's encodeMipmaps (linear blits: a filterable format). Adds its layout and bind group
+// entries; returns the format.
+async function addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy) {
   const linear = t.filter === 'linear';
-  const float32 = !linear || device.features.has('float32-filterable');
+  const float32 = (!linear && !t.mipmap) || device.features.has('float32-filterable');
   const format = float32 ? 'rgba32float' : 'rgba16float';
+  const { mipLevelCount, encodeMipmaps } = await import('../../examples/webgpu/crt-webgpu.mjs');
+  const levels = t.mipmap ? mipLevelCount(t.width, t.height) : 1;
   const texture = device.createTexture({
     size: [t.width, t.height],
     format,
-    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+    mipLevelCount: levels,
+    usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST | (levels > 1 ? GPUTextureUsage.RENDER_ATTACHMENT : 0),
   });
   destroy.push(texture);
   let data = t.pixels, bytesPerPixel = 16;
@@ -292,8 +299,13 @@ function addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy) 
     bytesPerPixel = 8;
   }
   device.queue.writeTexture({ texture }, data, { bytesPerRow: t.width * bytesPerPixel, rowsPerImage: t.height }, [t.width, t.height]);
+  if (levels > 1) {
+    const encoder = device.createCommandEncoder();
+    encodeMipmaps(device, encoder, texture);
+    device.queue.submit([encoder.finish()]);
+  }
   const sampler = device.createSampler({
-    magFilter: t.filter, minFilter: t.filter, mipmapFilter: 'nearest',
+    magFilter: t.filter, minFilter: t.filter, mipmapFilter: t.mipmap ? t.mipFilter : 'nearest',
     addressModeU: t.wrap, addressModeV: t.wrap,
   });
   layoutEntries.push({ binding: t.binding, visibility, texture: { sampleType: float32 && !linear ? 'unfilterable-float' : 'float' } });
@@ -418,8 +430,10 @@ async function opRender(request) {
       // The binding covers exactly the bytes given, so a block larger than the data is refused.
       groupEntries.push({ binding: uniformBinding, resource: { buffer, offset: 0, size: Math.ceil(uniformBytes.length / 4) * 4 } });
     }
-    const inputFormat = input ? addSampledTexture(input, visibility, layoutEntries, groupEntries, destroy) : null;
-    const textureFormats = textures.map((t) => addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy));
+    // One after another: the layout's entries keep the input's and the textures' order.
+    const inputFormat = input ? await addSampledTexture(input, visibility, layoutEntries, groupEntries, destroy) : null;
+    const textureFormats = [];
+    for (const t of textures) textureFormats.push(await addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy));
     const pipelineKey = JSON.stringify([code, vertexEntry, fragmentEntry, format.gpu, layoutEntries]);
     let { bindGroupLayout, pipeline } = pipelineCache.get(pipelineKey) ?? {};
     if (!pipeline) {

@@ -111,6 +111,8 @@ Job request_job(TargetRenderRequest& r, std::vector<uint8_t> uniforms, std::vect
     job.input = std::move(r.input);
     job.filter = r.filter;
     job.wrap = r.wrap;
+    job.mipmap = r.mipmap;
+    job.mip_filter = r.mip_filter;
     job.textures = std::move(textures);
     job.width = r.width;
     job.height = r.height;

@@ -139,6 +139,8 @@ Result<std::vector<TextureInput>> engine_textures(TargetRenderRequest& r,
         input.image = std::move(t.image);
         input.filter = t.filter;
         input.wrap = t.wrap;
+        input.mipmap = t.mipmap;
+        input.mip_filter = t.mip_filter;
         out.push_back(std::move(input));
     }
     return out;

@@ -42,6 +42,8 @@ export interface PassTexture {
   filter: 'nearest' | 'linear';
   wrap: 'clamp_to_edge' | 'repeat' | 'mirrored_repeat' | 'clamp_to_border';
   mipmap: boolean;
+  /** With mipmap: how the levels blend ('linear': the two nearest weighed; 'nearest': the nearest level). */
+  mipFilter?: 'linear' | 'nearest';
 }
 
 export interface BindGroupLayoutEntryJson {
@@ -200,7 +202,15 @@ export function screenRect(scene: ManifestScene, display: { width: number; heigh
 export function passSizes(passes: ManifestPass[], source: { width: number; height: number },
                           screen: { width: number; height: number }): Array<{ width: number; height: number }>;
 export function decodePng(bytes: Uint8Array | ArrayBuffer, name?: string): Promise<{ width: number; height: number; data: Uint8Array }>;
-export function createLutTexture(device: GPUDevice, bytes: Uint8Array | ArrayBuffer, name?: string): Promise<GPUTexture>;
+/** A LUT's PNG as an rgba8unorm texture; `mipmap`: with its mip chain (each level a linear blit of the one above). */
+export function createLutTexture(device: GPUDevice, bytes: Uint8Array | ArrayBuffer, name?: string,
+                                 options?: { mipmap?: boolean }): Promise<GPUTexture>;
+/** The names of the LUTs a preset reads through a mip chain (create them with `mipmap: true`). */
+export function mipmappedLuts(preset: ManifestPreset): Set<string>;
+/** floor(log2(max(width, height))) + 1. */
+export function mipLevelCount(width: number, height: number): number;
+/** Records levels 1.. of `texture` (RENDER_ATTACHMENT usage) from its level 0, as RetroArch fills a mip chain. */
+export function encodeMipmaps(device: GPUDevice, encoder: GPUCommandEncoder, texture: GPUTexture): void;
 
 /** The package's manifest (read once). */
 export function loadManifest(): Promise<Manifest>;

@@ -8,7 +8,7 @@
 // luts/*.png, and reads them relative to this file: with fetch() in a browser or a bundler's
 // dev server, with node:fs in Node (dawn.node, npm `webgpu`). Everything else is crt-webgpu.mjs,
 // re-exported as it is.
-import { createCrtScene, createLutTexture } from './crt-webgpu.mjs';
+import { createCrtScene, createLutTexture, mipmappedLuts } from './crt-webgpu.mjs';
 
 export * from './crt-webgpu.mjs';
 
@@ -46,7 +46,8 @@ export async function loadCrtPreset(device, name, { format }) {
   const wgsl = {};
   for (const pass of preset.passes) wgsl[pass.alias] = new TextDecoder().decode(await readBytes(pass.targets.wgsl.shader));
   const luts = {};
+  const mipmapped = mipmappedLuts(preset);  // made with their mip chains
   for (const [lutName, lut] of Object.entries(preset.luts ?? {}))
-    luts[lutName] = await createLutTexture(device, await readBytes(lut.file), lut.file);
+    luts[lutName] = await createLutTexture(device, await readBytes(lut.file), lut.file, { mipmap: mipmapped.has(lutName) });
   return createCrtScene(device, { preset, wgsl, luts, format });
 }

@@ -58,6 +58,8 @@ struct DawnJob {
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;  // the input's address mode, both axes
+    bool mipmap = false;                    // a mip chain, as RenderJob::mipmap (the shipped driver's)
+    SamplerFilter mip_filter = SamplerFilter::Linear;
     // More textures, uploaded like `input` with their own filter and wrap: each a texture_2d<f32>
     // at `binding` plus a sampler at `sampler_binding` (`name` is not used here). Bound whether or
     // not uses_texture is set.

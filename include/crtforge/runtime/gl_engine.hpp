@@ -58,11 +58,13 @@ struct GlRenderJob {
     // Complete GLSL, #version line included.
     std::string vertex_source, fragment_source;
     // Uploaded as an RGBA32F texture (RGBA16F on ES when float32 linear filtering is unavailable
-    // and `filter` is Linear), addressed by `wrap` (clamp-to-edge by default), no mipmaps. An empty
-    // image binds a 1x1 transparent-black texture, for shaders that sample nothing.
+    // and `filter` is Linear), addressed by `wrap` (clamp-to-edge by default). An empty image
+    // binds a 1x1 transparent-black texture, for shaders that sample nothing.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
+    bool mipmap = false;  // a mip chain, as RenderJob::mipmap (glGenerateMipmap)
+    SamplerFilter mip_filter = SamplerFilter::Linear;
     // More textures, uploaded like `input` with their own filter and wrap, each bound by its
     // `name` (non-empty, unique, not `sampler`) to texture unit 1 + its index; `binding` and
     // `sampler_binding` are not used here. A name the shader does not use is skipped.

@@ -42,7 +42,8 @@ enum class WrapMode { ClampToEdge, Repeat, MirroredRepeat, ClampToBorder };
 
 // A texture a pass reads besides its main input (a previous pass's output, a lookup table, ...).
 // Uploaded exactly as the main input is (RGBA32F, or RGBA16F where the device cannot filter
-// RGBA32F with a Linear filter), with its own filter and wrap mode, no mipmaps.
+// RGBA32F with a Linear filter), with its own filter and wrap mode and, with `mipmap`, a mip chain
+// (below).
 struct TextureInput {
     std::string name;              // the sampler2D's name in the shader: the GL engine binds by name
     uint32_t binding = 0;          // the Vulkan descriptor binding of the combined image sampler (in
@@ -51,6 +52,8 @@ struct TextureInput {
     SharedImage image;             // empty = a 1x1 transparent-black texture
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
+    bool mipmap = false;
+    SamplerFilter mip_filter = SamplerFilter::Linear;
 };
 
 // The rectangle of the target the full-screen triangle covers, in pixels with the origin at the
@@ -75,11 +78,18 @@ struct Viewport {
 struct RenderJob {
     std::vector<uint32_t> vertex_spirv, fragment_spirv;
     // Uploaded as an RGBA32F sampled texture (RGBA16F where the device cannot sample/filter
-    // RGBA32F), addressed by `wrap` (clamp-to-edge by default), no mipmaps. An empty image binds a
-    // 1x1 transparent-black texture, for shaders that sample nothing.
+    // RGBA32F), addressed by `wrap` (clamp-to-edge by default). An empty image binds a 1x1
+    // transparent-black texture, for shaders that sample nothing.
     Image input;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
+    // A mip chain, as RetroArch's Vulkan driver builds one for `mipmap_input` and `NAME_mipmap`:
+    // floor(log2(max(w, h))) + 1 levels, level i max(1, size >> i), each a linear blit of the level
+    // above; sampled with the hardware's level of detail, the levels blended as `mip_filter` says
+    // (Linear: the two nearest levels weighed; Nearest: the nearest level). Without it the texture
+    // has one level. The same two fields on each TextureInput.
+    bool mipmap = false;
+    SamplerFilter mip_filter = SamplerFilter::Linear;
     // More textures, each a combined image sampler at its own binding in descriptor_set (no two
     // resources of the job may share a binding).
     std::vector<TextureInput> textures;
@@ -98,6 +108,14 @@ struct RenderJob {
     // other descriptors than these and `textures` (and no push constants or vertex attributes).
     uint32_t uniform_binding = 0, texture_binding = 1, descriptor_set = 0;
 };
+
+// The levels of a mipmapped width x height texture: floor(log2(max(width, height))) + 1 (the
+// count RetroArch gives its mip chains); 1 for an empty one.
+inline uint32_t mip_level_count(int width, int height) {
+    uint32_t levels = 1;
+    for (int size = width > height ? width : height; size > 1; size >>= 1) ++levels;
+    return levels;
+}
 
 // One job of RenderEngine::time_draws(): timed `timings` times.
 struct TimedJob {

@@ -38,6 +38,8 @@ struct PassTexture {
     SharedImage image;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
+    bool mipmap = false;  // sampled through a mip chain (RenderJob::mipmap)
+    SamplerFilter mip_filter = SamplerFilter::Linear;
 };
 
 // One pass of one frame, through one target's consumer.
@@ -49,6 +51,8 @@ struct TargetRenderRequest {
     Image input;  // the main input ("source")
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
+    bool mipmap = false;
+    SamplerFilter mip_filter = SamplerFilter::Linear;
     std::vector<PassTexture> textures;  // the pass's other textures
     int width = 0, height = 0;           // the target's size
     Viewport viewport;                   // where the pass draws (default: the whole target)

@@ -106,8 +106,14 @@ func _load_luts():
 				push_error("crtforge: cannot load LUT '%s' from %s" % [name, path])
 				continue
 		image.convert(Image.FORMAT_RGBAF)
+		var flags = 0
+		if luts[name].get("mipmap", false):
+			# Read through a mip chain: uploaded with its levels (a texture created without the flag
+			# keeps level 0 only); _flags keeps FLAG_MIPMAPS.
+			image.generate_mipmaps()
+			flags = Texture.FLAG_MIPMAPS
 		var texture = ImageTexture.new()
-		texture.create_from_image(image, 0)
+		texture.create_from_image(image, flags)
 		_lut_textures[name] = texture
 
 
@@ -120,6 +126,8 @@ func _flags(texture, spec):
 	var flags = 0
 	if spec.get("filter", "linear") == "linear":
 		flags |= Texture.FLAG_FILTER
+	if spec.get("mipmap", false) and texture is ImageTexture:  # a LUT; viewports have no mip chain
+		flags |= Texture.FLAG_MIPMAPS
 	var wrap = spec.get("wrap", "clamp_to_edge")
 	if wrap == "repeat":
 		flags |= Texture.FLAG_REPEAT

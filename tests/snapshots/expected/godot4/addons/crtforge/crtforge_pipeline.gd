@@ -77,18 +77,28 @@ func _original() -> Texture2D:
 
 
 # A LUT from its PNG: the imported texture when the editor has imported it (what an exported game
-# has), else the file read directly (a project run without the editor's import step).
+# has), else the file read directly (a project run without the editor's import step). A LUT read
+# through a mip chain ("mipmap") gets one here, whatever the import settings say.
 func _load_luts() -> void:
 	for name in luts.keys():
 		var path: String = luts[name]["path"]
+		var mipmap: bool = luts[name].get("mipmap", false)
+		var image: Image = null
 		if ResourceLoader.exists(path):
-			_lut_textures[name] = load(path)
-			continue
-		var image := Image.load_from_file(path)
+			var imported: Texture2D = load(path)
+			if not mipmap:
+				_lut_textures[name] = imported
+				continue
+			if imported != null:
+				image = imported.get_image()
+		if image == null:
+			image = Image.load_from_file(path)
 		if image == null:
 			push_error("crtforge: cannot load LUT '%s' from %s" % [name, path])
 			continue
 		image.convert(Image.FORMAT_RGBA8)
+		if mipmap:
+			image.generate_mipmaps()
 		_lut_textures[name] = ImageTexture.create_from_image(image)
 
 
