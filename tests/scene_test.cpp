@@ -143,6 +143,22 @@ TEST_CASE("the pass graph: cycles, unknown sources and unbound textures are file
         CHECK(p.error().field == "pass.a.textures.nosuch");
         CHECK(p.error().line == 6);
     }
+    SECTION("a mip chain's levels blend as the filter unless mip_filter says otherwise, which must be linear or nearest") {
+        const std::string pass = "[[pass]]\nalias = \"a\"\nscale_type = \"source\"\n[pass.stages.vignette]\n"
+                                 "[[pass]]\nalias = \"b\"\nfilter = \"linear\"\nmipmap = true\n";
+        auto p = resolve_texts({{"p.toml", head + pass + "[pass.stages.scanlines]\n"}}, "p");
+        INFO((p.ok() ? std::string() : p.error().str()));
+        REQUIRE(p.ok());
+        CHECK(p.value().passes[1].inputs.front().mipmap);
+        CHECK(p.value().passes[1].inputs.front().mip_filter == Filter::Linear);
+        auto nearest = resolve_texts({{"p.toml", head + pass + "mip_filter = \"nearest\"\n[pass.stages.scanlines]\n"}}, "p");
+        REQUIRE(nearest.ok());
+        CHECK(nearest.value().passes[1].inputs.front().mip_filter == Filter::Nearest);
+        auto bad = resolve_texts({{"p.toml", head + pass + "mip_filter = \"cubic\"\n[pass.stages.scanlines]\n"}}, "p");
+        REQUIRE_FALSE(bad.ok());
+        CHECK(bad.error().line == 11);
+        CHECK_THAT(bad.error().field, Catch::Contains("mip_filter"));
+    }
 }
 
 TEST_CASE("scene geometry: screen rectangles per fit and pass sizes per scale type", "[scene]") {

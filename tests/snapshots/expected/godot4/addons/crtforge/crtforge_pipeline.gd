@@ -96,6 +96,8 @@ func _load_luts() -> void:
 		if image == null:
 			push_error("crtforge: cannot load LUT '%s' from %s" % [name, path])
 			continue
+		if image.is_compressed():
+			image.decompress()  # a VRAM-compressed import: convert() needs plain texels
 		image.convert(Image.FORMAT_RGBA8)
 		if mipmap:
 			image.generate_mipmaps()
