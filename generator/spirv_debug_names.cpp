@@ -372,16 +372,22 @@ void name_unnamed_values(SpirvBinary& words) {
             spirv_literal_string(words, in.offset + 2, in.offset + in.count) == "GLSL.std.450")
             glsl_set = words[in.offset + 1];
     }
-    // Values inside functions (not a function's own id), and the module-scope undefined values
-    // SPIRV-Cross declares as globals.
+    // Values inside functions (not a function's own id), and the undefined values SPIRV-Cross
+    // declares as globals: those get a number each from the second on (two globals of one name,
+    // a vec3 and a float `undefined`, do not compile), where local names are made unique per
+    // function by SPIRV-Cross.
     std::map<uint32_t, std::string> names;
     bool in_function = false;
+    int undefined = 0;
     for (const Instruction& in : list) {
         if (in.opcode == spv::OpFunction) in_function = true;
         if (in.opcode == spv::OpFunctionEnd) in_function = false;
         if ((!in_function && in.opcode != spv::OpUndef) || in.opcode == spv::OpFunction) continue;
         const uint32_t id = result_id(words, in, /*values_only*/ true);
-        if (id && !named.count(id)) names.emplace(id, kind_name(words, in, glsl_set));
+        if (!id || named.count(id)) continue;
+        std::string name = kind_name(words, in, glsl_set);
+        if (in.opcode == spv::OpUndef && ++undefined > 1) name += std::to_string(undefined);
+        names.emplace(id, std::move(name));
     }
     rewrite_names(words, list, names, [](const Instruction&) { return false; });
 }

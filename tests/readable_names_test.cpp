@@ -2,6 +2,7 @@
 // through spirv-opt as debug info, become OpNames, and change no instruction of the module.
 #include <algorithm>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include <catch2/catch.hpp>
@@ -10,6 +11,7 @@
 
 #include "crtforge/assembler.hpp"
 #include "crtforge/validate/target_render.hpp"
+#include "generator/spirv_debug_names.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -202,4 +204,35 @@ color = "user_words"
     // The local named like the scanlines' param does not hide the uniform Godot declares for it.
     CHECK_THAT(godot, Catch::Contains("uniform float scanlineIntensity"));
     CHECK_THAT(godot, Catch::Contains("float scanlineIntensity_ = "));
+}
+
+// SPIRV-Cross declares every undefined value as a global of its own: two named alike (a vec3 and
+// a float `undefined`) did not compile on GLSL or HLSL (crt-guest-advanced's PrePass).
+TEST_CASE("undefined values get a name each, none twice", "[targets][readable]") {
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    SpirvBinary module;
+    REQUIRE(tools.Assemble(R"(
+               OpCapability Shader
+               OpMemoryModel Logical GLSL450
+               OpEntryPoint Fragment %main "main"
+               OpExecutionMode %main OriginUpperLeft
+       %void = OpTypeVoid
+         %fn = OpTypeFunction %void
+      %float = OpTypeFloat 32
+    %v3float = OpTypeVector %float 3
+         %u1 = OpUndef %v3float
+         %u2 = OpUndef %float
+         %u3 = OpUndef %float
+       %main = OpFunction %void None %fn
+      %entry = OpLabel
+               OpReturn
+               OpFunctionEnd
+)", &module));
+    name_unnamed_values(module);
+    std::string text;
+    REQUIRE(tools.Disassemble(module, &text, SPV_BINARY_TO_TEXT_OPTION_NO_HEADER));
+    std::set<std::string> names;
+    static const std::regex name(R"re(OpName %\w+ "(\w+)")re");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), name); it != std::sregex_iterator(); ++it) names.insert((*it)[1].str());
+    CHECK(names == std::set<std::string>{"undefined", "undefined2", "undefined3"});
 }
