@@ -275,6 +275,13 @@ function readTexture(spec, keys, defaults, maxDim, at = '') {
   return texture;
 }
 
+// The shipped WebGPU driver (its mip chains), loaded once, on the first texture that needs it.
+let driver = null;
+function shippedDriver() {
+  driver ??= import('../../examples/webgpu/crt-webgpu.mjs');
+  return driver;
+}
+
 // The one upload path of the input and of every extra texture. rgba32float when it can be
 // sampled with the filter (nearest always: as unfilterable-float with a non-filtering sampler);
 // otherwise rgba16float converted here. With `mipmap`, its mip chain is made by the shipped
@@ -284,7 +291,7 @@ async function addSampledTexture(t, visibility, layoutEntries, groupEntries, des
   const linear = t.filter === 'linear';
   const float32 = (!linear && !t.mipmap) || device.features.has('float32-filterable');
   const format = float32 ? 'rgba32float' : 'rgba16float';
-  const { mipLevelCount, encodeMipmaps } = await import('../../examples/webgpu/crt-webgpu.mjs');
+  const { mipLevelCount, encodeMipmaps } = await shippedDriver();
   const levels = t.mipmap ? mipLevelCount(t.width, t.height) : 1;
   const texture = device.createTexture({
     size: [t.width, t.height],

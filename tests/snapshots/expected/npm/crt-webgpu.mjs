@@ -433,7 +433,7 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
   // What some reader samples through a mip chain: those pass outputs (and their feedback copies)
   // get one, filled after the pass draws; the original is copied into one each frame; a LUT must
   // come with one (createLutTexture's mipmap option).
-  const mipmapped = passes.flatMap((p) => p.textures.filter((t) => t.mipmap).map((t) => parseFrom(t.from)));
+  const mipmapped = mipmappedSources(preset);
   const mipOutputs = new Set(mipmapped.filter((f) => f.kind === 'pass' || f.kind === 'feedback').map((f) => f.name));
   const mipOriginal = mipmapped.some((f) => f.kind === 'original');
   if (mipmapped.some((f) => f.kind === 'original' && f.back > 0))
@@ -673,9 +673,14 @@ export async function decodePng(bytes, name = 'PNG') {
   return { width, height, data: out };
 }
 
-// The names of the LUTs a preset (a manifest entry) reads through a mip chain.
+// What a preset (a manifest entry) reads through a mip chain: each reader's source, parsed.
+function mipmappedSources(preset) {
+  return preset.passes.flatMap((p) => p.textures.filter((t) => t.mipmap).map((t) => parseFrom(t.from)));
+}
+
+// The names of the LUTs a preset reads through a mip chain.
 export function mipmappedLuts(preset) {
-  return new Set(preset.passes.flatMap((p) => p.textures.filter((t) => t.mipmap).map((t) => parseFrom(t.from)).filter((f) => f.kind === 'lut').map((f) => f.name)));
+  return new Set(mipmappedSources(preset).filter((f) => f.kind === 'lut').map((f) => f.name));
 }
 
 // A LUT's PNG bytes as an rgba8unorm texture (texel bytes exactly as in the file); with
