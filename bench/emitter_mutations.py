@@ -91,6 +91,23 @@ MUTATIONS = [
      "const frameCount = frame;", "wgsl", "graph-history", "a pass's frame_count_mod ignored"),
     ("examples/webgpu/crt-webgpu.mjs", "return clamp(lround(base * s.factor), 1, 16384);",
      "return clamp(Math.floor(base * s.factor), 1, 16384);", "wgsl", "super-win", "a pass's size floored, not rounded"),
+    # The npm package's framework adapters (issue 29): validate's `web = [...]` goldens run each
+    # through examples/webgpu/check.mjs on the framework's own device.
+    ("examples/webgpu/package/framework-pass.mjs", "height: target.height, frame, time, fit });",
+     "height: target.height, frame, time });", "wgsl", "classic", "an adapter drops the display fit"),
+    ("examples/webgpu/package/framework-pass.mjs", "height: target.height, frame, time, fit });",
+     "height: target.height, frame, fit });", "wgsl", "crt-pulse", "an adapter drops the app's time"),
+    ("examples/webgpu/package/framework-pass.mjs", "height: target.height, frame, time, fit });",
+     "height: target.height, frame: frame + 1, time, fit });", "wgsl", "super-win,graph-history",
+     "an adapter's frame number one ahead"),
+    ("examples/webgpu/package/framework-pass.mjs", "for (const [param, value] of values) scene.setParam(param, value);",
+     "void values;", "wgsl", "classic", "params set before a second target format are not replayed on its scene"),
+    ("examples/webgpu/package/babylon.mjs", "beforeSubmit: () => engine.flushFramebuffer() });", "beforeSubmit: () => {} });",
+     "wgsl", "super-win,graph-history", "Babylon's recorded drawing not flushed before the pass reads it"),
+    ("examples/webgpu/package/pixi.mjs", "const source = texture?.source ?? texture;", "const source = texture;",
+     "wgsl", "graph-history", "Pixi's RenderTexture taken for its TextureSource"),
+    ("examples/webgpu/package/three.mjs", "if (!texture) {\n      const previous", "if (texture) {\n      const previous",
+     "wgsl", "graph-history", "three's texture of a RenderTarget made only when it already exists"),
     # Godot scene wiring and host uniforms (issue 29): the exported .tscn and its pipeline scripts.
     ("targets/godot/godot_scene.cpp", "for (int n = history; n >= 1; --n) viewport(",
      "for (int n = 1; n <= history; ++n) viewport(", "godot4", "graph-history",

@@ -3,7 +3,7 @@
 # installed copy can be moved: nothing in it names an absolute path.
 #   P/bin/crtforge                      (component Runtime)
 #   P/lib/crtforge/libcrtforge_imageio.so
-#   P/share/crtforge/{templates,golden,tools}
+#   P/share/crtforge/{templates,golden,tools,examples/webgpu}
 #   P/include/crtforge/...              (component Development)
 #   P/<libdir>/libcrtforge*.a, P/<libdir>/cmake/crtforge/
 #   P/share/crtforge/tools/wgsl-runner/node_modules  (component Dawn: Dawn for the WGSL consumer)
@@ -25,6 +25,9 @@ install(DIRECTORY tools/godot4-runner DESTINATION share/crtforge/tools COMPONENT
 install(DIRECTORY tools/godot4-runner/node_modules DESTINATION share/crtforge/tools/godot4-runner
         COMPONENT Godot4 OPTIONAL)
 install(DIRECTORY tools/wgsl-runner DESTINATION share/crtforge/tools COMPONENT Runtime
+        PATTERN node_modules EXCLUDE)
+# check.mjs and the driver it loads: validate runs the package's framework adapters through it.
+install(DIRECTORY examples/webgpu DESTINATION share/crtforge/examples COMPONENT Runtime
         PATTERN node_modules EXCLUDE)
 install(DIRECTORY tools/wgsl-runner/node_modules DESTINATION share/crtforge/tools/wgsl-runner
         COMPONENT Dawn OPTIONAL)

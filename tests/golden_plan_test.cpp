@@ -53,9 +53,17 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     }
     for (const char* c : {"bezel", "draw1", "draw3", "uniforms-all", "uniforms-none", "medium", "mediump", "t1", "t1000", "t3599",
                           "t3601", "t100000", "t1e7", "mediump-t100000", "row8k", "col8k", "px1", "line", "odd", "portrait", "tiny", "colour",
-                          "godot-defaults", "godot-material", "godot-screen"})
+                          "godot-defaults", "godot-material", "godot-screen", "web-three", "web-pixi", "web-babylon",
+                          "web-time-three", "web-bezel-babylon"})
         CHECK(configs.count(c));
-    CHECK(hosts == std::set<std::string>{"defaults", "material", "screen"});
+    // A `web = [...]` rule is a rule per framework adapter, each judged on the WGSL target alone.
+    for (const GoldenEntry& e : plan)
+        if (e.config.rfind("web-", 0) == 0) {
+            CHECK(e.targets == std::vector<std::string>{"wgsl"});
+            CHECK(e.config.size() > e.host.size());
+            CHECK(e.config.compare(e.config.size() - e.host.size(), e.host.size(), e.host) == 0);
+        }
+    CHECK(hosts == std::set<std::string>{"defaults", "material", "screen", "three", "pixi", "babylon"});
     CHECK(full > 0);
     CHECK(full < plan.size());
     CHECK(portrait > 0);
@@ -168,6 +176,12 @@ TEST_CASE("a bad plan names its line and field", "[golden][matrix]") {
         {"tag = \"u\"\nuniforms = \"some\"\n", "golden.uniforms", "default"},
         {"tag = \"t\"\ntime = -1.0\n", "golden.time", "seconds"},
         {"tag = \"g\"\ngodot = \"screen\"\n", "golden.godot", "godot3"},
+        {"tag = \"w\"\nweb = \"three\"\n", "golden.web", "wgsl"},
+        {"tag = \"w\"\ntargets = [\"wgsl\"]\nweb = \"unity\"\n", "golden.web", "three"},
+        {"tag = \"w\"\ntargets = [\"wgsl\"]\nweb = [\"pixi\", \"pixi\"]\n", "golden.web", "twice"},
+        {"tag = \"w\"\ntargets = [\"wgsl\"]\nweb = []\n", "golden.web", "three"},
+        {"tag = \"w\"\ntargets = [\"wgsl\"]\nweb = \"three\"\ngodot = \"screen\"\n", "golden.web", "one host"},
+        {"web = \"three\"\ntargets = [\"wgsl\"]\n", "golden.web", "tag"},
         {"matrix = \"huge\"\n", "golden.matrix", "full"},
         {"tolerance = { rmse = 0.1 }\n", "golden.tolerance.why", "why"},
         {"expect_fail = { targets = [\"nope\"], why = \"x\", bound = { rmse = 0.01 } }\n", "golden.expect_fail.targets", "nope"},

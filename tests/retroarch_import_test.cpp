@@ -185,6 +185,11 @@ TEST_CASE("an imported RetroArch preset maps its passes, textures, semantics and
     CHECK(source_of("tint") == "lut:tint");
     // Readers of pass 0's output sample it as pass 1 declares (filter_linear1 = true).
     CHECK(second.find_input("first")->filter == Filter::Linear);
+    CHECK(second.find_input("first")->wrap == Wrap::ClampToBorder);
+    // Readers of its feedback sample the copy as pass 0 itself declares (RetroArch's
+    // update_feedback_info): filter_linear0 = false, wrap_mode0 = clamp_to_edge.
+    CHECK(second.find_input("firstFeedback")->filter == Filter::Nearest);
+    CHECK(second.find_input("firstFeedback")->wrap == Wrap::ClampToEdge);
     CHECK(second.find_input("tint")->filter == Filter::Nearest);
     // One parameter namespace: SHARED is one value, the preset's 0.25, in both passes.
     CHECK(std::get<double>(preset->passes[0].stages.front().values.at("SHARED")) == 0.25);

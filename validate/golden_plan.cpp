@@ -15,6 +15,7 @@
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/variant.hpp"
 #include "generator/toml_reader.hpp"
+#include "runtime/dawn/framework_check.hpp"
 
 namespace crtforge {
 
@@ -48,7 +49,8 @@ struct PlanRule {
     std::vector<std::string> expect_fail_targets;
     std::string expect_fail_why;
     Tolerance expect_fail_bound;
-    std::string host;  // godot = "defaults" | "material" | "screen"
+    std::string host;  // godot = "defaults" | "material" | "screen", or one framework of `web`
+    std::vector<std::string> web;  // web = "three" | [...]: a rule per framework (read(): tag-framework)
     int line = 0;
 };
 
@@ -120,7 +122,7 @@ public:
             for (const auto& [key, value] : t) {
                 static const char* known[] = {"why", "presets", "requires", "inputs", "size", "input_size", "frame", "frames", "fit",
                                               "store", "tag", "params", "draws", "seed", "uniforms", "precision", "time",
-                                              "matrix", "targets", "tolerance", "expect_fail", "except", "godot"};
+                                              "matrix", "targets", "tolerance", "expect_fail", "except", "godot", "web"};
                 if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
                     return error(&value, "golden." + std::string(key.str()), "unknown key");
             }
@@ -203,7 +205,14 @@ public:
             }
             rule.line = static_cast<int>(node.source().begin.line);
             if (auto s = read_configuration(t, library, rule); !s.ok()) return s.error();
-            plan.rules.push_back(std::move(rule));
+            // `web` with several frameworks: a rule each, tagged "<tag>-<framework>".
+            for (size_t k = 0; k < rule.web.size(); ++k) {
+                PlanRule one = rule;
+                one.host = rule.web[k];
+                if (rule.web.size() > 1) one.tag += "-" + rule.web[k];
+                plan.rules.push_back(std::move(one));
+            }
+            if (rule.web.empty()) plan.rules.push_back(std::move(rule));
         }
         return plan;
     }
@@ -211,7 +220,7 @@ public:
     // The configuration keys of a rule: tag, params, draws, seed, uniforms, precision, time,
     // matrix, targets, tolerance.
     Status read_configuration(const toml::table& t, const TemplateLibrary& library, PlanRule& rule) const {
-        static const char* config_keys[] = {"params", "draws", "uniforms", "precision", "time", "godot"};
+        static const char* config_keys[] = {"params", "draws", "uniforms", "precision", "time", "godot", "web"};
         const toml::node* tag = t.get("tag");
         if (tag) {
             const std::string text = tag->value<std::string>().value_or("");
@@ -274,6 +283,25 @@ public:
             for (const auto& name : list.value())
                 if (!find_target(name)) return error(t.get("targets"), "golden.targets", "unknown target '" + name + "'");
             rule.targets = list.value();
+        }
+        if (const toml::node* w = t.get("web")) {
+            const char* what = "must be \"three\", \"pixi\", \"babylon\" or a list of them (the npm package's framework adapters)";
+            std::vector<std::string> list;
+            if (w->is_string()) list.push_back(*w->value<std::string>());
+            else if (w->is_array()) {
+                auto read = names(t, "web", "golden.web");
+                if (!read.ok()) return error(w, "golden.web", what);
+                list = read.value();
+            }
+            if (list.empty()) return error(w, "golden.web", what);
+            for (const std::string& name : list) {
+                if (!detail::is_web_framework(name)) return error(w, "golden.web", what);
+                if (std::count(list.begin(), list.end(), name) > 1) return error(w, "golden.web", "names '" + name + "' twice");
+            }
+            if (t.get("godot")) return error(w, "golden.web", "a rule has one host: godot or web, not both");
+            if (rule.targets != std::vector<std::string>{"wgsl"})
+                return error(w, "golden.web", "a framework adapter runs the WGSL target: give targets = [\"wgsl\"]");
+            rule.web = list;
         }
         if (const toml::node* gd = t.get("godot")) {
             const std::string mode = gd->value<std::string>().value_or("");
@@ -429,8 +457,8 @@ Result<std::vector<GoldenEntry>> configurations(const TemplateLibrary& library, 
     base.expect_fail_why = rule.expect_fail_why;
     base.expect_fail_bound = rule.expect_fail_bound;
     base.expect_fail_bound.why = rule.expect_fail_why;
-    if (!rule.host.empty()) {
-        // The shaders used alone: only a single pass that reads nothing but its picture has them.
+    if (!rule.host.empty() && rule.web.empty()) {
+        // Godot's shaders used alone: only a single pass that reads nothing but its picture has them.
         auto variant = make_variant(library, preset, base.variant_options());
         if (!preset.single_pass() || !variant.ok() || !variant.value().textures.empty()) return std::vector<GoldenEntry>{};
     }

@@ -14,6 +14,8 @@
 // --three (with --package): through the package's three.js adapter instead (crtforge-presets/three
 // on a three.js WebGPURenderer on the same Dawn device): the input, quantised to 8 bits, is drawn
 // by three into a RenderTarget, the pass renders it into another (half float), read back.
+// Each adapter's pass is made for its default format and renders into a half-float target, as an
+// app may: the adapter makes a second scene for it, which must get the --set values too.
 // --pixi (with --package): through the package's PixiJS adapter (crtforge-presets/pixi) on a PixiJS
 // v8 WebGPURenderer: Pixi draws the 8-bit picture as a Sprite into a RenderTexture, the pass
 // renders it into a half-float one. Pixi needs a core WebGPU adapter (its shaders interpolate
@@ -293,7 +295,7 @@ async function renderThree() {
   const scene = new THREE.Scene();
   scene.add(new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ map: texture })));
   const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
-  const crt = await createThreeCrtPass(renderer, args.preset, { format: 'rgba16float' });
+  const crt = await createThreeCrtPass(renderer, args.preset);
   applySets(crt);
   return drawFrames(async (i, frame) => {
     const picture = pictures[Math.min(i, pictures.length - 1)];
@@ -357,7 +359,7 @@ async function renderPixi() {
   const sprite = new PIXI.Sprite(new PIXI.Texture({ source: picture }));
   const input = PIXI.RenderTexture.create({ width: w, height: h, scaleMode: 'nearest' });
   const output = PIXI.RenderTexture.create({ width: args.width, height: args.height, format: 'rgba16float' });
-  const crt = await createPixiCrtPass(pixiRenderer, args.preset, { format: 'rgba16float' });
+  const crt = await createPixiCrtPass(pixiRenderer, args.preset);
   applySets(crt);
   return drawFrames(async (i, frame) => {
     const pixels = pictures[Math.min(i, pictures.length - 1)];
@@ -393,24 +395,35 @@ async function startBabylon() {
   return engine;
 }
 
-// The package's Babylon.js adapter: Babylon uploads the picture (8-bit, nearest) as a RawTexture,
-// the crtforge pass draws it into a half-float RenderTargetTexture, which is read back.
+// The package's Babylon.js adapter: Babylon uploads the picture (8-bit, nearest) as a RawTexture
+// and draws it into a RenderTargetTexture (the game's frame, as an app renders its scene into one:
+// recorded in Babylon's own encoder, which the adapter must flush first), the crtforge pass draws
+// that into a half-float RenderTargetTexture, which is read back.
 async function renderBabylon() {
   const BABYLON = babylonEngine.babylon;
   const { createBabylonCrtPass } = await importFromApp('crtforge-presets/babylon');
   const w = args.inputWidth, h = args.inputHeight;
   const scene = new BABYLON.Scene(babylonEngine);
   const bytes = new Uint8Array(w * h * 4);
-  const input = BABYLON.RawTexture.CreateRGBATexture(bytes, w, h, scene, false, false, BABYLON.Texture.NEAREST_SAMPLINGMODE);
+  const picture = BABYLON.RawTexture.CreateRGBATexture(bytes, w, h, scene, false, false, BABYLON.Texture.NEAREST_SAMPLINGMODE);
+  const input = new BABYLON.RenderTargetTexture('game', { width: w, height: h }, scene,
+    { generateMipMaps: false, generateDepthBuffer: false, samplingMode: BABYLON.Texture.NEAREST_SAMPLINGMODE });
   const output = new BABYLON.RenderTargetTexture('crt', { width: args.width, height: args.height }, scene,
     { generateMipMaps: false, generateDepthBuffer: false, type: BABYLON.Constants.TEXTURETYPE_HALF_FLOAT });
-  const crt = await createBabylonCrtPass(babylonEngine, args.preset, { format: 'rgba16float' });
+  const draw = new BABYLON.CopyTextureToTexture(babylonEngine, false, true);  // texel for texel
+  for (const deadline = Date.now() + 20000; !draw.isReady(); await new Promise((r) => setTimeout(r, 10)))
+    if (Date.now() > deadline) throw new Error("Babylon's copy shader did not get ready within 20 s");
+  const crt = await createBabylonCrtPass(babylonEngine, args.preset);
   applySets(crt);
   return drawFrames(async (i, frame) => {
     const pixels = pictures[Math.min(i, pictures.length - 1)];
     for (let k = 0; k < bytes.length; ++k) bytes[k] = Math.round(Math.min(1, Math.max(0, pixels[k])) * 255);
-    input.update(bytes);
+    picture.update(bytes);
+    // Inside Babylon's frame, as from a render loop: what Babylon drew is not yet submitted.
+    babylonEngine.beginFrame();
+    if (!draw.copy(picture, input)) throw new Error('Babylon did not draw the picture into its RenderTargetTexture');
     await crt.render(input, output, { frame, time: args.time, fit: args.fit });
+    babylonEngine.endFrame();
     return crt.textureOf(output);
   });
 }

@@ -319,14 +319,21 @@ private:
         const bool next_mipmapped = k + 1 < preset_.passes.size() && preset_.passes[k + 1].mipmap_input.value_or(false);
         return preset_.passes[k].filter_linear.value_or(true) && next_mipmapped;
     }
-    // How readers sample pass k's output: as the pass after it declares (filter_linear, wrap_mode,
-    // mipmap_input of pass k + 1 describe the texture pass k produces); pass 0's filter and wrap
-    // govern the original, which has no mip chain in RetroArch whatever mipmap_input0 says.
-    // `blend_of`: the pass whose settings blend the levels (above).
-    std::vector<std::string> sampling_of_output(size_t producer_plus_one, size_t blend_of) const {
-        if (producer_plus_one >= preset_.passes.size()) return sampling(std::nullopt, std::nullopt, std::nullopt);
-        const SlangpPass& p = preset_.passes[producer_plus_one];
-        return sampling(p.filter_linear, p.wrap_mode, p.mipmap_input, blends_levels(blend_of));
+    // How this frame's readers sample pass k's output: as the pass after it declares (filter_linear,
+    // wrap_mode, mipmap_input of pass k + 1 describe the texture pass k produces); pass 0's filter
+    // and wrap govern the original, which has no mip chain in RetroArch whatever mipmap_input0 says.
+    std::vector<std::string> sampling_of_output(size_t producer) const {
+        if (producer + 1 >= preset_.passes.size()) return sampling(std::nullopt, std::nullopt, std::nullopt);
+        const SlangpPass& p = preset_.passes[producer + 1];
+        return sampling(p.filter_linear, p.wrap_mode, p.mipmap_input, blends_levels(producer + 1));
+    }
+    // How readers of pass k's feedback sample it: RetroArch's update_feedback_info gives the copy
+    // pass k's own filter, wrap and level blending; its chain is the output's (mipmap_input of k + 1).
+    std::vector<std::string> sampling_of_feedback(size_t producer) const {
+        const SlangpPass& p = preset_.passes[producer];
+        const std::optional<bool> chain =
+            producer + 1 < preset_.passes.size() ? preset_.passes[producer + 1].mipmap_input : std::nullopt;
+        return sampling(p.filter_linear, p.wrap_mode, chain, blends_levels(producer));
     }
 
     // A pass's scale as RetroArch reads it: scale_typeN sets both axes and hides _x/_y, scaleN hides
@@ -404,7 +411,7 @@ private:
                     } else {
                         const size_t producer = pass_index_.at(from.substr(0, from.find('@')));
                         const bool feedback = from.find('@') != std::string::npos;
-                        how = sampling_of_output(producer + 1, feedback ? producer : producer + 1);
+                        how = feedback ? sampling_of_feedback(producer) : sampling_of_output(producer);
                     }
                     t += name + " = { from = " + toml_string(from) + (how.empty() ? "" : ", " + join_list(how)) + " }\n";
                 }

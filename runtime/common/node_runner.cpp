@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using json = nlohmann::json;
 
-constexpr int kStopSeconds = 2;
+constexpr int kStopSeconds = 4;  // the Godot 4 driver closes Chromium within 2.5 s
 constexpr std::size_t kMaxReplyBytes = 64u << 20;
 
 void close_fd(int& fd) {

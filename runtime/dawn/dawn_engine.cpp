@@ -37,6 +37,7 @@
 #include "runtime/common/job_checks.hpp"
 #include "runtime/common/node_runner.hpp"
 #include "runtime/common/process_util.hpp"
+#include "runtime/dawn/framework_check.hpp"
 
 extern char** environ;
 
@@ -408,6 +409,7 @@ Result<std::vector<Image>> DawnEngine::render_scene(const DawnSceneJob& job) {
         std::lock_guard lock(impl_->mutex);
         auto folder = impl_->package_folder(job.package_files);
         if (!folder.ok()) return folder.error();
+        if (!job.framework.empty()) return detail::render_through_framework(job, folder.value(), impl_->scratch());
         const fs::path dir = impl_->scratch(), inputs = dir / "inputs.f32", output = dir / "output.f32";
         {
             std::ofstream out(inputs, std::ios::binary | std::ios::trunc);

@@ -58,6 +58,7 @@ let nextId = 1;
 const waiting = new Map();
 let pipeChunks = [];
 let browserGone = null;
+let browserExited = null;  // settles when the browser process has exited
 
 function send(method, params = {}, sessionId = session) {
   if (browserGone) return Promise.reject(new Error(browserGone));
@@ -162,7 +163,8 @@ async function start() {
     '--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
     `--user-data-dir=${path.join(scratch, 'profile')}`, '--remote-debugging-pipe', '--allow-file-access-from-files',
     '--no-first-run', '--no-default-browser-check', '--disable-extensions', '--mute-audio', 'about:blank',
-  ], { stdio: ['ignore', 'inherit', 'inherit', 'pipe', 'pipe'] });
+  ], { stdio: ['ignore', 'inherit', 'inherit', 'pipe', 'pipe'], detached: true });
+  browserExited = new Promise((resolve) => browser.on('exit', resolve));
   browser.on('exit', (code, signal) => browserEnded(`Chromium exited (${signal ?? 'code ' + code})`));
   browser.on('error', (e) => browserEnded(`Chromium could not start: ${e.message}`));
   browser.stdio[4].on('data', onPipeData);
@@ -181,10 +183,30 @@ async function start() {
   }
 }
 
-function stopBrowser() {
-  if (browser && !browserGone) browser.kill('SIGKILL');
+// Chromium runs in a process group of its own (detached) so that its renderer, GPU and utility
+// processes can be ended with it: killing the browser process alone left them writing into the
+// profile after the scratch folder was removed, which brought the folder back (a /tmp leak per run).
+// It is asked to close first (it then removes its own temporary files) and killed as a group after
+// 1.5 s; the engine gives the driver 4 s to end.
+async function stopBrowser() {
+  if (browser && !browserGone) {
+    send('Browser.close', {}, null).catch(() => {});
+    await Promise.race([browserExited, sleep(1500)]);
+  }
+  killBrowserGroup();  // whatever is left of the group, the browser process itself included
+  if (browserExited) await Promise.race([browserExited, sleep(1000)]);
   rmSync(scratch, { recursive: true, force: true });
 }
+
+function killBrowserGroup() {
+  if (!browser?.pid) return;
+  try {
+    process.kill(-browser.pid, 'SIGKILL');
+  } catch {
+    // the group has already ended
+  }
+}
+process.on('exit', killBrowserGroup);  // never leave the browser behind, whatever ends the driver
 
 // ---- jobs ----------------------------------------------------------------------------------
 
@@ -303,7 +325,7 @@ try {
   reply({ ok: true, ready: true, info: { ...info, browser: chromeVersion } });
 } catch (e) {
   reply({ ok: false, kind: 'start', error: oneLine(e.message) });
-  stopBrowser();
+  await stopBrowser();
   process.exit(3);
 }
 
@@ -327,4 +349,4 @@ for await (const line of lines) {
     }
   }
 }
-stopBrowser();
+await stopBrowser();

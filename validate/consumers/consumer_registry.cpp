@@ -154,7 +154,8 @@ Result<uint32_t> spirv_texture_binding(const TargetRenderRequest& r, const std::
 
 Result<std::vector<Image>> Consumer::render_scene(const SceneRenderRequest& request, ConsumerEngines& engines) const {
     if (!request.host.empty())
-        return make_error("host mode '" + request.host + "' is Godot's: target " + target_info(request.target).name + " has none");
+        return make_error("host mode '" + request.host + "' is Godot's or a web framework's: target " + target_info(request.target).name +
+                          " has none");
     return run_scene(request, [&](TargetRenderRequest pass) { return render(std::move(pass), engines); });
 }
 

@@ -2,7 +2,9 @@
 // with zero errors and zero warnings. A preset renders through the npm package the export ships
 // (index.mjs, crt-webgpu.mjs, its manifest, WGSL and LUT files) exactly as a page runs it, so a bug
 // in the shipped driver or its manifest fails validation; a lone pass (`crtforge render` of one
-// pass, the stage checks) renders from the bind-group layout crtforge describes.
+// pass, the stage checks) renders from the bind-group layout crtforge describes. The plan's
+// `web = "three" | "pixi" | "babylon"` entries run the preset through that framework adapter of
+// the package instead (examples/webgpu/check.mjs, on the framework's own device).
 #include <set>
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 
 #include "crtforge/assembler.hpp"
 #include "crtforge/exporter.hpp"
+#include "runtime/dawn/framework_check.hpp"
 #include "validate/consumers/consumer.hpp"
 
 namespace crtforge {
@@ -97,7 +100,9 @@ public:
     }
 
     Result<std::vector<Image>> render_scene(const SceneRenderRequest& r, ConsumerEngines& engines) const override {
-        if (!r.host.empty()) return make_error("the WGSL target has no host mode '" + r.host + "'");
+        // A host mode names a framework adapter of the package: the preset runs through it.
+        if (!r.host.empty() && !detail::is_web_framework(r.host))
+            return make_error("the WGSL target has no host mode '" + r.host + "' (three, pixi or babylon)");
         if (!r.preset || !r.passes || !r.outputs || r.outputs->size() != r.passes->size() || !r.source)
             return make_error("a Dawn scene render needs the preset, its passes and their WGSL files");
         DawnSceneJob job;
@@ -121,6 +126,7 @@ public:
         job.height = r.height;
         job.format = r.format;
         job.params = r.overrides;
+        job.framework = r.host;
         auto engine = engines.dawn();
         if (!engine.ok()) return engine.error();
         auto images = engine.value()->render_scene(job);

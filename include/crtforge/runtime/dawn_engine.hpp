@@ -95,6 +95,10 @@ struct DawnSceneJob {
     int width = 0, height = 0;   // the display
     OutputFormat format = OutputFormat::Rgba16Float;
     std::map<std::string, Value> params;  // scene.setParam() before the first frame
+    // "": the package's scene on the runner's device. "three", "pixi" or "babylon": through that
+    // adapter of the package (crtforge-presets/three, ...) on the framework's own device, by
+    // examples/webgpu/check.mjs (a process per sequence; the target is then rgba16float).
+    std::string framework;
 };
 
 class DawnEngine {

@@ -84,8 +84,8 @@ struct GoldenEntry {
     std::vector<std::string> targets;        // only these targets judge it (empty: every target)
     // A known, tracked defect of the product on some targets: there a failing check is reported as
     // an expected failure (with this reason) and a passing one fails ("remove expect_fail").
-    // How the host uses the target's files (SceneRenderRequest::host): "" its ready scene, or one of
-    // Godot's "defaults", "material", "screen".
+    // How the host uses the target's files (SceneRenderRequest::host): "" its ready scene, one of
+    // Godot's "defaults", "material", "screen", or a web framework adapter: "three", "pixi", "babylon".
     std::string host;
     std::vector<std::string> expect_fail_targets;
     std::string expect_fail_why;

@@ -89,8 +89,9 @@ struct SceneRenderRequest {
     std::function<void(size_t done, size_t total)> on_frame;
     // How the host uses the target's files, where a target ships more than one way (Godot): empty
     // for its ready scene; "defaults" (the node-mode shader with no param set), "material" (the
-    // exported .tres) or "screen" (the screen-mode shader over the drawn picture). A consumer that
-    // has no such mode refuses the request.
+    // exported .tres) or "screen" (the screen-mode shader over the drawn picture); for WGSL, a
+    // framework adapter of the npm package: "three", "pixi" or "babylon". A consumer that has no
+    // such mode refuses the request.
     std::string host;
 };
 

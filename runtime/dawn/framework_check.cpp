@@ -1,0 +1,135 @@
+// Runs a scene through a web framework adapter with examples/webgpu/check.mjs (framework_check.hpp).
+#include "runtime/dawn/framework_check.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "crtforge/paths.hpp"
+#include "crtforge/value.hpp"
+#include "runtime/common/job_checks.hpp"
+#include "runtime/common/process_util.hpp"
+
+namespace crtforge::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kStartSeconds = 90;       // node, Dawn, the framework and its first pipelines
+constexpr int kSecondsPerFrame = 10;    // SwiftShader and llvmpipe draw a few frames a second
+
+std::string join_frames(const std::vector<int>& frames) {
+    std::string out;
+    for (int f : frames) out += (out.empty() ? "" : ",") + std::to_string(f);
+    return out;
+}
+
+// check.mjs's --set value: a number, or a colour as r,g,b (what its setParam takes).
+Result<std::string> set_value(const std::string& name, const Value& value) {
+    if (auto d = std::get_if<double>(&value)) return fmt::format("{}={}", name, *d);
+    if (auto i = std::get_if<int64_t>(&value)) return fmt::format("{}={}", name, *i);
+    if (auto b = std::get_if<bool>(&value)) return fmt::format("{}={}", name, *b ? 1 : 0);
+    if (auto c = std::get_if<Color>(&value)) return fmt::format("{}={},{},{}", name, (*c)[0], (*c)[1], (*c)[2]);
+    return job_error("param '" + name + "' is text, which check.mjs's --set does not take", "params");
+}
+
+// The last non-empty line of a log: check.mjs's one-line error comes last (dawn.node's own noise
+// goes before it).
+std::string last_line(const fs::path& path) {
+    std::ifstream in(path);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (!trim(line).empty()) last = trim(line);
+    return last;
+}
+
+}  // namespace
+
+bool is_web_framework(const std::string& name) { return name == "three" || name == "pixi" || name == "babylon"; }
+
+Result<std::vector<Image>> render_through_framework(const DawnSceneJob& job, const fs::path& package, const fs::path& scratch) {
+    if (!is_web_framework(job.framework)) return job_error("unknown web framework '" + job.framework + "'", "framework");
+    // check.mjs pins one time for every frame (--time): enough for a single frame, not a sequence.
+    if (!job.times.empty() && job.run.size() != 1)
+        return job_error("a framework adapter's sequence runs at the package's own time (frame / fps)", "times");
+    const std::string node = find_on_path("node");
+    if (node.empty()) return make_error("the web framework adapters run on Node.js: install the Debian packages nodejs and npm");
+    const fs::path check = fs::path(data_path("examples/webgpu/check.mjs")).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(check, ec)) return make_error("the WebGPU example is missing: no '" + check.string() + "'");
+
+    // An app that installed the package, as `npm install ./export/npm` leaves it.
+    const fs::path app = scratch / fmt::format("app-{}", job.framework);
+    fs::remove_all(app, ec);
+    fs::create_directories(app / "node_modules", ec);
+    fs::create_directory_symlink(fs::absolute(package), app / "node_modules" / "crtforge-presets", ec);
+    if (ec) return make_error(fmt::format("cannot make the app folder '{}': {}", app.string(), ec.message()));
+
+    const fs::path inputs = scratch / "framework-inputs.f32", output = scratch / "framework-frame-", log = scratch / "framework.log";
+    {
+        std::ofstream out(inputs, std::ios::binary | std::ios::trunc);
+        for (const Image& input : job.inputs)
+            out.write(reinterpret_cast<const char*>(input.rgba.data()), static_cast<std::streamsize>(input.rgba.size() * sizeof(float)));
+        if (!out.flush()) return make_error("cannot write the input pictures to '" + inputs.string() + "'");
+    }
+    SpawnSpec spec;
+    spec.executable = node;
+    spec.args = {check.string(), "--package", app.string(), "--" + job.framework, "on", "--preset", job.preset,
+                 "--input", inputs.string(), "--input-width", std::to_string(job.inputs.front().width),
+                 "--input-height", std::to_string(job.inputs.front().height), "--width", std::to_string(job.width),
+                 "--height", std::to_string(job.height), "--frames", join_frames(job.run), "--capture", join_frames(job.capture),
+                 "--output", output.string()};
+    if (!job.times.empty()) spec.args.insert(spec.args.end(), {"--time", fmt::format("{}", job.times.front())});
+    if (!job.fit.empty()) spec.args.insert(spec.args.end(), {"--fit", job.fit});
+    for (const auto& [name, value] : job.params) {
+        auto set = set_value(name, value);
+        if (!set.ok()) return set.error();
+        spec.args.insert(spec.args.end(), {"--set", set.value()});
+    }
+    spec.env = child_environment({});
+    const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (log_fd < 0) return make_error(fmt::format("cannot write '{}': {}", log.string(), std::strerror(errno)));
+    spec.output_fd = log_fd;
+    auto pid = spawn(spec);
+    ::close(log_fd);
+    if (!pid.ok()) return pid.error();
+    const int seconds = kStartSeconds + kSecondsPerFrame * static_cast<int>(job.run.size());
+    std::optional<int> status = wait_until(pid.value(), ProcessClock::now() + std::chrono::seconds(seconds));
+    const std::string adapter = "crtforge-presets/" + job.framework;
+    if (!status) {
+        ::kill(pid.value(), SIGKILL);
+        wait_until(pid.value(), ProcessClock::now() + std::chrono::seconds(10));
+        return make_validation_error(fmt::format("{} in check.mjs did not finish within {} s", adapter, seconds));
+    }
+    fs::remove(inputs, ec);
+    if (!WIFEXITED(*status) || WEXITSTATUS(*status) != 0)
+        return make_validation_error(fmt::format("{} failed ({}): {}", adapter, describe_status(*status), last_line(log)));
+
+    const std::size_t one = static_cast<std::size_t>(job.width) * job.height * 4;
+    std::vector<Image> images;
+    for (int frame : job.capture) {
+        const fs::path file = output.string() + std::to_string(frame) + ".raw";
+        Image image = Image::make(job.width, job.height);
+        std::ifstream in(file, std::ios::binary);
+        const bool whole = in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(one * sizeof(float))) &&
+                           in.peek() == std::char_traits<char>::eof();
+        in.close();
+        fs::remove(file, ec);
+        if (!whole)
+            return make_validation_error(fmt::format("{}: check.mjs wrote no {}x{} picture of frame {} ('{}')", adapter, job.width,
+                                                     job.height, frame, file.string()));
+        images.push_back(std::move(image));
+    }
+    return images;
+}
+
+}  // namespace crtforge::detail
