@@ -94,14 +94,14 @@ MUTATIONS = [
     # The npm package's framework adapters (issue 29): validate's `web = [...]` goldens run each
     # through examples/webgpu/check.mjs on the framework's own device.
     ("examples/webgpu/package/framework-pass.mjs", "height: target.height, frame, time, fit });",
-     "height: target.height, frame, time });", "wgsl", "classic", "an adapter drops the display fit"),
+     "height: target.height, frame, time });", "wgsl", "crt-pulse", "an adapter drops the display fit"),
     ("examples/webgpu/package/framework-pass.mjs", "height: target.height, frame, time, fit });",
      "height: target.height, frame, fit });", "wgsl", "crt-pulse", "an adapter drops the app's time"),
     ("examples/webgpu/package/framework-pass.mjs", "height: target.height, frame, time, fit });",
      "height: target.height, frame: frame + 1, time, fit });", "wgsl", "super-win,graph-history",
      "an adapter's frame number one ahead"),
     ("examples/webgpu/package/framework-pass.mjs", "for (const [param, value] of values) scene.setParam(param, value);",
-     "void values;", "wgsl", "classic", "params set before a second target format are not replayed on its scene"),
+     "void values;", "wgsl", "crt-pulse", "params set before a second target format are not replayed on its scene"),
     ("examples/webgpu/package/babylon.mjs", "beforeSubmit: () => engine.flushFramebuffer() });", "beforeSubmit: () => {} });",
      "wgsl", "super-win,graph-history", "Babylon's recorded drawing not flushed before the pass reads it"),
     ("examples/webgpu/package/pixi.mjs", "const source = texture?.source ?? texture;", "const source = texture;",

@@ -54,7 +54,7 @@ TEST_CASE("the shipped plan is a matrix: sizes, configurations, stage isolation,
     for (const char* c : {"bezel", "draw1", "draw3", "uniforms-all", "uniforms-none", "medium", "mediump", "t1", "t1000", "t3599",
                           "t3601", "t100000", "t1e7", "mediump-t100000", "row8k", "col8k", "px1", "line", "odd", "portrait", "tiny", "colour",
                           "godot-defaults", "godot-material", "godot-screen", "web-three", "web-pixi", "web-babylon",
-                          "web-time-three", "web-bezel-babylon"})
+                          "web-app-three", "web-app-babylon"})
         CHECK(configs.count(c));
     // A `web = [...]` rule is a rule per framework adapter, each judged on the WGSL target alone.
     for (const GoldenEntry& e : plan)

@@ -56,11 +56,33 @@ std::string last_line(const fs::path& path) {
 
 bool is_web_framework(const std::string& name) { return name == "three" || name == "pixi" || name == "babylon"; }
 
+namespace {
+
+// What the machine lacks to run `framework` at all ("" when nothing): its npm package in
+// tools/wgsl-runner, and for PixiJS and Babylon.js, which need a core WebGPU adapter, SwiftShader's
+// Vulkan driver (lavapipe lacks a feature Dawn's Vulkan backend requires).
+std::string framework_setup_problem(const std::string& framework) {
+    const char* package = framework == "three" ? "three" : framework == "pixi" ? "pixi.js" : "@babylonjs/core";
+    const fs::path manifest = fs::path(data_path("tools/wgsl-runner")) / "node_modules" / package / "package.json";
+    std::error_code ec;
+    if (!fs::is_regular_file(manifest, ec))
+        return fmt::format("the npm package '{}' is not installed (no '{}'): run scripts/setup.sh", package, manifest.string());
+    const char* swiftshader = "/usr/lib/chromium/vk_swiftshader_icd.json";
+    if (framework != "three" && !fs::is_regular_file(swiftshader, ec))
+        return fmt::format("{} runs on Dawn's Vulkan backend over SwiftShader: no '{}' (the Debian package chromium-common; run "
+                           "scripts/setup.sh)",
+                           framework, swiftshader);
+    return {};
+}
+
+}  // namespace
+
 Result<std::vector<Image>> render_through_framework(const DawnSceneJob& job, const fs::path& package, const fs::path& scratch) {
     if (!is_web_framework(job.framework)) return job_error("unknown web framework '" + job.framework + "'", "framework");
     // check.mjs pins one time for every frame (--time): enough for a single frame, not a sequence.
     if (!job.times.empty() && job.run.size() != 1)
         return job_error("a framework adapter's sequence runs at the package's own time (frame / fps)", "times");
+    if (const std::string problem = framework_setup_problem(job.framework); !problem.empty()) return make_error(problem);
     const std::string node = find_on_path("node");
     if (node.empty()) return make_error("the web framework adapters run on Node.js: install the Debian packages nodejs and npm");
     const fs::path check = fs::path(data_path("examples/webgpu/check.mjs")).lexically_normal();
