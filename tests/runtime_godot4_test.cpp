@@ -6,12 +6,14 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "crtforge/files.hpp"
@@ -176,6 +178,22 @@ func _process(delta: float) -> void:
         if (i > 2 && samples[i].second < samples[i - 1].second) ++wraps;
     }
     CHECK(wraps >= 2);
+}
+
+TEST_CASE("godot4: a server that goes leaves no folder of its driver or Chromium behind", "[godot4]") {
+    std::string scratch;
+    {
+        Godot4Server server;
+        const std::string described = server.describe();
+        INFO(described);
+        scratch = server.driver_scratch();
+        REQUIRE_FALSE(scratch.empty());
+        CHECK(std::filesystem::is_directory(std::filesystem::path(scratch) / "profile"));  // Chromium's, written while it runs
+    }
+    // Chromium's renderer and GPU processes outliving the browser process wrote into the profile
+    // after the driver had removed it, which brought the folder back: a leak per run.
+    std::this_thread::sleep_for(std::chrono::seconds(3));
+    CHECK_FALSE(std::filesystem::exists(scratch));
 }
 
 TEST_CASE("godot4: a job that brings a different script under a path already used runs the new script", "[godot4]") {

@@ -105,6 +105,7 @@ struct Godot4Server::Impl {
     std::mutex mutex;  // one job at a time: the page runs one
     std::unique_ptr<detail::NodeRunner> runner;
     std::string description;
+    std::string driver_scratch;  // the driver's folder (Chromium's profile, its packs), from its start-up reply
     int packs = 0;
     // The scripts mounted in the running engine, by res:// path. Godot keeps a GDScript it loaded
     // for the life of the process (a later pack's different text under the same path is not
@@ -119,6 +120,7 @@ struct Godot4Server::Impl {
             return make_error("Godot 4 did not start: " + r.value("error", std::string("unknown error")));
         }
         const json info = r.value("info", json::object());
+        driver_scratch = info.value("scratch", "");
         const std::string hash = info.value("hash", "");
         description = fmt::format("Godot {} {} ({}, {}) in {} on SwiftShader", info.value("version", "?"), hash.substr(0, 9),
                                   info.value("method", "?"), info.value("api", "?"), info.value("browser", "?"));
@@ -198,6 +200,11 @@ std::string Godot4Server::describe() {
         if (auto s = impl_->started(ready.value()); !s.ok()) return s.error().message;
     }
     return impl_->description;
+}
+
+std::string Godot4Server::driver_scratch() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->driver_scratch;
 }
 
 Result<Image> Godot4Server::render(const Godot4Job& job) {

@@ -322,7 +322,7 @@ let info;
 try {
   info = await start();
   const chromeVersion = (await send('Browser.getVersion', {}, null)).product;
-  reply({ ok: true, ready: true, info: { ...info, browser: chromeVersion } });
+  reply({ ok: true, ready: true, info: { ...info, browser: chromeVersion, scratch } });
 } catch (e) {
   reply({ ok: false, kind: 'start', error: oneLine(e.message) });
   await stopBrowser();

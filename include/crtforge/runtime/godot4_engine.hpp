@@ -76,6 +76,9 @@ public:
     // "Godot 4.6-stable (official) 89cea1439, gl_compatibility on WebGL 2 ... (Chrome/...)",
     // starting the engine if needed; the reason when it cannot start.
     std::string describe();
+    // The folder the running driver keeps its files in (Chromium's profile among them), "" before it
+    // starts; the driver removes it when it ends, after Chromium and all its processes have exited.
+    std::string driver_scratch() const;
 
 private:
     struct Impl;
