@@ -652,3 +652,76 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
         if (!vulkan) vulkan = v;
     }
 }
+
+// RetroArch keeps an R8G8B8A8_UNORM framebuffer's mip chain in 8 bits (each level a blit into the
+// same format), and clamp_to_border at an explicit level reads transparent black one *level*
+// texel outside. A 64x32 picture of 0, 128 and 255 whose 2x2 averages fall between bytes: level
+// 3 read at a texel centre must be on the byte grid (a float chain gives e.g. 95.75 / 255), and
+// level 5 (2 x 1) read at (0.3, 0.3) is 0.8 of its texel on every host: WGSL, which emulates the
+// border in the shader, must measure the footprint in that level's texels, not level 0's
+// (raster_bloom's average brightness read 18 % too bright in WebGPU before).
+TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an explicit level is measured in that level's texels",
+          "[retroarch][import][mipmap]") {
+    test::TempDir dir;
+    const std::string head = R"(#version 450
+layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
+#pragma stage vertex
+layout(location = 0) in vec4 Position;
+layout(location = 1) in vec2 TexCoord;
+layout(location = 0) out vec2 vTexCoord;
+void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }
+#pragma stage fragment
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 FragColor;
+layout(set = 0, binding = 2) uniform sampler2D Source;
+)";
+    write(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
+    // Level 3 is 8 x 4: (2.5 / 8, 1.5 / 4) is a texel centre.
+    write(dir / "shaders/levels.slang", head + R"(void main() {
+    float level3 = textureLod(Source, vec2(2.5 / 8.0, 1.5 / 4.0), 3.0).r;
+    // How far level 3's texel is from the byte grid, measured here: the display is half floats.
+    FragColor = vec4(textureLod(Source, vec2(0.3, 0.3), 5.0).r, abs(fract(level3 * 255.0 + 0.5) - 0.5), level3, 1.0);
+}
+)");
+    write(dir / "presets/levels.slangp",
+          "shaders = 2\n"
+          "shader0 = ../shaders/copy.slang\n"
+          "filter_linear0 = false\n"
+          "scale_type0 = source\n"
+          "shader1 = ../shaders/levels.slang\n"
+          "filter_linear1 = true\n"
+          "mipmap_input1 = true\n"
+          "scale_type1 = viewport\n");
+    auto lib = import_into(dir / "presets/levels.slangp", dir / "overlay", dir.path(), "levels");
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    const Preset* preset = lib.value()->find_preset("levels");
+    REQUIRE(preset);
+    REQUIRE(preset->passes.size() == 2);
+    CHECK(preset->passes[1].inputs.front().wrap == Wrap::ClampToBorder);
+    Image picture = Image::make(64, 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 4; ++c)
+                picture.rgba[(static_cast<size_t>(y) * 64 + x) * 4 + c] = c == 3 ? 1.0f : static_cast<float>(((x * 7 + y * 3) % 3) * 127.5 / 255.0);
+    for (float& v : picture.rgba) v = std::round(v * 255.0f) / 255.0f;
+    TargetRenderer renderer;
+    std::optional<std::array<float, 2>> vulkan;
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Wgsl}) {
+        INFO(target_info(target).name);
+        auto images = render_imported(renderer, *lib.value(), *preset, target, picture, 8, 8, {0});
+        INFO((images.ok() ? std::string() : images.error().str()));
+        REQUIRE(images.ok());
+        const float* p = images.value().front().rgba.data() + (4 * 8 + 4) * 4;
+        INFO("level 3 texel " << p[2] * 255.0f << " / 255 (" << p[1] << " off the byte grid), level 5 at the border "
+                                  << p[0] * 255.0f << " / 255");
+        CHECK(p[1] < 0.01f);  // on the byte grid: an 8-bit chain
+        CHECK(p[0] > 0.05f);
+        if (vulkan) {
+            CHECK(std::abs(p[0] - (*vulkan)[0]) < 1.5f / 255.0f);
+            CHECK(std::abs(p[2] - (*vulkan)[1]) < 1.5f / 255.0f);
+        } else {
+            vulkan = std::array<float, 2>{p[0], p[2]};
+        }
+    }
+}

@@ -2,10 +2,12 @@
 #include "validate/scene_runner.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <set>
 
 #include "crtforge/bounded_memo.hpp"
 #include "crtforge/cache.hpp"
@@ -30,6 +32,15 @@ OutputFormat output_format(PixelFormat f) {
 }
 
 SamplerFilter to_filter(Filter f) { return f == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear; }
+
+// Whether every value of `image` is a byte / 255 (what an 8-bit PNG decodes to, and the generated
+// LUTs hold): such a LUT is RetroArch's R8G8B8A8_UNORM texture, whose mip chain is 8-bit too.
+bool holds_8bit_values(const Image& image) {
+    return std::all_of(image.rgba.begin(), image.rgba.end(), [](float v) {
+        const float scaled = v * 255.0f;
+        return v >= 0.0f && v <= 1.0f && std::fabs(scaled - std::round(scaled)) <= 1e-3f;
+    });
+}
 
 Result<WrapMode> to_wrap(Wrap w, const std::string& where) {
     switch (w) {
@@ -95,9 +106,16 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
     if (r.outputs && r.outputs->size() != r.passes->size()) return make_error("scene render request: one output per pass expected");
     const Preset& preset = *r.preset;
     std::map<std::string, SharedImage> luts;
+    std::set<std::string> luts_8bit;  // only the mipmapped ones are looked at (unorm8 changes only a chain)
     for (const LutSpec& lut : preset.luts) {
         auto image = scene_lut_image(lut, r.file_luts);
         if (!image.ok()) return image.error();
+        const bool chained = std::any_of(preset.passes.begin(), preset.passes.end(), [&](const Pass& p) {
+            return std::any_of(p.inputs.begin(), p.inputs.end(), [&](const PassInput& in) {
+                return in.mipmap && in.from.kind == TextureSource::Kind::Lut && in.from.name == lut.name;
+            });
+        });
+        if (chained && holds_8bit_values(*image.value())) luts_8bit.insert(lut.name);
         luts[lut.name] = std::move(image.value());
     }
     const bool stateful = preset.keeps_state();
@@ -142,6 +160,22 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             }
             return {};
         };
+        // An 8-bit picture (RenderJob::unorm8): an rgba8 pass's output (the last pass's is the
+        // display, in r.format) or an 8-bit LUT; the original and float outputs are not.
+        auto is_8bit = [&](const TextureSource& from) {
+            switch (from.kind) {
+                case TextureSource::Kind::Original: return false;
+                case TextureSource::Kind::Pass:
+                case TextureSource::Kind::Feedback: {
+                    const size_t i = index_of(from.name);
+                    if (i >= preset.passes.size()) return false;
+                    if (i + 1 == preset.passes.size()) return r.format == OutputFormat::Rgba8Unorm;
+                    return preset.passes[i].format == PixelFormat::Rgba8;
+                }
+                case TextureSource::Kind::Lut: return luts_8bit.count(from.name) > 0;
+            }
+            return false;
+        };
         for (size_t i = 0; i < preset.passes.size(); ++i) {
             const Pass& pass = preset.passes[i];
             const bool last = i + 1 == preset.passes.size();
@@ -157,11 +191,13 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             pr.wrap = wrap.value();
             pr.mipmap = main.mipmap;
             pr.mip_filter = to_filter(main.mip_filter);
+            pr.unorm8 = main.mipmap && is_8bit(main.from);
             for (size_t k = 1; k < pass.inputs.size(); ++k) {
                 auto w = to_wrap(pass.inputs[k].wrap, "pass." + pass.alias + ".textures." + pass.inputs[k].binding);
                 if (!w.ok()) return w.error();
                 pr.textures.push_back({pass.inputs[k].binding, resolve(pass.inputs[k].from), to_filter(pass.inputs[k].filter), w.value(),
-                                       pass.inputs[k].mipmap, to_filter(pass.inputs[k].mip_filter)});
+                                       pass.inputs[k].mipmap, to_filter(pass.inputs[k].mip_filter),
+                                       pass.inputs[k].mipmap && is_8bit(pass.inputs[k].from)});
             }
             pr.time = r.start_time + frame / preset.scene.fps;
             const long long count = static_cast<long long>(r.frame_count_base) + frame;

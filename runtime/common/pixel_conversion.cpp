@@ -1,5 +1,6 @@
 #include "runtime/common/pixel_conversion.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -53,7 +54,14 @@ float srgb_to_linear(float encoded) {
     return static_cast<float>(linear);
 }
 
-size_t texel_bytes(TextureTexels texels) { return texels == TextureTexels::Rgba32Float ? 16 : 8; }
+size_t texel_bytes(TextureTexels texels) {
+    switch (texels) {
+        case TextureTexels::Rgba32Float: return 16;
+        case TextureTexels::Rgba16Float: return 8;
+        case TextureTexels::Rgba8Unorm: return 4;
+    }
+    return 16;
+}
 
 size_t texel_bytes(OutputFormat format) { return format == OutputFormat::Rgba16Float ? 8 : 4; }
 
@@ -63,6 +71,13 @@ void write_texels(const Image& image, TextureTexels texels, void* dst) {
         return;
     }
     auto* out = static_cast<unsigned char*>(dst);
+    if (texels == TextureTexels::Rgba8Unorm) {
+        for (size_t i = 0; i < image.rgba.size(); ++i) {
+            const float v = image.rgba[i];  // NaN goes to 0
+            out[i] = static_cast<unsigned char>(v > 0.0f ? std::lround(std::min(v, 1.0f) * 255.0f) : 0);
+        }
+        return;
+    }
     for (size_t i = 0; i < image.rgba.size(); ++i) {
         const uint16_t half = float_to_half(image.rgba[i]);
         std::memcpy(out + i * sizeof half, &half, sizeof half);  // dst may not be 2-byte aligned in theory

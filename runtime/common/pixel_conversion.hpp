@@ -19,7 +19,7 @@ uint16_t float_to_half(float value);
 float srgb_to_linear(float encoded);
 
 // Texel formats the input texture can take.
-enum class TextureTexels { Rgba32Float, Rgba16Float };
+enum class TextureTexels { Rgba32Float, Rgba16Float, Rgba8Unorm };  // Rgba8Unorm: round(value * 255), clamped
 size_t texel_bytes(TextureTexels texels);
 size_t texel_bytes(OutputFormat format);
 

@@ -330,6 +330,7 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
             {"wrap", wrap_name(job.wrap)},
             {"mipmap", job.mipmap},
             {"mip_filter", filter_name(job.mip_filter)},
+            {"unorm8", job.unorm8},
             {"texture", job.uses_texture},
             {"uniform_binding", job.uniform_binding},
             {"texture_binding", job.texture_binding},
@@ -359,7 +360,8 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
                           {"filter", filter_name(t.filter)},
                           {"wrap", wrap_name(t.wrap)},
                           {"mipmap", t.mipmap},
-                          {"mip_filter", filter_name(t.mip_filter)}};
+                          {"mip_filter", filter_name(t.mip_filter)},
+                          {"unorm8", t.unorm8}};
             if (!t.image->empty()) {
                 const fs::path file = dir / fmt::format("texture{}.f32", i);
                 if (auto s = write_file(file, t.image->rgba.data(), t.image->rgba.size() * sizeof(float)); !s.ok())

@@ -121,14 +121,16 @@ GLint gl_wrap(WrapMode wrap) {
 // transparent-black texture, for shaders that sample nothing) bound to texture unit `unit`, where
 // it stays for the draw. With `mipmap`, a full chain from glGenerateMipmap (Mesa fills each level
 // by a linear blit of the one above, as the Vulkan engine does); ES filters and renders only half
-// floats, so a chain there is RGBA16F.
+// floats, so a chain there is RGBA16F; the chain of an 8-bit picture (`unorm8`) is RGBA8, as
+// RetroArch's of its RGBA8 framebuffers and LUTs.
 UniqueTexture create_sampled_texture(const GlContext& context, const Image& image, SamplerFilter filter, WrapMode wrap,
-                                     bool mipmap, SamplerFilter mip_filter, GLuint unit) {
+                                     bool mipmap, SamplerFilter mip_filter, bool unorm8, GLuint unit) {
     const GlFunctions& gl = context.functions();
     const Image blank = Image::make(1, 1);
     const Image& source = image.empty() ? blank : image;
-    const TextureUpload upload = mipmap && context.is_es() ? TextureUpload{GL_RGBA16F, GL_HALF_FLOAT, TextureTexels::Rgba16Float}
-                                                           : choose_upload(context, filter);
+    const TextureUpload upload = mipmap && unorm8          ? TextureUpload{GL_RGBA8, GL_UNSIGNED_BYTE, TextureTexels::Rgba8Unorm}
+                                 : mipmap && context.is_es() ? TextureUpload{GL_RGBA16F, GL_HALF_FLOAT, TextureTexels::Rgba16Float}
+                                                             : choose_upload(context, filter);
     std::vector<unsigned char> texels(source.pixel_count() * vulkan::texel_bytes(upload.texels));
     vulkan::write_texels(source, upload.texels, texels.data());  // row 0 first: t = 0 is the top row
 
@@ -253,11 +255,11 @@ private:
         gl.TexStorage2D(GL_TEXTURE_2D, 1, output_internal_format(job.format), job.width, job.height);
         // After the target, so each texture stays bound to its unit (unit 0 holds the input again).
         std::vector<UniqueTexture> textures;
-        textures.push_back(create_sampled_texture(*context_, job.input, job.filter, job.wrap, job.mipmap, job.mip_filter, 0));
+        textures.push_back(create_sampled_texture(*context_, job.input, job.filter, job.wrap, job.mipmap, job.mip_filter, job.unorm8, 0));
         for (size_t i = 0; i < job.textures.size(); ++i) {
             const TextureInput& t = job.textures[i];
             const auto unit = static_cast<GLuint>(i + 1);
-            textures.push_back(create_sampled_texture(*context_, *t.image, t.filter, t.wrap, t.mipmap, t.mip_filter, unit));
+            textures.push_back(create_sampled_texture(*context_, *t.image, t.filter, t.wrap, t.mipmap, t.mip_filter, t.unorm8, unit));
         }
 
         const UniqueFramebuffer framebuffer = make_framebuffer(gl);

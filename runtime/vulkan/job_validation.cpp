@@ -152,11 +152,15 @@ Status check_module(const std::vector<uint32_t>& spirv, ExecutionModel model, co
 // sample (and filter) it; half float, which every Vulkan device can filter, otherwise. A mip
 // chain is made by linear blits: it needs blits and linear filtering whatever the pass's filter.
 // `field` names the filter that could not be met.
-Result<TexturePlan> pick_texture_format(const VulkanContext& context, SamplerFilter filter, bool mipmap,
+// An 8-bit picture with a mip chain keeps its chain in 8 bits, as RetroArch's (RenderJob::unorm8).
+Result<TexturePlan> pick_texture_format(const VulkanContext& context, SamplerFilter filter, bool mipmap, bool unorm8,
                                         const std::string& field) {
     VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     if (filter == SamplerFilter::Linear || mipmap) needed |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     if (mipmap) needed |= VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT;
+    if (mipmap && unorm8 && (context.optimal_tiling_features(VK_FORMAT_R8G8B8A8_UNORM) & needed) == needed) {
+        return TexturePlan{VK_FORMAT_R8G8B8A8_UNORM, TextureTexels::Rgba8Unorm};
+    }
     if ((context.optimal_tiling_features(VK_FORMAT_R32G32B32A32_SFLOAT) & needed) == needed) {
         return TexturePlan{VK_FORMAT_R32G32B32A32_SFLOAT, TextureTexels::Rgba32Float};
     }
@@ -194,11 +198,11 @@ Result<JobPlan> check_job(const VulkanContext& context, const RenderJob& job) {
                                      output_format_name(job.format)),
                          "format");
     }
-    auto input = pick_texture_format(context, job.filter, job.mipmap, "filter");
+    auto input = pick_texture_format(context, job.filter, job.mipmap, job.unorm8, "filter");
     if (!input) return input.error();
     plan.textures.push_back(input.value());
     for (size_t i = 0; i < job.textures.size(); ++i) {
-        auto texture = pick_texture_format(context, job.textures[i].filter, job.textures[i].mipmap,
+        auto texture = pick_texture_format(context, job.textures[i].filter, job.textures[i].mipmap, job.textures[i].unorm8,
                                            detail::texture_field(i, "filter"));
         if (!texture) return texture.error();
         plan.textures.push_back(texture.value());

@@ -270,9 +270,21 @@ void FunctionPrinter::image_instruction(const Instruction& inst) {
     }
     // Outside the texture an edge sampler repeats the edge texel where a border one reads
     // transparent black, so the border sample is the edge sample times the share of its footprint
-    // inside (exact for nearest, and for linear at level 0).
+    // inside (exact for nearest, and for linear at the level read). An explicit level of detail
+    // reads a level of the mip chain whose texels are larger: the footprint is measured in that
+    // level's texels (Vulkan's nearest level, ceil(lod + 0.5) - 1, clamped to the chain; between
+    // two blended levels, the nearer one's). Implicit levels are measured at level 0.
     std::string uv = coord;
-    const std::string size = "vec2<f32>(textureDimensions(" + texture + "))";
+    std::string size = "vec2<f32>(textureDimensions(" + texture + "))";
+    if (inst.op == spv::OpImageSampleExplicitLod && operands.count(spv::ImageOperandsLodMask)) {
+        const std::string name = mod_.helper("border_level_size",
+            "(t: texture_2d<f32>, lod: f32) -> vec2<f32> {\n"
+            "  // the size of the mip level an explicit lod reads (the nearest one)\n"
+            "  let last = f32(textureNumLevels(t) - 1u);\n"
+            "  return vec2<f32>(textureDimensions(t, u32(clamp(ceil(lod + 0.5) - 1.0, 0.0, last))));\n"
+            "}\n");
+        size = name + "(" + texture + ", " + operands[spv::ImageOperandsLodMask] + ")";
+    }
     if (operands.count(spv::ImageOperandsConstOffsetMask))
         uv = "(" + uv + " + vec2<f32>(" + operands[spv::ImageOperandsConstOffsetMask] + ") / " + size + ")";
     std::string weight;

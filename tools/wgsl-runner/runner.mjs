@@ -257,6 +257,7 @@ function readTexture(spec, keys, defaults, maxDim, at = '') {
     wrap: oneOf(spec, 'wrap', 'clamp-to-edge', ADDRESS_MODES, at),
     mipmap: spec.mipmap === true,
     mipFilter: oneOf(spec, 'mip_filter', 'linear', FILTERS, at),
+    unorm8: spec.unorm8 === true,
     width: 1,
     height: 1,
     pixels: new Float32Array(4),
@@ -285,12 +286,14 @@ function shippedDriver() {
 // The one upload path of the input and of every extra texture. rgba32float when it can be
 // sampled with the filter (nearest always: as unfilterable-float with a non-filtering sampler);
 // otherwise rgba16float converted here. With `mipmap`, its mip chain is made by the shipped
-// driver's encodeMipmaps (linear blits: a filterable format). Adds its layout and bind group
-// entries; returns the format.
+// driver's encodeMipmaps (linear blits: a filterable format), in rgba8unorm for an 8-bit picture
+// (`unorm8`: each level rounded to 8 bits, as RetroArch's chains are). Adds its layout and bind
+// group entries; returns the format.
 async function addSampledTexture(t, visibility, layoutEntries, groupEntries, destroy) {
   const linear = t.filter === 'linear';
-  const float32 = (!linear && !t.mipmap) || device.features.has('float32-filterable');
-  const format = float32 ? 'rgba32float' : 'rgba16float';
+  const bytes8 = t.mipmap && t.unorm8;
+  const float32 = !bytes8 && ((!linear && !t.mipmap) || device.features.has('float32-filterable'));
+  const format = bytes8 ? 'rgba8unorm' : float32 ? 'rgba32float' : 'rgba16float';
   const { mipLevelCount, encodeMipmaps } = await shippedDriver();
   const levels = t.mipmap ? mipLevelCount(t.width, t.height) : 1;
   const texture = device.createTexture({
@@ -301,7 +304,10 @@ async function addSampledTexture(t, visibility, layoutEntries, groupEntries, des
   });
   destroy.push(texture);
   let data = t.pixels, bytesPerPixel = 16;
-  if (!float32) {
+  if (bytes8) {
+    data = Uint8Array.from(t.pixels, (v) => (v > 0 ? Math.round(Math.min(v, 1) * 255) : 0));
+    bytesPerPixel = 4;
+  } else if (!float32) {
     data = floatsToHalves(t.pixels);
     bytesPerPixel = 8;
   }

@@ -113,6 +113,7 @@ Job request_job(TargetRenderRequest& r, std::vector<uint8_t> uniforms, std::vect
     job.wrap = r.wrap;
     job.mipmap = r.mipmap;
     job.mip_filter = r.mip_filter;
+    job.unorm8 = r.unorm8;
     job.textures = std::move(textures);
     job.width = r.width;
     job.height = r.height;

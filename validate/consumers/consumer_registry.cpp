@@ -141,6 +141,7 @@ Result<std::vector<TextureInput>> engine_textures(TargetRenderRequest& r,
         input.wrap = t.wrap;
         input.mipmap = t.mipmap;
         input.mip_filter = t.mip_filter;
+        input.unorm8 = t.unorm8;
         out.push_back(std::move(input));
     }
     return out;

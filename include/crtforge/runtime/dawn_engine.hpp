@@ -60,6 +60,7 @@ struct DawnJob {
     WrapMode wrap = WrapMode::ClampToEdge;  // the input's address mode, both axes
     bool mipmap = false;                    // a mip chain, as RenderJob::mipmap (the shipped driver's)
     SamplerFilter mip_filter = SamplerFilter::Linear;
+    bool unorm8 = false;                    // as RenderJob::unorm8: the chain of an 8-bit picture is rgba8unorm
     // More textures, uploaded like `input` with their own filter and wrap: each a texture_2d<f32>
     // at `binding` plus a sampler at `sampler_binding` (`name` is not used here). Bound whether or
     // not uses_texture is set.

@@ -65,6 +65,7 @@ struct GlRenderJob {
     WrapMode wrap = WrapMode::ClampToEdge;
     bool mipmap = false;  // a mip chain, as RenderJob::mipmap (glGenerateMipmap)
     SamplerFilter mip_filter = SamplerFilter::Linear;
+    bool unorm8 = false;  // as RenderJob::unorm8: a chain of an 8-bit picture is RGBA8
     // More textures, uploaded like `input` with their own filter and wrap, each bound by its
     // `name` (non-empty, unique, not `sampler`) to texture unit 1 + its index; `binding` and
     // `sampler_binding` are not used here. A name the shader does not use is skipped.

@@ -54,6 +54,7 @@ struct TextureInput {
     WrapMode wrap = WrapMode::ClampToEdge;
     bool mipmap = false;
     SamplerFilter mip_filter = SamplerFilter::Linear;
+    bool unorm8 = false;  // an 8-bit picture: its mip chain is made and kept in 8 bits (below)
 };
 
 // The rectangle of the target the full-screen triangle covers, in pixels with the origin at the
@@ -90,6 +91,13 @@ struct RenderJob {
     // has one level. The same two fields on each TextureInput.
     bool mipmap = false;
     SamplerFilter mip_filter = SamplerFilter::Linear;
+    // The picture holds 8-bit values (byte / 255: an rgba8 pass's output, a LUT decoded from a PNG).
+    // With `mipmap` it is then uploaded as R8G8B8A8_UNORM, so each level of its chain is rounded to
+    // 8 bits as RetroArch's chains of its R8G8B8A8_UNORM framebuffers and LUTs are (a float chain
+    // keeps what RetroArch's rounds away: a shader reading a 2x1 level for the picture's average
+    // brightness sees the difference). Without `mipmap` it changes nothing. The same on each
+    // TextureInput.
+    bool unorm8 = false;
     // More textures, each a combined image sampler at its own binding in descriptor_set (no two
     // resources of the job may share a binding).
     std::vector<TextureInput> textures;

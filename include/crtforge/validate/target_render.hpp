@@ -40,6 +40,7 @@ struct PassTexture {
     WrapMode wrap = WrapMode::ClampToEdge;
     bool mipmap = false;  // sampled through a mip chain (RenderJob::mipmap)
     SamplerFilter mip_filter = SamplerFilter::Linear;
+    bool unorm8 = false;  // an 8-bit picture (RenderJob::unorm8)
 };
 
 // One pass of one frame, through one target's consumer.
@@ -53,6 +54,7 @@ struct TargetRenderRequest {
     WrapMode wrap = WrapMode::ClampToEdge;
     bool mipmap = false;
     SamplerFilter mip_filter = SamplerFilter::Linear;
+    bool unorm8 = false;                 // the main input is an 8-bit picture (RenderJob::unorm8)
     std::vector<PassTexture> textures;  // the pass's other textures
     int width = 0, height = 0;           // the target's size
     Viewport viewport;                   // where the pass draws (default: the whole target)
