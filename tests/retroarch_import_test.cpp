@@ -566,11 +566,8 @@ TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization cons
 // it stays black or white. The first pass copies the original (whose mip chain RetroArch never
 // makes, whatever mipmap_input0 says); the second reads that copy with mipmap_input1, the
 // original at level 0, and a LUT with board_mipmap.
-TEST_CASE("mipmap_input and NAME_mipmap sample through a mip chain on Vulkan, GL, the shipped WebGPU driver and Godot's LUTs",
-          "[retroarch][import][mipmap]") {
-    test::TempDir dir;
-    // Both passes: the stock vertex stage, then a fragment stage reading Source (and more).
-    const std::string head = R"(#version 450
+// A pass's stock vertex stage and the head of its fragment stage, which reads Source.
+const std::string kStockHead = R"(#version 450
 layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
 #pragma stage vertex
 layout(location = 0) in vec4 Position;
@@ -582,6 +579,12 @@ layout(location = 0) in vec2 vTexCoord;
 layout(location = 0) out vec4 FragColor;
 layout(set = 0, binding = 2) uniform sampler2D Source;
 )";
+
+TEST_CASE("mipmap_input and NAME_mipmap sample through a mip chain on Vulkan, GL, the shipped WebGPU driver and Godot's LUTs",
+          "[retroarch][import][mipmap]") {
+    test::TempDir dir;
+    // Both passes: the stock vertex stage, then a fragment stage reading Source (and more).
+    const std::string head = kStockHead;
     write(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
     write(dir / "shaders/minify.slang", head + R"(layout(set = 0, binding = 3) uniform sampler2D Original;
 layout(set = 0, binding = 4) uniform sampler2D board;
@@ -663,18 +666,7 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
 TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an explicit level is measured in that level's texels",
           "[retroarch][import][mipmap]") {
     test::TempDir dir;
-    const std::string head = R"(#version 450
-layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
-#pragma stage vertex
-layout(location = 0) in vec4 Position;
-layout(location = 1) in vec2 TexCoord;
-layout(location = 0) out vec2 vTexCoord;
-void main() { gl_Position = global.MVP * Position; vTexCoord = TexCoord; }
-#pragma stage fragment
-layout(location = 0) in vec2 vTexCoord;
-layout(location = 0) out vec4 FragColor;
-layout(set = 0, binding = 2) uniform sampler2D Source;
-)";
+    const std::string head = kStockHead;
     write(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
     // Level 3 is 8 x 4: (2.5 / 8, 1.5 / 4) is a texel centre.
     write(dir / "shaders/levels.slang", head + R"(void main() {
