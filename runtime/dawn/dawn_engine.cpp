@@ -37,6 +37,7 @@
 #include "runtime/common/job_checks.hpp"
 #include "runtime/common/node_runner.hpp"
 #include "runtime/common/process_util.hpp"
+#include "runtime/common/raw_pictures.hpp"
 #include "runtime/dawn/framework_check.hpp"
 
 extern char** environ;
@@ -413,12 +414,7 @@ Result<std::vector<Image>> DawnEngine::render_scene(const DawnSceneJob& job) {
         if (!folder.ok()) return folder.error();
         if (!job.framework.empty()) return detail::render_through_framework(job, folder.value(), impl_->scratch());
         const fs::path dir = impl_->scratch(), inputs = dir / "inputs.f32", output = dir / "output.f32";
-        {
-            std::ofstream out(inputs, std::ios::binary | std::ios::trunc);
-            for (const Image& input : job.inputs)
-                out.write(reinterpret_cast<const char*>(input.rgba.data()), static_cast<std::streamsize>(input.rgba.size() * sizeof(float)));
-            if (!out.flush()) return make_error("cannot write the input pictures to '" + inputs.string() + "'");
-        }
+        if (auto s = detail::write_pictures(inputs, job.inputs); !s.ok()) return s.error();
         std::error_code ec;
         fs::remove(output, ec);
         json params = json::object();
@@ -451,20 +447,8 @@ Result<std::vector<Image>> DawnEngine::render_scene(const DawnSceneJob& job) {
             if (r.value("kind", "") == "request") return make_error("the Dawn runner refused the scene request: " + error);
             return make_validation_error("the shipped npm package failed in Dawn: " + error);
         }
-        const std::size_t one = static_cast<std::size_t>(job.width) * job.height * 4;
-        const std::uintmax_t size = fs::file_size(output, ec);
-        std::ifstream in(output, std::ios::binary);
-        std::vector<Image> images;
-        for (std::size_t k = 0; !ec && size == one * sizeof(float) * job.capture.size() && k < job.capture.size(); ++k) {
-            Image image = Image::make(job.width, job.height);
-            if (!in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(one * sizeof(float)))) break;
-            images.push_back(std::move(image));
-        }
-        in.close();
+        auto images = detail::read_pictures(output, job.width, job.height, job.capture.size(), "the Dawn runner");
         fs::remove(output, ec);
-        if (images.size() != job.capture.size())
-            return make_validation_error(fmt::format("the Dawn runner wrote {} bytes of pixels, expected {} for {} frames of {}x{}", size,
-                                                     one * sizeof(float) * job.capture.size(), job.capture.size(), job.width, job.height));
         return images;
     } catch (const std::exception& e) {
         return make_validation_error(fmt::format("the Dawn scene render failed: {}", e.what()));

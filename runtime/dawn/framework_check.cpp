@@ -17,6 +17,7 @@
 #include "crtforge/value.hpp"
 #include "runtime/common/job_checks.hpp"
 #include "runtime/common/process_util.hpp"
+#include "runtime/common/raw_pictures.hpp"
 
 namespace crtforge::detail {
 
@@ -97,12 +98,7 @@ Result<std::vector<Image>> render_through_framework(const DawnSceneJob& job, con
     if (ec) return make_error(fmt::format("cannot make the app folder '{}': {}", app.string(), ec.message()));
 
     const fs::path inputs = scratch / "framework-inputs.f32", output = scratch / "framework-frame-", log = scratch / "framework.log";
-    {
-        std::ofstream out(inputs, std::ios::binary | std::ios::trunc);
-        for (const Image& input : job.inputs)
-            out.write(reinterpret_cast<const char*>(input.rgba.data()), static_cast<std::streamsize>(input.rgba.size() * sizeof(float)));
-        if (!out.flush()) return make_error("cannot write the input pictures to '" + inputs.string() + "'");
-    }
+    if (auto s = write_pictures(inputs, job.inputs); !s.ok()) return s.error();
     SpawnSpec spec;
     spec.executable = node;
     spec.args = {check.string(), "--package", app.string(), "--" + job.framework, "on", "--preset", job.preset,
@@ -136,20 +132,14 @@ Result<std::vector<Image>> render_through_framework(const DawnSceneJob& job, con
     if (!WIFEXITED(*status) || WEXITSTATUS(*status) != 0)
         return make_validation_error(fmt::format("{} failed ({}): {}", adapter, describe_status(*status), last_line(log)));
 
-    const std::size_t one = static_cast<std::size_t>(job.width) * job.height * 4;
+    // check.mjs writes each captured frame to a file of its own: <output><frame>.raw.
     std::vector<Image> images;
     for (int frame : job.capture) {
         const fs::path file = output.string() + std::to_string(frame) + ".raw";
-        Image image = Image::make(job.width, job.height);
-        std::ifstream in(file, std::ios::binary);
-        const bool whole = in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(one * sizeof(float))) &&
-                           in.peek() == std::char_traits<char>::eof();
-        in.close();
+        auto picture = read_pictures(file, job.width, job.height, 1, adapter + " in check.mjs");
         fs::remove(file, ec);
-        if (!whole)
-            return make_validation_error(fmt::format("{}: check.mjs wrote no {}x{} picture of frame {} ('{}')", adapter, job.width,
-                                                     job.height, frame, file.string()));
-        images.push_back(std::move(image));
+        if (!picture.ok()) return picture.error();
+        images.push_back(std::move(picture.value().front()));
     }
     return images;
 }

@@ -92,16 +92,19 @@ Status check_job(const GlContext& context, const GlRenderJob& job) {
     return Ok{};
 }
 
-// How a texture is uploaded: RGBA32F, unless ES cannot filter it (OES_texture_float_linear).
+// How a texture is uploaded: RGBA32F, unless ES cannot filter it (OES_texture_float_linear) or
+// make its mip chain (ES renders only half floats): RGBA16F there. The chain of an 8-bit picture
+// (`unorm8`) is RGBA8, as RetroArch's of its RGBA8 framebuffers and LUTs.
 struct TextureUpload {
     GLenum internal_format = GL_RGBA32F;
     GLenum type = GL_FLOAT;
     TextureTexels texels = TextureTexels::Rgba32Float;
 };
 
-TextureUpload choose_upload(const GlContext& context, SamplerFilter filter) {
+TextureUpload choose_upload(const GlContext& context, SamplerFilter filter, bool mipmap, bool unorm8) {
+    if (mipmap && unorm8) return {GL_RGBA8, GL_UNSIGNED_BYTE, TextureTexels::Rgba8Unorm};
     const bool float_filterable = !context.is_es() || context.facts().has_extension("GL_OES_texture_float_linear");
-    if (filter == SamplerFilter::Linear && !float_filterable) {
+    if ((mipmap && context.is_es()) || (filter == SamplerFilter::Linear && !float_filterable)) {
         return {GL_RGBA16F, GL_HALF_FLOAT, TextureTexels::Rgba16Float};
     }
     return {};
@@ -120,17 +123,13 @@ GLint gl_wrap(WrapMode wrap) {
 // The one upload path of the input and of every extra texture: `image` (empty = a 1x1
 // transparent-black texture, for shaders that sample nothing) bound to texture unit `unit`, where
 // it stays for the draw. With `mipmap`, a full chain from glGenerateMipmap (Mesa fills each level
-// by a linear blit of the one above, as the Vulkan engine does); ES filters and renders only half
-// floats, so a chain there is RGBA16F; the chain of an 8-bit picture (`unorm8`) is RGBA8, as
-// RetroArch's of its RGBA8 framebuffers and LUTs.
+// by a linear blit of the one above, as the Vulkan engine does), in choose_upload's format.
 UniqueTexture create_sampled_texture(const GlContext& context, const Image& image, SamplerFilter filter, WrapMode wrap,
                                      bool mipmap, SamplerFilter mip_filter, bool unorm8, GLuint unit) {
     const GlFunctions& gl = context.functions();
     const Image blank = Image::make(1, 1);
     const Image& source = image.empty() ? blank : image;
-    const TextureUpload upload = mipmap && unorm8          ? TextureUpload{GL_RGBA8, GL_UNSIGNED_BYTE, TextureTexels::Rgba8Unorm}
-                                 : mipmap && context.is_es() ? TextureUpload{GL_RGBA16F, GL_HALF_FLOAT, TextureTexels::Rgba16Float}
-                                                             : choose_upload(context, filter);
+    const TextureUpload upload = choose_upload(context, filter, mipmap, unorm8);
     std::vector<unsigned char> texels(source.pixel_count() * vulkan::texel_bytes(upload.texels));
     vulkan::write_texels(source, upload.texels, texels.data());  // row 0 first: t = 0 is the top row
 

@@ -18,6 +18,7 @@
 #include "runtime/common/job_checks.hpp"
 #include "runtime/common/node_runner.hpp"
 #include "runtime/common/process_util.hpp"
+#include "runtime/common/raw_pictures.hpp"
 
 namespace crtforge {
 namespace {
@@ -34,32 +35,6 @@ constexpr int kJobSeconds = 240;
 constexpr int kMaxExtent = kMaxImageDimension;
 
 fs::path runner_dir() { return fs::path(data_path("tools/godot4-runner")).lexically_normal(); }
-
-Status write_pictures(const fs::path& path, const std::vector<const Image*>& pictures) {
-    static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
-    std::string bytes;
-    for (const Image* image : pictures)
-        bytes.append(reinterpret_cast<const char*>(image->rgba.data()), image->rgba.size() * sizeof(float));
-    return write_file(path, bytes.data(), bytes.size());
-}
-
-Result<std::vector<Image>> read_pictures(const fs::path& path, int width, int height, std::size_t count) {
-    std::error_code ec;
-    const std::uintmax_t size = fs::file_size(path, ec);
-    const std::size_t one = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4 * sizeof(float);
-    if (ec || size != one * count)
-        return make_validation_error(fmt::format("the Godot 4 driver wrote {} bytes of pixels, expected {} picture(s) of {}x{}",
-                                                 ec ? 0 : size, count, width, height));
-    std::ifstream in(path, std::ios::binary);
-    std::vector<Image> out;
-    for (std::size_t i = 0; i < count; ++i) {
-        Image image = Image::make(width, height);
-        if (!in.read(reinterpret_cast<char*>(image.rgba.data()), static_cast<std::streamsize>(one)))
-            return make_validation_error(fmt::format("the Godot 4 driver's pixels in '{}' could not be read", path.string()));
-        out.push_back(std::move(image));
-    }
-    return out;
-}
 
 // One entry of what Godot logged (runner.gd's ErrorLog), in one line.
 std::string logged_text(const json& entry) {
@@ -223,7 +198,7 @@ Result<Image> Godot4Server::render(const Godot4Job& job) {
                     {"height", job.height}, {"filter", job.filter == SamplerFilter::Linear ? "linear" : "nearest"},
                     {"params", params.value()}, {"frames", job.frames}, {"output", output.string()}};
     if (!job.input.empty()) {
-        if (auto s = write_pictures(input, {&job.input}); !s.ok()) return s.error();
+        if (auto s = detail::write_pictures(input, std::vector<const Image*>{&job.input}); !s.ok()) return s.error();
         message["input"] = input.string();
         message["input_width"] = job.input.width;
         message["input_height"] = job.input.height;
@@ -231,7 +206,7 @@ Result<Image> Godot4Server::render(const Godot4Job& job) {
     auto reply = impl_->request(message, "render");
     if (!reply.ok()) return reply.error();
     if (auto s = logged_errors(reply.value()); !s.ok()) return s.error();
-    auto images = read_pictures(output, job.width, job.height, 1);
+    auto images = detail::read_pictures(output, job.width, job.height, 1, "the Godot 4 driver");
     if (!images.ok()) return images.error();
     return std::move(images.value().front());
 }
@@ -252,10 +227,8 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
     auto project = impl_->write_project(job.project_files);
     if (!project.ok()) return project.error();
     const fs::path dir = impl_->runner->scratch();
-    std::vector<const Image*> pictures;
-    for (const Image& image : job.inputs) pictures.push_back(&image);
     const fs::path inputs = dir / "inputs.f32", output = dir / "output.f32";
-    if (auto s = write_pictures(inputs, pictures); !s.ok()) return s.error();
+    if (auto s = detail::write_pictures(inputs, job.inputs); !s.ok()) return s.error();
     json message = {{"op", "scene"},
                     {"project", project.value().string()},
                     {"scene", job.scene},
@@ -278,7 +251,7 @@ Result<std::vector<Image>> Godot4Server::render_scene(const Godot4SceneJob& job)
     fs::remove_all(project.value(), ec);
     if (!reply.ok()) return reply.error();
     if (auto s = logged_errors(reply.value()); !s.ok()) return s.error();
-    return read_pictures(output, job.width, job.height, job.capture.size());
+    return detail::read_pictures(output, job.width, job.height, job.capture.size(), "the Godot 4 driver");
 }
 
 }  // namespace crtforge

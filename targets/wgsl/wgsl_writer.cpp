@@ -30,9 +30,14 @@ EmitOptions emit_options(const Variant& variant) {
 }
 
 // A nearest-filtered texture can be any float texture, rgba32float included, so its layout entry
-// asks for unfilterable-float with a non-filtering sampler (valid without float32-filterable).
+// asks for unfilterable-float with a non-filtering sampler (valid without float32-filterable) —
+// unless its mip levels blend (mipmap with mip_filter linear), which WebGPU counts as filtering.
 json manifest_extra(const WgslModule& module, const Variant& variant) {
-    auto nearest = [&](const std::string& texture) { return variant.texture_filter(texture) == Filter::Nearest; };
+    auto nearest = [&](const std::string& texture) {
+        const PassInput* input = variant.pass->find_input(texture);
+        const bool blends_levels = input && input->mipmap && input->mip_filter == Filter::Linear;
+        return variant.texture_filter(texture) == Filter::Nearest && !blends_levels;
+    };
     json layout = json::array();
     json uniform_buffer = nullptr;
     for (const WgslBinding& b : module.bindings) {

@@ -321,8 +321,10 @@ async function addSampledTexture(t, visibility, layoutEntries, groupEntries, des
     magFilter: t.filter, minFilter: t.filter, mipmapFilter: t.mipmap ? t.mipFilter : 'nearest',
     addressModeU: t.wrap, addressModeV: t.wrap,
   });
-  layoutEntries.push({ binding: t.binding, visibility, texture: { sampleType: float32 && !linear ? 'unfilterable-float' : 'float' } });
-  layoutEntries.push({ binding: t.samplerBinding, visibility, sampler: { type: linear ? 'filtering' : 'non-filtering' } });
+  // A blend of mip levels counts as filtering in WebGPU.
+  const filtering = linear || (t.mipmap && t.mipFilter === 'linear');
+  layoutEntries.push({ binding: t.binding, visibility, texture: { sampleType: float32 && !filtering ? 'unfilterable-float' : 'float' } });
+  layoutEntries.push({ binding: t.samplerBinding, visibility, sampler: { type: filtering ? 'filtering' : 'non-filtering' } });
   groupEntries.push({ binding: t.binding, resource: texture.createView() });
   groupEntries.push({ binding: t.samplerBinding, resource: sampler });
   return format;

@@ -123,11 +123,9 @@ export function createCrtPass(device, { wgsl, preset: pass, format }) {
     const wrap = t.wrap ?? 'clamp_to_edge';
     const address = wrap === 'clamp_to_border' && borderInShader.has(textureName) ? 'clamp-to-edge' : ADDRESS[wrap];
     if (!address) throw new Error(`crt-webgpu: texture '${textureName}' wraps '${t.wrap}', which WebGPU has no address mode for`);
-    // A mip chain's levels blend as the manifest's mipFilter says (default: as the filter), except
-    // through a sampler the layout declares non-filtering (a nearest texture): WebGPU counts a
-    // blend of levels as filtering, so there the nearest level is read.
-    const nonFiltering = unfilterable || target.bindGroupLayout.entries.some((e) => e.sampler?.type === 'non-filtering' && e.pairedTexture === textureName);
-    const mipmapFilter = t.mipmap && !nonFiltering ? t.mipFilter ?? filter : 'nearest';
+    // A mip chain's levels blend as the manifest's mipFilter says (default: as the filter); the
+    // manifest declares such a sampler filtering, as WebGPU counts a blend of levels.
+    const mipmapFilter = t.mipmap && !unfilterable ? t.mipFilter ?? filter : 'nearest';
     const key = `${filter}/${address}/${mipmapFilter}`;
     if (!samplers.has(key))
       samplers.set(key, device.createSampler({ magFilter: filter, minFilter: filter, mipmapFilter, addressModeU: address, addressModeV: address }));
