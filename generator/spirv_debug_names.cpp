@@ -16,8 +16,6 @@
 
 #include <glslang/SPIRV/GLSL.std.450.h>
 #include <glslang/SPIRV/NonSemanticShaderDebugInfo100.h>
-#define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType: which instructions define a typed value
-#define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType
 #include <glslang/SPIRV/spirv.hpp>
 
 namespace crtforge {

@@ -1,4 +1,3 @@
-#define SPV_ENABLE_UTILITY_CODE
 #include "targets/spirv_facts.hpp"
 
 #include <spirv_cross/spirv.hpp>

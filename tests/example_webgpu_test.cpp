@@ -39,12 +39,7 @@ constexpr int kSceneWidth = 2 * kPixelArtWidth, kSceneHeight = 2 * kPixelArtHeig
 constexpr double kTime = 0.5;
 constexpr double kTolerance = 0.004;  // the project's RMSE tolerance
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using test::slurp;
 
 std::string last_line(std::string text) {
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();

@@ -15,7 +15,7 @@ using namespace crtforge;
 
 namespace {
 
-std::string golden_dir() { return std::string(CRTFORGE_SOURCE_DIR) + "/golden"; }
+using test::golden_dir;
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
     for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);

@@ -25,11 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A file's bytes ("" when unreadable: the checks then fail on the content).
-std::string slurp(const fs::path& path) {
-    auto text = read_text_file(path.string());
-    return text.ok() ? text.value() : std::string();
-}
+using test::slurp;
 
 // A command that must be refused as bad usage, naming the argument at fault.
 void check_refused(const std::string& args, const std::string& field) {

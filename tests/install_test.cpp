@@ -16,12 +16,7 @@ namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using test::slurp;
 
 void require_ok(const test::CommandResult& r, const std::string& what) {
     INFO(what << "\nstdout: " << r.out << "\nstderr: " << r.err);

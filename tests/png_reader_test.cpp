@@ -3,6 +3,7 @@
 // (palette, grey, 16-bit). PNGs of every colour type, bit depth, filter and Adam7 interlacing are
 // written here byte by byte and read by it in Node, and by crtforge's own reader (OpenImageIO).
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cstdint>
 #include <fstream>
@@ -104,7 +105,7 @@ std::string encode(const Png& p) {
 }
 
 std::string name_of(const Png& p) {
-    return "c" + std::to_string(p.colour) + "d" + std::to_string(p.depth) + (p.interlaced ? "i" : "") + (p.transparency ? "t" : "");
+    return fmt::format("c{}d{}{}{}", p.colour, p.depth, p.interlaced ? "i" : "", p.transparency ? "t" : "");
 }
 
 }  // namespace

@@ -16,11 +16,6 @@ using namespace crtforge;
 
 namespace {
 
-void write(const std::string& path, const std::string& text) {
-    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-    std::ofstream(path) << text;
-}
-
 // A pass whose fragment main() body is `body` (reads `Source` at vTexCoord as `c`).
 std::string pass(const std::string& declarations, const std::string& body) {
     return test::slang_program({"float GAIN; ", "#pragma parameter GAIN \"Gain\" 1.0 0.5 2.0 0.1\n", "", "",
@@ -33,8 +28,8 @@ const char* kDraw = "    FragColor = vec4(texture(Source, vTexCoord).rgb * param
 // hides a sampler no texture backs), good/wide.slangp (GAIN = 3 outside [0.5, 2]),
 // bad/broken.slangp (a missing shader), bad/nospirv.slangp (a type error).
 void write_library(const test::TempDir& dir) {
-    write(dir / "shaders/plain.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", kDraw));
-    write(dir / "shaders/macro.slang",
+    test::write_file(dir / "shaders/plain.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", kDraw));
+    test::write_file(dir / "shaders/macro.slang",
           pass("#define Source firstPass\n"
                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
                "#ifdef NEVER_DEFINED\n"
@@ -43,18 +38,18 @@ void write_library(const test::TempDir& dir) {
                kDraw));
     // Bands of three rows counted by gl_FragCoord: GL counts from the bottom and a y-up clip space
     // draws upside down unless the host corrects both, so a mirrored count shows.
-    write(dir / "shaders/rows.slang",
+    test::write_file(dir / "shaders/rows.slang",
           pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n",
                "    float band = mod(floor(gl_FragCoord.y / 3.0), 2.0);\n"
                "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.75 * band) * params.GAIN, 1.0);"));
-    write(dir / "good/rows.slangp", "shaders = 1\nshader0 = ../shaders/rows.slang\n");
-    write(dir / "shaders/typo.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", "    FragColor = 1.0;"));
-    write(dir / "good/plain.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\n");
-    write(dir / "good/macro.slangp",
+    test::write_file(dir / "good/rows.slangp", "shaders = 1\nshader0 = ../shaders/rows.slang\n");
+    test::write_file(dir / "shaders/typo.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", "    FragColor = 1.0;"));
+    test::write_file(dir / "good/plain.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\n");
+    test::write_file(dir / "good/macro.slangp",
           "shaders = 2\nshader0 = ../shaders/plain.slang\nalias0 = firstPass\nshader1 = ../shaders/macro.slang\n");
-    write(dir / "good/wide.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\nGAIN = 3.0\n");
-    write(dir / "bad/broken.slangp", "shaders = 1\nshader0 = ../shaders/missing.slang\n");
-    write(dir / "bad/nospirv.slangp", "shaders = 1\nshader0 = ../shaders/typo.slang\n");
+    test::write_file(dir / "good/wide.slangp", "shaders = 1\nshader0 = ../shaders/plain.slang\nGAIN = 3.0\n");
+    test::write_file(dir / "bad/broken.slangp", "shaders = 1\nshader0 = ../shaders/missing.slang\n");
+    test::write_file(dir / "bad/nospirv.slangp", "shaders = 1\nshader0 = ../shaders/typo.slang\n");
 }
 
 const CorpusRow& row_of(const CorpusReport& report, const std::string& preset) {
@@ -224,8 +219,8 @@ void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& p
 // stage reads, and a mask's triads by floor(gl_FragCoord.x - 0.5), which only exact pixel centres
 // count right).
 void write_program_library(const test::TempDir& dir) {
-    write(dir / "shaders/zoom.slang", zoom_out_pass());
-    write(dir / "shaders/rows.slang",
+    test::write_file(dir / "shaders/zoom.slang", zoom_out_pass());
+    test::write_file(dir / "shaders/rows.slang",
           test::slang_program({"vec4 OutputSize; ", "", "layout(location = 1) {io} vec2 vPixel;\n",
                                "    vPixel = TexCoord * params.OutputSize.xy;\n",
                                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
@@ -235,8 +230,8 @@ void write_program_library(const test::TempDir& dir) {
                                "    float triad = mod(floor(gl_FragCoord.x - 0.5), 3.0);  // a mask's column: exact centres only\n"
                                "    FragColor = vec4(texture(Source, vTexCoord).rgb * (0.25 + 0.5 * band + 0.25 * column) * (0.5 + 0.25 * triad), 1.0);\n"
                                "}\n"}));
-    write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
-    write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
+    test::write_file(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
+    test::write_file(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\nscale_type0 = source\n"
                                 "shader1 = shaders/rows.slang\nfilter_linear1 = true\n");
 }
 
@@ -244,8 +239,8 @@ void write_program_library(const test::TempDir& dir) {
 // SourceSize; `fragment`: its fragment stage), with the preset's `keys` after shader0.
 void write_one_pass(const test::TempDir& dir, const std::string& name, const std::string& push, const std::string& fragment,
                     const std::string& keys) {
-    write(dir / ("shaders/" + name + ".slang"), test::slang_program({push, "", "", "", fragment}));
-    write(dir / (name + ".slangp"), "shaders = 1\nshader0 = shaders/" + name + ".slang\n" + keys);
+    test::write_file(dir / ("shaders/" + name + ".slang"), test::slang_program({push, "", "", "", fragment}));
+    test::write_file(dir / (name + ".slangp"), "shaders = 1\nshader0 = shaders/" + name + ".slang\n" + keys);
 }
 
 // tables.slangp: what Godot's language and GLSL 3.30 / ES 3.00 have no type for, as RetroArch's
@@ -290,8 +285,8 @@ void write_gather_library(const test::TempDir& dir) {
 // original.slangp: a second pass that reads only Original (not its own input, whose size is still
 // its SourceSize) and sizes its stripes by FinalViewportSize, which the host must set.
 void write_original_library(const test::TempDir& dir) {
-    write(dir / "shaders/zoom.slang", zoom_out_pass());
-    write(dir / "shaders/original.slang",
+    test::write_file(dir / "shaders/zoom.slang", zoom_out_pass());
+    test::write_file(dir / "shaders/original.slang",
           test::slang_program({"vec4 FinalViewportSize; ", "", "", "",
                                "layout(set = 0, binding = 3) uniform sampler2D Original;\n"
                                "void main() {\n"
@@ -299,16 +294,16 @@ void write_original_library(const test::TempDir& dir) {
                                "    float texel = params.SourceSize.z * 40.0;  // the first pass's width: 1 / 32\n"
                                "    FragColor = vec4(texture(Original, vTexCoord).rgb * (0.5 + 0.5 * stripe) + vec3(texel - 1.25), 1.0);\n"
                                "}\n"}));
-    write(dir / "original.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nscale_type0 = source\nscale0 = 1.0\n"
+    test::write_file(dir / "original.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nscale_type0 = source\nscale0 = 1.0\n"
                                    "shader1 = shaders/original.slang\nfilter_linear1 = false\n");
 }
 
 // feedback.slangp: three passes, the second reading its own last output (trailFeedback).
 void write_feedback_library(const test::TempDir& dir) {
-    write(dir / "shaders/zoom.slang", zoom_out_pass());
-    write(dir / "shaders/trail.slang", trail_pass());
-    write(dir / "shaders/plain.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", kDraw));
-    write(dir / "feedback.slangp", "shaders = 3\nshader0 = shaders/zoom.slang\nscale_type0 = source\n"
+    test::write_file(dir / "shaders/zoom.slang", zoom_out_pass());
+    test::write_file(dir / "shaders/trail.slang", trail_pass());
+    test::write_file(dir / "shaders/plain.slang", pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n", kDraw));
+    test::write_file(dir / "feedback.slangp", "shaders = 3\nshader0 = shaders/zoom.slang\nscale_type0 = source\n"
                                    "shader1 = shaders/trail.slang\nscale_type1 = source\nfilter_linear1 = false\n"
                                    "shader2 = shaders/plain.slang\nfilter_linear2 = true\n");
 }
@@ -318,13 +313,13 @@ void write_feedback_library(const test::TempDir& dir) {
 TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in the WGSL, the host clamping to the edge, feedback",
           "[retroarch][corpus-command][wgsl][dawn]") {
     test::TempDir dir;
-    write(dir / "shaders/zoom.slang", zoom_out_pass());
-    write(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
-    write(dir / "nearest.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\n");
+    test::write_file(dir / "shaders/zoom.slang", zoom_out_pass());
+    test::write_file(dir / "linear.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\n");
+    test::write_file(dir / "nearest.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = false\n");
     // Two passes: the second reads the first's output (clamp_to_border by default) outside it.
-    write(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nscale_type0 = source\n"
+    test::write_file(dir / "chain.slangp", "shaders = 2\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nscale_type0 = source\n"
                                 "shader1 = shaders/zoom.slang\nfilter_linear1 = true\n");
-    write(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
+    test::write_file(dir / "edge.slangp", "shaders = 1\nshader0 = shaders/zoom.slang\nfilter_linear0 = true\nwrap_mode0 = clamp_to_edge\n");
     check_all_agree(dir, {"chain.slangp", "edge.slangp", "linear.slangp", "nearest.slangp"}, TargetId::Wgsl);
     // The npm scene package runs a multi-pass preset with feedback as Vulkan does, and a pass that
     // reads only Original and the final viewport's size.

@@ -22,11 +22,6 @@ using namespace crtforge;
 
 namespace {
 
-void write(const std::string& path, const std::string& text) {
-    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-    std::ofstream(path) << text;
-}
-
 const char* kFirstPass = R"(#version 450
 layout(push_constant) uniform Push {
     vec4 SourceSize;
@@ -101,12 +96,12 @@ void main() {
 
 // The test preset in `dir`, with a 2x1 LUT.
 std::string write_test_preset(const test::TempDir& dir) {
-    write(dir / "shaders/first.slang", kFirstPass);
-    write(dir / "shaders/second.slang", kSecondPass);
+    test::write_file(dir / "shaders/first.slang", kFirstPass);
+    test::write_file(dir / "shaders/second.slang", kSecondPass);
     Image lut = Image::make(2, 1, {1.0f, 0.5f, 0.25f, 1.0f});
     std::filesystem::create_directories(dir / "luts");
     REQUIRE(write_png(dir / "luts/tint.png", lut).ok());
-    write(dir / "presets/test.slangp",
+    test::write_file(dir / "presets/test.slangp",
           "shaders = 2\n"
           "shader0 = ../shaders/first.slang\n"
           "filter_linear0 = false\n"
@@ -269,15 +264,15 @@ void main() {
 TEST_CASE("an imported pass reads its block members in place and holds only the constants it names: shared passes compile alike",
           "[retroarch][import]") {
     test::TempDir dir;
-    write(dir / "shaders/shared.slang", kSharedPass);
-    write(dir / "shaders/shadowing.slang", kShadowingPass);
+    test::write_file(dir / "shaders/shared.slang", kSharedPass);
+    test::write_file(dir / "shaders/shadowing.slang", kShadowingPass);
     auto preset_text = [](const std::string& shader, double read, double unread) {
         return fmt::format("shaders = 1\nshader0 = ../shaders/{}\nREAD = {}\nUNREAD = {}\nUNREAD_TOO = {}\n", shader, read, unread, unread);
     };
-    write(dir / "presets/a.slangp", preset_text("shared.slang", 0.75, 0.25));
-    write(dir / "presets/b.slangp", preset_text("shared.slang", 0.75, 0.5));
-    write(dir / "presets/c.slangp", preset_text("shared.slang", 0.5, 0.25));
-    write(dir / "presets/shadow.slangp", preset_text("shadowing.slang", 0.75, 0.25));
+    test::write_file(dir / "presets/a.slangp", preset_text("shared.slang", 0.75, 0.25));
+    test::write_file(dir / "presets/b.slangp", preset_text("shared.slang", 0.75, 0.5));
+    test::write_file(dir / "presets/c.slangp", preset_text("shared.slang", 0.5, 0.25));
+    test::write_file(dir / "presets/shadow.slangp", preset_text("shadowing.slang", 0.75, 0.25));
     VariantOptions baked;
     baked.uniforms = UniformSelection::parse("none").value();
     auto compile = [&](const std::string& name) -> std::pair<std::shared_ptr<TemplateLibrary>, CompiledVariant> {
@@ -329,8 +324,8 @@ TEST_CASE("a pass imported into another folder is the same compile cache entry",
     std::string shader = kSharedPass;
     const std::string unique = "0.5 0.0 1.0 0.05\n#pragma parameter UNREAD";  // a value no other test compiles
     shader.replace(shader.find(unique), unique.size(), "0.3125 0.0 1.0 0.05\n#pragma parameter UNREAD");
-    write(dir / "shaders/shared.slang", shader);
-    write(dir / "presets/only.slangp", "shaders = 1\nshader0 = ../shaders/shared.slang\n");
+    test::write_file(dir / "shaders/shared.slang", shader);
+    test::write_file(dir / "presets/only.slangp", "shaders = 1\nshader0 = ../shaders/shared.slang\n");
     const Cache cache(dir / "cache");
     auto entries = [&]() {
         size_t n = 0;
@@ -391,13 +386,13 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
     };
     std::string clash = kSecondPass;
     clash.replace(clash.find("0.5 0.0 1.0 0.05"), 16, "0.5 0.0 2.0 0.05");
-    write(dir / "shaders/clash.slang", clash);
+    test::write_file(dir / "shaders/clash.slang", clash);
     std::string stray = kFirstPass;
     stray.replace(stray.find("uniform sampler2D Source;"), 25, "uniform sampler2D Source;\nlayout(set = 0, binding = 3) uniform sampler2D nowhere;");
-    write(dir / "shaders/stray.slang", stray);
+    test::write_file(dir / "shaders/stray.slang", stray);
     for (const Bad& bad : cases) {
         INFO(bad.what);
-        write(dir / "presets/bad.slangp", bad.text);
+        test::write_file(dir / "presets/bad.slangp", bad.text);
         const std::string out = dir / "bad-out";
         auto r = test::run_crtforge("import '" + (dir / "presets/bad.slangp") + "' --out '" + out + "' --root '" + dir.path() + "'");
         INFO(r.err);
@@ -409,7 +404,7 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
 
     // The error names the line that declares the stray sampler, in the .slang itself.
     const int stray_line = 1 + static_cast<int>(std::count(stray.begin(), stray.begin() + stray.find("nowhere"), '\n'));
-    write(dir / "presets/bad.slangp", "shaders = 1\nshader0 = ../shaders/stray.slang\n");
+    test::write_file(dir / "presets/bad.slangp", "shaders = 1\nshader0 = ../shaders/stray.slang\n");
     auto located = test::run_crtforge("import '" + (dir / "presets/bad.slangp") + "' --out '" + (dir / "bad-out") + "'");
     CHECK(located.err.find("stray.slang:" + std::to_string(stray_line) + ": error: field 'sampler nowhere'") != std::string::npos);
 
@@ -458,7 +453,7 @@ TEST_CASE("a curated slice of RetroArch's CRT presets renders alike through Vulk
 
 TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the screen and keeps textureSize", "[retroarch][import][godot]") {
     test::TempDir dir;
-    write(dir / "shaders/fetch.slang",
+    test::write_file(dir / "shaders/fetch.slang",
           test::slang_program({"", "", "", "",
                                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
                                "void main() {\n"
@@ -466,7 +461,7 @@ TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the s
                                "    ivec2 p = clamp(ivec2(gl_FragCoord.xy) / 2, ivec2(0), size - 1);\n"
                                "    FragColor = vec4(texelFetch(Source, p, 0).rgb, 1.0);\n"
                                "}\n"}));
-    write(dir / "fetch.slangp", "shaders = 1\nshader0 = shaders/fetch.slang\n");
+    test::write_file(dir / "fetch.slangp", "shaders = 1\nshader0 = shaders/fetch.slang\n");
     auto lib = import_into(dir / "fetch.slangp", dir / "overlay", dir.path(), "fetch");
     INFO((lib.ok() ? std::string() : lib.error().str()));
     REQUIRE(lib.ok());
@@ -490,7 +485,7 @@ TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization cons
           "[retroarch][import][specialize]") {
     test::TempDir dir;
     const std::string params = "#pragma parameter GAIN \"Gain\" 0.5 0.0 2.0 0.05\n#pragma parameter SWAP \"Swap\" 0.0 0.0 1.0 1.0\n";
-    write(dir / "shaders/gain.slang",
+    test::write_file(dir / "shaders/gain.slang",
           test::slang_program({"float GAIN; float SWAP; ", params, "", "",
                                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
                                "void main() {\n"
@@ -500,14 +495,14 @@ TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization cons
                                "}\n"}));
     // A global constant made from a param: no specialization constant can be one (SPIR-V folds no
     // float arithmetic of them), so this pass falls back to constants.
-    write(dir / "shaders/global.slang",
+    test::write_file(dir / "shaders/global.slang",
           test::slang_program({"float GAIN; ", "#pragma parameter GAIN \"Gain\" 0.5 0.0 2.0 0.05\n", "", "",
                                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
                                "const float kHalfGain = params.GAIN * 0.5;\n"
                                "void main() { FragColor = vec4(texture(Source, vTexCoord).rgb * kHalfGain, 1.0); }\n"}));
-    write(dir / "a.slangp", "shaders = 2\nshader0 = shaders/gain.slang\nscale_type0 = source\nshader1 = shaders/global.slang\n"
+    test::write_file(dir / "a.slangp", "shaders = 2\nshader0 = shaders/gain.slang\nscale_type0 = source\nshader1 = shaders/global.slang\n"
                             "GAIN = 1.5\nSWAP = 1.0\n");
-    write(dir / "b.slangp", "shaders = 2\nshader0 = shaders/gain.slang\nscale_type0 = source\nshader1 = shaders/global.slang\n"
+    test::write_file(dir / "b.slangp", "shaders = 2\nshader0 = shaders/gain.slang\nscale_type0 = source\nshader1 = shaders/global.slang\n"
                             "GAIN = 0.75\n");
     auto baked = UniformSelection::parse("none");
     REQUIRE(baked.ok());
@@ -585,8 +580,8 @@ TEST_CASE("mipmap_input and NAME_mipmap sample through a mip chain on Vulkan, GL
     test::TempDir dir;
     // Both passes: the stock vertex stage, then a fragment stage reading Source (and more).
     const std::string head = kStockHead;
-    write(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
-    write(dir / "shaders/minify.slang", head + R"(layout(set = 0, binding = 3) uniform sampler2D Original;
+    test::write_file(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
+    test::write_file(dir / "shaders/minify.slang", head + R"(layout(set = 0, binding = 3) uniform sampler2D Original;
 layout(set = 0, binding = 4) uniform sampler2D board;
 void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, vTexCoord).r, texture(board, vTexCoord).r, 1.0); }
 )");
@@ -596,7 +591,7 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
             for (int c = 0; c < 4; ++c) checker.rgba[(static_cast<size_t>(y) * 256 + x) * 4 + c] = c == 3 || (x + y) % 2 ? 1.0f : 0.0f;
     std::filesystem::create_directories(dir / "luts");
     REQUIRE(write_png(dir / "luts/board.png", checker).ok());
-    write(dir / "presets/mip.slangp",
+    test::write_file(dir / "presets/mip.slangp",
           "shaders = 2\n"
           "shader0 = ../shaders/copy.slang\n"
           "filter_linear0 = false\n"
@@ -667,15 +662,15 @@ TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an 
           "[retroarch][import][mipmap]") {
     test::TempDir dir;
     const std::string head = kStockHead;
-    write(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
+    test::write_file(dir / "shaders/copy.slang", head + "void main() { FragColor = texture(Source, vTexCoord); }\n");
     // Level 3 is 8 x 4: (2.5 / 8, 1.5 / 4) is a texel centre.
-    write(dir / "shaders/levels.slang", head + R"(void main() {
+    test::write_file(dir / "shaders/levels.slang", head + R"(void main() {
     float level3 = textureLod(Source, vec2(2.5 / 8.0, 1.5 / 4.0), 3.0).r;
     // How far level 3's texel is from the byte grid, measured here: the display is half floats.
     FragColor = vec4(textureLod(Source, vec2(0.3, 0.3), 5.0).r, abs(fract(level3 * 255.0 + 0.5) - 0.5), level3, 1.0);
 }
 )");
-    write(dir / "presets/levels.slangp",
+    test::write_file(dir / "presets/levels.slangp",
           "shaders = 2\n"
           "shader0 = ../shaders/copy.slang\n"
           "filter_linear0 = false\n"

@@ -7,6 +7,7 @@
 #include <map>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "crtforge/spirv_compiler.hpp"
 #include "generator/retroarch/slang_source.hpp"
@@ -508,8 +509,8 @@ TEST_CASE("every .slangp error is one line at its file, line and field", "[retro
         const std::string y = put(dir, "y.slangp", "\n#reference \"x.slangp\"\n");
         require_error(load_slangp(at(dir, "x.slangp"), root), y, 2, "#reference", "cycle");
         for (int i = 0; i <= kMaxReferenceDepth + 1; ++i)
-            put(dir, "r" + std::to_string(i) + ".slangp", "#reference \"r" + std::to_string(i + 1) + ".slangp\"\n");
-        put(dir, "r" + std::to_string(kMaxReferenceDepth + 2) + ".slangp", one_pass());
+            put(dir, fmt::format("r{}.slangp", i), fmt::format("#reference \"r{}.slangp\"\n", i + 1));
+        put(dir, fmt::format("r{}.slangp", kMaxReferenceDepth + 2), one_pass());
         require_error(load_slangp(at(dir, "r0.slangp"), root), at(dir, "r" + std::to_string(kMaxReferenceDepth) + ".slangp"),
                       1, "#reference", "more than");
         // 16 steps are fine.

@@ -35,7 +35,6 @@ Image quadrants() {
     return image;
 }
 
-const float* pixel(const Image& image, int x, int y) { return &image.rgba[static_cast<size_t>((y * image.width + x) * 4)]; }
 
 }  // namespace
 
@@ -56,10 +55,10 @@ TEST_CASE("godot4: TEXTURE and UV start at the top-left, the read-back is top ro
     REQUIRE(out.width == 4);
     REQUIRE(out.height == 4);
     // Top-left red, top-right green, bottom-left blue, at the gain the host set.
-    CHECK(pixel(out, 0, 0)[0] == Approx(0.5).margin(1.0 / 255));
-    CHECK(pixel(out, 3, 0)[1] == Approx(0.5).margin(1.0 / 255));
-    CHECK(pixel(out, 0, 3)[2] == Approx(0.5).margin(1.0 / 255));
-    CHECK(pixel(out, 3, 3)[0] == Approx(0.5).margin(1.0 / 255));
+    CHECK(out.pixel(0, 0)[0] == Approx(0.5).margin(1.0 / 255));
+    CHECK(out.pixel(3, 0)[1] == Approx(0.5).margin(1.0 / 255));
+    CHECK(out.pixel(0, 3)[2] == Approx(0.5).margin(1.0 / 255));
+    CHECK(out.pixel(3, 3)[0] == Approx(0.5).margin(1.0 / 255));
     // The viewport stores 8 bits: every value is a multiple of 1/255.
     for (float v : out.rgba) CHECK(std::fabs(v * 255.0f - std::round(v * 255.0f)) < 1e-3f);
 }

@@ -14,7 +14,21 @@ namespace fs = std::filesystem;
 
 namespace crtforge::test {
 
-std::string shipped_template_dir() { return std::string(CRTFORGE_SOURCE_DIR) + "/templates"; }
+std::string golden_dir() { return CRTFORGE_SOURCE_DIR "/golden"; }
+
+std::string slurp(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+    std::filesystem::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string shipped_template_dir() { return CRTFORGE_SOURCE_DIR "/templates"; }
 
 namespace {
 

@@ -17,6 +17,15 @@
 
 namespace crtforge::test {
 
+// The shipped goldens: golden/ of the source tree.
+std::string golden_dir();
+
+// A file's bytes ("" when unreadable: the checks then fail on the content).
+std::string slurp(const std::filesystem::path& path);
+
+// Writes `text` to `path`, making its folders.
+void write_file(const std::filesystem::path& path, const std::string& text);
+
 // The shipped templates, loaded once per test binary.
 const TemplateLibrary& shipped_library();
 // The shipped templates plus golden/stages/ (the stage-isolation presets), as `crtforge golden`

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string golden_dir() { return std::string(CRTFORGE_SOURCE_DIR) + "/golden"; }
+using test::golden_dir;
 
 std::string replace_once(std::string s, const std::string& from, const std::string& to) {
     const auto pos = s.find(from);

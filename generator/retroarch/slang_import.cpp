@@ -190,7 +190,7 @@ private:
             const SlangpPass& pass = preset_.passes[i];
             std::string alias = !pass.alias.empty() ? pass.alias : passes_[i].source->name;
             std::string ours = alias.empty() ? "pass" + std::to_string(i) : identifier_from(alias);
-            while (taken.count(ours)) ours += "_" + std::to_string(i);
+            while (taken.count(ours)) ours.append(1, '_').append(std::to_string(i));
             taken.insert(ours);
             passes_[i].alias = ours;
             pass_index_[ours] = i;

@@ -114,4 +114,13 @@ std::string texture_field(std::size_t index, const char* member) {
     return fmt::format("textures[{}].{}", index, member);
 }
 
+std::string frame_list(const std::vector<int>& frames) {
+    std::string out;
+    for (int f : frames) {
+        if (!out.empty()) out.push_back(',');
+        out.append(std::to_string(f));
+    }
+    return out;
+}
+
 }  // namespace crtforge::detail

@@ -56,4 +56,7 @@ Status check_distinct_bindings(const std::vector<BindingUse>& uses);
 // "textures[i].<member>", the field of one extra texture's member.
 std::string texture_field(std::size_t index, const char* member);
 
+// A job's frame numbers as a runner's argument: "1,3,9".
+std::string frame_list(const std::vector<int>& frames);
+
 }  // namespace crtforge::detail

@@ -55,7 +55,7 @@ using json = nlohmann::json;
 using detail::job_error;
 
 constexpr const char* kWebgpuVersion = "0.6.2";  // tools/wgsl-runner/package.json pins it
-constexpr int kMaxExtent = kMaxImageDimension;    // llvmpipe's maxTextureDimension2D
+constexpr int kDawnMaxExtent = kMaxImageDimension;    // llvmpipe's maxTextureDimension2D
 constexpr int kStartSeconds = 60;
 constexpr int kRequestSeconds = 120;
 
@@ -129,7 +129,7 @@ Status check_scene_job(const DawnSceneJob& job) {
         if (!std::isfinite(t)) return job_error("a frame's time is not finite", "times");
     if (!job.fit.empty() && job.fit != "stretch" && job.fit != "aspect" && job.fit != "integer")
         return job_error("the display fit must be stretch, aspect or integer, not '" + job.fit + "'", "fit");
-    const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Dawn", "maxTextureDimension2D"};
+    const detail::JobLimits limits{kDawnMaxExtent, kDawnMaxExtent, kDawnMaxExtent, "Dawn", "maxTextureDimension2D"};
     for (const Image& input : job.inputs) {
         if (input.width != job.inputs.front().width || input.height != job.inputs.front().height)
             return job_error("the input pictures differ in size", "inputs");
@@ -155,7 +155,7 @@ Status check_job(const DawnJob& job) {
     if (trim(job.wgsl).empty()) return job_error("the WGSL module is empty", "wgsl");
     if (job.vertex_entry.empty()) return job_error("the vertex entry point name is empty", "vertex_entry");
     if (job.fragment_entry.empty()) return job_error("the fragment entry point name is empty", "fragment_entry");
-    const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Dawn", "maxTextureDimension2D"};
+    const detail::JobLimits limits{kDawnMaxExtent, kDawnMaxExtent, kDawnMaxExtent, "Dawn", "maxTextureDimension2D"};
     if (auto s = detail::check_job_extent(job.width, job.height, job.uses_texture ? job.input : Image{}, limits); !s.ok())
         return s;
     if (auto s = detail::check_texture_images(job.textures, limits); !s.ok()) return s;

@@ -25,14 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kStartSeconds = 90;       // node, Dawn, the framework and its first pipelines
-constexpr int kSecondsPerFrame = 10;    // SwiftShader and llvmpipe draw a few frames a second
-
-std::string join_frames(const std::vector<int>& frames) {
-    std::string out;
-    for (int f : frames) out += (out.empty() ? "" : ",") + std::to_string(f);
-    return out;
-}
+constexpr int kFrameworkStartSeconds = 90;       // node, Dawn, the framework and its first pipelines
+constexpr int kFrameworkSecondsPerFrame = 10;    // SwiftShader and llvmpipe draw a few frames a second
 
 // check.mjs's --set value: a number, or a colour as r,g,b (what its setParam takes).
 Result<std::string> set_value(const std::string& name, const Value& value) {
@@ -104,7 +98,7 @@ Result<std::vector<Image>> render_through_framework(const DawnSceneJob& job, con
     spec.args = {check.string(), "--package", app.string(), "--" + job.framework, "on", "--preset", job.preset,
                  "--input", inputs.string(), "--input-width", std::to_string(job.inputs.front().width),
                  "--input-height", std::to_string(job.inputs.front().height), "--width", std::to_string(job.width),
-                 "--height", std::to_string(job.height), "--frames", join_frames(job.run), "--capture", join_frames(job.capture),
+                 "--height", std::to_string(job.height), "--frames", frame_list(job.run), "--capture", frame_list(job.capture),
                  "--output", output.string()};
     if (!job.times.empty()) spec.args.insert(spec.args.end(), {"--time", fmt::format("{}", job.times.front())});
     if (!job.fit.empty()) spec.args.insert(spec.args.end(), {"--fit", job.fit});
@@ -120,7 +114,7 @@ Result<std::vector<Image>> render_through_framework(const DawnSceneJob& job, con
     auto pid = spawn(spec);
     ::close(log_fd);
     if (!pid.ok()) return pid.error();
-    const int seconds = kStartSeconds + kSecondsPerFrame * static_cast<int>(job.run.size());
+    const int seconds = kFrameworkStartSeconds + kFrameworkSecondsPerFrame * static_cast<int>(job.run.size());
     std::optional<int> status = wait_until(pid.value(), ProcessClock::now() + std::chrono::seconds(seconds));
     const std::string adapter = "crtforge-presets/" + job.framework;
     if (!status) {

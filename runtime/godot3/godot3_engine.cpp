@@ -64,7 +64,7 @@ constexpr const char* kRunnerPrefix = "crtforge-godot3-runner: ";
 constexpr const char* kOutputMagic = "CRTG3PX1";
 constexpr std::size_t kOutputHeaderBytes = 24;
 constexpr std::size_t kMaxLogBytes = 4u << 20;  // Godot's output kept for diagnostics
-constexpr int kMaxExtent = kMaxImageDimension;  // the runner's limit too (tools/godot3-runner)
+constexpr int kGodot3MaxExtent = kMaxImageDimension;  // the runner's limit too (tools/godot3-runner)
 constexpr int kXvfbStartSeconds = 15;
 
 // ---- small helpers --------------------------------------------------------------------------
@@ -232,7 +232,7 @@ Status copy_runner(const fs::path& from, const fs::path& to) {
 
 Status check_job(const Godot3Job& job) {
     if (job.shader_code.empty()) return job_error("shader code is empty", "shader_code");
-    const detail::JobLimits limits{kMaxExtent, kMaxExtent, kMaxExtent, "Godot 3", "the Godot 3 runner's limit"};
+    const detail::JobLimits limits{kGodot3MaxExtent, kGodot3MaxExtent, kGodot3MaxExtent, "Godot 3", "the Godot 3 runner's limit"};
     if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s;
     if (job.frames < 1 || job.frames > 1000)
         return job_error(fmt::format("frames must be between 1 and 1000; got {}", job.frames), "frames");
@@ -416,12 +416,6 @@ Status run_godot_on(const fs::path& dir, const fs::path& project, const std::vec
     return diagnose(log, -1, describe_status(*status));
 }
 
-std::string frame_list(const std::vector<int>& frames) {
-    std::string out;
-    for (int f : frames) out += (out.empty() ? "" : ",") + std::to_string(f);
-    return out;
-}
-
 // The job's files in `dir` and the runner's arguments for it (output to dir/output.raw).
 Result<std::vector<std::string>> shader_job_args(const Godot3Job& job, const fs::path& dir) {
     static_assert(std::endian::native == std::endian::little, "the runner's files are little-endian float32");
@@ -452,8 +446,8 @@ Result<std::vector<std::string>> shader_job_args(const Godot3Job& job, const fs:
 // The same for a scene (outputs to dir/frame-<N>.raw).
 Result<std::vector<std::string>> scene_job_args(const Godot3SceneJob& job, const fs::path& dir) {
     if (job.scene.rfind("res://", 0) != 0) return job_error("scene must be a res:// path", "scene");
-    if (job.width < 2 || job.height < 2 || job.width > kMaxExtent || job.height > kMaxExtent)
-        return job_error(fmt::format("the display must be 2..{} pixels on each side; got {}x{}", kMaxExtent, job.width, job.height), "width");
+    if (job.width < 2 || job.height < 2 || job.width > kGodot3MaxExtent || job.height > kGodot3MaxExtent)
+        return job_error(fmt::format("the display must be 2..{} pixels on each side; got {}x{}", kGodot3MaxExtent, job.width, job.height), "width");
     if (job.run.empty() || job.inputs.size() != job.run.size())
         return job_error("one input picture per frame of run is needed", "inputs");
     for (const Image& input : job.inputs)
@@ -481,8 +475,8 @@ Result<std::vector<std::string>> scene_job_args(const Godot3SceneJob& job, const
         "--inputs=" + (dir / "inputs.raw").string(),
         "--input-width=" + std::to_string(job.inputs.front().width),
         "--input-height=" + std::to_string(job.inputs.front().height),
-        "--run=" + frame_list(job.run),
-        "--capture=" + frame_list(job.capture),
+        "--run=" + detail::frame_list(job.run),
+        "--capture=" + detail::frame_list(job.capture),
         fmt::format("--fps={}", job.fps),
         fmt::format("--start-time={}", job.start_time),
         fmt::format("--frame-count-base={}", job.frame_count_base),

@@ -13,7 +13,6 @@
 // Matrix types are not aggregates: SPIR-V forbids two declarations of the same matrix type, so
 // every matrix type that ends up matN (an existing mat4 and a padded mat4x3, say) is merged into
 // whichever of them the module declares first.
-#define SPV_ENABLE_UTILITY_CODE  // spv::HasResultAndType
 #include "targets/godot/spirv_square_matrices.hpp"
 
 #include <algorithm>

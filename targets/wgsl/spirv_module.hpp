@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#define SPV_ENABLE_UTILITY_CODE
 #include <spirv_cross/spirv.hpp>
 
 #include "crtforge/diagnostic.hpp"
