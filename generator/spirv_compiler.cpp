@@ -134,14 +134,16 @@ std::string disassemble_spirv(const SpirvBinary& binary) {
 
 namespace {
 
-// SPIRV-Tools' performance passes.
-Result<SpirvBinary> optimize_spirv(const SpirvBinary& module, const std::string& name) {
+// SPIRV-Tools' performance passes; with `compact_ids`, then the ids renumbered in the order the
+// module defines them.
+Result<SpirvBinary> optimize_spirv(const SpirvBinary& module, const std::string& name, bool compact_ids = false) {
     spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_0);
     std::vector<std::string> messages;
     optimizer.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t&, const char* msg) {
         if (level <= SPV_MSG_ERROR) messages.push_back(msg);
     });
     optimizer.RegisterPerformancePasses();
+    if (compact_ids) optimizer.RegisterPass(spvtools::CreateCompactIdsPass());
     SpirvBinary optimized;
     if (!optimizer.Run(module.data(), module.size(), &optimized))
         return make_validation_error("spirv-opt failed: " + join_messages(messages), name);
@@ -173,9 +175,11 @@ BoundedMemo<SpirvBinary>& optimized_memo() {
     return memo;
 }
 
-std::string optimized_memo_key(const SpirvBinary& plain, bool carry_names) {
+// `names`: the local names the optimised module will carry (carried_local_names), or "" when it
+// carries none: two sources that differ only in a local's name make one plain module.
+std::string optimized_memo_key(const SpirvBinary& plain, bool carry_names, const std::string& names) {
     const std::string_view words(reinterpret_cast<const char*>(plain.data()), plain.size() * sizeof(uint32_t));
-    return Cache::key({"optimized", compiler_versions(), carry_names ? "names" : "plain", words});
+    return Cache::key({"optimized", compiler_versions(), carry_names ? "names" : "plain", names, words});
 }
 
 }  // namespace
@@ -206,7 +210,8 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
 
     // The memo's key is the module without debug info (OpLine output, debug_lines, names its files:
-    // it is not memoised), its specialization constants (BakedParams::Specialized) cleared: it is
+    // it is not memoised) and the local names it will carry, its specialization constants
+    // (BakedParams::Specialized) cleared: it is
     // optimised with them cleared, so presets that differ only in those values share one
     // optimisation, and each gets its values back after.
     std::string memo_key;
@@ -226,7 +231,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
             clear_spec_constant_values(spirv);
             if (&keyed != &spirv) clear_spec_constant_values(keyed);
         }
-        memo_key = optimized_memo_key(keyed, carry_names);
+        memo_key = optimized_memo_key(keyed, carry_names, carry_names ? carried_local_names(spirv) : std::string());
         if (auto known = optimized_memo().find(memo_key)) {
             write_spec_constant_values(*known, spec_values);
             return std::move(*known);
@@ -242,9 +247,11 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
             // its debug scope does, a value a DebugValue reads stays alive): optimising the named,
             // stripped module again gives the module an optimisation without names gives. (A cleanup
             // list alone — ADCE, CFG cleanup, block merge, dead constants — left a dead store in
-            // one WGSL snapshot shader: the whole performance list it is.)
+            // one WGSL snapshot shader: the whole performance list it is.) The ids are compacted
+            // after: the debug info (its file names, its line records) took ids of its own, and the
+            // module must not depend on them, or on which source of the same code came first.
             name_values_and_strip_debug_info(spirv);
-            if (auto optimized = optimize_spirv(spirv, name); optimized.ok()) spirv = std::move(optimized.value());
+            if (auto optimized = optimize_spirv(spirv, name, true); optimized.ok()) spirv = std::move(optimized.value());
             else return optimized.error();
         }
         reduce_constant_powers(spirv);  // last: the exponents are constants only once spirv-opt has folded

@@ -390,6 +390,14 @@ void name_unnamed_values(SpirvBinary& words) {
     rewrite_names(words, list, names, [](const Instruction&) { return false; });
 }
 
+std::string carried_local_names(const SpirvBinary& words) {
+    const auto list = detail::spirv_instructions(words);
+    if (!list) return {};
+    std::string out;
+    for (const auto& [id, name] : gather(words, *list).local_variables) out.append(name).push_back('\n');
+    return out;
+}
+
 void name_values_and_strip_debug_info(SpirvBinary& words) {
     if (words.size() < detail::kSpirvHeaderWords || words[0] != spv::MagicNumber) return;
     const auto parsed = detail::spirv_instructions(words);

@@ -1,6 +1,8 @@
 // Keeps the template's local names through spirv-opt (see spirv_debug_names.cpp).
 #pragma once
 
+#include <string>
+
 #include "crtforge/spirv_compiler.hpp"
 
 namespace crtforge {
@@ -9,6 +11,11 @@ namespace crtforge {
 // NonSemantic debug info, OpLine, OpString and OpSource. A module without that debug info only
 // loses its OpLine/OpString/OpSource; one that does not parse is left as it is.
 void name_values_and_strip_debug_info(SpirvBinary& words);
+
+// The template local names a module's NonSemantic debug info carries (its DebugLocalVariables, in
+// order): what name_values_and_strip_debug_info gives the values, and so part of what an
+// optimised module is made of besides its code ("" without that debug info).
+std::string carried_local_names(const SpirvBinary& words);
 
 // Names each value that still has none after optimisation (what spirv-opt made of an expression:
 // a common subexpression, the output clamp, pow's reduction) after what it is — product, clamped,

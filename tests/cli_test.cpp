@@ -85,6 +85,24 @@ TEST_CASE("a broken template snippet: exit 2 at the snippet's line, no output", 
     CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("the same code exports the same SPIR-V whatever its folder and comment lines", "[cli][determinism]") {
+    // A comment moves every line of a stage (the debug info that carries the template's local
+    // names records lines and files, and takes ids of its own): the optimised module must not show it.
+    test::ScratchTemplates moved;
+    moved.write("stages/scanlines.glsl", "// one\n// two\n// three\n" + moved.read("stages/scanlines.glsl"));
+    test::TempDir tmp;
+    const std::string as_shipped = "--no-cache export --preset classic --target spirv --out '" + (tmp / "a") + "'";
+    const std::string as_moved = "--no-cache --templates '" + moved.dir() + "' export --preset classic --target spirv --out '" + (tmp / "b") + "'";
+    REQUIRE(test::run_crtforge(as_shipped).exit_code == 0);
+    REQUIRE(test::run_crtforge(as_moved).exit_code == 0);
+    for (const char* file : {"spirv/classic.frag.spv", "spirv/classic.vert.spv"}) {
+        INFO(file);
+        const std::string a = test::slurp(tmp / ("a/" + std::string(file))), b = test::slurp(tmp / ("b/" + std::string(file)));
+        CHECK(!a.empty());
+        CHECK(a == b);
+    }
+}
+
 TEST_CASE("generate and export write the promised files", "[cli]") {
     test::TempDir tmp;
     auto gen = test::run_crtforge("--no-cache generate --preset quiet-frame --target hlsl50 --out '" + tmp.path() + "/g'");
