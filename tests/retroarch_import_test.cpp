@@ -383,6 +383,11 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
         {"a parameter declared again with other values", "shaders = 2\nshader0 = ../shaders/first.slang\nshader1 = ../shaders/clash.slang\n",
          "SHARED"},
         {"a sampler naming no texture", "shaders = 1\nshader0 = ../shaders/stray.slang\n", "sampler 'nowhere'"},
+        // RetroArch's strtod reads these; a shader parameter that is not finite is refused at its line.
+        {"a parameter set to inf", "shaders = 1\nshader0 = ../shaders/first.slang\nparameters = GAIN\nGAIN = inf\n",
+         "bad.slangp:4: error: field 'GAIN'"},
+        {"a parameter set to nan", "shaders = 1\nshader0 = ../shaders/first.slang\nGAIN = nan\n", "bad.slangp:3: error: field 'GAIN'"},
+        {"a parameter past a double's range", "shaders = 1\nshader0 = ../shaders/first.slang\nGAIN = -1e999\n", "not a finite number"},
     };
     std::string clash = kSecondPass;
     clash.replace(clash.find("0.5 0.0 1.0 0.05"), 16, "0.5 0.0 2.0 0.05");

@@ -172,8 +172,15 @@ private:
                 used_names.insert(name);
                 param_names_[p.id] = name;
             }
-        for (const auto& [id, value] : preset_.parameters)
-            if (params_.count(id)) values_[id] = value;
+        for (const auto& [id, value] : preset_.parameters) {
+            if (!params_.count(id)) continue;
+            if (!std::isfinite(value)) {
+                const SourceLocation& at = preset_.parameter_lines.at(id);
+                return make_error(fmt::format("the shader parameter '{}' is set to {}, not a finite number", id, value), at.file,
+                                  at.line, id);
+            }
+            values_[id] = value;
+        }
         return Ok{};
     }
 
@@ -259,7 +266,8 @@ private:
                         out_.warnings.push_back(make_error(fmt::format("the preset sets '{}' to {}, outside its declared range [{}, {}]: the "
                                                                        "range is widened (RetroArch does not clamp it)",
                                                                        p.id, toml_float(v->second), toml_float(p.minimum), toml_float(p.maximum)),
-                                                           preset_.path, 0, "parameters").warning());
+                                                           preset_.parameter_lines.at(p.id).file,
+                                                           preset_.parameter_lines.at(p.id).line, p.id).warning());
                     lo = std::min(lo, v->second);
                     hi = std::max(hi, v->second);
                 }

@@ -549,7 +549,10 @@ Result<SlangpPreset> load_slangp(const std::string& path, const std::string& roo
             }
             size_t consumed = 0;
             const double value = detail::parse_number_prefix(e.value, consumed);
-            if (consumed == 0 || !std::isfinite(value)) continue;  // not a number: not a parameter value
+            // Not a number: not a parameter value. A whole value that is a number but not a finite one
+            // (inf, nan, 1e999) is kept: the importer refuses it where the key names a shader
+            // parameter. (A word that only starts like one, `alias1 = "InfoCachePass"`, is a word.)
+            if (consumed == 0 || (!std::isfinite(value) && consumed != e.value.size())) continue;
             if (consumed != e.value.size())
                 out.warnings.push_back(make_error(fmt::format("'{}' is not a number; RetroArch would read {} if '{}' is a "
                                                               "shader parameter",

@@ -105,7 +105,8 @@ struct SlangpPreset {
     std::vector<SlangpPass> passes;
     std::vector<SlangpTexture> textures;  // in `textures = "A;B"` order
     // Candidate parameter value overrides, in order of first appearance, each id once, after the
-    // whole #reference chain; the caller keeps those that name a #pragma parameter of a pass.
+    // whole #reference chain; the caller keeps those that name a #pragma parameter of a pass (a
+    // value may be inf or nan: RetroArch's strtod reads them; the caller refuses them).
     std::vector<std::pair<std::string, double>> parameters;
     std::map<std::string, SourceLocation> parameter_lines;
     std::vector<std::string> files;      // every preset file read (the chain, and #include'd files)
