@@ -388,6 +388,13 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
          "bad.slangp:4: error: field 'GAIN'"},
         {"a parameter set to nan", "shaders = 1\nshader0 = ../shaders/first.slang\nGAIN = nan\n", "bad.slangp:3: error: field 'GAIN'"},
         {"a parameter past a double's range", "shaders = 1\nshader0 = ../shaders/first.slang\nGAIN = -1e999\n", "not a finite number"},
+        // A scale crtforge cannot render is refused at the .slangp's line, not in the preset it would write.
+        {"an absolute scale of 0", "shaders = 1\nshader0 = ../shaders/first.slang\nscale_type0 = absolute\nscale_x0 = 0.3\nscale_y0 = 4\n",
+         "bad.slangp:4: error: field 'scale_x0'"},
+        {"a negative source scale", "shaders = 1\nshader0 = ../shaders/first.slang\nscale_type0 = source\nscale0 = -2\n",
+         "bad.slangp:4: error: field 'scale0'"},
+        {"an absolute size past the limit", "shaders = 1\nshader0 = ../shaders/first.slang\nscale_type_y0 = absolute\nscale_y0 = 1e9\n",
+         "bad.slangp:4: error: field 'scale_y0'"},
     };
     std::string clash = kSecondPass;
     clash.replace(clash.find("0.5 0.0 1.0 0.05"), 16, "0.5 0.0 2.0 0.05");

@@ -113,6 +113,7 @@ public:
         out_.passes = preset_.passes.size();
         out_.inputs = preset_.files;
         for (const Diagnostic& w : preset_.warnings) out_.warnings.push_back(w.warning());
+        if (auto s = check_scales(); !s.ok()) return s.error();
         if (auto s = load_sources(); !s.ok()) return s.error();
         if (auto s = collect_params(); !s.ok()) return s.error();
         name_passes();
@@ -359,6 +360,28 @@ private:
         if (scale.type_x == "absolute") scale.x = std::round(scale.x);
         if (scale.type_y == "absolute") scale.y = std::round(scale.y);
         return scale;
+    }
+
+    // Each pass's scale as crtforge's preset loader takes it, refused here at the .slangp's own line
+    // (the preset written would name only itself): above 0 and at most kMaxSceneDimension, an
+    // absolute size once rounded as RetroArch rounds it.
+    Status check_scales() const {
+        for (size_t i = 0; i < preset_.passes.size(); ++i) {
+            const SlangpPass& p = preset_.passes[i];
+            const std::optional<Scale> scale = scale_of(p);
+            if (!scale) continue;
+            for (const auto& [value, type, axis] : {std::tuple{scale->x, scale->type_x, "scale_x"}, std::tuple{scale->y, scale->type_y, "scale_y"}}) {
+                if (value > 0.0 && value <= kMaxSceneDimension) continue;
+                const std::string key = p.scale ? "scale" : axis;
+                const auto at = p.key_lines.find(key);
+                const SourceLocation where = at != p.key_lines.end() ? at->second : p.where;
+                return make_error(fmt::format("{} {} scale of {} is not one crtforge renders: above 0 and at most {}{}", type,
+                                              std::string(axis).substr(6), toml_float(value), kMaxSceneDimension,
+                                              type == "absolute" ? " pixels, once rounded" : ""),
+                                  where.file, where.line, key + std::to_string(i));
+            }
+        }
+        return Ok{};
     }
 
     static std::string scale_lines(const SlangpPass& p) {
