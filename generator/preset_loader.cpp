@@ -107,8 +107,8 @@ Status parse_scale(const TomlReader& r, const toml::table& t, const std::string&
             return r.error(scale, prefix + ".scale", "must be a number or [x, y]");
         }
         for (double f : {*fx, *fy})
-            if (!(f > 0.0 && f <= 16384.0))
-                return r.error(scale, prefix + ".scale", "a scale must be above 0 (and at most 16384)");
+            if (!(f > 0.0 && f <= kMaxSceneDimension))
+                return r.error(scale, prefix + ".scale", fmt::format("a scale must be above 0 (and at most {})", kMaxSceneDimension));
     }
     auto type_of = [](const std::optional<size_t>& i) { return static_cast<PassScale::Type>(*i); };
     if (both.value() || tx.value() || fx) {

@@ -130,6 +130,21 @@ Result<std::shared_ptr<TemplateLibrary>> import_into(const std::string& slangp, 
     return lib;
 }
 
+// Writes `text` as presets/<name>.slangp under `dir`, imports it into overlay/ and returns the
+// library; the test fails unless it imports with `passes` passes.
+std::shared_ptr<TemplateLibrary> import_text_or_fail(const test::TempDir& dir, const std::string& name, const std::string& text,
+                                                     size_t passes) {
+    const std::string slangp = dir / ("presets/" + name + ".slangp");
+    test::write_file(slangp, text);
+    auto lib = import_into(slangp, dir / "overlay", dir.path(), name);
+    INFO((lib.ok() ? std::string() : lib.error().str()));
+    REQUIRE(lib.ok());
+    const Preset* preset = lib.value()->find_preset(name);
+    REQUIRE(preset);
+    REQUIRE(preset->passes.size() == passes);
+    return lib.value();
+}
+
 // The preset's display through `target`'s consumer at `width` x `height`.
 Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const TemplateLibrary& lib, const Preset& preset, TargetId target,
                                            const Image& input, int width, int height, std::vector<int> frames) {
@@ -603,7 +618,7 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
             for (int c = 0; c < 4; ++c) checker.rgba[(static_cast<size_t>(y) * 256 + x) * 4 + c] = c == 3 || (x + y) % 2 ? 1.0f : 0.0f;
     std::filesystem::create_directories(dir / "luts");
     REQUIRE(write_png(dir / "luts/board.png", checker).ok());
-    test::write_file(dir / "presets/mip.slangp",
+    const std::shared_ptr<TemplateLibrary> lib = import_text_or_fail(dir, "mip",
           "shaders = 2\n"
           "shader0 = ../shaders/copy.slang\n"
           "filter_linear0 = false\n"
@@ -616,13 +631,8 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
           "textures = board\n"
           "board = ../luts/board.png\n"
           "board_linear = true\n"
-          "board_mipmap = true\n");
-    auto lib = import_into(dir / "presets/mip.slangp", dir / "overlay", dir.path(), "mip");
-    INFO((lib.ok() ? std::string() : lib.error().str()));
-    REQUIRE(lib.ok());
-    const Preset* preset = lib.value()->find_preset("mip");
-    REQUIRE(preset);
-    REQUIRE(preset->passes.size() == 2);
+          "board_mipmap = true\n", 2);
+    const Preset* preset = lib->find_preset("mip");
     CHECK_FALSE(preset->passes[0].inputs.front().mipmap);  // mipmap_input0: RetroArch's original has no chain
     const PassInput& source = preset->passes[1].inputs.front();
     CHECK(source.mipmap);
@@ -644,7 +654,7 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
     // Godot's viewports have no mip chains: there only the LUT's channel is judged.
     for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
         INFO(target_info(target).name);
-        auto images = render_imported(renderer, *lib.value(), *preset, target, checker, 30, 30, {1});
+        auto images = render_imported(renderer, *lib, *preset, target, checker, 30, 30, {1});
         INFO((images.ok() ? std::string() : images.error().str()));
         REQUIRE(images.ok());
         const Image& v = images.value().front();
@@ -682,7 +692,7 @@ TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an 
     FragColor = vec4(textureLod(Source, vec2(0.3, 0.3), 5.0).r, abs(fract(level3 * 255.0 + 0.5) - 0.5), level3, 1.0);
 }
 )");
-    test::write_file(dir / "presets/levels.slangp",
+    const std::shared_ptr<TemplateLibrary> lib = import_text_or_fail(dir, "levels",
           "shaders = 2\n"
           "shader0 = ../shaders/copy.slang\n"
           "filter_linear0 = false\n"
@@ -690,13 +700,8 @@ TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an 
           "shader1 = ../shaders/levels.slang\n"
           "filter_linear1 = true\n"
           "mipmap_input1 = true\n"
-          "scale_type1 = viewport\n");
-    auto lib = import_into(dir / "presets/levels.slangp", dir / "overlay", dir.path(), "levels");
-    INFO((lib.ok() ? std::string() : lib.error().str()));
-    REQUIRE(lib.ok());
-    const Preset* preset = lib.value()->find_preset("levels");
-    REQUIRE(preset);
-    REQUIRE(preset->passes.size() == 2);
+          "scale_type1 = viewport\n", 2);
+    const Preset* preset = lib->find_preset("levels");
     CHECK(preset->passes[1].inputs.front().wrap == Wrap::ClampToBorder);
     Image picture = Image::make(64, 32);
     for (int y = 0; y < 32; ++y)
@@ -708,7 +713,7 @@ TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an 
     std::optional<std::array<float, 2>> vulkan;
     for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Wgsl}) {
         INFO(target_info(target).name);
-        auto images = render_imported(renderer, *lib.value(), *preset, target, picture, 8, 8, {0});
+        auto images = render_imported(renderer, *lib, *preset, target, picture, 8, 8, {0});
         INFO((images.ok() ? std::string() : images.error().str()));
         REQUIRE(images.ok());
         const float* p = images.value().front().rgba.data() + (4 * 8 + 4) * 4;
