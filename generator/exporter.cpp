@@ -179,7 +179,9 @@ std::string variant_fingerprint(const Variant& v) {
     auto text = [](const std::string& s) { return fmt::format("{}:{}", s.size(), s); };
     std::string out = text(v.file_stem()) + text(v.preset->doc) +
                       fmt::format("pass {} of {};alpha {};", v.pass_index, v.preset->passes.size(), v.writes_alpha());
-    out += fmt::format("frame_mod {};supersample {};", v.pass->frame_count_mod, v.pass->supersample);
+    // The format: Godot's shaders reduce their output to a format its viewports lack.
+    out += fmt::format("frame_mod {};supersample {};format {};", v.pass->frame_count_mod, v.pass->supersample,
+                       pixel_format_name(v.pass->format));
     for (const PassInput& input : v.pass->inputs)
         out += text(input.binding) + text(input.from.str()) + filter_name(input.filter) + ":" + wrap_name(input.wrap) +
                (input.mipmap ? std::string(":mip ") + filter_name(input.mip_filter) + ";" : std::string(";"));

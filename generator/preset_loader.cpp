@@ -81,7 +81,8 @@ Result<std::vector<PresetStageEntry>> parse_stage_entries(const TomlReader& r, c
 
 constexpr std::initializer_list<const char*> kFilters = {"linear", "nearest"};
 constexpr std::initializer_list<const char*> kWraps = {"clamp_to_edge", "clamp_to_border", "repeat", "mirrored_repeat"};
-constexpr std::initializer_list<const char*> kFormats = {"rgba8", "rgba8_srgb", "rgba16f"};
+// In PixelFormat's order (the choice's index is the enum's value).
+constexpr std::initializer_list<const char*> kFormats = {"rgba8", "rgba8_srgb", "rgba16f", "rgba32f", "rgb10a2", "r16f", "rg16f"};
 constexpr std::initializer_list<const char*> kScaleTypes = {"source", "viewport", "absolute"};
 
 // scale_type / scale (a number or [x, y]) / scale_type_x / scale_type_y of a [[pass]].

@@ -28,6 +28,10 @@ const char* pixel_format_name(PixelFormat format) {
         case PixelFormat::Rgba8: return "rgba8";
         case PixelFormat::Rgba8Srgb: return "rgba8_srgb";
         case PixelFormat::Rgba16F: return "rgba16f";
+        case PixelFormat::Rgba32F: return "rgba32f";
+        case PixelFormat::Rgb10A2: return "rgb10a2";
+        case PixelFormat::R16F: return "r16f";
+        case PixelFormat::Rg16F: return "rg16f";
     }
     return "?";
 }

@@ -137,25 +137,39 @@ Result<std::vector<PlannedStage>> plan_stages(const Pass& pass) {
     return plan;
 }
 
-// The value an 8-bit UNORM, sRGB or half-float framebuffer stores for `v` (read back as linear).
-double stored(double v, PixelFormat format) {
+// The value a half float holds for `v`: 11 significant bits, rounded to nearest even.
+double half_of(double v) {
+    if (!std::isfinite(v) || v == 0.0) return v;
+    const double a = std::fabs(v);
+    if (a >= 65520.0) return std::copysign(65504.0, v);  // the largest half (rounding would overflow)
+    if (a < 0x1p-14) return std::nearbyint(v * 0x1p24) * 0x1p-24;  // subnormal halves: steps of 2^-24
+    int e = 0;
+    const double m = std::frexp(v, &e);                  // v = m * 2^e, 0.5 <= |m| < 1
+    return std::nearbyint(m * 2048.0) / 2048.0 * std::ldexp(1.0, e);
+}
+
+// A UNORM channel of `bits` bits: clamped, then the nearest of its 2^bits - 1 steps.
+double unorm_of(double v, int bits) {
+    const double steps = std::ldexp(1.0, bits) - 1.0;
+    return std::round(std::clamp(v, 0.0, 1.0) * steps) / steps;
+}
+
+// The value a framebuffer of `format` stores for `v` in `channel` (0 red .. 3 alpha), read back as
+// linear. A channel the format lacks reads as 0 (colour) or 1 (alpha), as a sampler returns it.
+double stored(double v, size_t channel, PixelFormat format) {
     switch (format) {
-        case PixelFormat::Rgba8: return std::round(std::clamp(v, 0.0, 1.0) * 255.0) / 255.0;
+        case PixelFormat::Rgba8: return unorm_of(v, 8);
         case PixelFormat::Rgba8Srgb: {
             const double l = std::clamp(v, 0.0, 1.0);
             const double e = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
             const double q = std::round(e * 255.0) / 255.0;
             return q <= 0.04045 ? q / 12.92 : std::pow((q + 0.055) / 1.055, 2.4);
         }
-        case PixelFormat::Rgba16F: {
-            if (!std::isfinite(v) || v == 0.0) return v;
-            const double a = std::fabs(v);
-            if (a >= 65520.0) return std::copysign(65504.0, v);  // the largest half (rounding would overflow)
-            if (a < 0x1p-14) return std::nearbyint(v * 0x1p24) * 0x1p-24;  // subnormal halves: steps of 2^-24
-            int e = 0;
-            const double m = std::frexp(v, &e);                  // v = m * 2^e, 0.5 <= |m| < 1
-            return std::nearbyint(m * 2048.0) / 2048.0 * std::ldexp(1.0, e);  // 11 significant bits
-        }
+        case PixelFormat::Rgba16F: return half_of(v);
+        case PixelFormat::Rgba32F: return static_cast<float>(v);
+        case PixelFormat::Rgb10A2: return unorm_of(v, channel == 3 ? 2 : 10);
+        case PixelFormat::R16F: return channel == 0 ? half_of(v) : channel == 3 ? 1.0 : 0.0;
+        case PixelFormat::Rg16F: return channel < 2 ? half_of(v) : channel == 3 ? 1.0 : 0.0;
     }
     return v;
 }
@@ -494,7 +508,7 @@ Result<std::vector<Image>> render_reference_scene(const ReferenceSceneJob& job, 
             // Every framebuffer but the display's stores its format; the last pass is compared unrounded.
             if (i + 1 < preset.passes.size())
                 for (size_t c = 0; c < image.value().rgba.size(); ++c)
-                    image.value().rgba[c] = static_cast<float>(stored(image.value().rgba[c], pass.format));
+                    image.value().rgba[c] = static_cast<float>(stored(image.value().rgba[c], c % 4, pass.format));
             current[pass.alias] = std::move(image.value());
         }
         if (std::find(job.frames.begin(), job.frames.end(), frame) != job.frames.end()) {

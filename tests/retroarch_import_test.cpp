@@ -729,3 +729,86 @@ TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an 
         }
     }
 }
+
+// RetroArch's framebuffer formats beyond 8-bit and half float: five passes write the same texel
+// into an R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT, A2B10G10R10_UNORM_PACK32, R16_SFLOAT and
+// R16G16_SFLOAT framebuffer; the last shows what each holds, one column each (top row: red's
+// 32-bit detail, green past 1 (/ 1.5), blue's offset from a 10-bit step (+ 0.5); bottom row: alpha). What a
+// format lacks reads 0 (colour) and 1 (alpha); 10 bits clamp and round to steps of 1/1023 (alpha
+// 1/3). Every target renders it through its consumer (Godot through the exported scene, which
+// stores these in half-float viewports: the shader reduces its output to the format's channels
+// and steps, and 32-bit floats lose their detail).
+TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what RetroArch's hold, on every target",
+          "[retroarch][import][format]") {
+    test::TempDir dir;
+    const std::string head = kStockHead;
+    const std::vector<std::string> formats = {"R32G32B32A32_SFLOAT", "R16G16B16A16_SFLOAT", "A2B10G10R10_UNORM_PACK32", "R16_SFLOAT",
+                                              "R16G16_SFLOAT"};
+    std::string slangp = fmt::format("shaders = {}\n", formats.size() + 1);
+    for (size_t i = 0; i < formats.size(); ++i) {
+        test::write_file(dir / fmt::format("shaders/f{}.slang", i),
+                         head + fmt::format("#pragma format {}\n", formats[i]) +
+                             "void main() { FragColor = vec4(1.0 + 1.0 / 16384.0, 1.5, 300.4 / 1023.0, 0.4) + 0.0 * texture(Source, vTexCoord); }\n");
+        slangp += fmt::format("shader{0} = ../shaders/f{0}.slang\nalias{0} = f{0}\nfilter_linear{0} = false\nscale_type{0} = absolute\nscale{0} = 2\n", i);
+    }
+    std::string show = head;
+    for (size_t i = 0; i < formats.size(); ++i) show += fmt::format("layout(set = 0, binding = {}) uniform sampler2D f{};\n", 3 + i, i);
+    show += R"(void main() {
+    int column = int(vTexCoord.x * 5.0);
+    vec4 s = column == 0 ? texture(f0, vec2(0.5)) : column == 1 ? texture(f1, vec2(0.5)) : column == 2 ? texture(f2, vec2(0.5))
+           : column == 3 ? texture(f3, vec2(0.5)) : texture(f4, vec2(0.5));
+    // In [0, 1]: Godot's screen is 8-bit.
+    FragColor = vTexCoord.y < 0.5 ? vec4((s.r - 1.0) * 16384.0, s.g / 1.5, clamp(0.5 + s.b * 1023.0 - 300.0, 0.0, 1.0), 1.0)
+                                  : vec4(s.a, 0.0, 0.0, 1.0);
+}
+)";
+    test::write_file(dir / "shaders/show.slang", show);
+    slangp += fmt::format("shader{0} = ../shaders/show.slang\nfilter_linear{0} = false\nscale_type{0} = viewport\n", formats.size());
+    const std::shared_ptr<TemplateLibrary> lib = import_text_or_fail(dir, "formats", slangp, formats.size() + 1);
+    const Preset* preset = lib->find_preset("formats");
+    const std::vector<PixelFormat> expected_formats = {PixelFormat::Rgba32F, PixelFormat::Rgba16F, PixelFormat::Rgb10A2, PixelFormat::R16F,
+                                                       PixelFormat::Rg16F};
+    for (size_t i = 0; i < formats.size(); ++i) CHECK(preset->passes[i].format == expected_formats[i]);
+
+    struct Held {
+        float red_detail, green, blue, alpha;
+    };
+    // What the five hold: 32-bit floats keep red's 2^-14 (half floats round it away) and blue's
+    // 0.4 of a 10-bit step; 10 bits clamp green to 1 and round blue to its step and alpha to 1/3.
+    const std::vector<Held> held = {{1.0f, 1.0f, 0.9f, 0.4f}, {0.0f, 1.0f, 0.9f, 0.4f}, {0.0f, 1.0f / 1.5f, 0.5f, 1.0f / 3.0f},
+                                    {0.0f, 0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f, 1.0f}};
+    const Image input = Image::make(10, 2, {0.5f, 0.5f, 0.5f, 1.0f});  // the display's aspect: no letterbox
+    TargetRenderer renderer;
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl450, TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2, TargetId::Hlsl50,
+                            TargetId::Hlsl60, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
+        INFO(target_info(target).name);
+        auto images = render_imported(renderer, *lib, *preset, target, input, 10, 2, {1});
+        INFO((images.ok() ? std::string() : images.error().str()));
+        REQUIRE(images.ok());
+        const Image& v = images.value().front();
+        const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
+        for (size_t i = 0; i < formats.size(); ++i) {
+            INFO(formats[i]);
+            const float* top = v.rgba.data() + (2 * i) * 4;
+            const float* bottom = v.rgba.data() + (10 + 2 * i) * 4;
+            INFO("held: red detail " << top[0] << ", green " << top[1] << ", blue " << top[2] << ", alpha " << bottom[0]);
+            const Held want = godot && i == 0 ? Held{0.0f, 1.0f, 0.9f, 0.4f} : held[i];  // Godot: a half-float viewport
+            CHECK(std::abs(top[0] - want.red_detail) < 0.01f);
+            CHECK(std::abs(top[1] - want.green) < 0.003f);  // Godot's screen: 8 bits
+            // A half float holds 300.4 / 1023 within 2^-12 (Vulkan lets a float -> half store round
+            // to zero, as lavapipe does): 0.25 of a 10-bit step.
+            CHECK(std::abs(top[2] - want.blue) < (formats[i] == "R16G16B16A16_SFLOAT" || godot ? 0.26f : 0.02f));
+            CHECK(std::abs(bottom[0] - want.alpha) < 0.003f);
+        }
+    }
+    // Godot draws nothing into a viewport 1 pixel wide (godotengine/godot#26187): such a pass is
+    // refused there, naming the pass, not exported black.
+    std::string thin_text = slangp;
+    thin_text.replace(thin_text.find("scale0 = 2"), 10, "scale_x0 = 1\nscale_y0 = 2");
+    const std::shared_ptr<TemplateLibrary> thin = import_text_or_fail(dir, "thin", thin_text, formats.size() + 1);
+    for (TargetId target : {TargetId::Godot4, TargetId::Godot3}) {
+        auto images = render_imported(renderer, *thin, *thin->find_preset("thin"), target, input, 10, 2, {1});
+        REQUIRE_FALSE(images.ok());
+        CHECK_THAT(images.error().str(), Catch::Contains("pass f0 is 1 pixel wide") && Catch::Contains("under 2 pixels"));
+    }
+}

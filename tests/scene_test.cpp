@@ -9,6 +9,8 @@
 #include <cmath>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "crtforge/exporter.hpp"
 #include "crtforge/luts.hpp"
 #include "crtforge/preset.hpp"
@@ -42,7 +44,8 @@ struct SceneRenders {
 };
 
 SceneRenders render_both(const Preset& preset, const std::function<Result<Image>(int)>& source, int width, int height,
-                         const std::vector<int>& frames, const std::map<std::string, Value>& overrides = {}) {
+                         const std::vector<int>& frames, const std::map<std::string, Value>& overrides = {},
+                         OutputFormat display = OutputFormat::Rgba16Float) {
     const TemplateLibrary& lib = test::shipped_library();
     auto compiled = compile_scene(lib, preset, {}, Cache());
     INFO((compiled.ok() ? std::string() : compiled.error().str()));
@@ -56,6 +59,7 @@ SceneRenders render_both(const Preset& preset, const std::function<Result<Image>
     r.height = height;
     r.frames = frames;
     r.overrides = overrides;
+    r.format = display;
     auto vulkan = renderer.render_scene(r);
     INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
     REQUIRE(vulkan.ok());
@@ -631,4 +635,56 @@ TEST_CASE("a derived preset that drops a pass drops the base's tiers of it, and 
     auto refused = t.load();
     REQUIRE_FALSE(refused.ok());
     CHECK_THAT(refused.error().str(), Catch::Contains("sw-nobloom.toml:9") && Catch::Contains("there is no pass 'bloom_up'"));
+}
+
+// The formats a pass may store beyond 8-bit and half float (RetroArch's R32G32B32A32_SFLOAT,
+// A2B10G10R10_UNORM_PACK32, R16_SFLOAT, R16G16_SFLOAT): a plain copy stored in each, shown by a
+// second copy, on Vulkan and in the fp64 reference. The picture's values lie off every grid
+// (and one channel past 1), so each format's rounding, clamping and missing channels show.
+TEST_CASE("rgba32f, rgb10a2, r16f and rg16f passes store what their formats hold, on Vulkan and in the reference", "[scene][format]") {
+    constexpr int kSize = 8;
+    Image picture = Image::make(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            picture.set_pixel(x, y, {0.1f + 0.0371f * static_cast<float>(x), 0.2f + 0.0913f * static_cast<float>(y), 1.3f, 0.41f});
+    const auto source = [&](int) -> Result<Image> { return picture; };
+    for (const char* format : {"rgba32f", "rgb10a2", "r16f", "rg16f"}) {
+        INFO(format);
+        const Preset preset = resolve_or_fail(fmt::format("name = \"format-probe\"\ndoc = \"d\"\n"
+                                                          "[[pass]]\nalias = \"stored\"\nscale_type = \"source\"\nfilter = \"nearest\"\nformat = \"{}\"\n"
+                                                          "[[pass]]\nalias = \"shown\"\nscale_type = \"viewport\"\nfilter = \"nearest\"\n",
+                                                          format),
+                                              "format-probe");
+        REQUIRE(std::string(pixel_format_name(preset.passes[0].format)) == format);
+        // A float display: the stored pass's grid is what the picture shows.
+        const SceneRenders r = render_both(preset, source, kSize, kSize, {0}, {}, OutputFormat::Rgba32Float);
+        for (const Image* image : {&r.vulkan.front(), &r.reference.front()}) {
+            INFO((image == &r.vulkan.front() ? "Vulkan" : "reference"));
+            for (int y = 0; y < kSize; ++y)
+                for (int x = 0; x < kSize; ++x) {
+                    const float *in = picture.at(x, y), *out = image->at(x, y);
+                    for (int c = 0; c < 4; ++c) {
+                        INFO("pixel " << x << "," << y << " channel " << c);
+                        const std::string f = format;
+                        if (f == "rgba32f") CHECK(out[c] == Approx(in[c]).margin(1e-6));
+                        else if (f == "rgb10a2") {
+                            // Clamped, then on the format's grid: the nearest step in the reference, a
+                            // step either side on a device (its original is half floats: 858.4 / 1023
+                            // reads as 858.67 / 1023 and stores 859).
+                            const double steps = c == 3 ? 3.0 : 1023.0, at = out[c] * steps;
+                            CHECK(std::abs(at - std::round(at)) < 1e-3);
+                            CHECK(std::abs(at - std::min(in[c], 1.0f) * steps) <= (image == &r.vulkan.front() ? 1.0 : 0.5));
+                        } else {
+                            const int kept = f == "r16f" ? 1 : 2;  // half floats: 2^-11 relative
+                            if (c < kept) CHECK(out[c] == Approx(in[c]).epsilon(1.0 / 1024));
+                            else CHECK(out[c] == (c == 3 ? 1.0f : 0.0f));
+                        }
+                    }
+                }
+        }
+        // The two agree closely, not only each with the formula.
+        auto same = compare_images(r.vulkan.front(), r.reference.front());
+        REQUIRE(same.ok());
+        CHECK(same.value().max_abs < 1e-3);  // a half's rounding: nearest or towards 0
+    }
 }

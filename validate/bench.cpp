@@ -33,6 +33,10 @@ const char* format_name(OutputFormat f) {
         case OutputFormat::Rgba8Unorm: return "rgba8";
         case OutputFormat::Rgba8Srgb: return "rgba8_srgb";
         case OutputFormat::Rgba16Float: return "rgba16f";
+        case OutputFormat::Rgba32Float: return "rgba32f";
+        case OutputFormat::Rgb10A2Unorm: return "rgb10a2";
+        case OutputFormat::R16Float: return "r16f";
+        case OutputFormat::Rg16Float: return "rg16f";
     }
     return "other";
 }

@@ -27,6 +27,10 @@ OutputFormat output_format(PixelFormat f) {
         case PixelFormat::Rgba8: return OutputFormat::Rgba8Unorm;
         case PixelFormat::Rgba8Srgb: return OutputFormat::Rgba8Srgb;
         case PixelFormat::Rgba16F: return OutputFormat::Rgba16Float;
+        case PixelFormat::Rgba32F: return OutputFormat::Rgba32Float;
+        case PixelFormat::Rgb10A2: return OutputFormat::Rgb10A2Unorm;
+        case PixelFormat::R16F: return OutputFormat::R16Float;
+        case PixelFormat::Rg16F: return OutputFormat::Rg16Float;
     }
     return OutputFormat::Rgba16Float;
 }

@@ -335,7 +335,18 @@ export function passSizes(passes, source, screen) {
   return out;
 }
 
-const PASS_FORMAT = { rgba8: 'rgba8unorm', rgba8_srgb: 'rgba8unorm-srgb', rgba16f: 'rgba16float' };
+// The manifest's pass formats as WebGPU texture formats (rgba32float is filterable only where the
+// device enabled float32-filterable; the others always are).
+const PASS_FORMAT = {
+  rgba8: 'rgba8unorm', rgba8_srgb: 'rgba8unorm-srgb', rgba16f: 'rgba16float', rgba32f: 'rgba32float',
+  rgb10a2: 'rgb10a2unorm', r16f: 'r16float', rg16f: 'rg16float',
+};
+function passFormat(pass) {
+  const name = pass.format ?? 'rgba8';
+  const format = Object.hasOwn(PASS_FORMAT, name) ? PASS_FORMAT[name] : undefined;
+  if (!format) throw new Error(`crt-webgpu: pass '${pass.alias}' has format '${pass.format}', not one of ${Object.keys(PASS_FORMAT).join(', ')}`);
+  return format;
+}
 
 // ---- mip chains, as RetroArch makes them: each level a linear blit of the one above ----
 
@@ -419,7 +430,7 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
   };
   // Each pass draws into a texture of its own format; the last one draws into the target (and,
   // when a later frame reads it back, into a texture too).
-  const runners = passes.map((pass) => createCrtPass(device, { wgsl: shaderOf(pass), preset: pass, format: PASS_FORMAT[pass.format ?? 'rgba8'] }));
+  const runners = passes.map((pass) => createCrtPass(device, { wgsl: shaderOf(pass), preset: pass, format: passFormat(pass) }));
   const display = createCrtPass(device, { wgsl: shaderOf(passes[passes.length - 1]), preset: passes[passes.length - 1], format });
   const everyRunner = [...runners, display];
   for (const pass of passes)
@@ -471,7 +482,7 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
     destroyTextures();
     sizeKey = key;
     passes.forEach((pass, i) => {
-      const fmt = PASS_FORMAT[pass.format ?? 'rgba8'];
+      const fmt = passFormat(pass);
       const mip = mipOutputs.has(pass.alias);
       if (pass.alias !== lastAlias || feedback.has(pass.alias)) outputs.set(pass.alias, texture(`crt ${pass.alias}`, sizes[i], fmt, mip));
       if (feedback.has(pass.alias)) previous.set(pass.alias, texture(`crt ${pass.alias}@previous`, sizes[i], fmt, mip));

@@ -91,7 +91,11 @@ std::pair<const char*, bool> pixel_format(const SlangpPass& pass, const std::str
     if (pragma.empty() || pragma == "R8G8B8A8_UNORM") return {"rgba8", true};
     if (pragma == "R8G8B8A8_SRGB") return {"rgba8_srgb", true};
     if (pragma == "R16G16B16A16_SFLOAT") return {"rgba16f", true};
-    if (pragma.find("FLOAT") != std::string::npos || pragma.find("A2B10G10R10") != std::string::npos) return {"rgba16f", false};
+    if (pragma == "R32G32B32A32_SFLOAT") return {"rgba32f", true};
+    if (pragma == "A2B10G10R10_UNORM_PACK32") return {"rgb10a2", true};
+    if (pragma == "R16_SFLOAT") return {"r16f", true};
+    if (pragma == "R16G16_SFLOAT") return {"rg16f", true};
+    if (pragma.find("FLOAT") != std::string::npos) return {"rgba32f", false};
     return {"rgba8", false};
 }
 

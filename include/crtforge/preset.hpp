@@ -35,9 +35,12 @@ const char* filter_name(Filter filter);
 enum class Wrap { ClampToEdge, ClampToBorder, Repeat, MirroredRepeat };
 const char* wrap_name(Wrap wrap);  // clamp_to_edge, clamp_to_border, repeat, mirrored_repeat
 
-// A pass's framebuffer: what its output is quantised to before the next pass reads it.
-enum class PixelFormat { Rgba8, Rgba8Srgb, Rgba16F };
-const char* pixel_format_name(PixelFormat format);  // rgba8, rgba8_srgb, rgba16f
+// A pass's framebuffer: what its output is quantised to before the next pass reads it. The last
+// four are RetroArch's R32G32B32A32_SFLOAT, A2B10G10R10_UNORM_PACK32 (10 bits a colour channel,
+// 2 for alpha), R16_SFLOAT and R16G16_SFLOAT: a reader sees the channels a format lacks as 0
+// (colour) and 1 (alpha).
+enum class PixelFormat { Rgba8, Rgba8Srgb, Rgba16F, Rgba32F, Rgb10A2, R16F, Rg16F };
+const char* pixel_format_name(PixelFormat format);  // rgba8, rgba8_srgb, rgba16f, rgba32f, rgb10a2, r16f, rg16f
 
 // A pass's output size on one axis: a factor of its source (main input), of the viewport (the
 // screen's rectangle in the display), or an absolute number of pixels.

@@ -15,6 +15,10 @@ const char* output_format_name(OutputFormat format) {
         case OutputFormat::Rgba8Unorm: return "Rgba8Unorm";
         case OutputFormat::Rgba8Srgb: return "Rgba8Srgb";
         case OutputFormat::Rgba16Float: return "Rgba16Float";
+        case OutputFormat::Rgba32Float: return "Rgba32Float";
+        case OutputFormat::Rgb10A2Unorm: return "Rgb10A2Unorm";
+        case OutputFormat::R16Float: return "R16Float";
+        case OutputFormat::Rg16Float: return "Rg16Float";
     }
     return "?";
 }

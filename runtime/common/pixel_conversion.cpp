@@ -63,7 +63,33 @@ size_t texel_bytes(TextureTexels texels) {
     return 16;
 }
 
-size_t texel_bytes(OutputFormat format) { return format == OutputFormat::Rgba16Float ? 8 : 4; }
+size_t texel_bytes(OutputFormat format) {
+    switch (format) {
+        case OutputFormat::Rgba8Unorm:
+        case OutputFormat::Rgba8Srgb:
+        case OutputFormat::Rgb10A2Unorm:
+        case OutputFormat::Rg16Float: return 4;
+        case OutputFormat::Rgba16Float: return 8;
+        case OutputFormat::Rgba32Float: return 16;
+        case OutputFormat::R16Float: return 2;
+    }
+    return 16;
+}
+
+namespace {
+
+// `channels` half floats a texel; the channels a format lacks read as 0 (colour) and 1 (alpha).
+void read_halves(const unsigned char* in, size_t texels, size_t channels, float* out) {
+    for (size_t t = 0; t < texels; ++t) {
+        for (size_t c = 0; c < 4; ++c) {
+            uint16_t half = 0;
+            if (c < channels) std::memcpy(&half, in + (t * channels + c) * sizeof half, sizeof half);
+            out[t * 4 + c] = c < channels ? half_to_float(half) : c == 3 ? 1.0f : 0.0f;
+        }
+    }
+}
+
+}  // namespace
 
 void write_texels(const Image& image, TextureTexels texels, void* dst) {
     if (texels == TextureTexels::Rgba32Float) {
@@ -104,11 +130,18 @@ Image read_texels(const void* src, int width, int height, OutputFormat format) {
             }
             break;
         }
-        case OutputFormat::Rgba16Float:
-            for (size_t i = 0; i < count; ++i) {
-                uint16_t half;
-                std::memcpy(&half, in + i * sizeof half, sizeof half);
-                image.rgba[i] = half_to_float(half);
+        case OutputFormat::Rgba16Float: read_halves(in, count / 4, 4, image.rgba.data()); break;
+        case OutputFormat::R16Float: read_halves(in, count / 4, 1, image.rgba.data()); break;
+        case OutputFormat::Rg16Float: read_halves(in, count / 4, 2, image.rgba.data()); break;
+        case OutputFormat::Rgba32Float: std::memcpy(image.rgba.data(), in, count * sizeof(float)); break;
+        case OutputFormat::Rgb10A2Unorm:
+            // Little-endian 32-bit words: red in bits 0-9, green 10-19, blue 20-29, alpha 30-31
+            // (Vulkan's A2B10G10R10_UNORM_PACK32, GL's UNSIGNED_INT_2_10_10_10_REV, WebGPU's rgb10a2unorm).
+            for (size_t t = 0; t < count / 4; ++t) {
+                uint32_t word = 0;
+                std::memcpy(&word, in + t * sizeof word, sizeof word);
+                for (int c = 0; c < 3; ++c) image.rgba[t * 4 + c] = static_cast<float>((word >> (10 * c)) & 0x3ffu) / 1023.0f;
+                image.rgba[t * 4 + 3] = static_cast<float>(word >> 30) / 3.0f;
             }
             break;
     }

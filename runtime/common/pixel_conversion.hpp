@@ -29,7 +29,8 @@ void write_texels(const Image& image, TextureTexels texels, void* dst);
 
 // Reads a tightly packed width x height readback in `format` into linear floats. UNORM bytes become
 // byte / 255; sRGB bytes are decoded to linear (the value the shader wrote, quantised); half floats
-// are widened exactly.
+// are widened exactly; 10-bit channels are n / 1023 (alpha n / 3); a channel the format lacks
+// reads as 0 (colour) or 1 (alpha).
 Image read_texels(const void* src, int width, int height, OutputFormat format);
 
 }  // namespace crtforge::vulkan

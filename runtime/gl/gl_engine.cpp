@@ -37,8 +37,33 @@ GLenum output_internal_format(OutputFormat format) {
         case OutputFormat::Rgba8Unorm: return GL_RGBA8;
         case OutputFormat::Rgba8Srgb: return GL_SRGB8_ALPHA8;
         case OutputFormat::Rgba16Float: return GL_RGBA16F;
+        case OutputFormat::Rgba32Float: return GL_RGBA32F;
+        case OutputFormat::Rgb10A2Unorm: return GL_RGB10_A2;
+        case OutputFormat::R16Float: return GL_R16F;
+        case OutputFormat::Rg16Float: return GL_RG16F;
     }
     return GL_RGBA8;
+}
+
+// How a target of `format` is read back: float targets as RGBA floats (the driver widens halves
+// exactly and fills a channel the format lacks with 0, alpha with 1), 10-bit ones packed, 8-bit
+// ones as bytes (the combinations GL ES 3.0 allows as well as desktop GL).
+struct GlReadback {
+    GLenum type;
+    size_t texel_bytes;
+    bool floats;
+};
+GlReadback readback_of(OutputFormat format) {
+    switch (format) {
+        case OutputFormat::Rgba8Unorm:
+        case OutputFormat::Rgba8Srgb: return {GL_UNSIGNED_BYTE, 4, false};
+        case OutputFormat::Rgb10A2Unorm: return {GL_UNSIGNED_INT_2_10_10_10_REV, 4, false};
+        case OutputFormat::Rgba16Float:
+        case OutputFormat::Rgba32Float:
+        case OutputFormat::R16Float:
+        case OutputFormat::Rg16Float: break;
+    }
+    return {GL_FLOAT, 16, true};
 }
 
 // The largest output extent along one axis: a texture, a render target and a viewport at once.
@@ -180,14 +205,15 @@ private:
 
 // Rows come back bottom-first from glReadPixels; the image wants the top row first.
 Image to_image(const std::vector<unsigned char>& pixels, int width, int height, OutputFormat format) {
-    const size_t row_bytes = static_cast<size_t>(width) * (format == OutputFormat::Rgba16Float ? 16 : 4);
+    const GlReadback readback = readback_of(format);
+    const size_t row_bytes = static_cast<size_t>(width) * readback.texel_bytes;
     std::vector<unsigned char> top_first(pixels.size());
     for (int y = 0; y < height; ++y) {
         std::memcpy(top_first.data() + static_cast<size_t>(y) * row_bytes,
                     pixels.data() + static_cast<size_t>(height - 1 - y) * row_bytes, row_bytes);
     }
-    if (format != OutputFormat::Rgba16Float) return vulkan::read_texels(top_first.data(), width, height, format);
-    Image image = Image::make(width, height);  // read as GL_FLOAT: the driver widened the halves exactly
+    if (!readback.floats) return vulkan::read_texels(top_first.data(), width, height, format);
+    Image image = Image::make(width, height);
     std::memcpy(image.rgba.data(), top_first.data(), top_first.size());
     return image;
 }
@@ -297,11 +323,10 @@ private:
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
         if (srgb_switch) gl.Disable(GL_FRAMEBUFFER_SRGB);  // and never decode on read
 
-        const bool floats = job.format == OutputFormat::Rgba16Float;
-        std::vector<unsigned char> pixels(static_cast<size_t>(job.width) * static_cast<size_t>(job.height) *
-                                          (floats ? 16 : 4));
+        const GlReadback readback = readback_of(job.format);
+        std::vector<unsigned char> pixels(static_cast<size_t>(job.width) * static_cast<size_t>(job.height) * readback.texel_bytes);
         gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-        gl.ReadPixels(0, 0, job.width, job.height, GL_RGBA, floats ? GL_FLOAT : GL_UNSIGNED_BYTE, pixels.data());
+        gl.ReadPixels(0, 0, job.width, job.height, GL_RGBA, readback.type, pixels.data());
         if (auto errors = take_gl_errors(gl); !errors.empty()) {
             return make_validation_error(fmt::format("GL error during the render: {}{}", gl_error_name(errors.front()),
                                                      errors.size() > 1 ? fmt::format(" (and {} more)", errors.size() - 1)

@@ -179,6 +179,10 @@ VkFormat output_vk_format(OutputFormat format) {
         case OutputFormat::Rgba8Unorm: return VK_FORMAT_R8G8B8A8_UNORM;
         case OutputFormat::Rgba8Srgb: return VK_FORMAT_R8G8B8A8_SRGB;
         case OutputFormat::Rgba16Float: return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case OutputFormat::Rgba32Float: return VK_FORMAT_R32G32B32A32_SFLOAT;
+        case OutputFormat::Rgb10A2Unorm: return VK_FORMAT_A2B10G10R10_UNORM_PACK32;
+        case OutputFormat::R16Float: return VK_FORMAT_R16_SFLOAT;
+        case OutputFormat::Rg16Float: return VK_FORMAT_R16G16_SFLOAT;
     }
     return VK_FORMAT_UNDEFINED;
 }

@@ -61,6 +61,7 @@ private:
     std::string uniform_declaration(const VariantParam& p) const;
     std::string builtin_expression(const std::string& member) const;
     std::string builtin_expression_fragment_size() const;
+    std::string with_format_stored(std::string text) const;  // a pass format Godot's viewports lack
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
     std::string vertex_text(std::string text) const;  // vertex(): RetroArch's quad from UV, clip position dropped

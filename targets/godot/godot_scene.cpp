@@ -70,8 +70,14 @@ std::vector<std::string> scene_notes(const SceneTargetInput& in, int version) {
     std::map<std::string, std::pair<std::string, std::string>> first;  // texture -> (reader, filter/wrap)
     for (size_t i = 0; i < in.passes.size(); ++i) {
         const Pass& pass = *in.passes[i]->pass;
+        const bool display = i + 1 == in.passes.size();
         if (pass.format == PixelFormat::Rgba8Srgb)
             notes.push_back("pass " + pass.alias + " stores sRGB 8-bit; Godot viewports cannot: it is stored as float");
+        if (pass.format == PixelFormat::Rgba32F && !display)
+            notes.push_back("pass " + pass.alias + " stores 32-bit floats; Godot viewports cannot: it is stored as half float");
+        if ((pass.format == PixelFormat::Rgb10A2 || pass.format == PixelFormat::R16F || pass.format == PixelFormat::Rg16F) && !display)
+            notes.push_back(fmt::format("pass {} stores {}; Godot viewports cannot: it is stored as half float, its shader reducing the "
+                                        "output to what {} holds", pass.alias, pixel_format_name(pass.format), pixel_format_name(pass.format)));
         for (const PassInput* input : read_inputs(*in.passes[i])) {
             if (input->mipmap && input->from.kind != TextureSource::Kind::Lut)
                 notes.push_back("pass " + pass.alias + " reads " + input->from.str() +
@@ -170,6 +176,14 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int v
     for (size_t i = 0; i < in.passes.size(); ++i) {
         const Variant& variant = *in.passes[i];
         const Pass& pass = *variant.pass;
+        // Godot draws nothing into a viewport 1 pixel wide or tall (godotengine/godot#26187): a
+        // pass that asks for one is refused rather than exported black.
+        for (const auto& [axis, scale] : {std::pair{"x", &pass.scale_x}, std::pair{"y", &pass.scale_y}})
+            if (i + 1 < in.passes.size() && scale->type == PassScale::Type::Absolute && std::lround(scale->factor) < 2)
+                return make_error(fmt::format("pass {} is {} pixel {} on {}; Godot draws nothing into a viewport under 2 pixels", pass.alias,
+                                              std::lround(scale->factor), axis == std::string_view("x") ? "wide" : "tall",
+                                              v4 ? "Godot 4" : "Godot 3"),
+                                  pass.where.file, pass.where.line, "scale");
         const OutputFile* shader = nullptr;
         for (const OutputFile& f : in.outputs[i]->files)
             if (f.manifest_role() == "shader") shader = &f;

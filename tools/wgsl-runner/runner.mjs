@@ -330,27 +330,38 @@ async function addSampledTexture(t, visibility, layoutEntries, groupEntries, des
   return format;
 }
 
+// Each target format: its texel's bytes and how one texel (at byte `at` of a DataView) reads as
+// linear RGBA. A channel the format lacks reads 0 (colour) or 1 (alpha), as a sampler returns it.
+const halvesOf = (channels) => (v, at, out, o) => {
+  for (let c = 0; c < 4; ++c) out[o + c] = c < channels ? HALF_TO_FLOAT[v.getUint16(at + 2 * c, true)] : c === 3 ? 1 : 0;
+};
 const OUTPUT_FORMATS = {
-  rgba16float: { gpu: 'rgba16float', bytes: 8 },
-  rgba8unorm: { gpu: 'rgba8unorm', bytes: 4 },
-  'rgba8unorm-srgb': { gpu: 'rgba8unorm-srgb', bytes: 4 },
+  rgba16float: { gpu: 'rgba16float', bytes: 8, texel: halvesOf(4) },
+  rgba8unorm: { gpu: 'rgba8unorm', bytes: 4, texel: (v, at, out, o) => { for (let c = 0; c < 4; ++c) out[o + c] = v.getUint8(at + c) / 255; } },
+  'rgba8unorm-srgb': {
+    gpu: 'rgba8unorm-srgb', bytes: 4,
+    texel: (v, at, out, o) => { for (let c = 0; c < 4; ++c) out[o + c] = c === 3 ? v.getUint8(at + c) / 255 : srgbToLinear(v.getUint8(at + c)); },
+  },
+  rgba32float: { gpu: 'rgba32float', bytes: 16, texel: (v, at, out, o) => { for (let c = 0; c < 4; ++c) out[o + c] = v.getFloat32(at + 4 * c, true); } },
+  // One little-endian word: red in bits 0-9, green 10-19, blue 20-29, alpha 30-31.
+  rgb10a2unorm: {
+    gpu: 'rgb10a2unorm', bytes: 4,
+    texel: (v, at, out, o) => {
+      const word = v.getUint32(at, true);
+      for (let c = 0; c < 3; ++c) out[o + c] = ((word >>> (10 * c)) & 0x3ff) / 1023;
+      out[o + 3] = (word >>> 30) / 3;
+    },
+  },
+  r16float: { gpu: 'r16float', bytes: 2, texel: halvesOf(1) },
+  rg16float: { gpu: 'rg16float', bytes: 4, texel: halvesOf(2) },
 };
 
 // A mapped readback buffer (rows bytesPerRow apart) as linear float32 RGBA, rows top first.
 function decodeRows(mapped, bytesPerRow, width, height, format) {
   const out = new Float32Array(width * height * 4);
-  const rowValues = width * 4;
+  const view = new DataView(mapped.buffer, mapped.byteOffset, mapped.byteLength);
   for (let y = 0; y < height; ++y) {
-    const base = y * bytesPerRow;
-    const o = y * rowValues;
-    if (format.gpu === 'rgba16float') {
-      const row = new Uint16Array(mapped.buffer, mapped.byteOffset + base, rowValues);
-      for (let i = 0; i < rowValues; ++i) out[o + i] = HALF_TO_FLOAT[row[i]];
-    } else if (format.gpu === 'rgba8unorm') {
-      for (let i = 0; i < rowValues; ++i) out[o + i] = mapped[base + i] / 255;
-    } else {
-      for (let i = 0; i < rowValues; ++i) out[o + i] = (i & 3) === 3 ? mapped[base + i] / 255 : srgbToLinear(mapped[base + i]);
-    }
+    for (let x = 0; x < width; ++x) format.texel(view, y * bytesPerRow + x * format.bytes, out, (y * width + x) * 4);
   }
   return out;
 }

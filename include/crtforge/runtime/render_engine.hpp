@@ -30,6 +30,10 @@ enum class OutputFormat {
     Rgba8Srgb,    // bytes stored sRGB-encoded by the hardware; read back DECODED to linear, i.e.
                   // the value the shader wrote, quantised to the sRGB byte grid
     Rgba16Float,  // half floats; read back exactly (HDR values above 1.0 survive)
+    Rgba32Float,  // floats; read back exactly
+    Rgb10A2Unorm, // 10 bits a colour channel, 2 for alpha (packed in 32 bits); read back as n / 1023, n / 3
+    R16Float,     // one half float; read back as (r, 0, 0, 1)
+    Rg16Float,    // two half floats; read back as (r, g, 0, 1)
 };
 
 enum class SamplerFilter { Nearest, Linear };
