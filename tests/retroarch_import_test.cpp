@@ -801,6 +801,22 @@ TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what Retr
             CHECK(std::abs(bottom[0] - want.alpha) < 0.003f);
         }
     }
+    // Read linearly, an rgba32f output needs a device that filters 32-bit floats: the shipped
+    // WebGPU driver keeps it in rgba16float where Dawn lacks float32-filterable (its GL ES
+    // backend here) rather than failing; the other formats are filterable everywhere.
+    std::string linear_text = slangp;
+    // (filter_linearN says how pass N - 1's output is read: here f0's.)
+    linear_text.replace(linear_text.find("filter_linear1 = false"), 22, "filter_linear1 = true");
+    const std::shared_ptr<TemplateLibrary> linear = import_text_or_fail(dir, "linear", linear_text, formats.size() + 1);
+    auto filtered = render_imported(renderer, *linear, *linear->find_preset("linear"), TargetId::Wgsl, input, 10, 2, {1});
+    INFO((filtered.ok() ? std::string() : filtered.error().str()));
+    REQUIRE(filtered.ok());
+    for (size_t i = 0; i < formats.size(); ++i) {
+        INFO(formats[i] << " read linearly");
+        const float* top = filtered.value().front().rgba.data() + (2 * i) * 4;
+        CHECK(std::abs(top[1] - held[i].green) < 0.003f);
+        CHECK(std::abs(top[2] - held[i].blue) < (i < 2 ? 0.26f : 0.02f));  // rgba32f: maybe half floats
+    }
     // Godot draws nothing into a viewport 1 pixel wide (godotengine/godot#26187): such a pass is
     // refused there, naming the pass, not exported black.
     std::string thin_text = slangp;

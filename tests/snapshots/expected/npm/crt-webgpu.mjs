@@ -428,9 +428,18 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
     if (typeof text !== 'string') throw new Error(`crt-webgpu: no WGSL for pass '${pass.alias}' (wgsl must map each pass alias to its shader text)`);
     return text;
   };
+  // rgba32float can be filtered only where the device enabled float32-filterable: elsewhere a pass
+  // output that some reader filters (linearly, blending mip levels, or through a chain made by
+  // linear blits) is kept in rgba16float, the widest format such a device filters.
+  const filtered = new Set(passes.flatMap((p) => p.textures.filter((t) => (t.filter ?? 'linear') === 'linear' || t.mipmap)
+    .map((t) => parseFrom(t.from)).filter((f) => f.kind === 'pass' || f.kind === 'feedback').map((f) => f.name)));
+  const storedFormat = (pass) => {
+    const f = passFormat(pass);
+    return isFloat32(f) && filtered.has(pass.alias) && !device.features.has('float32-filterable') ? 'rgba16float' : f;
+  };
   // Each pass draws into a texture of its own format; the last one draws into the target (and,
   // when a later frame reads it back, into a texture too).
-  const runners = passes.map((pass) => createCrtPass(device, { wgsl: shaderOf(pass), preset: pass, format: passFormat(pass) }));
+  const runners = passes.map((pass) => createCrtPass(device, { wgsl: shaderOf(pass), preset: pass, format: storedFormat(pass) }));
   const display = createCrtPass(device, { wgsl: shaderOf(passes[passes.length - 1]), preset: passes[passes.length - 1], format });
   const everyRunner = [...runners, display];
   for (const pass of passes)
@@ -482,7 +491,7 @@ export function createCrtScene(device, { preset, wgsl, luts = {}, format }) {
     destroyTextures();
     sizeKey = key;
     passes.forEach((pass, i) => {
-      const fmt = passFormat(pass);
+      const fmt = storedFormat(pass);
       const mip = mipOutputs.has(pass.alias);
       if (pass.alias !== lastAlias || feedback.has(pass.alias)) outputs.set(pass.alias, texture(`crt ${pass.alias}`, sizes[i], fmt, mip));
       if (feedback.has(pass.alias)) previous.set(pass.alias, texture(`crt ${pass.alias}@previous`, sizes[i], fmt, mip));
