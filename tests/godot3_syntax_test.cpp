@@ -62,21 +62,28 @@ TEST_CASE("Godot 3: a comma list of loop steps runs at the end of the body and b
     CHECK_THROWS_AS(with_loop_steps_in_body("for (int i = 0; i < 4; j = k, i++)\n    x = 1;\n"), spirv_cross::CompilerError);
 }
 
-TEST_CASE("Godot 3: loops get a step and a condition, unsigned literals a type", "[godot][godot3-syntax]") {
+TEST_CASE("Godot 3: loops get an initialiser, a step and a condition, unsigned literals a type", "[godot][godot3-syntax]") {
     CHECK(with_loop_increments("for (int i = 0; i < 4; )") == "for (int i = 0; i < 4; i += 0)");
     CHECK(with_loop_increments("for (;;)") == "for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)");
+    CHECK(with_loop_initialisers("for (; i_16 < 6; i_16++)\n{\n    for (; j < 2; j++)") ==
+          "for (int crtforge_init0 = 0; i_16 < 6; i_16++)\n{\n    for (int crtforge_init1 = 0; j < 2; j++)");
+    CHECK(with_godot3_syntax("for (;;)") == "for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)");  // given one already
     CHECK(with_unsigned_literals_spelled("x % 4u + 0xFFu + y2u + 10") == "x % uint(4) + uint(0xFF) + y2u + 10");
     // All of them, in order: the moved steps leave a loop that then gets its zero step.
     CHECK(with_godot3_syntax("for (int i = 0; i < 4; j = k, i++)\n{\n}\n") == "for (int i = 0; i < 4; i += 0)\n{\n    j = k; i++;\n}\n");
 }
 
-TEST_CASE("Godot 3: an array assigned whole is copied element by element", "[godot][godot3-syntax]") {
+TEST_CASE("Godot 3: an array assigned whole, or declared from another, is copied element by element", "[godot][godot3-syntax]") {
     const std::string text = "void fragment()\n{\n    float _347[3] = float[](1.0, 2.0, 3.0);\n    float phase[3] = float[](0.0, 0.0, 0.0);\n"
                              "    float x = 1.0;\n    float y;\n    if (x > 0.5)\n    {\n        phase = _347;\n    }\n    y = x;\n}\n";
     CHECK(with_array_copies_elementwise(text) ==
           "void fragment()\n{\n    float _347[3] = float[](1.0, 2.0, 3.0);\n    float phase[3] = float[](0.0, 0.0, 0.0);\n"
           "    float x = 1.0;\n    float y;\n    if (x > 0.5)\n    {\n"
           "        for (int crt_element = 0; crt_element < 3; crt_element++) { phase[crt_element] = _347[crt_element]; }\n    }\n    y = x;\n}\n");
+    // A declaration initialised from another array (nis's scaler) is declared, then copied.
+    CHECK(with_array_copies_elementwise("{\n    float a[6];\n    float b[6] = a;\n    float c = d;\n}\n") ==
+          "{\n    float a[6];\n    float b[6];\n    for (int crt_element = 0; crt_element < 6; crt_element++) { b[crt_element] = a[crt_element]; }\n"
+          "    float c = d;\n}\n");
 }
 
 TEST_CASE("Godot 3: a vector indexed by a loop counter is unrolled to constant indices, drawing what glslang's module draws",

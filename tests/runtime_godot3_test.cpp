@@ -11,6 +11,7 @@
 #include <string>
 
 #include "crtforge/runtime/godot3_engine.hpp"
+#include "targets/godot/godot3_syntax.hpp"
 
 namespace {
 
@@ -219,4 +220,21 @@ TEST_CASE("godot3: one server renders many jobs, and a bad job or a hung one doe
     INFO((after.ok() ? std::string() : after.error().str()));
     REQUIRE(after.ok());
     CHECK(after.value().at(1, 1)[0] == Approx(1.0f).margin(1e-3));
+}
+
+// The shapes SPIRV-Cross prints that Godot 3.2.3's parser refuses as they are (loops with no
+// initialiser, as in nis's scaler, no step, or `for (;;)` left by a break; an array declared from
+// another), after crtforge's Godot 3 rewrite: accepted, and each runs as written.
+TEST_CASE("godot3: loops without an initialiser, a step or a condition, and an array declared from another, run as written after the Godot 3 rewrite", "[godot3]") {
+    const std::string code = godot::godot3::with_godot3_syntax(
+        "shader_type canvas_item;\nvoid fragment()\n{\n    int i = 0;\n    float p[4];\n"
+        "    for (; i < 4; i++)\n    {\n        p[i] = 0.125 * float(i + 1);\n    }\n"
+        "    float sum = 0.0;\n    for (int j = 0; j < 4; )\n    {\n        sum += p[j];\n        j++;\n    }\n"
+        "    int k = 0;\n    for (;;)\n    {\n        k++;\n        if (k >= 3)\n        {\n            break;\n        }\n    }\n"
+        "    float q[4] = p;\n"
+        "    COLOR = vec4(sum / 2.0, float(k) / 4.0, q[3], 1.0);\n}\n");
+    CHECK_THAT(code, Contains("for (int crtforge_init0 = 0; i < 4; i++)"));
+    CHECK_THAT(code, Contains("float q[4];"));
+    const Image out = render_ok(make_job(code, Image{}, 2, 2));
+    CHECK(out.pixel(0, 0) == P{0.625f, 0.75f, 0.5f, 1});  // 0.125 + 0.25 + 0.375 + 0.5 = 1.25; k = 3
 }

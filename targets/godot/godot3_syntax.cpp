@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <regex>
+#include <string_view>
 #include <vector>
 
 #include <spirv_cross/spirv_common.hpp>
@@ -65,8 +66,8 @@ std::string trimmed(const std::string& s) {
 }  // namespace
 
 std::string with_godot3_syntax(const std::string& text) {
-    return with_unsigned_literals_spelled(
-        with_loop_increments(with_loop_steps_in_body(with_array_copies_elementwise(with_constant_arrays_local(text)))));
+    return with_unsigned_literals_spelled(with_loop_initialisers(
+        with_loop_increments(with_loop_steps_in_body(with_array_copies_elementwise(with_constant_arrays_local(text))))));
 }
 
 std::string with_array_copies_elementwise(const std::string& text) {
@@ -75,15 +76,20 @@ std::string with_array_copies_elementwise(const std::string& text) {
     for (auto it = std::sregex_iterator(text.begin(), text.end(), declared); it != std::sregex_iterator(); ++it)
         lengths[(*it)[1].str()] = (*it)[2].str();
     if (lengths.empty()) return text;
-    static const std::regex copy(R"((^|\n)([ \t]*)(\w+) = (\w+);(?=\n))");
+    // `a = b;`, or a declaration initialised from another array, `float a[6] = b;` (nis's scaler:
+    // "Invalid data type for array"), which is declared first and then copied.
+    static const std::regex copy(R"((^|\n)([ \t]*)(\w+ (\w+)\[\d+\]|(\w+)) = (\w+);(?=\n))");
     std::string out;
     size_t last = 0;
     for (auto it = std::sregex_iterator(text.begin(), text.end(), copy); it != std::sregex_iterator(); ++it) {
-        auto to = lengths.find((*it)[3].str()), from = lengths.find((*it)[4].str());
+        const bool declaration = (*it)[4].matched;
+        auto to = lengths.find((*it)[declaration ? 4 : 5].str()), from = lengths.find((*it)[6].str());
         if (to == lengths.end() || from == lengths.end() || to->second != from->second) continue;
         out.append(text, last, static_cast<size_t>(it->position()) - last);
-        out += (*it)[1].str() + (*it)[2].str() + "for (int crt_element = 0; crt_element < " + to->second + "; crt_element++) { " +
-               to->first + "[crt_element] = " + from->first + "[crt_element]; }";
+        const std::string indent = (*it)[1].str() + (*it)[2].str();
+        if (declaration) out += indent + (*it)[3].str() + ";";
+        out += indent + "for (int crt_element = 0; crt_element < " + to->second + "; crt_element++) { " + to->first +
+               "[crt_element] = " + from->first + "[crt_element]; }";
         last = static_cast<size_t>(it->position() + it->length());
     }
     out.append(text, last, std::string::npos);
@@ -204,6 +210,23 @@ std::string with_loop_increments(const std::string& text) {
         const std::string condition = (*it)[2].str().empty() ? std::string("true") : (*it)[2].str();
         out += "for (" + init + "; " + condition + "; " + step + ")";
         last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    return out;
+}
+
+std::string with_loop_initialisers(const std::string& text) {
+    // Godot 3.2.3 refuses a for loop with no initialiser ("Expected expression, found: PERIOD":
+    // nis's scaler, whose counter SPIRV-Cross declares before the loop); a declaration of an int
+    // nothing reads takes its place. Runs after with_loop_increments, which gave `for (;;)` one.
+    static constexpr std::string_view kHead = "for (;";
+    std::string out;
+    size_t last = 0;
+    int spare = 0;
+    for (size_t at = text.find(kHead); at != std::string::npos; at = text.find(kHead, at + kHead.size())) {
+        out.append(text, last, at - last);
+        out += "for (int crtforge_init" + std::to_string(spare++) + " = 0;";
+        last = at + kHead.size();
     }
     out.append(text, last, std::string::npos);
     return out;

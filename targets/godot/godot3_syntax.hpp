@@ -21,6 +21,9 @@ std::string with_array_copies_elementwise(const std::string& text);
 std::string with_loop_steps_in_body(const std::string& text);
 // A for loop without a step, or without a condition, gets a step that changes nothing and `true`.
 std::string with_loop_increments(const std::string& text);
+// A for loop with no initialiser (`for (; i < 6; i++)`: "Expected expression, found: PERIOD") gets
+// the declaration of an int nothing reads.
+std::string with_loop_initialisers(const std::string& text);
 // 4u as uint(4): Godot 3 reads the literal as an int.
 std::string with_unsigned_literals_spelled(const std::string& text);
 
