@@ -211,9 +211,8 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
 
     // The memo's key is the module without debug info (OpLine output, debug_lines, names its files:
     // it is not memoised) and the local names it will carry, its specialization constants
-    // (BakedParams::Specialized) cleared: it is
-    // optimised with them cleared, so presets that differ only in those values share one
-    // optimisation, and each gets its values back after.
+    // (BakedParams::Specialized) cleared: it is optimised with them cleared, so presets that differ
+    // only in those values share one optimisation, and each gets its values back after.
     std::string memo_key;
     std::map<uint32_t, SpecValue> spec_values;
     if (options.optimize && !options.debug_lines) {

@@ -97,10 +97,7 @@ TEST_CASE("enabling the pulsing glow adds exactly its code and time", "[disabled
     REQUIRE(file.ok());
     std::vector<PresetFile> files{file.value()};
     const std::string base_path = test::shipped_template_dir() + "/presets/crt-shadow-mask.toml";
-    std::ifstream in(base_path);
-    std::stringstream text;
-    text << in.rdbuf();
-    auto base = parse_preset_file(text.str(), base_path, &lib);
+    auto base = parse_preset_file(test::slurp(base_path), base_path, &lib);
     REQUIRE(base.ok());
     files.push_back(base.value());
     auto preset = lib.resolve(files, "pulse");

@@ -49,12 +49,7 @@ TEST_CASE("written files match the in-memory export", "[export]") {
     REQUIRE(result.ok());
     test::TempDir out;
     REQUIRE(write_files(out.path(), result.value().files).ok());
-    for (const auto& [path, data] : result.value().files) {
-        std::ifstream in(out / path, std::ios::binary);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        CHECK(ss.str() == data);
-    }
+    for (const auto& [path, data] : result.value().files) CHECK(test::slurp(out / path) == data);
 }
 
 TEST_CASE("the cache treats damaged entries as misses", "[export][cache]") {

@@ -96,12 +96,7 @@ void write_bytes(const std::string& path, const Bytes& bytes) {
                                                 static_cast<std::streamsize>(bytes.size()));
 }
 
-std::string read_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using test::slurp;
 
 // A little-endian RGB Portable Float Map of width x 1 pixels.
 void write_pfm(const std::string& path, const std::vector<float>& rgb) {
@@ -215,9 +210,9 @@ TEST_CASE("written files are byte-identical across writes", "[image][io][determi
                                                        : write_png(path, image, std::string(ext) == "png8" ? 8 : 16);
             REQUIRE(s.ok());
         }
-        const std::string first = read_bytes(a);
+        const std::string first = slurp(a);
         CHECK(first.size() > 100);
-        CHECK(first == read_bytes(b));
+        CHECK(first == slurp(b));
         // Nothing time- or host-dependent in the metadata.
         CHECK(first.find("DateTime") == std::string::npos);
         CHECK(first.find("Software") == std::string::npos);
@@ -230,7 +225,7 @@ TEST_CASE("written files are byte-identical across writes", "[image][io][determi
     }
     // Overwriting an existing file works too (rename replaces it).
     REQUIRE(write_png(dir / "png8-a", input("checker", 8, 8), 8).ok());
-    CHECK(read_bytes(dir / "png8-a") != read_bytes(dir / "png8-b"));
+    CHECK(slurp(dir / "png8-a") != slurp(dir / "png8-b"));
     CHECK(no_temp_files_left(dir.path()));
 }
 

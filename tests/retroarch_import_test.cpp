@@ -168,6 +168,15 @@ Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const Templ
     return renderer.render_scene(r);
 }
 
+// render_imported's frames; the test fails, naming the error, unless it renders.
+std::vector<Image> render_imported_or_fail(TargetRenderer& renderer, const TemplateLibrary& lib, const Preset& preset, TargetId target,
+                                           const Image& input, int width, int height, std::vector<int> frames) {
+    auto images = render_imported(renderer, lib, preset, target, input, width, height, std::move(frames));
+    INFO((images.ok() ? std::string() : images.error().str()));
+    REQUIRE(images.ok());
+    return std::move(images).value();
+}
+
 }  // namespace
 
 TEST_CASE("an imported RetroArch preset maps its passes, textures, semantics and shared parameters onto a crtforge scene",
@@ -213,10 +222,8 @@ TEST_CASE("an imported RetroArch preset maps its passes, textures, semantics and
     const float first = std::round(0.3f * 255.0f) / 255.0f;
     for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50}) {
         INFO(target_info(target).name);
-        auto images = render_imported(renderer, *lib.value(), *preset, target, input, 160, 120, {0, 2});
-        INFO((images.ok() ? std::string() : images.error().str()));
-        REQUIRE(images.ok());
-        for (const Image& image : images.value()) {
+        const std::vector<Image> images = render_imported_or_fail(renderer, *lib.value(), *preset, target, input, 160, 120, {0, 2});
+        for (const Image& image : images) {
             const float* p = image.rgba.data() + (60 * 160 + 80) * 4;
             CHECK(p[0] == Approx(first).margin(1.5 / 255));
             CHECK(p[1] == Approx(first * 0.5f).margin(1.5 / 255));
@@ -324,11 +331,9 @@ TEST_CASE("an imported pass reads its block members in place and holds only the 
     TargetRenderer renderer;
     for (const auto* one : {&a, &c, &shadow}) {
         const Preset* preset = one->first->find_preset(one == &a ? "a" : one == &c ? "c" : "shadow");
-        auto images = render_imported(renderer, *one->first, *preset, TargetId::Spirv, input, 16, 16, {0});
-        INFO((images.ok() ? std::string() : images.error().str()));
-        REQUIRE(images.ok());
+        const std::vector<Image> images = render_imported_or_fail(renderer, *one->first, *preset, TargetId::Spirv, input, 16, 16, {0});
         const double expected = 0.8 * (one == &c ? 0.5 : 0.75);
-        CHECK(images.value().front().rgba[0] == Approx(expected).margin(1.0 / 255));
+        CHECK(images.front().rgba[0] == Approx(expected).margin(1.0 / 255));
     }
 }
 
@@ -463,15 +468,11 @@ TEST_CASE("a curated slice of RetroArch's CRT presets renders alike through Vulk
         REQUIRE(lib.ok());
         const Preset* preset = lib.value()->find_preset("imported");
         REQUIRE(preset);
-        auto vulkan = render_imported(renderer, *lib.value(), *preset, TargetId::Spirv, input.value(), 512, 448, {1});
-        INFO((vulkan.ok() ? std::string() : vulkan.error().str()));
-        REQUIRE(vulkan.ok());
+        const std::vector<Image> vulkan = render_imported_or_fail(renderer, *lib.value(), *preset, TargetId::Spirv, input.value(), 512, 448, {1});
         for (TargetId target : {TargetId::Glsl330, TargetId::Hlsl50}) {
             INFO(target_info(target).name);
-            auto other = render_imported(renderer, *lib.value(), *preset, target, input.value(), 512, 448, {1});
-            INFO((other.ok() ? std::string() : other.error().str()));
-            REQUIRE(other.ok());
-            auto m = compare_images(other.value().front(), vulkan.value().front());
+            const std::vector<Image> other = render_imported_or_fail(renderer, *lib.value(), *preset, target, input.value(), 512, 448, {1});
+            auto m = compare_images(other.front(), vulkan.front());
             REQUIRE(m.ok());
             CHECK(m.value().psnr >= 40.0);
         }
@@ -583,11 +584,6 @@ TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization cons
     CHECK(apart.value().psnr < 20.0);
 }
 
-// A one-pixel checkerboard shown eight times smaller: through a mip chain every output pixel is
-// the board's mean (levels 1.. average it to 0.5 exactly); read at level 0 with a nearest filter
-// it stays black or white. The first pass copies the original (whose mip chain RetroArch never
-// makes, whatever mipmap_input0 says); the second reads that copy with mipmap_input1, the
-// original at level 0, and a LUT with board_mipmap.
 // A pass's stock vertex stage and the head of its fragment stage, which reads Source.
 const std::string kStockHead = R"(#version 450
 layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;
@@ -602,6 +598,11 @@ layout(location = 0) out vec4 FragColor;
 layout(set = 0, binding = 2) uniform sampler2D Source;
 )";
 
+// A one-pixel checkerboard shown eight times smaller: through a mip chain every output pixel is
+// the board's mean (levels 1.. average it to 0.5 exactly); read at level 0 with a nearest filter
+// it stays black or white. The first pass copies the original (whose mip chain RetroArch never
+// makes, whatever mipmap_input0 says); the second reads that copy with mipmap_input1, the
+// original at level 0, and a LUT with board_mipmap.
 TEST_CASE("mipmap_input and NAME_mipmap sample through a mip chain on Vulkan, GL, the shipped WebGPU driver and Godot's LUTs",
           "[retroarch][import][mipmap]") {
     test::TempDir dir;
@@ -654,10 +655,8 @@ void main() { FragColor = vec4(texture(Source, vTexCoord).r, texture(Original, v
     // Godot's viewports have no mip chains: there only the LUT's channel is judged.
     for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
         INFO(target_info(target).name);
-        auto images = render_imported(renderer, *lib, *preset, target, checker, 30, 30, {1});
-        INFO((images.ok() ? std::string() : images.error().str()));
-        REQUIRE(images.ok());
-        const Image& v = images.value().front();
+        const std::vector<Image> images = render_imported_or_fail(renderer, *lib, *preset, target, checker, 30, 30, {1});
+        const Image& v = images.front();
         const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
         double worst_mip = 0, extreme = 0, worst_vs_vulkan = 0;
         for (size_t i = 0; i < v.pixel_count(); ++i) {
@@ -713,10 +712,8 @@ TEST_CASE("an 8-bit pass output's mip chain is 8-bit, and clamp_to_border at an 
     std::optional<std::array<float, 2>> vulkan;
     for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Wgsl}) {
         INFO(target_info(target).name);
-        auto images = render_imported(renderer, *lib, *preset, target, picture, 8, 8, {0});
-        INFO((images.ok() ? std::string() : images.error().str()));
-        REQUIRE(images.ok());
-        const float* p = images.value().front().rgba.data() + (4 * 8 + 4) * 4;
+        const std::vector<Image> images = render_imported_or_fail(renderer, *lib, *preset, target, picture, 8, 8, {0});
+        const float* p = images.front().rgba.data() + (4 * 8 + 4) * 4;
         INFO("level 3 texel " << p[2] * 255.0f << " / 255 (" << p[1] << " off the byte grid), level 5 at the border "
                                   << p[0] * 255.0f << " / 255");
         CHECK(p[1] < 0.01f);  // on the byte grid: an 8-bit chain
@@ -782,10 +779,8 @@ TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what Retr
     for (TargetId target : {TargetId::Spirv, TargetId::Glsl450, TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2, TargetId::Hlsl50,
                             TargetId::Hlsl60, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
         INFO(target_info(target).name);
-        auto images = render_imported(renderer, *lib, *preset, target, input, 10, 2, {1});
-        INFO((images.ok() ? std::string() : images.error().str()));
-        REQUIRE(images.ok());
-        const Image& v = images.value().front();
+        const std::vector<Image> images = render_imported_or_fail(renderer, *lib, *preset, target, input, 10, 2, {1});
+        const Image& v = images.front();
         const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
         for (size_t i = 0; i < formats.size(); ++i) {
             INFO(formats[i]);
@@ -808,12 +803,10 @@ TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what Retr
     // (filter_linearN says how pass N - 1's output is read: here f0's.)
     linear_text.replace(linear_text.find("filter_linear1 = false"), 22, "filter_linear1 = true");
     const std::shared_ptr<TemplateLibrary> linear = import_text_or_fail(dir, "linear", linear_text, formats.size() + 1);
-    auto filtered = render_imported(renderer, *linear, *linear->find_preset("linear"), TargetId::Wgsl, input, 10, 2, {1});
-    INFO((filtered.ok() ? std::string() : filtered.error().str()));
-    REQUIRE(filtered.ok());
+    const std::vector<Image> filtered = render_imported_or_fail(renderer, *linear, *linear->find_preset("linear"), TargetId::Wgsl, input, 10, 2, {1});
     for (size_t i = 0; i < formats.size(); ++i) {
         INFO(formats[i] << " read linearly");
-        const float* top = filtered.value().front().rgba.data() + (2 * i) * 4;
+        const float* top = filtered.front().rgba.data() + (2 * i) * 4;
         CHECK(std::abs(top[1] - held[i].green) < 0.003f);
         CHECK(std::abs(top[2] - held[i].blue) < (i < 2 ? 0.26f : 0.02f));  // rgba32f: maybe half floats
     }

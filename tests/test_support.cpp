@@ -3,11 +3,11 @@
 #include <cstdio>
 #include <fstream>
 #include <random>
-#include <sstream>
 
 #include <catch2/catch.hpp>
 #include <sys/wait.h>
 
+#include "crtforge/files.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 
 namespace fs = std::filesystem;
@@ -17,10 +17,8 @@ namespace crtforge::test {
 std::string golden_dir() { return CRTFORGE_SOURCE_DIR "/golden"; }
 
 std::string slurp(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    auto text = read_text_file(path.string());
+    return text.ok() ? std::move(text).value() : std::string();
 }
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
@@ -83,12 +81,7 @@ void ScratchTemplates::write(const std::string& rel, const std::string& text) co
 
 void ScratchTemplates::remove(const std::string& rel) const { fs::remove(dir_ + "/" + rel); }
 
-std::string ScratchTemplates::read(const std::string& rel) const {
-    std::ifstream in(dir_ + "/" + rel, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+std::string ScratchTemplates::read(const std::string& rel) const { return slurp(dir_ + "/" + rel); }
 
 Result<Preset> resolve_preset_texts(const std::vector<std::pair<std::string, std::string>>& files, const std::string& name) {
     const TemplateLibrary& lib = shipped_library();
@@ -108,12 +101,6 @@ CommandResult run_command(const std::string& command) {
     int status = std::system(cmd.c_str());
     CommandResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    auto slurp = [](const std::string& path) {
-        std::ifstream in(path);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    };
     r.out = slurp(out);
     r.err = slurp(err);
     return r;

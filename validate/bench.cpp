@@ -28,18 +28,8 @@ layout(set = 0, binding = 1) uniform sampler2D source;
 void main() { fragColor = texture(source, vTexCoord); }
 )";
 
-const char* format_name(OutputFormat f) {
-    switch (f) {
-        case OutputFormat::Rgba8Unorm: return "rgba8";
-        case OutputFormat::Rgba8Srgb: return "rgba8_srgb";
-        case OutputFormat::Rgba16Float: return "rgba16f";
-        case OutputFormat::Rgba32Float: return "rgba32f";
-        case OutputFormat::Rgb10A2Unorm: return "rgb10a2";
-        case OutputFormat::R16Float: return "r16f";
-        case OutputFormat::Rg16Float: return "rg16f";
-    }
-    return "other";
-}
+// The preset's name of a job's target format (rgba8, rgba16f, ...).
+const char* format_name(OutputFormat f) { return pixel_format_name(pixel_format(f)); }
 
 // Both sides of a ratio are the fastest of their timings. On lavapipe on a shared machine a copy
 // runs at one of two speeds, switching every second or so and from one pipeline to the next: at

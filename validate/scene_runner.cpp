@@ -22,18 +22,12 @@ namespace crtforge {
 
 namespace {
 
-OutputFormat output_format(PixelFormat f) {
-    switch (f) {
-        case PixelFormat::Rgba8: return OutputFormat::Rgba8Unorm;
-        case PixelFormat::Rgba8Srgb: return OutputFormat::Rgba8Srgb;
-        case PixelFormat::Rgba16F: return OutputFormat::Rgba16Float;
-        case PixelFormat::Rgba32F: return OutputFormat::Rgba32Float;
-        case PixelFormat::Rgb10A2: return OutputFormat::Rgb10A2Unorm;
-        case PixelFormat::R16F: return OutputFormat::R16Float;
-        case PixelFormat::Rg16F: return OutputFormat::Rg16Float;
-    }
-    return OutputFormat::Rgba16Float;
-}
+constexpr std::pair<PixelFormat, OutputFormat> kFormatPairs[] = {
+    {PixelFormat::Rgba8, OutputFormat::Rgba8Unorm},    {PixelFormat::Rgba8Srgb, OutputFormat::Rgba8Srgb},
+    {PixelFormat::Rgba16F, OutputFormat::Rgba16Float}, {PixelFormat::Rgba32F, OutputFormat::Rgba32Float},
+    {PixelFormat::Rgb10A2, OutputFormat::Rgb10A2Unorm}, {PixelFormat::R16F, OutputFormat::R16Float},
+    {PixelFormat::Rg16F, OutputFormat::Rg16Float},
+};
 
 SamplerFilter to_filter(Filter f) { return f == Filter::Nearest ? SamplerFilter::Nearest : SamplerFilter::Linear; }
 
@@ -65,6 +59,18 @@ BoundedMemo<SharedImage>& decoded_luts() {
 }
 
 }  // namespace
+
+OutputFormat output_format(PixelFormat format) {
+    for (const auto& [pixel, output] : kFormatPairs)
+        if (pixel == format) return output;
+    return OutputFormat::Rgba16Float;
+}
+
+PixelFormat pixel_format(OutputFormat format) {
+    for (const auto& [pixel, output] : kFormatPairs)
+        if (output == format) return pixel;
+    return PixelFormat::Rgba16F;
+}
 
 Result<std::map<std::string, SharedImage>> read_file_luts(const Preset& preset) {
     std::map<std::string, SharedImage> out;

@@ -72,7 +72,7 @@ bool samples_8bit_linearly(const Preset& preset) {
                 case TextureSource::Kind::Lut: return true;  // every LUT is an 8-bit picture
                 case TextureSource::Kind::Pass:
                 case TextureSource::Kind::Feedback:
-                    if (const Pass* from = preset.find_pass(in.from.name); from && from->format != PixelFormat::Rgba16F) return true;
+                    if (const Pass* from = preset.find_pass(in.from.name); from && stores_bytes(from->format)) return true;
                     break;
                 case TextureSource::Kind::Original: break;  // hosts upload it as floats
             }

@@ -41,6 +41,8 @@ const char* wrap_name(Wrap wrap);  // clamp_to_edge, clamp_to_border, repeat, mi
 // (colour) and 1 (alpha).
 enum class PixelFormat { Rgba8, Rgba8Srgb, Rgba16F, Rgba32F, Rgb10A2, R16F, Rg16F };
 const char* pixel_format_name(PixelFormat format);  // rgba8, rgba8_srgb, rgba16f, rgba32f, rgb10a2, r16f, rg16f
+// Whether the format stores 8 bits a channel (rgba8, rgba8_srgb): what GPUs filter in coarse steps.
+inline bool stores_bytes(PixelFormat format) { return format == PixelFormat::Rgba8 || format == PixelFormat::Rgba8Srgb; }
 
 // A pass's output size on one axis: a factor of its source (main input), of the viewport (the
 // screen's rectangle in the display), or an absolute number of pixels.

@@ -45,25 +45,25 @@ GLenum output_internal_format(OutputFormat format) {
     return GL_RGBA8;
 }
 
-// How a target of `format` is read back: float targets as RGBA floats (the driver widens halves
-// exactly and fills a channel the format lacks with 0, alpha with 1), 10-bit ones packed, 8-bit
-// ones as bytes (the combinations GL ES 3.0 allows as well as desktop GL).
+// How a target of `format` is read back (the combinations GL ES 3.0 allows as well as desktop GL):
+// glReadPixels' type, and the layout of what comes back. Float targets come as RGBA floats (the
+// driver widens halves exactly and fills a channel the format lacks with 0, alpha with 1), 10-bit
+// ones packed, 8-bit ones as bytes.
 struct GlReadback {
     GLenum type;
-    size_t texel_bytes;
-    bool floats;
+    OutputFormat layout;
 };
 GlReadback readback_of(OutputFormat format) {
     switch (format) {
         case OutputFormat::Rgba8Unorm:
-        case OutputFormat::Rgba8Srgb: return {GL_UNSIGNED_BYTE, 4, false};
-        case OutputFormat::Rgb10A2Unorm: return {GL_UNSIGNED_INT_2_10_10_10_REV, 4, false};
+        case OutputFormat::Rgba8Srgb: return {GL_UNSIGNED_BYTE, format};
+        case OutputFormat::Rgb10A2Unorm: return {GL_UNSIGNED_INT_2_10_10_10_REV, format};
         case OutputFormat::Rgba16Float:
         case OutputFormat::Rgba32Float:
         case OutputFormat::R16Float:
         case OutputFormat::Rg16Float: break;
     }
-    return {GL_FLOAT, 16, true};
+    return {GL_FLOAT, OutputFormat::Rgba32Float};
 }
 
 // The largest output extent along one axis: a texture, a render target and a viewport at once.
@@ -204,18 +204,14 @@ private:
 };
 
 // Rows come back bottom-first from glReadPixels; the image wants the top row first.
-Image to_image(const std::vector<unsigned char>& pixels, int width, int height, OutputFormat format) {
-    const GlReadback readback = readback_of(format);
-    const size_t row_bytes = static_cast<size_t>(width) * readback.texel_bytes;
+Image to_image(const std::vector<unsigned char>& pixels, int width, int height, OutputFormat layout) {
+    const size_t row_bytes = static_cast<size_t>(width) * vulkan::texel_bytes(layout);
     std::vector<unsigned char> top_first(pixels.size());
     for (int y = 0; y < height; ++y) {
         std::memcpy(top_first.data() + static_cast<size_t>(y) * row_bytes,
                     pixels.data() + static_cast<size_t>(height - 1 - y) * row_bytes, row_bytes);
     }
-    if (!readback.floats) return vulkan::read_texels(top_first.data(), width, height, format);
-    Image image = Image::make(width, height);
-    std::memcpy(image.rgba.data(), top_first.data(), top_first.size());
-    return image;
+    return vulkan::read_texels(top_first.data(), width, height, layout);
 }
 
 class GlEngineImpl final : public GlEngine {
@@ -324,7 +320,7 @@ private:
         if (srgb_switch) gl.Disable(GL_FRAMEBUFFER_SRGB);  // and never decode on read
 
         const GlReadback readback = readback_of(job.format);
-        std::vector<unsigned char> pixels(static_cast<size_t>(job.width) * static_cast<size_t>(job.height) * readback.texel_bytes);
+        std::vector<unsigned char> pixels(static_cast<size_t>(job.width) * static_cast<size_t>(job.height) * vulkan::texel_bytes(readback.layout));
         gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
         gl.ReadPixels(0, 0, job.width, job.height, GL_RGBA, readback.type, pixels.data());
         if (auto errors = take_gl_errors(gl); !errors.empty()) {
@@ -332,7 +328,7 @@ private:
                                                      errors.size() > 1 ? fmt::format(" (and {} more)", errors.size() - 1)
                                                                        : std::string()));
         }
-        return to_image(pixels, job.width, job.height, job.format);
+        return to_image(pixels, job.width, job.height, readback.layout);
     }
 
     std::unique_ptr<GlContext> context_;

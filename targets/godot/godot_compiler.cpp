@@ -343,27 +343,12 @@ std::map<std::string, bool> GodotCompiler::border_textures() const {
     return out;
 }
 
-// Godot's pass viewports are 8-bit or half float RGBA (the scene's "hdr"): a pass whose framebuffer
-// stores less (RetroArch's R16_SFLOAT, R16G16_SFLOAT, A2B10G10R10_UNORM_PACK32) reduces its output
-// to what that framebuffer would hold, where fragment() ends, so every reader sees what it sees in
-// RetroArch: the missing channels as 0 and alpha 1, 10-bit colour and 2-bit alpha steps. The
-// screen's pass draws the display, whose format is the host's.
+// The pass's format_reduction where fragment() ends; the screen's pass draws the display, whose
+// format is the host's.
 std::string GodotCompiler::with_format_stored(std::string text) const {
-    const Preset& preset = *variant_.preset;
-    if (screen_mode() || variant_.pass_index + 1 >= preset.passes.size()) return text;
-    std::string line;
-    switch (variant_.pass->format) {
-        case PixelFormat::R16F: line = "    COLOR = vec4(COLOR.r, 0.0, 0.0, 1.0);  // stored as r16f\n"; break;
-        case PixelFormat::Rg16F: line = "    COLOR = vec4(COLOR.rg, 0.0, 1.0);  // stored as rg16f\n"; break;
-        case PixelFormat::Rgb10A2:
-            line = "    COLOR = vec4(round(clamp(COLOR.rgb, 0.0, 1.0) * 1023.0) / 1023.0, round(clamp(COLOR.a, 0.0, 1.0) * 3.0) / 3.0);"
-                   "  // stored as rgb10a2\n";
-            break;
-        case PixelFormat::Rgba8:
-        case PixelFormat::Rgba8Srgb:
-        case PixelFormat::Rgba16F:
-        case PixelFormat::Rgba32F: return text;  // Godot stores these (rgba32f as half float: a scene note says so)
-    }
+    if (screen_mode() || variant_.pass_index + 1 >= variant_.preset->passes.size()) return text;
+    const std::string line = format_reduction(variant_.pass->format);
+    if (line.empty()) return text;
     const std::string entry = "void fragment()\n{\n";
     const size_t body = text.find(entry);
     const size_t close = body == std::string::npos ? body : text.find("\n}", body);
@@ -371,7 +356,7 @@ std::string GodotCompiler::with_format_stored(std::string text) const {
     if (text.substr(body, close - body).find("return;") != std::string::npos)
         throw spirv_cross::CompilerError(fmt::format("a fragment stage that returns early cannot store its {} output in Godot",
                                                      pixel_format_name(variant_.pass->format)));
-    text.insert(close + 1, line);
+    text.insert(close + 1, "    " + line + "\n");
     return text;
 }
 

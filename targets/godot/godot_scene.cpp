@@ -75,7 +75,7 @@ std::vector<std::string> scene_notes(const SceneTargetInput& in, int version) {
             notes.push_back("pass " + pass.alias + " stores sRGB 8-bit; Godot viewports cannot: it is stored as float");
         if (pass.format == PixelFormat::Rgba32F && !display)
             notes.push_back("pass " + pass.alias + " stores 32-bit floats; Godot viewports cannot: it is stored as half float");
-        if ((pass.format == PixelFormat::Rgb10A2 || pass.format == PixelFormat::R16F || pass.format == PixelFormat::Rg16F) && !display)
+        if (!format_reduction(pass.format).empty() && !display)
             notes.push_back(fmt::format("pass {} stores {}; Godot viewports cannot: it is stored as half float, its shader reducing the "
                                         "output to what {} holds", pass.alias, pixel_format_name(pass.format), pixel_format_name(pass.format)));
         for (const PassInput* input : read_inputs(*in.passes[i])) {

@@ -134,6 +134,21 @@ std::vector<std::string> material_param_lines(const Variant& variant, int versio
     return lines;
 }
 
+std::string format_reduction(PixelFormat format) {
+    switch (format) {
+        case PixelFormat::R16F: return "COLOR = vec4(COLOR.r, 0.0, 0.0, 1.0);  // stored as r16f";
+        case PixelFormat::Rg16F: return "COLOR = vec4(COLOR.rg, 0.0, 1.0);  // stored as rg16f";
+        case PixelFormat::Rgb10A2:
+            return "COLOR = vec4(round(clamp(COLOR.rgb, 0.0, 1.0) * 1023.0) / 1023.0, round(clamp(COLOR.a, 0.0, 1.0) * 3.0) / 3.0);"
+                   "  // stored as rgb10a2";
+        case PixelFormat::Rgba8:
+        case PixelFormat::Rgba8Srgb:
+        case PixelFormat::Rgba16F:
+        case PixelFormat::Rgba32F: break;
+    }
+    return "";
+}
+
 const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
 
 Result<std::string> generate_shader(const TargetInput& input, const Options& options) {

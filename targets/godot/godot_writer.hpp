@@ -29,6 +29,12 @@ Result<TargetOutput> generate(const TargetInput& input, int godot_version);
 // runtime param of a ShaderMaterial to the preset's value.
 std::vector<std::string> material_param_lines(const Variant& variant, int godot_version);
 
+// Godot's pass viewports are 8-bit or half-float RGBA: the statement that ends the fragment() of a
+// pass stored in `format` where that stores less (r16f, rg16f, rgb10a2), reducing COLOR to what the
+// format holds, so readers see what RetroArch's see; "" where Godot stores the format as it is
+// (rgba32f as half floats).
+std::string format_reduction(PixelFormat format);
+
 // ".gdshader" (Godot 4) or ".shader" (Godot 3).
 const char* shader_extension(int godot_version);
 

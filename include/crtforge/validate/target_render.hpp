@@ -102,7 +102,8 @@ Result<std::map<std::string, SharedImage>> read_file_luts(const Preset& preset);
 
 class ConsumerEngines;
 
-// Whether a pass of the preset samples an 8-bit texture (an rgba8 pass's output, or a LUT) linearly.
+// Whether a pass of the preset samples an 8-bit texture (an rgba8 or rgba8_srgb pass's output, or a
+// LUT) linearly.
 bool samples_8bit_linearly(const Preset& preset);
 
 // Owns the engines of one thread, created on first use and reused.
