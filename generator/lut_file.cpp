@@ -63,9 +63,12 @@ std::string png_stream_error(const std::string& data, uint64_t expected, uint64_
         z.avail_out = out.size();
         const int rc = inflate(&z, Z_NO_FLUSH);
         const uint64_t got = out.size() - z.avail_out;
-        for (uint64_t i = 0; row_bytes && i < got && error.empty(); ++i)
-            if ((produced + i) % row_bytes == 0 && out[i] > 4)
+        // Only the bytes that start a row (a division per byte was a cold sweep's 2.5 %).
+        for (uint64_t i = row_bytes ? (row_bytes - produced % row_bytes) % row_bytes : got; i < got; i += row_bytes)
+            if (out[i] > 4) {
                 error = "row " + std::to_string((produced + i) / row_bytes) + " has unknown filter type " + std::to_string(out[i]);
+                break;
+            }
         produced += got;
         if (!error.empty()) break;
         if (produced > expected) {

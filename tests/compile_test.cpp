@@ -2,6 +2,9 @@
 // template file and line.
 #include <catch2/catch.hpp>
 
+#include <glslang/SPIRV/spirv.hpp>
+
+#include "generator/spirv_words.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -91,4 +94,28 @@ TEST_CASE("sources that differ only in #line file names and comments give one mo
     REQUIRE_FALSE(again.ok());
     CHECK(first.error().file == "/tmp/three/pass1.frag");
     CHECK(again.error().file == "/tmp/four!/pass1.frag");
+}
+
+TEST_CASE("an invalid module is refused with its ids named", "[compile]") {
+    // spirv-val runs without naming ids (the cost of a valid module's check); a module that
+    // fails is checked again with names, so the message still says which value is wrong.
+    CompileOptions options;
+    options.stage = ShaderStage::Fragment;
+    options.optimize = false;
+    options.source_name = "<named>";
+    auto spirv = compile_to_spirv("#version 450\nlayout(location = 0) out vec4 outColour;\nvoid main() { outColour = vec4(0.5); }\n", options);
+    REQUIRE(spirv.ok());
+    SpirvBinary broken = spirv.value();
+    const auto list = detail::spirv_instructions(broken);
+    REQUIRE(list);
+    bool stored = false;
+    for (const detail::SpirvInstruction& in : *list)
+        if (in.opcode == spv::OpStore && in.count == 3) {
+            broken[in.offset + 2] = broken[in.offset + 1];  // store the pointer into itself: a type mismatch
+            stored = true;
+        }
+    REQUIRE(stored);
+    const Status valid = validate_spirv(broken);
+    REQUIRE_FALSE(valid.ok());
+    CHECK_THAT(valid.error().message, Catch::Contains("spirv-val") && Catch::Contains("%outColour"));
 }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include <sys/stat.h>
 #include <zlib.h>
@@ -28,6 +29,38 @@ std::string palette_png() {
     auto lut = generate_lut("atari_ntsc", {});
     REQUIRE(lut.ok());
     return encode_png(lut.value());
+}
+
+// A PNG chunk: length, type, body, CRC.
+std::string png_chunk(const std::string& type, const std::string& body) {
+    std::string out;
+    for (int k = 0; k < 4; ++k) out += static_cast<char>(body.size() >> (24 - 8 * k));
+    const std::string typed = type + body;
+    out += typed;
+    const auto crc = static_cast<uint32_t>(::crc32(::crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(typed.data()),
+                                                   static_cast<uInt>(typed.size())));
+    for (int k = 0; k < 4; ++k) out += static_cast<char>(crc >> (24 - 8 * k));
+    return out;
+}
+
+// An 8-bit RGBA PNG of width x height grey pixels whose rows carry `filters[row]` (0 past its end)
+// as their filter byte: made by hand, so a row can carry a filter type no PNG writer would.
+std::string rgba_png(uint32_t width, uint32_t height, const std::vector<uint8_t>& filters) {
+    std::string raw;
+    for (uint32_t y = 0; y < height; ++y) {
+        raw += static_cast<char>(y < filters.size() ? filters[y] : 0);
+        raw.append(size_t{width} * 4, static_cast<char>(0x80));
+    }
+    uLongf packed_size = compressBound(static_cast<uLong>(raw.size()));
+    std::string packed(packed_size, '\0');
+    REQUIRE(compress(reinterpret_cast<Bytef*>(packed.data()), &packed_size, reinterpret_cast<const Bytef*>(raw.data()),
+                     static_cast<uLong>(raw.size())) == Z_OK);
+    packed.resize(packed_size);
+    std::string header;
+    for (uint32_t v : {width, height})
+        for (int k = 0; k < 4; ++k) header += static_cast<char>(v >> (24 - 8 * k));
+    header += std::string("\x08\x06\x00\x00\x00", 5);
+    return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", header) + png_chunk("IDAT", packed) + png_chunk("IEND", "");
 }
 
 // A baseline JPEG's structure around `scan` entropy bytes: SOI, a frame header of width x height,
@@ -98,6 +131,18 @@ TEST_CASE("a PNG's header is held to its image data: size, rows and filter bytes
     const auto crc = static_cast<uint32_t>(::crc32(::crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), 17));
     for (int k = 0; k < 4; ++k) png[ihdr + 17 + k] = static_cast<char>(crc >> (24 - 8 * k));
     CHECK_THAT(lut_picture_error(png), Catch::Contains("IHDR declares"));
+
+    // Rows of 4001 bytes inflate across many of the check's 64 KiB buffers: a row's filter byte
+    // is found wherever a buffer boundary falls, and only row starts are read as filter bytes.
+    std::vector<uint8_t> filters(40, 0);
+    for (uint32_t y = 0; y < 40; ++y) filters[y] = static_cast<uint8_t>(y % 5);  // every known type
+    CHECK(lut_picture_error(rgba_png(1000, 40, filters)).empty());
+    for (uint32_t bad : {0u, 16u, 17u, 33u, 39u}) {
+        INFO(bad);
+        std::vector<uint8_t> broken = filters;
+        broken[bad] = 5;
+        CHECK_THAT(lut_picture_error(rgba_png(1000, 40, broken)), Catch::Contains("row " + std::to_string(bad) + " has unknown filter type 5"));
+    }
 }
 
 TEST_CASE("a preset's LUT file lies inside its template folder and is a regular file", "[lut-file][hostile]") {
