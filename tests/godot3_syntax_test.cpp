@@ -73,7 +73,7 @@ TEST_CASE("Godot 3: loops get an initialiser, a step and a condition, unsigned l
     CHECK(with_godot3_syntax("for (int i = 0; i < 4; j = k, i++)\n{\n}\n") == "for (int i = 0; i < 4; i += 0)\n{\n    j = k; i++;\n}\n");
 }
 
-TEST_CASE("Godot 3: an array assigned whole, or declared from another, is copied element by element", "[godot][godot3-syntax]") {
+TEST_CASE("Godot 3: an array assigned whole, assigned a constructor, or declared from another, is copied element by element", "[godot][godot3-syntax]") {
     const std::string text = "void fragment()\n{\n    float _347[3] = float[](1.0, 2.0, 3.0);\n    float phase[3] = float[](0.0, 0.0, 0.0);\n"
                              "    float x = 1.0;\n    float y;\n    if (x > 0.5)\n    {\n        phase = _347;\n    }\n    y = x;\n}\n";
     CHECK(with_array_copies_elementwise(text) ==
@@ -84,6 +84,28 @@ TEST_CASE("Godot 3: an array assigned whole, or declared from another, is copied
     CHECK(with_array_copies_elementwise("{\n    float a[6];\n    float b[6] = a;\n    float c = d;\n}\n") ==
           "{\n    float a[6];\n    float b[6];\n    for (int crt_element = 0; crt_element < 6; crt_element++) { b[crt_element] = a[crt_element]; }\n"
           "    float c = d;\n}\n");
+    // An array assigned a constructor (crt-guest-advanced-pal's PalPass3) gets each argument; a
+    // constructor of another length, or a name that is no array, is left as it is.
+    CHECK(with_array_copies_elementwise("{\n    float a[3];\n    if (x)\n    {\n        a = float[](1.0, f(2.0, 3.0), -0.5);\n    }\n"
+                                        "    a = float[](1.0, 2.0);\n    v = vec2[](u, u);\n}\n") ==
+          "{\n    float a[3];\n    if (x)\n    {\n        a[0] = 1.0;\n        a[1] = f(2.0, 3.0);\n        a[2] = -0.5;\n    }\n"
+          "    a = float[](1.0, 2.0);\n    v = vec2[](u, u);\n}\n");
+}
+
+TEST_CASE("Godot 3: a loop declaring several variables declares all but its first before it", "[godot][godot3-syntax]") {
+    CHECK(with_loop_declarations_single("{\n        for (float a = f(1.0, 2.0), b = c, d; a < 1.0; a += 0.5)\n        {\n        }\n"
+                                        "    for (int i = 0; i < 2; i++)\n    {\n    }\n}\n") ==
+          "{\n        float b = c;\n        float d;\n        for (float a = f(1.0, 2.0); a < 1.0; a += 0.5)\n        {\n        }\n"
+          "    for (int i = 0; i < 2; i++)\n    {\n    }\n}\n");
+}
+
+TEST_CASE("Godot 3: a negated subtrahend is added", "[godot][godot3-syntax]") {
+    // Godot 3 prints `a - (-1.0)` to GLSL as `(a--1.0)`, a decrement to the GL driver (tvout-tweaks).
+    CHECK(with_negated_subtrahends_added("    float _1746 = _1720 - (-1.0);\n") == "    float _1746 = _1720 + 1.0;\n");
+    CHECK(with_negated_subtrahends_added("x = a - (-b.xy) * c - -d[2] - (-1.5e-05);\n") == "x = a + b.xy * c + d[2] + 1.5e-05;\n");
+    // Not a whole operand, or not a subtraction: left alone.
+    for (const std::string kept : {"x = a - (-b + c);\n", "x = a - (-b[1]);\n", "x = -(-a);\n", "x = a + (-b);\n", "x = a - b;\n"})
+        CHECK(with_negated_subtrahends_added(kept) == kept);
 }
 
 TEST_CASE("Godot 3: a vector indexed by a loop counter is unrolled to constant indices, drawing what glslang's module draws",

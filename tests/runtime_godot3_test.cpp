@@ -224,17 +224,25 @@ TEST_CASE("godot3: one server renders many jobs, and a bad job or a hung one doe
 
 // The shapes SPIRV-Cross prints that Godot 3.2.3's parser refuses as they are (loops with no
 // initialiser, as in nis's scaler, no step, or `for (;;)` left by a break; an array declared from
-// another), after crtforge's Godot 3 rewrite: accepted, and each runs as written.
-TEST_CASE("godot3: loops without an initialiser, a step or a condition, and an array declared from another, run as written after the Godot 3 rewrite", "[godot3]") {
+// another, or assigned a constructor as in crt-guest-advanced-pal; `x - (-1.0)`, which Godot 3 prints to GLSL as a
+// decrement, as in tvout-tweaks; a loop declaring two variables, as crt-beans-rgb's), after crtforge's Godot 3 rewrite: accepted, and each runs as written.
+TEST_CASE("godot3: loops without an initialiser, a step or a condition, an array declared from another or assigned a constructor, a negated subtrahend, a loop declaring two variables, run as written after the Godot 3 rewrite", "[godot3]") {
     const std::string code = godot::godot3::with_godot3_syntax(
         "shader_type canvas_item;\nvoid fragment()\n{\n    int i = 0;\n    float p[4];\n"
         "    for (; i < 4; i++)\n    {\n        p[i] = 0.125 * float(i + 1);\n    }\n"
         "    float sum = 0.0;\n    for (int j = 0; j < 4; )\n    {\n        sum += p[j];\n        j++;\n    }\n"
         "    int k = 0;\n    for (;;)\n    {\n        k++;\n        if (k >= 3)\n        {\n            break;\n        }\n    }\n"
         "    float q[4] = p;\n"
-        "    COLOR = vec4(sum / 2.0, float(k) / 4.0, q[3], 1.0);\n}\n");
+        "    float w[3] = float[](0.25, 0.5, 1.0);\n    if (sum > 1.0)\n    {\n        w = float[](0.5, max(0.25, 0.0), 0.75);\n    }\n"
+        "    float m = 0.0625;\n"
+        "    float acc = 0.0;\n    for (float s = 0.0, t = 1.0; s < 3.0; s += 1.0)\n    {\n        acc += t;\n        t *= 0.5;\n    }\n"
+        "    COLOR = vec4((sum + acc) / 4.0, float(k) / 4.0, q[3] * w[2] - (-0.0625) - (-m), 1.0);\n}\n");
     CHECK_THAT(code, Contains("for (int crtforge_init0 = 0; i < 4; i++)"));
     CHECK_THAT(code, Contains("float q[4];"));
+    CHECK_THAT(code, Contains("w[1] = max(0.25, 0.0);"));
     const Image out = render_ok(make_job(code, Image{}, 2, 2));
-    CHECK(out.pixel(0, 0) == P{0.625f, 0.75f, 0.5f, 1});  // 0.125 + 0.25 + 0.375 + 0.5 = 1.25; k = 3
+    CHECK_THAT(code, Contains("q[3] * w[2] + 0.0625 + m"));
+    CHECK_THAT(code, Contains("float t = 1.0;\n    for (float s = 0.0; s < 3.0; s += 1.0)"));
+    // sum: 0.125 + 0.25 + 0.375 + 0.5 = 1.25, acc: 1 + 0.5 + 0.25; k = 3; 0.5 * 0.75 + 0.125
+    CHECK(out.pixel(0, 0) == P{0.75f, 0.75f, 0.5f, 1});
 }

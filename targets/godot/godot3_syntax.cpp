@@ -66,8 +66,8 @@ std::string trimmed(const std::string& s) {
 }  // namespace
 
 std::string with_godot3_syntax(const std::string& text) {
-    return with_unsigned_literals_spelled(with_loop_initialisers(
-        with_loop_increments(with_loop_steps_in_body(with_array_copies_elementwise(with_constant_arrays_local(text))))));
+    return with_negated_subtrahends_added(with_unsigned_literals_spelled(with_loop_initialisers(
+        with_loop_increments(with_loop_steps_in_body(with_loop_declarations_single(with_array_copies_elementwise(with_constant_arrays_local(text))))))));
 }
 
 std::string with_array_copies_elementwise(const std::string& text) {
@@ -93,7 +93,23 @@ std::string with_array_copies_elementwise(const std::string& text) {
         last = static_cast<size_t>(it->position() + it->length());
     }
     out.append(text, last, std::string::npos);
-    return out;
+    // `a = float[](x, y, ...);` (crt-guest-advanced-pal's PalPass3 picks one of two weight tables:
+    // "Expected '[' or '.'"): an assignment element by element, of the constructor's arguments.
+    static const std::regex constructed(R"((^|\n)([ \t]*)(\w+) = \w+\[\d*\]\((.*)\);(?=\n))");
+    std::string result;
+    last = 0;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), constructed); it != std::sregex_iterator(); ++it) {
+        auto to = lengths.find((*it)[3].str());
+        const std::vector<std::string> elements = split_top_level((*it)[4].str(), ',');
+        if (to == lengths.end() || std::to_string(elements.size()) != to->second) continue;
+        result.append(out, last, static_cast<size_t>(it->position()) - last);
+        const std::string indent = (*it)[1].str() + (*it)[2].str();
+        for (size_t i = 0; i < elements.size(); ++i)
+            result += (i ? "\n" + (*it)[2].str() : indent) + to->first + "[" + std::to_string(i) + "] = " + trimmed(elements[i]) + ";";
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    result.append(out, last, std::string::npos);
+    return result;
 }
 
 std::string with_constant_arrays_local(const std::string& text) {
@@ -180,6 +196,23 @@ std::string with_unsigned_literals_spelled(const std::string& text) {
     });
 }
 
+std::string with_negated_subtrahends_added(const std::string& text) {
+    // Godot 3 drops the parentheses of a negated operand and the spaces around an operator. x - (-y)
+    // is x + y exactly in IEEE arithmetic (subtraction is the addition of the negation) and in
+    // wrapping integers. Only a whole operand is taken: a name (with its members) or a number,
+    // whose exponent may carry a sign.
+    static const std::regex negated(R"( - (?:\(-(\d[\d.]*[eE][-+]?\d+|[\w.]+)\)|-(\d[\d.]*[eE][-+]?\d+|[\w.]+)\b))");
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), negated); it != std::sregex_iterator(); ++it) {
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        out += " + " + ((*it)[1].matched ? (*it)[1].str() : (*it)[2].str());
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    return out;
+}
+
 std::string with_loop_increments(const std::string& text) {
     // Godot 3's parser wants an expression after a for loop's second ';' ("Expected expression,
     // found: QUESTION"), which SPIRV-Cross leaves out when the loop steps inside its body. An
@@ -227,6 +260,27 @@ std::string with_loop_initialisers(const std::string& text) {
         out.append(text, last, at - last);
         out += "for (int crtforge_init" + std::to_string(spare++) + " = 0;";
         last = at + kHead.size();
+    }
+    out.append(text, last, std::string::npos);
+    return out;
+}
+
+std::string with_loop_declarations_single(const std::string& text) {
+    // Godot 3 takes `for (float a = x, b = y; ...)` but prints it to GLSL as `float a=xfloat b=y`
+    // (crt-beans-rgb's Scanlines: "unexpected NEW_IDENTIFIER"). The loop keeps its first variable;
+    // the others are declared on the lines before it (SPIRV-Cross names a function's locals apart,
+    // so they take no other name's place).
+    static const std::regex head(R"((^|\n)([ \t]*)for \((\w+) ([^;]*);)");
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), head); it != std::sregex_iterator(); ++it) {
+        const std::vector<std::string> declarators = split_top_level((*it)[4].str(), ',');
+        if (declarators.size() < 2) continue;
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        const std::string indent = (*it)[1].str() + (*it)[2].str(), type = (*it)[3].str();
+        for (size_t i = 1; i < declarators.size(); ++i) out += indent + type + " " + trimmed(declarators[i]) + ";";
+        out += indent + "for (" + type + " " + trimmed(declarators[0]) + ";";
+        last = static_cast<size_t>(it->position() + it->length());
     }
     out.append(text, last, std::string::npos);
     return out;

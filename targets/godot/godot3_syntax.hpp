@@ -14,8 +14,11 @@ std::string with_godot3_syntax(const std::string& text);
 // become the same array declared at the top of each function that reads it.
 std::string with_constant_arrays_local(const std::string& text);
 // `a = b;` of two arrays ("Expected '[' or '.'": Godot 3 assigns arrays only element by element)
-// becomes a loop over their elements.
+// becomes a loop over their elements; `a = float[](x, y);` an assignment of each argument.
 std::string with_array_copies_elementwise(const std::string& text);
+// A for loop declaring several variables (`for (float a = x, b = y; ...)`, printed to GLSL without
+// its commas) declares all but the first before it.
+std::string with_loop_declarations_single(const std::string& text);
 // A for loop whose steps are a comma list (`i++, j = k`: "Expected ')' after third expression")
 // takes its steps at the end of its body; a body that continues cannot, and is refused.
 std::string with_loop_steps_in_body(const std::string& text);
@@ -26,5 +29,8 @@ std::string with_loop_increments(const std::string& text);
 std::string with_loop_initialisers(const std::string& text);
 // 4u as uint(4): Godot 3 reads the literal as an int.
 std::string with_unsigned_literals_spelled(const std::string& text);
+// `a - (-b)` as `a + b` for a name or a number b: Godot 3 prints it to GLSL as `(a--b)`, which the
+// GL driver reads as a decrement ("unexpected FLOATCONSTANT": tvout-tweaks).
+std::string with_negated_subtrahends_added(const std::string& text);
 
 }  // namespace crtforge::godot::godot3
