@@ -403,6 +403,9 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
         {"a parameter declared again with other values", "shaders = 2\nshader0 = ../shaders/first.slang\nshader1 = ../shaders/clash.slang\n",
          "SHARED"},
         {"a sampler naming no texture", "shaders = 1\nshader0 = ../shaders/stray.slang\n", "sampler 'nowhere'"},
+        // Integer framebuffers (test/format.slangp's R32_UINT pass and its reader) are refused by name.
+        {"an integer texture", "shaders = 1\nshader0 = ../shaders/usampler.slang\n", "sampler 'Source' is a usampler2D: integer textures"},
+        {"an integer output", "shaders = 1\nshader0 = ../shaders/uint-out.slang\n", "writes a uint at location 0: integer framebuffers"},
         // RetroArch's strtod reads these; a shader parameter that is not finite is refused at its line.
         {"a parameter set to inf", "shaders = 1\nshader0 = ../shaders/first.slang\nparameters = GAIN\nGAIN = inf\n",
          "bad.slangp:4: error: field 'GAIN'"},
@@ -422,6 +425,12 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
     std::string stray = kFirstPass;
     stray.replace(stray.find("uniform sampler2D Source;"), 25, "uniform sampler2D Source;\nlayout(set = 0, binding = 3) uniform sampler2D nowhere;");
     test::write_file(dir / "shaders/stray.slang", stray);
+    std::string usampler = kFirstPass;
+    usampler.replace(usampler.find("uniform sampler2D Source;"), 25, "uniform usampler2D Source;");
+    test::write_file(dir / "shaders/usampler.slang", usampler);
+    std::string uint_out = kFirstPass;
+    uint_out.replace(uint_out.find("out vec4 FragColor;"), 19, "out uint FragColor;");
+    test::write_file(dir / "shaders/uint-out.slang", uint_out);
     for (const Bad& bad : cases) {
         INFO(bad.what);
         test::write_file(dir / "presets/bad.slangp", bad.text);

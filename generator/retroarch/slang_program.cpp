@@ -185,12 +185,19 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
                 i = end;
                 continue;
             }
-            if (t[type].text.rfind("sampler", 0) == 0 && after < t.size() && t[after].kind == Kind::Identifier) {
+            const std::string& sampler_type = t[type].text;
+            const bool sampler = sampler_type.rfind("sampler", 0) == 0 || sampler_type.rfind("usampler", 0) == 0 ||
+                                 sampler_type.rfind("isampler", 0) == 0;
+            if (sampler && after < t.size() && t[after].kind == Kind::Identifier) {
                 const size_t end = next_significant(t, after);
                 if (!is(t, end, ";"))
                     return error_at(t, start, file, "uniform", "sampler '" + t[after].text + "': only single sampler declarations are read");
-                if (t[type].text != "sampler2D")
-                    return error_at(t, start, file, "uniform", "sampler '" + t[after].text + "' is a " + t[type].text +
+                if (sampler_type[0] != 's')  // test/format.slangp's reader of an R32_UINT pass
+                    return error_at(t, start, file, "uniform", "sampler '" + t[after].text + "' is a " + sampler_type +
+                                                                   ": integer textures (the passes of an integer format such as R32_UINT) "
+                                                                   "are not supported; crtforge's passes hold float or normalised colours");
+                if (sampler_type != "sampler2D")
+                    return error_at(t, start, file, "uniform", "sampler '" + t[after].text + "' is a " + sampler_type +
                                                                    "; RetroArch passes bind sampler2D");
                 out.samplers.push_back({t[after].text, start});
                 blank(t, start, end);
@@ -202,6 +209,11 @@ Result<Declarations> take_declarations(Tokens& t, bool vertex, const std::string
         if (!vertex && is(t, at, "out") && location == 0) {
             const size_t type = past_precision(t, next_significant(t, at)), name = next_significant(t, type);
             if (is(t, type, "vec4") && name < t.size() && t[name].kind == Kind::Identifier) out.fragment_output = t[name].text;
+            if (type < t.size() && (t[type].text.rfind("uint", 0) == 0 || t[type].text.rfind("uvec", 0) == 0 ||
+                                    t[type].text.rfind("int", 0) == 0 || t[type].text.rfind("ivec", 0) == 0))
+                return error_at(t, start, file, "fragment output",
+                                "the fragment stage writes a " + t[type].text + " at location 0: integer framebuffers (R32_UINT and "
+                                "the like) are not supported; crtforge's passes hold float or normalised colours");
             continue;
         }
         if (vertex && is(t, at, "in") && location) {
