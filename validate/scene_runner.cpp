@@ -5,6 +5,8 @@
 #include <cmath>
 #include <deque>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -38,6 +40,25 @@ bool holds_8bit_values(const Image& image) {
         const float scaled = v * 255.0f;
         return v >= 0.0f && v <= 1.0f && std::fabs(scaled - std::round(scaled)) <= 1e-3f;
     });
+}
+
+// holds_8bit_values of a shared image, answered once per image: a decoded LUT is shared by every
+// preset that names its file (a bezel pack's 4K pictures, scanned value by value, were a cold
+// corpus sweep's 2 %). An entry keeps a weak reference, so an address a new image takes again is
+// not mistaken for the old one.
+bool holds_8bit_values(const SharedImage& image) {
+    static std::mutex mutex;
+    static std::map<const Image*, std::pair<std::weak_ptr<const Image>, bool>> known;
+    const Image* at = image.identity().get();
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (auto it = known.find(at); it != known.end() && it->second.first.lock() == image.identity()) return it->second.second;
+    }
+    const bool eight_bit = holds_8bit_values(*image);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (known.size() >= 1024) std::erase_if(known, [](const auto& entry) { return entry.second.first.expired(); });
+    if (known.size() < 1024) known[at] = {image.identity(), eight_bit};
+    return eight_bit;
 }
 
 Result<WrapMode> to_wrap(Wrap w, const std::string& where) {
@@ -125,7 +146,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
                 return in.mipmap && in.from.kind == TextureSource::Kind::Lut && in.from.name == lut.name;
             });
         });
-        if (chained && holds_8bit_values(*image.value())) luts_8bit.insert(lut.name);
+        if (chained && holds_8bit_values(image.value())) luts_8bit.insert(lut.name);
         luts[lut.name] = std::move(image.value());
     }
     const bool stateful = preset.keeps_state();
