@@ -436,6 +436,17 @@ void main() { fragColor = vec4(texture(lut, vTexCoord).r, SCALE * texture(source
     const Image narrow = render_ok(other);
     CHECK(narrow.width == 1);
     CHECK(narrow.pixel(0, 0)[0] == Approx(1.0).margin(0.5 / 255));
+
+    // The cache does not keep a picture alive: once the last handle to an image is gone, a new
+    // image (the allocator hands back the same addresses, many times over) draws its own texels.
+    RenderJob fresh = make_job(shader("1.0"), Image::make(1, 1, {0.125f, 0, 0, 1}), 4, 1, OutputFormat::Rgba16Float);
+    fresh.textures.push_back(texture_input("lut", 3, Image{}, SamplerFilter::Nearest));
+    for (int round = 0; round < 8; ++round) {
+        INFO("round " << round);
+        const float value = 0.125f * static_cast<float>(round + 1);
+        fresh.textures[0].image = row_of({value, value});  // the earlier round's image is released here
+        CHECK(render_ok(fresh).pixel(0, 0)[0] == value);
+    }
 }
 
 TEST_CASE("each wrap mode returns its texel outside 0..1, for the input and an extra texture", "[runtime][vulkan]") {

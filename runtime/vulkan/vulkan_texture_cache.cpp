@@ -1,12 +1,24 @@
 #include "runtime/vulkan/vulkan_texture_cache.hpp"
 
+#include <memory>
+
 namespace crtforge::vulkan {
 
 Result<std::shared_ptr<UploadedImage>> TextureCache::get(const VulkanContext& context, const SharedImage& image,
                                                          VkFormat format, TextureTexels texels, bool mipmap) {
     if (!image.identity()) return create_uploaded_image(context, *image, format, texels, mipmap);
-    for (auto it = entries_.begin(); it != entries_.end(); ++it) {
-        if (it->image != image.identity() || it->format != format || it->texels != texels || it->mipmap != mipmap) continue;
+    const std::shared_ptr<const Image>& identity = image.identity();
+    for (auto it = entries_.begin(); it != entries_.end();) {
+        if (it->image.expired()) {  // its picture is gone: nothing can ask for it again
+            bytes_ -= it->bytes;
+            it = entries_.erase(it);
+            continue;
+        }
+        const bool same = !it->image.owner_before(identity) && !identity.owner_before(it->image);
+        if (!same || it->format != format || it->texels != texels || it->mipmap != mipmap) {
+            ++it;
+            continue;
+        }
         entries_.splice(entries_.begin(), entries_, it);
         return entries_.front().uploaded;
     }

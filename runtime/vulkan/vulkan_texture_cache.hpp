@@ -1,10 +1,12 @@
 // The textures an engine has uploaded, by the identity of the SharedImage they came from: a
 // scene's LUTs (a bezel pack's are hundreds of MB as floats) and the outputs a pass shares with
-// several readers go to the device once, not once per pass and frame. An entry holds its image's
-// handle, so the identity cannot be taken by another image while the entry lives. Bounded in
-// bytes (the device copies; the images they came from are held too), least recently used first
-// out, and no texture over a quarter of the bound is kept; a job keeps what it uses alive until
-// it is done.
+// several readers go to the device once, not once per pass and frame. An entry refers to its
+// image weakly: it does not keep the picture alive (holding them, four times the bytes of their
+// 8-bit device copies, took a corpus sweep's two engines past 10 GB), and an entry whose picture
+// is gone can never be asked for again, so it goes. A weak reference keeps its control block,
+// so no new image can take the identity while the entry lives. Bounded in device bytes, least
+// recently used first out, and no texture over a quarter of the bound is kept; a job keeps what it
+// uses alive until it is done.
 #pragma once
 
 #include <list>
@@ -26,7 +28,7 @@ public:
 
 private:
     struct Entry {
-        std::shared_ptr<const Image> image;
+        std::weak_ptr<const Image> image;
         VkFormat format;
         TextureTexels texels;
         bool mipmap;
