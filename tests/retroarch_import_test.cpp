@@ -488,7 +488,7 @@ TEST_CASE("a curated slice of RetroArch's CRT presets renders alike through Vulk
     }
 }
 
-TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the screen and keeps textureSize", "[retroarch][import][godot]") {
+TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the screen, keeps textureSize and reads a biased read's level 0", "[retroarch][import][godot]") {
     test::TempDir dir;
     test::write_file(dir / "shaders/fetch.slang",
           test::slang_program({"", "", "", "",
@@ -496,7 +496,7 @@ TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the s
                                "void main() {\n"
                                "    ivec2 size = textureSize(Source, 0);\n"
                                "    ivec2 p = clamp(ivec2(gl_FragCoord.xy) / 2, ivec2(0), size - 1);\n"
-                               "    FragColor = vec4(texelFetch(Source, p, 0).rgb, 1.0);\n"
+                               "    FragColor = vec4(texelFetch(Source, p, 0).rg, texture(Source, vTexCoord, min(-16.0, float(size.x))).b, 1.0);\n"
                                "}\n"}));
     test::write_file(dir / "fetch.slangp", "shaders = 1\nshader0 = shaders/fetch.slang\n");
     auto lib = import_into(dir / "fetch.slangp", dir / "overlay", dir.path(), "fetch");
@@ -515,6 +515,10 @@ TEST_CASE("Godot 3's screen shader of an imported pass flips texelFetch of the s
     CHECK_THAT(screen, Catch::Contains("texelFetch(SCREEN_TEXTURE, ivec2((") && Catch::Contains(").x, textureSize(SCREEN_TEXTURE, 0).y - 1 - ("));
     CHECK_THAT(screen, Catch::Contains("textureSize(SCREEN_TEXTURE, 0)"));
     CHECK(screen.find("crt_flip_y(SCREEN_UV)") != std::string::npos);  // its gl_FragCoord, counted from the top
+    // crt-lottes-fast's texture(Source, uv, -16.0): the screen has one level to read, so the bias
+    // goes with its whole argument and the read is of level 0, as every screen read here.
+    CHECK(screen.find("-16.0") == std::string::npos);
+    CHECK_THAT(screen, Catch::Contains("textureLod(SCREEN_TEXTURE, crt_flip_y(") && Catch::Contains("), 0.0)"));
 }
 
 TEST_CASE("the Vulkan-only sweep bakes a program's params as specialization constants: one optimisation for presets that share "

@@ -460,9 +460,10 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& source) 
     // effects' top-down coordinates back to the bottom-up ones Godot 3's screen texture is read
     // with, and its full-resolution level: SCREEN_TEXTURE has mipmaps, and a coordinate quantised
     // per mask cell (or bent by the barrel) would otherwise pick a blurred level where its
-    // derivatives jump. texelFetch(SCREEN_TEXTURE, p, lod) reads row size.y - 1 - p.y, written out
-    // in place (Godot 3's own functions cannot see SCREEN_TEXTURE); textureSize needs no flip. Any
-    // other read of the screen is refused.
+    // derivatives jump (a bias is dropped: there is only the one level to read). texelFetch(
+    // SCREEN_TEXTURE, p, lod) reads row size.y - 1 - p.y, written out in place (Godot 3's own
+    // functions cannot see SCREEN_TEXTURE); textureSize needs no flip. Any other read of the
+    // screen is refused.
     std::function<std::string(const std::string&)> flip_fetches = [&](const std::string& from) {
         return rewrite_calls(from, "texelFetch", [&](const std::vector<std::string>& a) {
             std::vector<std::string> args;
@@ -497,10 +498,23 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& source) 
             if (text[end] == ')') --depth;
         }
         if (end >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
-        if (function == "texture" && text[end] != ')') throw spirv_cross::CompilerError("a biased screen texture read");
         out.append(text, last, at - last);
         out += "textureLod(SCREEN_TEXTURE, crt_flip_y(" + text.substr(arg, end - arg) + ")" + (function == "texture" ? ", 0.0" : "");
         last = end;
+        if (function == "texture" && text[end] != ')') {
+            // A bias (crt-lottes-fast's texture(Source, uv, -16.0), which asks for the sharpest
+            // level): the read is of level 0 like every other here, which is exactly RetroArch's
+            // for an input without a mip chain, where a bias has nothing to choose from. The bias
+            // is dropped with its argument.
+            int bias_depth = 0;
+            size_t close = end + 1;
+            for (; close < text.size(); ++close) {
+                if (text[close] == '(') ++bias_depth;
+                if (text[close] == ')' && bias_depth-- == 0) break;
+            }
+            if (close >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
+            last = close;
+        }
     }
     out.append(text, last, std::string::npos);
     return out;
