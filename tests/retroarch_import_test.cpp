@@ -419,18 +419,17 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
         {"an absolute size past the limit", "shaders = 1\nshader0 = ../shaders/first.slang\nscale_type_y0 = absolute\nscale_y0 = 1e9\n",
          "bad.slangp:4: error: field 'scale_y0'"},
     };
-    std::string clash = kSecondPass;
-    clash.replace(clash.find("0.5 0.0 1.0 0.05"), 16, "0.5 0.0 2.0 0.05");
-    test::write_file(dir / "shaders/clash.slang", clash);
-    std::string stray = kFirstPass;
-    stray.replace(stray.find("uniform sampler2D Source;"), 25, "uniform sampler2D Source;\nlayout(set = 0, binding = 3) uniform sampler2D nowhere;");
-    test::write_file(dir / "shaders/stray.slang", stray);
-    std::string usampler = kFirstPass;
-    usampler.replace(usampler.find("uniform sampler2D Source;"), 25, "uniform usampler2D Source;");
-    test::write_file(dir / "shaders/usampler.slang", usampler);
-    std::string uint_out = kFirstPass;
-    uint_out.replace(uint_out.find("out vec4 FragColor;"), 19, "out uint FragColor;");
-    test::write_file(dir / "shaders/uint-out.slang", uint_out);
+    // shaders/<file>: `pass` with its first `from` replaced by `to`.
+    auto write_changed = [&](const std::string& file, std::string pass, const std::string& from, const std::string& to) {
+        pass.replace(pass.find(from), from.size(), to);
+        test::write_file(dir / ("shaders/" + file), pass);
+        return pass;
+    };
+    write_changed("clash.slang", kSecondPass, "0.5 0.0 1.0 0.05", "0.5 0.0 2.0 0.05");
+    const std::string stray = write_changed("stray.slang", kFirstPass, "uniform sampler2D Source;",
+                                            "uniform sampler2D Source;\nlayout(set = 0, binding = 3) uniform sampler2D nowhere;");
+    write_changed("usampler.slang", kFirstPass, "uniform sampler2D Source;", "uniform usampler2D Source;");
+    write_changed("uint-out.slang", kFirstPass, "out vec4 FragColor;", "out uint FragColor;");
     for (const Bad& bad : cases) {
         INFO(bad.what);
         test::write_file(dir / "presets/bad.slangp", bad.text);
