@@ -8,8 +8,10 @@
 #include "generator/spirv_clamp_lowering.hpp"
 #include "generator/spirv_pow_reduction.hpp"
 #include "generator/spirv_spec_values.hpp"
+#include "generator/spirv_words.hpp"
 
 #include <mutex>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -201,6 +203,61 @@ std::string optimized_memo_key(const SpirvBinary& plain, bool carry_names, const
     return Cache::key({"optimized", compiler_versions(), carry_names ? "names" : "plain", names, words});
 }
 
+// Where the source holds an array too long for one SPIR-V instruction: an initialised array's
+// constant or constructor is one instruction of 3 + N words, and a word count is 16 bits. glslang
+// does not check it and writes a word count of 0 (an invalid module spirv-val names only by word).
+class OverlongArrayFinder : public glslang::TIntermTraverser {
+public:
+    static constexpr int kMaxElements = 65535 - 3;
+    std::optional<glslang::TSourceLoc> found;
+
+    void visitConstantUnion(glslang::TIntermConstantUnion* node) override { check(*node); }
+    // A const array's value is its symbol's (and the finder runs only on a module already too long,
+    // so an array this long is the likely cause even where glslang keeps no value with it).
+    void visitSymbol(glslang::TIntermSymbol* node) override { check(*node); }
+    bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+        if (node->getSequence().size() > static_cast<size_t>(kMaxElements) && !found) found = node->getLoc();
+        return !found;
+    }
+
+private:
+    void check(const glslang::TIntermTyped& node) {
+        if (!found && node.getType().isArray() && node.getType().getOuterArraySize() > kMaxElements) found = node.getLoc();
+    }
+};
+
+// The source line declaring an array longer than `limit` (`[N]`), through the #line directives the
+// generator writes: glslang keeps no tree node of a global constant nothing reads.
+std::optional<std::pair<std::string, int>> overlong_array_line(const std::string& source, const std::string& name, long limit) {
+    static const std::regex directive(R"re(^\s*#\s*line\s+(\d+)(?:\s+"([^"]*)")?)re"),
+        size(R"re(\[\s*(\d{1,12})\s*\])re");
+    std::istringstream lines(source);
+    std::string line, file = name;
+    long number = 1;
+    for (; std::getline(lines, line); ++number) {
+        std::smatch m;
+        if (std::regex_search(line, m, directive)) {
+            number = std::stol(m[1].str()) - 1;  // the next line is number m[1]
+            if (m[2].matched) file = m[2].str();
+            continue;
+        }
+        for (auto it = std::sregex_iterator(line.begin(), line.end(), size); it != std::sregex_iterator(); ++it)
+            if (std::stoll((*it)[1].str()) > limit) return std::make_pair(file, static_cast<int>(std::min<long>(number, 1000000000)));
+    }
+    return std::nullopt;
+}
+
+Diagnostic overlong_instruction_error(const glslang::TIntermediate& intermediate, const std::string& source, const std::string& name) {
+    const std::string message = fmt::format(
+        "an array or initialiser list of more than {} elements: SPIR-V holds one in a single instruction of at most 65535 words",
+        OverlongArrayFinder::kMaxElements);
+    OverlongArrayFinder finder;
+    if (TIntermNode* root = intermediate.getTreeRoot()) root->traverse(&finder);
+    if (finder.found && finder.found->name) return make_error(message, finder.found->name->c_str(), finder.found->line);
+    if (auto at = overlong_array_line(source, name, OverlongArrayFinder::kMaxElements)) return make_error(message, at->first, at->second);
+    return make_error(message, name, finder.found ? finder.found->line : 0);
+}
+
 }  // namespace
 
 Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOptions& options) {
@@ -227,6 +284,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     }
     glslang::GlslangToSpv(intermediate, spirv, &logger, &spv_options);
     if (spirv.empty()) return make_error("glslang produced no SPIR-V: " + logger.getAllMessages(), name);
+    if (!detail::spirv_instructions(spirv)) return overlong_instruction_error(intermediate, source, name);
 
     // The memo's key is the module without debug info (OpLine output, debug_lines, names its files:
     // it is not memoised) and the local names it will carry, its specialization constants

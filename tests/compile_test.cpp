@@ -119,3 +119,24 @@ TEST_CASE("an invalid module is refused with its ids named", "[compile]") {
     REQUIRE_FALSE(valid.ok());
     CHECK_THAT(valid.error().message, Catch::Contains("spirv-val") && Catch::Contains("%outColour"));
 }
+
+TEST_CASE("an array too long for one SPIR-V instruction is refused at its line", "[compile][hostile]") {
+    // glslang writes an initialiser of more than 65532 elements as an instruction whose 16-bit
+    // word count wraps; the error names the declaration, through the source's #line directives,
+    // whether glslang keeps a tree node of it (an array a function builds) or not (a global const).
+    std::string elements;
+    for (int i = 0; i < 70000; ++i) elements += i ? ", 0.5" : "0.5";
+    CompileOptions options;
+    options.stage = ShaderStage::Fragment;
+    options.source_name = "<generated>";
+    const std::string head = "#version 450\n#extension GL_GOOGLE_cpp_style_line_directive : require\n#line 1 \"big.glsl\"\nlayout(location = 0) out vec4 o;\n";
+    for (const std::string& body :
+         {"const float big[70000] = float[70000](" + elements + ");\nvoid main() { o = vec4(0.5); }\n",
+          "void main() {\n    float big[70000] = float[70000](" + elements + ");\n    o = vec4(big[int(gl_FragCoord.x)]);\n}\n"}) {
+        auto spirv = compile_to_spirv(head + body, options);
+        REQUIRE_FALSE(spirv.ok());
+        CHECK(spirv.error().file == "big.glsl");
+        CHECK(spirv.error().line == (body.rfind("const", 0) == 0 ? 2 : 3));
+        CHECK_THAT(spirv.error().message, Catch::Contains("more than 65532 elements"));
+    }
+}

@@ -406,6 +406,10 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
         // Integer framebuffers (test/format.slangp's R32_UINT pass and its reader) are refused by name.
         {"an integer texture", "shaders = 1\nshader0 = ../shaders/usampler.slang\n", "sampler 'Source' is a usampler2D: integer textures"},
         {"an integer output", "shaders = 1\nshader0 = ../shaders/uint-out.slang\n", "writes a uint at location 0: integer framebuffers"},
+        // A pass's name becomes an identifier and part of file names: a long one is refused where it is given.
+        {"an alias too long", "shaders = 1\nshader0 = ../shaders/first.slang\nalias0 = " + std::string(100, 'A') + "\n",
+         "bad.slangp:3: error: field 'alias0': 'AAAAAAAAAAAAAAAAAAAAAAAA...' is 100 characters long"},
+        {"a #pragma name too long", "shaders = 1\nshader0 = ../shaders/long-name.slang\n", "error: field 'pragma name': 'BBBBBBBBBBBBBBBBBBBBBBBB...' is 5000"},
         // RetroArch's strtod reads these; a shader parameter that is not finite is refused at its line.
         {"a parameter set to inf", "shaders = 1\nshader0 = ../shaders/first.slang\nparameters = GAIN\nGAIN = inf\n",
          "bad.slangp:4: error: field 'GAIN'"},
@@ -430,6 +434,7 @@ TEST_CASE("crtforge import writes an overlay the CLI uses, and refuses bad prese
                                             "uniform sampler2D Source;\nlayout(set = 0, binding = 3) uniform sampler2D nowhere;");
     write_changed("usampler.slang", kFirstPass, "uniform sampler2D Source;", "uniform usampler2D Source;");
     write_changed("uint-out.slang", kFirstPass, "out vec4 FragColor;", "out uint FragColor;");
+    write_changed("long-name.slang", kFirstPass, "#pragma name first", "#pragma name " + std::string(5000, 'B'));
     for (const Bad& bad : cases) {
         INFO(bad.what);
         test::write_file(dir / "presets/bad.slangp", bad.text);

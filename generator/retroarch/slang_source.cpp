@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "generator/retroarch/retroarch_files.hpp"
+#include "generator/toml_reader.hpp"
 
 namespace crtforge::retroarch {
 
@@ -293,6 +294,9 @@ Result<SlangSource> load_slang_source(const std::string& path, const std::string
             if (name)
                 return make_error("a second #pragma name (the first is at " + where_str(name->where.file, name->where.line) + ")",
                                   file, line.number, "pragma name");
+            // The name becomes the pass's alias: an identifier in every target and part of file names.
+            if (value.size() > crtforge::detail::kMaxIdentifierLength)
+                return make_error(crtforge::detail::not_identifier(value), file, line.number, "pragma name");
             name = Declared{value, SourceLocation{file, line.number}};
             continue;
         }

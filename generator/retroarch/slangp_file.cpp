@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "generator/retroarch/retroarch_files.hpp"
+#include "generator/toml_reader.hpp"
 
 namespace crtforge::retroarch {
 
@@ -420,7 +421,13 @@ Result<SlangpPreset> load_slangp(const std::string& path, const std::string& roo
         pass.shader = detail::resolve_relative(base.path, shader->value);
         if (auto st = check_named_file(guard, pass.shader, *shader, "shader"); !st.ok()) return st.error();
         pass.where = shader->where;
-        if (const Entry* alias = base.find("alias" + num)) pass.alias = alias->value;
+        if (const Entry* alias = base.find("alias" + num)) {
+            // It becomes an identifier in every target and part of file names: refused here, at
+            // its line, not in the crtforge preset the import would write.
+            if (alias->value.size() > crtforge::detail::kMaxIdentifierLength)
+                return make_error(crtforge::detail::not_identifier(alias->value), alias->where.file, alias->where.line, "alias" + num);
+            pass.alias = alias->value;
+        }
         std::pair<std::optional<bool>*, const char*> bools[] = {{&pass.filter_linear, "filter_linear"},
                                                                  {&pass.mipmap_input, "mipmap_input"},
                                                                  {&pass.float_framebuffer, "float_framebuffer"},
