@@ -115,10 +115,6 @@ Result<std::shared_ptr<Parsed>> parse_shader(const std::string& source, ShaderSt
     return parsed;
 }
 
-}  // namespace
-
-namespace {
-
 // The validator's options without friendly names: naming every id of a module (for messages a
 // valid module never prints) was most of a validation's time on the corpus's 50 K-word passes
 // (perf: 7 % of a cold sweep). A module that fails is validated again with names, for the message.

@@ -3,7 +3,9 @@
 #include "targets/word_scan.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <map>
+#include <optional>
 #include <regex>
 #include <string_view>
 #include <vector>
@@ -63,6 +65,23 @@ std::string trimmed(const std::string& s) {
     return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
 }
 
+// `text` with each match of `pattern` replaced by what `replace` returns for it; a match it
+// returns nothing for is kept as it is. Every rewrite below is one of these.
+std::string replace_each(const std::string& text, const std::regex& pattern,
+                         const std::function<std::optional<std::string>(const std::smatch&)>& replace) {
+    std::string out;
+    size_t last = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), pattern); it != std::sregex_iterator(); ++it) {
+        std::optional<std::string> replacement = replace(*it);
+        if (!replacement) continue;
+        out.append(text, last, static_cast<size_t>(it->position()) - last);
+        out += *replacement;
+        last = static_cast<size_t>(it->position() + it->length());
+    }
+    out.append(text, last, std::string::npos);
+    return out;
+}
+
 }  // namespace
 
 std::string with_godot3_syntax(const std::string& text) {
@@ -79,37 +98,26 @@ std::string with_array_copies_elementwise(const std::string& text) {
     // `a = b;`, or a declaration initialised from another array, `float a[6] = b;` (nis's scaler:
     // "Invalid data type for array"), which is declared first and then copied.
     static const std::regex copy(R"((^|\n)([ \t]*)(\w+ (\w+)\[\d+\]|(\w+)) = (\w+);(?=\n))");
-    std::string out;
-    size_t last = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), copy); it != std::sregex_iterator(); ++it) {
-        const bool declaration = (*it)[4].matched;
-        auto to = lengths.find((*it)[declaration ? 4 : 5].str()), from = lengths.find((*it)[6].str());
-        if (to == lengths.end() || from == lengths.end() || to->second != from->second) continue;
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        const std::string indent = (*it)[1].str() + (*it)[2].str();
-        if (declaration) out += indent + (*it)[3].str() + ";";
-        out += indent + "for (int crt_element = 0; crt_element < " + to->second + "; crt_element++) { " + to->first +
-               "[crt_element] = " + from->first + "[crt_element]; }";
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    out.append(text, last, std::string::npos);
+    const std::string copied = replace_each(text, copy, [&](const std::smatch& m) -> std::optional<std::string> {
+        const bool declaration = m[4].matched;
+        auto to = lengths.find(m[declaration ? 4 : 5].str()), from = lengths.find(m[6].str());
+        if (to == lengths.end() || from == lengths.end() || to->second != from->second) return std::nullopt;
+        const std::string indent = m[1].str() + m[2].str();
+        return (declaration ? indent + m[3].str() + ";" : std::string()) + indent + "for (int crt_element = 0; crt_element < " +
+               to->second + "; crt_element++) { " + to->first + "[crt_element] = " + from->first + "[crt_element]; }";
+    });
     // `a = float[](x, y, ...);` (crt-guest-advanced-pal's PalPass3 picks one of two weight tables:
     // "Expected '[' or '.'"): an assignment element by element, of the constructor's arguments.
     static const std::regex constructed(R"((^|\n)([ \t]*)(\w+) = \w+\[\d*\]\((.*)\);(?=\n))");
-    std::string result;
-    last = 0;
-    for (auto it = std::sregex_iterator(out.begin(), out.end(), constructed); it != std::sregex_iterator(); ++it) {
-        auto to = lengths.find((*it)[3].str());
-        const std::vector<std::string> elements = split_top_level((*it)[4].str(), ',');
-        if (to == lengths.end() || std::to_string(elements.size()) != to->second) continue;
-        result.append(out, last, static_cast<size_t>(it->position()) - last);
-        const std::string indent = (*it)[1].str() + (*it)[2].str();
+    return replace_each(copied, constructed, [&](const std::smatch& m) -> std::optional<std::string> {
+        auto to = lengths.find(m[3].str());
+        const std::vector<std::string> elements = split_top_level(m[4].str(), ',');
+        if (to == lengths.end() || std::to_string(elements.size()) != to->second) return std::nullopt;
+        std::string out;
         for (size_t i = 0; i < elements.size(); ++i)
-            result += (i ? "\n" + (*it)[2].str() : indent) + to->first + "[" + std::to_string(i) + "] = " + trimmed(elements[i]) + ";";
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    result.append(out, last, std::string::npos);
-    return result;
+            out += (i ? "\n" + m[2].str() : m[1].str() + m[2].str()) + to->first + "[" + std::to_string(i) + "] = " + trimmed(elements[i]) + ";";
+        return out;
+    });
 }
 
 std::string with_constant_arrays_local(const std::string& text) {
@@ -202,15 +210,9 @@ std::string with_negated_subtrahends_added(const std::string& text) {
     // wrapping integers. Only a whole operand is taken: a name (with its members) or a number,
     // whose exponent may carry a sign.
     static const std::regex negated(R"( - (?:\(-(\d[\d.]*[eE][-+]?\d+|[\w.]+)\)|-(\d[\d.]*[eE][-+]?\d+|[\w.]+)\b))");
-    std::string out;
-    size_t last = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), negated); it != std::sregex_iterator(); ++it) {
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        out += " + " + ((*it)[1].matched ? (*it)[1].str() : (*it)[2].str());
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    out.append(text, last, std::string::npos);
-    return out;
+    return replace_each(text, negated, [](const std::smatch& m) -> std::optional<std::string> {
+        return " + " + (m[1].matched ? m[1].str() : m[2].str());
+    });
 }
 
 std::string with_loop_increments(const std::string& text) {
@@ -224,12 +226,9 @@ std::string with_loop_increments(const std::string& text) {
     // `true` the condition, it takes it everywhere.
     static const std::regex loop(R"(for \(([^;]*); ?([^;]*); ?\))");
     static const std::regex declared(R"(^(int|uint|float) (\w+))");
-    std::string out;
-    size_t last = 0;
     int spare = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), loop); it != std::sregex_iterator(); ++it) {
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        std::string init = (*it)[1].str(), step;
+    return replace_each(text, loop, [&](const std::smatch& m) -> std::optional<std::string> {
+        std::string init = m[1].str(), step;
         std::smatch var;
         if (std::regex_search(init, var, declared)) {
             step = var[2].str() + (var[1] == "float" ? " += 0.0" : var[1] == "uint" ? " += 0u" : " += 0");
@@ -240,12 +239,9 @@ std::string with_loop_increments(const std::string& text) {
         } else {
             throw spirv_cross::CompilerError("a for loop with no increment and an initialiser Godot 3 cannot extend: " + init);
         }
-        const std::string condition = (*it)[2].str().empty() ? std::string("true") : (*it)[2].str();
-        out += "for (" + init + "; " + condition + "; " + step + ")";
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    out.append(text, last, std::string::npos);
-    return out;
+        const std::string condition = m[2].str().empty() ? std::string("true") : m[2].str();
+        return "for (" + init + "; " + condition + "; " + step + ")";
+    });
 }
 
 std::string with_loop_initialisers(const std::string& text) {
@@ -271,19 +267,14 @@ std::string with_loop_declarations_single(const std::string& text) {
     // the others are declared on the lines before it (SPIRV-Cross names a function's locals apart,
     // so they take no other name's place).
     static const std::regex head(R"((^|\n)([ \t]*)for \((\w+) ([^;]*);)");
-    std::string out;
-    size_t last = 0;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), head); it != std::sregex_iterator(); ++it) {
-        const std::vector<std::string> declarators = split_top_level((*it)[4].str(), ',');
-        if (declarators.size() < 2) continue;
-        out.append(text, last, static_cast<size_t>(it->position()) - last);
-        const std::string indent = (*it)[1].str() + (*it)[2].str(), type = (*it)[3].str();
+    return replace_each(text, head, [](const std::smatch& m) -> std::optional<std::string> {
+        const std::vector<std::string> declarators = split_top_level(m[4].str(), ',');
+        if (declarators.size() < 2) return std::nullopt;
+        const std::string indent = m[1].str() + m[2].str(), type = m[3].str();
+        std::string out;
         for (size_t i = 1; i < declarators.size(); ++i) out += indent + type + " " + trimmed(declarators[i]) + ";";
-        out += indent + "for (" + type + " " + trimmed(declarators[0]) + ";";
-        last = static_cast<size_t>(it->position() + it->length());
-    }
-    out.append(text, last, std::string::npos);
-    return out;
+        return out + indent + "for (" + type + " " + trimmed(declarators[0]) + ";";
+    });
 }
 
 }  // namespace crtforge::godot::godot3

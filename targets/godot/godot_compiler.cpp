@@ -489,32 +489,25 @@ std::string GodotCompiler::with_screen_reads_flipped(const std::string& source) 
         if (function == "textureSize" || function == "texelFetch") continue;  // no flip / flipped above
         if (function != "texture" && function != "textureLod")
             throw spirv_cross::CompilerError("Godot 3's screen mode cannot flip a " + function + " of SCREEN_TEXTURE");
+        // The end of the argument that starts at `from`: the ',' (when `comma` ends it) or ')' at
+        // its own depth.
+        auto argument_end = [&](size_t from, bool comma) {
+            int depth = 0;
+            for (size_t end = from; end < text.size(); ++end) {
+                if ((text[end] == ')' || (comma && text[end] == ',')) && depth == 0) return end;
+                if (text[end] == '(') ++depth;
+                if (text[end] == ')') --depth;
+            }
+            throw spirv_cross::CompilerError("unbalanced screen texture read");
+        };
         const size_t arg = at + static_cast<size_t>(it->length());
-        int depth = 0;
-        size_t end = arg;  // the end of the coordinate: the ',' or ')' that closes it
-        for (; end < text.size(); ++end) {
-            if (text[end] == '(') ++depth;
-            if ((text[end] == ')' || text[end] == ',') && depth == 0) break;
-            if (text[end] == ')') --depth;
-        }
-        if (end >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
+        const size_t end = argument_end(arg, true);  // the end of the coordinate
         out.append(text, last, at - last);
         out += "textureLod(SCREEN_TEXTURE, crt_flip_y(" + text.substr(arg, end - arg) + ")" + (function == "texture" ? ", 0.0" : "");
-        last = end;
-        if (function == "texture" && text[end] != ')') {
-            // A bias (crt-lottes-fast's texture(Source, uv, -16.0), which asks for the sharpest
-            // level): the read is of level 0 like every other here, which is exactly RetroArch's
-            // for an input without a mip chain, where a bias has nothing to choose from. The bias
-            // is dropped with its argument.
-            int bias_depth = 0;
-            size_t close = end + 1;
-            for (; close < text.size(); ++close) {
-                if (text[close] == '(') ++bias_depth;
-                if (text[close] == ')' && bias_depth-- == 0) break;
-            }
-            if (close >= text.size()) throw spirv_cross::CompilerError("unbalanced screen texture read");
-            last = close;
-        }
+        // A bias (crt-lottes-fast's texture(Source, uv, -16.0), which asks for the sharpest level)
+        // is dropped with its argument: the read is of level 0 like every other here, exactly
+        // RetroArch's for an input without a mip chain, where a bias has nothing to choose from.
+        last = function == "texture" && text[end] != ')' ? argument_end(end + 1, false) : end;
     }
     out.append(text, last, std::string::npos);
     return out;
