@@ -19,6 +19,8 @@
 #include "crtforge/files.hpp"
 #include "crtforge/lut_file.hpp"
 #include "generator/manifest.hpp"
+#include "generator/spirv_source_key.hpp"
+#include "generator/spirv_spec_values.hpp"
 #include "generator/web_package.hpp"
 
 namespace crtforge {
@@ -44,31 +46,31 @@ BoundedMemo<SpirvBinary>& compile_memo() {
     return memo;
 }
 
-// `source` as the compile cache knows it: the file names of its `#line` directives left out. The
-// module holds none of them (only a failed compile's message does, and failures are not kept), and
-// they name the folder a preset was assembled in — a new temporary one each time `corpus` imports
-// it, which would miss the cache on every run. (A shader that reads `__FILE__` keeps them.)
-std::string cache_source(const std::string& source) {
-    if (source.find("__FILE__") != std::string::npos) return source;
-    std::string out;
-    out.reserve(source.size());
-    for (size_t at = 0; at < source.size();) {
-        const size_t end = std::min(source.find('\n', at), source.size());
-        std::string_view line(source.data() + at, end - at);
-        if (line.rfind("#line ", 0) == 0)
-            if (const size_t quote = line.find('"'); quote != std::string_view::npos) line = line.substr(0, quote);
-        out += line;
-        out += '\n';
-        at = end + 1;
+// Whether the float specialization constants `module` holds are the values the key took out of its
+// source: only then may the module stand for every source of that key (glslang reads a literal as
+// a double, as source_key() does, and a constant the module no longer holds reads nothing).
+bool holds_key_values(const SpirvBinary& module, const SourceKey& key) {
+    const auto held = spec_constant_values(module);
+    for (const auto& [id, value] : key.float_values) {
+        auto it = held.find(id);
+        if (it != held.end() && (it->second.opcode != value.opcode || it->second.words != value.words)) return false;
     }
-    return out;
+    return true;
 }
 
 Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage, const std::string& name,
                                    bool optimize, bool local_names, const Cache& cache) {
+    const SourceKey source_key = crtforge::source_key(source);
     const std::string key = Cache::key({"spirv", Cache::build_id(), compiler_versions(), shader_stage_name(stage),
-                                        optimize ? "optimized" : "glslang", local_names ? "names" : "", cache_source(source)});
-    if (auto known = compile_memo().find(key)) return std::move(*known);
+                                        optimize ? "optimized" : "glslang", local_names ? "names" : "", source_key.text});
+    // A kept module holds the values of the source that made it: this source's go in.
+    auto with_values = [&](SpirvBinary words) {
+        if (!source_key.float_values.empty()) write_spec_constant_values(words, source_key.float_values);
+        return words;
+    };
+    if (auto known = compile_memo().find(key)) return with_values(std::move(*known));
+    const auto claim = compile_memo().claim(key);  // a worker compiling this very source: wait for it
+    if (auto known = compile_memo().find(key)) return with_values(std::move(*known));
     auto remember = [&](const SpirvBinary& words) { compile_memo().put(key, words); };
     if (auto hit = cache.get("spirv", key); hit && hit->size() % 4 == 0 && !hit->empty()) {
         // A cached module reaches SPIRV-Cross and the drivers: it must be valid SPIR-V, whatever
@@ -76,7 +78,7 @@ Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
         SpirvBinary words = from_bytes(*hit);
         if (words[0] == 0x07230203u && validate_spirv(words).ok()) {
             remember(words);
-            return words;
+            return with_values(std::move(words));
         }
     }
     CompileOptions options;
@@ -86,8 +88,10 @@ Result<SpirvBinary> compile_cached(const std::string& source, ShaderStage stage,
     options.local_names = local_names;
     auto spirv = compile_to_spirv(source, options);
     if (!spirv.ok()) return spirv;
-    cache.put("spirv", key, to_bytes(spirv.value()));
-    remember(spirv.value());
+    if (holds_key_values(spirv.value(), source_key)) {
+        cache.put("spirv", key, to_bytes(spirv.value()));
+        remember(spirv.value());
+    }
     return spirv;
 }
 

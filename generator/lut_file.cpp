@@ -9,6 +9,8 @@
 
 #include <zlib.h>
 
+#include "crtforge/bounded_memo.hpp"
+#include "crtforge/cache.hpp"
 #include "crtforge/exporter.hpp"
 #include "crtforge/files.hpp"
 #include "crtforge/runtime/image.hpp"
@@ -175,7 +177,16 @@ std::string jpeg_error(std::string_view b) {
 
 }  // namespace
 
-std::string lut_picture_error(std::string_view bytes) {
+namespace {
+
+// The pictures found whole in this process, by their bytes: a bezel pack's presets share a few
+// large pictures, and import, the template library and export each check every LUT they meet.
+BoundedMemo<bool>& whole_pictures() {
+    static BoundedMemo<bool> memo(size_t{1} << 16, [](bool) { return size_t{1}; });
+    return memo;
+}
+
+std::string check_picture(std::string_view bytes) {
     constexpr std::string_view png_signature("\x89PNG\r\n\x1a\n", 8);
     if (bytes.substr(0, 8) == png_signature) {
         if (std::string e = png_error(bytes); !e.empty()) return "is not a whole PNG picture: " + e;
@@ -186,6 +197,16 @@ std::string lut_picture_error(std::string_view bytes) {
         return {};
     }
     return "is not a PNG or JPEG picture (LUT files are PNG or JPEG, as engines load them)";
+}
+
+}  // namespace
+
+std::string lut_picture_error(std::string_view bytes) {
+    const std::string key = Cache::key({"whole picture", bytes});
+    if (whole_pictures().find(key)) return {};
+    std::string error = check_picture(bytes);
+    if (error.empty()) whole_pictures().put(key, true);
+    return error;
 }
 
 Result<std::string> read_lut_file(const LutSpec& lut, const std::string& template_root) {

@@ -288,6 +288,7 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
     // only in those values share one optimisation, and each gets its values back after.
     std::string memo_key;
     std::map<uint32_t, SpecValue> spec_values;
+    std::optional<BoundedMemo<SpirvBinary>::Claim> claim;
     if (options.optimize && !options.debug_lines) {
         SpirvBinary plain;
         if (spv_options.generateDebugInfo) {
@@ -304,7 +305,12 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
             if (&keyed != &spirv) clear_spec_constant_values(keyed);
         }
         memo_key = optimized_memo_key(keyed, carry_names, carry_names ? carried_local_names(spirv) : std::string());
-        if (auto known = optimized_memo().find(memo_key)) {
+        auto known = optimized_memo().find(memo_key);
+        if (!known) {  // a worker optimising the same module: wait for it, then look again
+            claim.emplace(optimized_memo(), memo_key);
+            known = optimized_memo().find(memo_key);
+        }
+        if (known) {
             write_spec_constant_values(*known, spec_values);
             return std::move(*known);
         }

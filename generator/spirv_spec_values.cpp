@@ -1,6 +1,7 @@
 #include "generator/spirv_spec_values.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include <glslang/SPIRV/spirv.hpp>
 
@@ -76,5 +77,7 @@ bool clear_spec_constant_values(SpirvBinary& module) {
             module[in.offset] = (module[in.offset] & 0xffff0000u) | spv::OpSpecConstantFalse;
     });
 }
+
+SpecValue float_spec_value(float value) { return SpecValue{static_cast<uint16_t>(spv::OpSpecConstant), {std::bit_cast<uint32_t>(value)}}; }
 
 }  // namespace crtforge

@@ -26,4 +26,7 @@ std::map<uint32_t, SpecValue> spec_constant_values(const SpirvBinary& module);
 bool write_spec_constant_values(SpirvBinary& module, const std::map<uint32_t, SpecValue>& values);
 bool clear_spec_constant_values(SpirvBinary& module);
 
+// A float specialization constant's value, as glslang writes `layout(constant_id = N) const float x = v;`.
+SpecValue float_spec_value(float value);
+
 }  // namespace crtforge

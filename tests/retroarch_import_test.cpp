@@ -16,6 +16,7 @@
 #include "crtforge/runtime/test_inputs.hpp"
 #include "crtforge/slang_import.hpp"
 #include "generator/spirv_spec_values.hpp"
+#include "generator/spirv_source_key.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -837,4 +838,42 @@ TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what Retr
         REQUIRE_FALSE(images.ok());
         CHECK_THAT(images.error().str(), Catch::Contains("pass f0 is 1 pixel wide") && Catch::Contains("under 2 pixels"));
     }
+}
+
+TEST_CASE("a compile found under a shared key is the module a fresh compile gives", "[compile][cache][retroarch][specialize]") {
+    // Two presets share a pass and differ in its values: the second finds the first's compile by
+    // key, gets its own values written in, and must equal a compile of its own source.
+    test::TempDir dir;
+    test::write_file(dir / "shaders/gain.slang",
+                     test::slang_program({"float GAIN; float BIAS; ",
+                                          "#pragma parameter GAIN \"Gain\" 0.5 0.0 2.0 0.05\n#pragma parameter BIAS \"Bias\" 0.0 -1.0 1.0 0.05\n",
+                                          "", "",
+                                          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                          "void main() { FragColor = vec4(texture(Source, vTexCoord).rgb * params.GAIN + params.BIAS, 1.0); }\n"}));
+    test::write_file(dir / "a.slangp", "shaders = 1\nshader0 = shaders/gain.slang\nGAIN = 1.5\nBIAS = 0.1\n");
+    test::write_file(dir / "b.slangp", "shaders = 1\nshader0 = shaders/gain.slang\nGAIN = 0.3\nBIAS = -0.7\n");
+    auto baked = UniformSelection::parse("none");
+    REQUIRE(baked.ok());
+    VariantOptions options;
+    options.uniforms = baked.value();
+    options.local_names = false;
+    options.specialize_baked = true;
+    std::vector<CompiledVariant> compiled;
+    for (const std::string name : {"a", "b"}) {
+        auto lib = import_into(dir / (name + ".slangp"), dir / ("overlay_" + name), dir.path(), name);
+        INFO((lib.ok() ? std::string() : lib.error().str()));
+        REQUIRE(lib.ok());
+        auto scene = compile_scene(*lib.value(), *lib.value()->find_preset(name), options, Cache());
+        INFO((scene.ok() ? std::string() : scene.error().str()));
+        REQUIRE(scene.ok());
+        compiled.push_back(std::move(scene.value()[0]));
+    }
+    CHECK(source_key(compiled[0].fragment_glsl).text == source_key(compiled[1].fragment_glsl).text);
+    CHECK(compiled[0].fragment != compiled[1].fragment);  // each holds its own values
+    CompileOptions fresh;
+    fresh.stage = ShaderStage::Fragment;
+    fresh.local_names = false;
+    auto own = compile_to_spirv(compiled[1].fragment_glsl, fresh);
+    REQUIRE(own.ok());
+    CHECK(own.value() == compiled[1].fragment);
 }

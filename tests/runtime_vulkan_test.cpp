@@ -10,6 +10,8 @@
 
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/spirv_compiler.hpp"
+#include "runtime/vulkan/vulkan_context.hpp"
+#include "runtime/vulkan/vulkan_memory_pool.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -573,4 +575,63 @@ void main() { fragColor = texture(source, vTexCoord) + texture(lut, vTexCoord); 
 
     const Image output = render_ok(good);  // the engine is still usable
     CHECK(output.pixel(0, 0)[0] == 0.75f);
+}
+
+TEST_CASE("memory that goes back to the pool is reused and never shows through", "[runtime][vulkan]") {
+    // A job's freed image and buffers go back to the context's pool and the next job of the same
+    // sizes takes them: what an earlier job drew or read back must never reach a later picture.
+    RenderJob white = make_job(constant_shader("vec4(1.0)"), Image::make(1, 1), 8, 4, OutputFormat::Rgba8Unorm);
+    CHECK(render_ok(white).pixel(7, 3) == P{1.0f, 1.0f, 1.0f, 1.0f});
+    // The same size: discarded pixels keep the pass's cleared (transparent black) contents.
+    RenderJob half = make_job("#version 450\nlayout(location = 0) in vec2 vTexCoord;\nlayout(location = 0) out vec4 fragColor;\n"
+                              "void main() { if (vTexCoord.x > 0.5) discard; fragColor = vec4(0.0, 1.0, 0.0, 1.0); }\n",
+                              Image::make(1, 1), 8, 4, OutputFormat::Rgba8Unorm);
+    for (int round = 0; round < 3; ++round) {
+        render_ok(white);
+        const Image drawn = render_ok(half);
+        CHECK(drawn.pixel(0, 0) == P{0.0f, 1.0f, 0.0f, 1.0f});
+        CHECK(drawn.pixel(7, 3) == P{0.0f, 0.0f, 0.0f, 0.0f});
+    }
+    // An input upload of a size met before carries its own texels.
+    RenderJob copy = make_job(kPassthrough, Image::make(8, 4, {0.25f, 0.5f, 0.75f, 1.0f}), 8, 4, OutputFormat::Rgba16Float);
+    CHECK(render_ok(copy).pixel(5, 2) == P{0.25f, 0.5f, 0.75f, 1.0f});
+    copy.input = Image::make(8, 4, {0.5f, 0.25f, 0.0f, 1.0f});
+    CHECK(render_ok(copy).pixel(5, 2) == P{0.5f, 0.25f, 0.0f, 1.0f});
+}
+
+TEST_CASE("the memory pool hands a block back only for its own type and size, within its budget", "[runtime][vulkan]") {
+    auto context = vulkan::VulkanContext::create(EngineOptions{});
+    INFO((context.ok() ? std::string() : context.error().str()));
+    REQUIRE(context.ok());
+    const VkPhysicalDeviceMemoryProperties& memory = context.value()->memory_properties();
+    REQUIRE(memory.memoryTypeCount > 0);
+    vulkan::MemoryPool pool(context.value()->device(), 1 << 20);
+    auto take = [&](uint32_t type, VkDeviceSize size) {
+        auto block = pool.take(type, size);
+        INFO((block.ok() ? std::string() : block.error().str()));
+        REQUIRE(block.ok());
+        return std::move(block).value();
+    };
+    auto first = take(0, 4096);
+    const VkDeviceMemory handle = first.get();
+    first.reset();
+    auto again = take(0, 4096);
+    CHECK(again.get() == handle);  // the same type and size: the kept block
+    auto other = take(0, 8192);     // another size: a block of its own
+    CHECK(other.get() != handle);
+    again.reset();
+    other.reset();
+    CHECK(pool.kept_bytes() == 4096 + 8192);
+    // Within the budget (1 MiB): the oldest blocks go first, and a block over a quarter of it is
+    // freed at once, not kept.
+    std::vector<vulkan::PooledMemory> blocks;
+    for (int i = 0; i < 6; ++i) blocks.push_back(take(0, 200 << 10));
+    blocks.clear();
+    CHECK(pool.kept_bytes() <= (1u << 20));
+    CHECK(pool.kept_bytes() >= 4 * (200u << 10));
+    const VkDeviceSize before = pool.kept_bytes();
+    take(0, 300 << 10).reset();
+    CHECK(pool.kept_bytes() == before);
+    pool.clear();
+    CHECK(pool.kept_bytes() == 0);
 }

@@ -157,6 +157,29 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         for (int f = 0; f <= last; ++f) run.push_back(f);
     }
 
+    auto index_of = [&](const std::string& alias) {
+        for (size_t i = 0; i < preset.passes.size(); ++i)
+            if (preset.passes[i].alias == alias) return i;
+        return preset.passes.size();
+    };
+    // An output lives until the last pass of its frame that reads it, or into the next frame where
+    // a pass reads it as feedback: a frame of 40 full-size float outputs, kept whole for the next
+    // frame too, took a bezel pack's render to gigabytes of fresh memory.
+    std::vector<bool> fed_back(preset.passes.size(), false);
+    std::vector<std::vector<size_t>> last_read_by(preset.passes.size());  // pass -> the outputs it reads last
+    {
+        std::vector<size_t> last_reader(preset.passes.size(), preset.passes.size());
+        for (size_t k = 0; k < preset.passes.size(); ++k)
+            for (const PassInput& in : preset.passes[k].inputs) {
+                const size_t i = index_of(in.from.name);
+                if (i >= preset.passes.size()) continue;
+                if (in.from.kind == TextureSource::Kind::Feedback) fed_back[i] = true;
+                if (in.from.kind == TextureSource::Kind::Pass) last_reader[i] = k;
+            }
+        for (size_t i = 0; i + 1 < preset.passes.size(); ++i)  // the last pass's output is the frame's picture
+            if (!fed_back[i]) last_read_by[last_reader[i] < preset.passes.size() ? last_reader[i] : i].push_back(i);
+    }
+
     std::map<int, SharedImage> kept;
     std::vector<SharedImage> previous(preset.passes.size());  // last frame's outputs; empty before the first
     std::deque<SharedImage> history;                          // earlier originals, newest first
@@ -170,11 +193,6 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
         const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
         if (auto s = check_pass_sizes(preset, sizes, {screen.width, screen.height}); !s.ok()) return s.error();
         std::vector<SharedImage> current(preset.passes.size());
-        auto index_of = [&](const std::string& alias) {
-            for (size_t i = 0; i < preset.passes.size(); ++i)
-                if (preset.passes[i].alias == alias) return i;
-            return preset.passes.size();
-        };
         // Every reader shares one image: a LUT or an earlier output is never copied per reader.
         auto resolve = [&](const TextureSource& from) -> SharedImage {
             switch (from.kind) {
@@ -252,6 +270,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             auto image = render_pass(std::move(pr));
             if (!image.ok()) return image.error();
             current[i] = SharedImage(std::move(image.value()));
+            for (size_t done : last_read_by[i]) current[done] = SharedImage();
         }
         if (std::find(r.frames.begin(), r.frames.end(), frame) != r.frames.end()) kept[frame] = current.back();
         if (stateful) {

@@ -316,8 +316,15 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
     // What directives are left (#version, #extension, #line, #pragma) become space, so the
     // declarations read as code: the #version and line-directive extension lines go (the
     // assembler writes its own), the others stay as written.
+    // One pass into a new list: erasing each directive's tokens in place moved the whole tail once
+    // per directive (koko-aio's passes have thousands of #line directives after preprocessing).
+    Tokens kept;
+    kept.reserve(t.size());
     for (size_t i = 0; i < t.size(); ++i) {
-        if (t[i].text != "#") continue;
+        if (t[i].text != "#") {
+            kept.push_back(std::move(t[i]));
+            continue;
+        }
         const size_t word = next_significant(t, i);
         size_t end = i;
         while (end + 1 < t.size() && t[end + 1].text.find('\n') == std::string::npos) ++end;
@@ -325,13 +332,15 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
                           (is(t, word, "extension") && is(t, next_significant(t, word), "GL_GOOGLE_cpp_style_line_directive"));
         if (drop) {
             blank(t, i, end);
-            continue;
+            for (size_t k = i; k <= end; ++k) kept.push_back(std::move(t[k]));
+        } else {
+            std::string line;
+            for (size_t k = i; k <= end; ++k) line += t[k].text;
+            kept.push_back({Kind::Space, std::move(line)});
         }
-        std::string line;
-        for (size_t k = i; k <= end; ++k) line += t[k].text;
-        t.erase(t.begin() + static_cast<long>(i) + 1, t.begin() + static_cast<long>(end) + 1);
-        t[i] = {Kind::Space, line};
+        i = end;
     }
+    t = std::move(kept);
     auto declared = take_declarations(t, vertex, file);
     if (!declared.ok()) return declared.error();
     const Declarations& d = declared.value();

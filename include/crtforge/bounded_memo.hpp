@@ -1,15 +1,19 @@
 // A process-wide memo of values by key, shared by worker threads and bounded by a size the caller
 // measures (bytes of a SPIR-V module, pixels of a picture): once the sizes pass the bound the
 // oldest entries go first, so a run over thousands of presets (crtforge corpus) keeps a steady
-// footprint however many distinct values it meets.
+// footprint however many distinct values it meets. A worker about to compute a value claims its
+// key first: two workers meeting the same key at once (neighbouring presets of one family) then
+// compute it once, the second waiting for the first.
 #pragma once
 
+#include <condition_variable>
 #include <cstddef>
 #include <deque>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -40,6 +44,32 @@ public:
         }
     }
 
+    // While a Claim on a key lives, another claim of that key waits; look in the memo again once
+    // it is granted (the holder put the value there, unless it failed: then compute it yourself).
+    class [[nodiscard]] Claim {
+    public:
+        Claim(const BoundedMemo& memo, std::string key) : memo_(&memo), key_(std::move(key)) {
+            std::unique_lock<std::mutex> lock(memo_->mutex_);
+            memo_->released_.wait(lock, [&] { return !memo_->claimed_.count(key_); });
+            memo_->claimed_.insert(key_);
+        }
+        Claim(const Claim&) = delete;
+        Claim& operator=(const Claim&) = delete;
+        ~Claim() {
+            {
+                std::lock_guard<std::mutex> lock(memo_->mutex_);
+                memo_->claimed_.erase(key_);
+            }
+            memo_->released_.notify_all();
+        }
+
+    private:
+        const BoundedMemo* memo_;
+        std::string key_;
+    };
+
+    Claim claim(const std::string& key) const { return Claim(*this, key); }
+
 private:
     const size_t bound_;
     const std::function<size_t(const Value&)> size_of_;
@@ -47,6 +77,8 @@ private:
     std::map<std::string, Value> values_;
     std::deque<std::string> order_;  // keys, oldest first
     size_t total_ = 0;
+    mutable std::set<std::string> claimed_;
+    mutable std::condition_variable released_;
 };
 
 }  // namespace crtforge

@@ -16,6 +16,7 @@ namespace crtforge::vulkan {
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+constexpr VkDeviceSize kKeptMemoryBytes = VkDeviceSize{512} << 20;  // freed memory a context keeps for reuse
 constexpr const char* kLavapipeHint = "install mesa-vulkan-drivers for the lavapipe CPU device";
 
 std::string lowercase(std::string_view text) {
@@ -372,6 +373,7 @@ Result<std::unique_ptr<VulkanContext>> VulkanContext::create(const EngineOptions
                                       vk_result_name(r)));
     }
     vkGetDeviceQueue(self->device_, self->queue_family_, 0, &self->queue_);
+    self->memory_pool_ = std::make_unique<MemoryPool>(self->device_, kKeptMemoryBytes);
 
     if (auto messages = self->take_validation_messages(); !messages.empty()) {
         return validation_failure("while opening the device", messages);
@@ -382,6 +384,7 @@ Result<std::unique_ptr<VulkanContext>> VulkanContext::create(const EngineOptions
 VulkanContext::~VulkanContext() {
     if (device_ != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(device_);
+        memory_pool_.reset();
         vkDestroyDevice(device_, nullptr);
     }
     // instance_ (and its messenger) goes last, as a member.

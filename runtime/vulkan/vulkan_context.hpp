@@ -10,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "crtforge/diagnostic.hpp"
+#include "runtime/vulkan/vulkan_memory_pool.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 
 namespace crtforge::vulkan {
@@ -72,6 +73,9 @@ public:
     const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
     VkFormatFeatureFlags optimal_tiling_features(VkFormat format) const;
 
+    // Where this context's buffers and images get their memory (and give it back).
+    MemoryPool& memory_pool() const { return *memory_pool_; }
+
     bool validation() const { return instance_->validation(); }
     std::vector<std::string> take_validation_messages() { return instance_->log().take(); }
 
@@ -86,6 +90,7 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
     VkQueue queue_ = VK_NULL_HANDLE;
+    std::unique_ptr<MemoryPool> memory_pool_;  // emptied before the device goes
 };
 
 // One line from a batch of validation messages: the count and the first message.

@@ -45,7 +45,6 @@ private:
 };
 
 using UniqueBuffer = DeviceObject<VkBuffer, &vkDestroyBuffer>;
-using UniqueMemory = DeviceObject<VkDeviceMemory, &vkFreeMemory>;  // freeing also unmaps
 using UniqueImage = DeviceObject<VkImage, &vkDestroyImage>;
 using UniqueImageView = DeviceObject<VkImageView, &vkDestroyImageView>;
 using UniqueSampler = DeviceObject<VkSampler, &vkDestroySampler>;

@@ -18,19 +18,12 @@ int find_memory_type(const VkPhysicalDeviceMemoryProperties& memory, uint32_t ty
     return -1;
 }
 
-Result<UniqueMemory> allocate(const VulkanContext& context, const VkMemoryRequirements& needs, int type,
+Result<PooledMemory> allocate(const VulkanContext& context, const VkMemoryRequirements& needs, int type,
                               const char* what) {
     if (type < 0) return make_error(fmt::format("Vulkan device '{}' has no memory type for the {}", context.info().name, what));
-    VkMemoryAllocateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    info.allocationSize = needs.size;
-    info.memoryTypeIndex = static_cast<uint32_t>(type);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    if (VkResult r = vkAllocateMemory(context.device(), &info, nullptr, &memory); r != VK_SUCCESS) {
-        return make_error(fmt::format("cannot allocate {} bytes for the {}: vkAllocateMemory failed: {}", needs.size,
-                                      what, vk_result_name(r)));
-    }
-    return UniqueMemory(context.device(), memory);
+    auto memory = context.memory_pool().take(static_cast<uint32_t>(type), needs.size);
+    if (!memory) return make_error(fmt::format("{} for the {}", memory.error().message, what));
+    return memory;
 }
 
 VkMappedMemoryRange whole_range(const HostBuffer& buffer) {
@@ -74,9 +67,9 @@ Result<HostBuffer> create_host_buffer(const VulkanContext& context, VkDeviceSize
     if (VkResult r = vkBindBufferMemory(device, buffer, out.memory.get(), 0); r != VK_SUCCESS) {
         return vk_error("vkBindBufferMemory", r);
     }
-    if (VkResult r = vkMapMemory(device, out.memory.get(), 0, VK_WHOLE_SIZE, 0, &out.mapped); r != VK_SUCCESS) {
-        return vk_error("vkMapMemory", r);
-    }
+    auto mapped = out.memory.map();
+    if (!mapped) return mapped.error();
+    out.mapped = mapped.value();
     return out;
 }
 

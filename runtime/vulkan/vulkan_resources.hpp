@@ -14,10 +14,10 @@
 
 namespace crtforge::vulkan {
 
-// A buffer in host-visible memory, mapped for its whole life (freeing the memory unmaps it).
+// A buffer in host-visible memory, mapped for its whole life (its memory stays mapped in the pool).
 // Members are declared so the buffer is destroyed before the memory it is bound to.
 struct HostBuffer {
-    UniqueMemory memory;
+    PooledMemory memory;
     UniqueBuffer buffer;
     VkDeviceSize size = 0;
     void* mapped = nullptr;
@@ -33,7 +33,7 @@ Status invalidate(const VulkanContext& context, const HostBuffer& buffer);
 // A single-layer 2D image in device-local memory (optimal tiling) with a colour view of all its
 // `levels` mip levels (level 0 is extent).
 struct DeviceImage {
-    UniqueMemory memory;  // declared first: released after the view and the image
+    PooledMemory memory;  // declared first: released after the view and the image
     UniqueImage image;
     UniqueImageView view;
     VkFormat format = VK_FORMAT_UNDEFINED;
