@@ -1,12 +1,14 @@
 // crtforge corpus DIR [--root R] [--report OUT] [--only P,...] [--target T,...|--vulkan-only] [--shard i/n] [-j N]
 //                [--source-size WxH] [--size WxH] [--frame N] [--min-psnr DB] [--smooth] [--retroarch DIR]
-//                [--uniforms default|none|all|NAMES] [--optimised-jit]
+//                [--uniforms default|none|all|NAMES] [--optimised-jit] [--presets-per-process N]
 // Every .slangp under DIR through import, SPIR-V, each target's emitter and consumer, a render by
 // each consumer judged against Vulkan: the dashboard of validate/corpus_report.cpp.
 #include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <chrono>
 #include <filesystem>
 #include <thread>
@@ -15,6 +17,7 @@
 
 #include "cli/cli_common.hpp"
 #include "crtforge/validate/corpus.hpp"
+#include "crtforge/validate/corpus_workers.hpp"
 
 namespace crtforge::cli {
 
@@ -28,7 +31,38 @@ struct CorpusArgs {
     unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
     int frame = 2;
     double min_psnr = 40.0, fail_under = 0.0;
+    size_t presets_per_process = 50;
+    int rows_fd = -1;                           // a worker: its rows go here, as lines of JSON
+    std::vector<std::string> worker_presets;    // a worker: its presets, relative to DIR
 };
+
+// A worker's command line: the same settings, these presets, its rows to `rows_fd`. Values go as
+// --name=value and DIR after "--", so a path starting with '-' stays a value.
+std::vector<std::string> worker_arguments(const CorpusArgs& a, const GlobalOptions& g, const std::string& root,
+                                          const std::vector<std::string>& presets, int rows_fd) {
+    std::vector<std::string> out;
+    if (!g.cache_dir.empty()) out.push_back("--cache-dir=" + g.cache_dir);
+    if (g.no_cache) out.push_back("--no-cache");
+    out.push_back("corpus");
+    out.push_back("--root=" + root);
+    if (a.vulkan_only) out.push_back("--vulkan-only");
+    for (const std::string& t : a.targets) out.push_back("--target=" + t);
+    out.push_back(fmt::format("--jobs={}", a.jobs));
+    out.push_back("--source-size=" + a.source_size);
+    out.push_back("--size=" + a.size);
+    out.push_back(fmt::format("--frame={}", a.frame));
+    out.push_back(fmt::format("--min-psnr={}", a.min_psnr));  // shortest text that reads back as the same double
+    if (a.smooth) out.push_back("--smooth");
+    if (!a.device.empty()) out.push_back("--device=" + a.device);
+    if (!a.retroarch.empty()) out.push_back("--retroarch=" + a.retroarch);
+    out.push_back("--uniforms=" + a.uniforms);
+    if (a.optimised_jit) out.push_back("--optimised-jit");
+    out.push_back(fmt::format("--rows-fd={}", rows_fd));
+    for (const std::string& p : presets) out.push_back("--worker-preset=" + p);
+    out.push_back("--");
+    out.push_back(root);
+    return out;
+}
 
 Result<std::vector<TargetId>> corpus_targets(const std::vector<std::string>& list, bool vulkan_only) {
     if (vulkan_only && !list.empty()) return make_error("give --target or --vulkan-only, not both", {}, 0, "--vulkan-only");
@@ -45,6 +79,22 @@ Result<std::vector<TargetId>> corpus_targets(const std::vector<std::string>& lis
         if (std::find(out.begin(), out.end(), t.value()->id) == out.end()) out.push_back(t.value()->id);
     }
     return out;
+}
+
+// A worker's run: each row, as it is done, a line of JSON on `fd` for the sweep that started it.
+int run_as_worker(const CorpusRequest& request, const Cache& cache, int fd) {
+    auto write_row = [fd](size_t, size_t, const CorpusRow& row) {
+        const std::string line = corpus_row_line(row) + "\n";
+        for (size_t at = 0; at < line.size();) {
+            const ssize_t n = ::write(fd, line.data() + at, line.size() - at);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) std::_Exit(1);  // the sweep is gone: nobody reads the rest
+            at += static_cast<size_t>(n);
+        }
+    };
+    auto result = run_corpus(request, cache, write_row);
+    if (!result.ok()) return report(result.error());
+    return kExitOk;
 }
 
 // An in-place bar on a terminal; a line per 2 % (and per failed import) in a log.
@@ -92,6 +142,14 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_flag("--optimised-jit", a->optimised_jit,
                   "With --vulkan-only on lavapipe: let LLVM optimise each pipeline it compiles (by default the sweep sets "
                   "GALLIVM_PERF=nopt: three small frames per preset do not repay LLVM's optimisation of Mega Bezel's shaders)");
+    cmd->add_option("--presets-per-process", a->presets_per_process,
+                    "Run the presets in worker processes of this many each (0: all in this one). A fresh process gives back what "
+                    "the Vulkan driver keeps (lavapipe grows ~90 MB per large preset); a preset that crashes its worker gets a row saying so")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    // How the sweep runs its workers; not for users.
+    cmd->add_option("--rows-fd", a->rows_fd)->group("")->check(CLI::Range(3, 1023));
+    cmd->add_option("--worker-preset", a->worker_presets)->group("");
     cmd->add_option("--fail-under", a->fail_under, "Exit 1 when fewer than this percentage of the presets render on Vulkan")
         ->check(CLI::Range(0.0, 100.0));
     return [&g, a]() {
@@ -104,9 +162,12 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
         if (!source.ok()) return report(make_error(source.error().message, {}, 0, "--source-size"));
         auto display = parse_size(a->size);
         if (!display.ok()) return report(display.error());
-        auto found = list_corpus_presets(a->dir);
+        const bool worker = a->rows_fd >= 0;
+        if (worker != !a->worker_presets.empty()) return report(make_error("give both or neither", {}, 0, "--rows-fd"));
+        // A worker is given its presets; the sweep lists DIR's.
+        auto found = worker ? Result<std::vector<std::string>>(a->worker_presets) : list_corpus_presets(a->dir);
         if (!found.ok()) return report(found.error());
-        if (!a->only.empty()) {  // a curated set: each named preset must be one the folder holds
+        if (!a->only.empty() && !worker) {  // a curated set: each named preset must be one the folder holds
             std::vector<std::string> chosen;
             for (const std::string& name : a->only) {
                 const std::string wanted = std::filesystem::path(name).lexically_normal().generic_string();
@@ -154,8 +215,23 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
             return report(make_error("exists and is not a folder", a->report, 0, "--report"));
 
         const auto start = std::chrono::steady_clock::now();
-        Cache cache = make_cache(g);
-        auto result = run_corpus(request, cache, corpus_progress());
+        if (worker) return run_as_worker(request, make_cache(g), a->rows_fd);
+        auto mine = corpus_shard_presets(request);
+        if (!mine.ok()) return report(mine.error());
+        Result<CorpusReport> result = make_error("not run");
+        if (a->presets_per_process == 0 || mine.value().size() <= a->presets_per_process) {
+            result = run_corpus(request, make_cache(g), corpus_progress());
+        } else {
+            CorpusWorkers workers;
+            std::error_code exe_ec;
+            workers.executable = std::filesystem::read_symlink("/proc/self/exe", exe_ec).string();
+            if (exe_ec) return report(make_error("cannot find this program to start its workers: " + exe_ec.message(), {}, 0, "corpus"));
+            workers.presets_per_process = a->presets_per_process;
+            workers.arguments = [a, &g, root](const std::vector<std::string>& presets, int fd) {
+                return worker_arguments(*a, g, root, presets, fd);
+            };
+            result = run_corpus_in_workers(request, workers, corpus_progress());
+        }
         if (!result.ok()) return report(result.error());
         const CorpusReport& r = result.value();
         if (!a->report.empty())

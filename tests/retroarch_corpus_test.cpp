@@ -388,6 +388,32 @@ TEST_CASE("corpus --vulkan-only --uniforms none: the quick sweep bakes each pres
     CHECK(names.exit_code == 0);
 }
 
+TEST_CASE("corpus in worker processes writes the report one process writes byte for byte", "[retroarch][corpus-command]") {
+    test::TempDir dir;
+    write_library(dir);  // six presets, two of them failing: three workers of two
+    const std::string base = "corpus '" + dir.path() + "' --vulkan-only --uniforms none -j 1 --source-size 32x24 --size 64x48";
+    auto one = test::run_crtforge(base + " --presets-per-process 0 --report '" + (dir / "one") + "'");
+    INFO(one.out << one.err);
+    REQUIRE(one.exit_code == 0);
+    auto workers = test::run_crtforge(base + " --presets-per-process 2 --report '" + (dir / "workers") + "'");
+    INFO(workers.out << workers.err);
+    REQUIRE(workers.exit_code == 0);
+    for (const char* file : {"corpus.json", "corpus.html"}) {
+        INFO(file);
+        std::ifstream a(dir.path() + "/one/" + file), b(dir.path() + "/workers/" + file);
+        const std::string x((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+        const std::string y((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+        CHECK(!x.empty());
+        CHECK(x == y);
+    }
+    // The summary counts the same rows: the two failing presets are rows, not a failed run.
+    CHECK(workers.out.find("6 presets (shard 1/1): 5 imported") != std::string::npos);
+    // What only the sweep's workers are given is refused on its own.
+    auto lone = test::run_crtforge(base + " --rows-fd 3");
+    CHECK(lone.exit_code == 2);
+    CHECK(lone.err.find("--rows-fd") != std::string::npos);
+}
+
 TEST_CASE("GLSL ES 3.00 and WebGL 2 count gl_FragCoord's rows from the top as Vulkan does (ES has no origin_upper_left)",
           "[retroarch][corpus-command][gl-es]") {
     test::TempDir dir;

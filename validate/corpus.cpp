@@ -74,10 +74,7 @@ std::string folder_of(const std::string& preset) {
 }
 
 CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Cache& cache, TargetRenderer& renderer) {
-    CorpusRow row;
-    row.preset = rel;
-    row.folder = folder_of(rel);
-    for (TargetId t : request.targets) row.targets[target_info(t).name] = {};
+    CorpusRow row = corpus_row_for(request, rel);
     auto skip_all = [&](const std::string& why) {
         for (auto& [name, r] : row.targets) r.reason = why;
     };
@@ -251,9 +248,16 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
 
 }  // namespace
 
-Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache, const CorpusProgress& progress) {
+Result<std::vector<std::string>> corpus_shard_presets(const CorpusRequest& request) {
     if (request.shard.count == 0 || request.shard.index < 1 || request.shard.index > request.shard.count)
         return make_error("shard index must be 1..count", {}, 0, "--shard");
+    std::vector<std::string> mine;
+    for (size_t i = 0; i < request.presets.size(); ++i)
+        if (i % request.shard.count == request.shard.index - 1) mine.push_back(request.presets[i]);
+    return mine;
+}
+
+CorpusReport empty_corpus_report(const CorpusRequest& request) {
     CorpusReport report;
     report.root = request.root;
     report.shard_index = request.shard.index;
@@ -261,11 +265,22 @@ Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache
     report.total_presets = request.presets.size();
     report.settings = request;
     for (TargetId t : request.targets) report.targets.push_back(target_info(t).name);
+    return report;
+}
 
-    std::vector<std::string> mine;
-    for (size_t i = 0; i < request.presets.size(); ++i)
-        if (i % request.shard.count == request.shard.index - 1) mine.push_back(request.presets[i]);
+CorpusRow corpus_row_for(const CorpusRequest& request, const std::string& preset) {
+    CorpusRow row;
+    row.preset = preset;
+    row.folder = folder_of(preset);
+    for (TargetId t : request.targets) row.targets[target_info(t).name] = {};
+    return row;
+}
 
+Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache, const CorpusProgress& progress) {
+    auto shard = corpus_shard_presets(request);
+    if (!shard.ok()) return shard.error();
+    const std::vector<std::string>& mine = shard.value();
+    CorpusReport report = empty_corpus_report(request);
     report.rows.resize(mine.size());
     std::atomic<size_t> next{0};
     size_t done = 0;

@@ -3,6 +3,7 @@
 // the failures grouped by reason, most frequent first; a row per preset with the reason on hover).
 #include <fmt/format.h>
 
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -84,7 +85,75 @@ std::string cell(const CorpusTargetResult& r, size_t passes) {
     return fmt::format("<td class=\"{}\" title=\"{}\">{}</td>", r.status, html_escape(r.reason), html_escape(text));
 }
 
+json row_json(const CorpusRow& row) {
+    json targets = json::object();
+    for (const auto& [name, r] : row.targets)
+        targets[name] = {{"status", r.status}, {"passesCompiled", r.passes_compiled}, {"psnr", r.psnr}, {"reason", r.reason}};
+    return {{"preset", row.preset},
+            {"folder", row.folder},
+            {"passes", row.passes},
+            {"importError", row.import_error},
+            {"passesSpirv", row.passes_spirv},
+            {"spirvError", row.spirv_error},
+            {"warnings", row.warnings},
+            {"targets", targets},
+            {"retroarch", {{"status", row.retroarch}, {"psnr", row.retroarch_psnr}}}};
+}
+
+// A PSNR as JSON writes it: identical pictures (infinite PSNR) become null.
+bool read_psnr(const json& value, double& out) {
+    if (value.is_null()) {
+        out = std::numeric_limits<double>::infinity();
+        return true;
+    }
+    if (!value.is_number()) return false;
+    out = value.get<double>();
+    return true;
+}
+
+bool read_string(const json& object, const char* key, std::string& out) {
+    auto it = object.find(key);
+    if (it == object.end() || !it->is_string()) return false;
+    out = it->get<std::string>();
+    return true;
+}
+
+bool read_count(const json& object, const char* key, size_t& out) {
+    auto it = object.find(key);
+    if (it == object.end() || !it->is_number_unsigned()) return false;
+    out = it->get<size_t>();
+    return true;
+}
+
 }  // namespace
+
+std::string corpus_row_line(const CorpusRow& row) { return row_json(row).dump(); }
+
+Result<CorpusRow> corpus_row_from_line(const std::string& line) {
+    const json parsed = json::parse(line, nullptr, /*allow_exceptions*/ false);
+    auto bad = [](const std::string& what) { return make_error("a corpus row is malformed: " + what, {}, 0, "corpus"); };
+    if (!parsed.is_object()) return bad("not a JSON object");
+    CorpusRow row;
+    if (!read_string(parsed, "preset", row.preset) || !read_string(parsed, "folder", row.folder) ||
+        !read_count(parsed, "passes", row.passes) || !read_string(parsed, "importError", row.import_error) ||
+        !read_count(parsed, "passesSpirv", row.passes_spirv) || !read_string(parsed, "spirvError", row.spirv_error) ||
+        !read_count(parsed, "warnings", row.warnings))
+        return bad("a field is missing or of the wrong type");
+    auto targets = parsed.find("targets");
+    if (targets == parsed.end() || !targets->is_object()) return bad("no targets");
+    for (const auto& [name, t] : targets->items()) {
+        CorpusTargetResult r;
+        if (!t.is_object() || !read_string(t, "status", r.status) || !read_count(t, "passesCompiled", r.passes_compiled) ||
+            !t.contains("psnr") || !read_psnr(t.at("psnr"), r.psnr) || !read_string(t, "reason", r.reason))
+            return bad("target '" + name + "'");
+        row.targets[name] = r;
+    }
+    auto ra = parsed.find("retroarch");
+    if (ra == parsed.end() || !ra->is_object() || !read_string(*ra, "status", row.retroarch) || !ra->contains("psnr") ||
+        !read_psnr(ra->at("psnr"), row.retroarch_psnr))
+        return bad("retroarch");
+    return row;
+}
 
 std::string corpus_json(const CorpusReport& report) {
     const CorpusRequest& s = report.settings;
@@ -92,18 +161,7 @@ std::string corpus_json(const CorpusReport& report) {
     Tally all;
     for (const CorpusRow& row : report.rows) {
         add(all, row);
-        json targets = json::object();
-        for (const auto& [name, r] : row.targets)
-            targets[name] = {{"status", r.status}, {"passesCompiled", r.passes_compiled}, {"psnr", r.psnr}, {"reason", r.reason}};
-        rows.push_back({{"preset", row.preset},
-                        {"folder", row.folder},
-                        {"passes", row.passes},
-                        {"importError", row.import_error},
-                        {"passesSpirv", row.passes_spirv},
-                        {"spirvError", row.spirv_error},
-                        {"warnings", row.warnings},
-                        {"targets", targets},
-                        {"retroarch", {{"status", row.retroarch}, {"psnr", row.retroarch_psnr}}}});
+        rows.push_back(row_json(row));
     }
     json out{{"root", report.root},
              {"shard", {{"index", report.shard_index}, {"count", report.shard_count}}},

@@ -42,6 +42,7 @@ struct CorpusRequest {
 //   "differs"  rendered, below min_psnr against Vulkan
 //   "agrees"   rendered, at or above it (Vulkan itself: rendered, every pixel finite)
 //   "skipped"  an earlier step of the preset failed (import or SPIR-V)
+//   "crashed"  the worker process running the preset died (a signal: a driver crash, the OOM killer)
 struct CorpusTargetResult {
     std::string status = "skipped";
     size_t passes_compiled = 0;  // passes whose files the consumer accepted
@@ -80,6 +81,15 @@ using CorpusProgress = std::function<void(size_t, size_t, const CorpusRow&)>;
 
 Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache, const CorpusProgress& progress = {});
 
+// The presets of the request's shard, in report order; an error when the shard is not 1..count.
+Result<std::vector<std::string>> corpus_shard_presets(const CorpusRequest& request);
+
+// A report with no rows yet: the request's root, shard, targets and settings.
+CorpusReport empty_corpus_report(const CorpusRequest& request);
+
+// A row of `preset` with every target "skipped": what a run starts from.
+CorpusRow corpus_row_for(const CorpusRequest& request, const std::string& preset);
+
 // The dashboard: corpus.json (every row) and corpus.html (a summary per folder and per target, the
 // failures grouped by reason, a row per preset), written all or nothing.
 std::string corpus_json(const CorpusReport& report);
@@ -89,5 +99,10 @@ Status write_corpus_report(const CorpusReport& report, const std::string& dir);
 // A failure's reason with its location and the numbers and names that vary taken out, so the same
 // construct in different shaders groups together ("...: 'X' undeclared identifier").
 std::string corpus_reason_class(const std::string& reason);
+
+// One row as one line of JSON (the fields of corpus.json's rows), and back: how worker processes
+// hand their rows to the sweep (validate/corpus_workers.cpp). An infinite PSNR travels as null.
+std::string corpus_row_line(const CorpusRow& row);
+Result<CorpusRow> corpus_row_from_line(const std::string& line);
 
 }  // namespace crtforge
