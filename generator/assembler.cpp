@@ -1,5 +1,6 @@
 // Variant -> GLSL 450 source for glslang.
 #include "crtforge/assembler.hpp"
+#include "crtforge/identifier_chars.hpp"
 #include "crtforge/inert_text.hpp"
 
 #include <algorithm>
@@ -34,12 +35,11 @@ std::string line_directive(int line, const std::string& file) {
 }
 
 
-bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
 // Whether `name` occurs in `text` as a whole identifier.
 bool mentions(const std::string& text, const std::string& name) {
     for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1))
-        if ((at == 0 || !is_identifier_char(text[at - 1])) && (at + name.size() == text.size() || !is_identifier_char(text[at + name.size()]))) return true;
+        if ((at == 0 || !detail::is_identifier_char(text[at - 1])) && (at + name.size() == text.size() || !detail::is_identifier_char(text[at + name.size()]))) return true;
     return false;
 }
 
@@ -61,9 +61,9 @@ std::set<std::string> identifiers_in(const std::string& text) {
             }
             line_start = false;
         } else if (c != ' ' && c != '\t') line_start = false;
-        if (!is_identifier_char(c)) { ++at; continue; }
+        if (!detail::is_identifier_char(c)) { ++at; continue; }
         size_t end = at;
-        while (end < text.size() && is_identifier_char(text[end])) ++end;
+        while (end < text.size() && detail::is_identifier_char(text[end])) ++end;
         if (!std::isdigit(static_cast<unsigned char>(text[at]))) out.emplace(text, at, end - at);
         at = end;
     }

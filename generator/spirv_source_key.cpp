@@ -6,6 +6,8 @@
 #include <optional>
 #include <string_view>
 
+#include "crtforge/identifier_chars.hpp"
+
 namespace crtforge {
 
 namespace {
@@ -13,7 +15,6 @@ namespace {
 constexpr std::string_view kFormMacro = "CRT_FORM_";
 constexpr std::string_view kSpecPrefix = "layout(constant_id = ";
 
-bool is_identifier_char(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'; }
 
 size_t count_of(std::string_view text, std::string_view what) {
     size_t n = 0;
@@ -37,7 +38,7 @@ bool is_form_define(std::string_view line) {
     if (line.substr(0, prefix.size()) != prefix || line.size() < prefix.size() + 3 || line.substr(line.size() - 2) != " 1") return false;
     const std::string_view name = line.substr(prefix.size(), line.size() - prefix.size() - 2);
     for (char c : name)
-        if (!is_identifier_char(c)) return false;
+        if (!detail::is_identifier_char(c)) return false;
     return !name.empty();
 }
 
@@ -70,7 +71,7 @@ std::optional<FloatSpec> float_spec_line(std::string_view line) {
     if (line.substr(at, middle.size()) != middle) return std::nullopt;
     at += middle.size();
     const size_t name_start = at;
-    while (at < line.size() && is_identifier_char(line[at])) ++at;
+    while (at < line.size() && detail::is_identifier_char(line[at])) ++at;
     if (at == name_start || (line[name_start] >= '0' && line[name_start] <= '9')) return std::nullopt;
     if (line.substr(at, 3) != " = ") return std::nullopt;
     at += 3;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+
+#include "crtforge/identifier_chars.hpp"
 #include <cmath>
 
 #include <fmt/format.h>
@@ -14,10 +16,9 @@ std::string join_field(const std::string& prefix, const std::string& key) {
 
 bool is_identifier(const std::string& name) {
     if (name.size() > kMaxIdentifierLength) return false;
-    if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
-        return false;
+    if (name.empty() || !detail::is_identifier_start(name[0])) return false;
     for (char c : name)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+        if (!detail::is_identifier_char(c)) return false;
     // Names starting with gl_ or containing "__" are reserved in GLSL.
     return name.rfind("gl_", 0) != 0 && name.find("__") == std::string::npos;
 }

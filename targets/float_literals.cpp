@@ -62,14 +62,14 @@ std::string shorten_float_literals(const std::string& source) {
             i = stop;
             continue;
         }
-        if (is_word_char(c) && !is_digit(c)) {  // an identifier, digits and all
+        if (is_identifier_char(c) && !is_digit(c)) {  // an identifier, digits and all
             const size_t start = i;
-            while (i < n && is_word_char(source[i])) ++i;
+            while (i < n && is_identifier_char(source[i])) ++i;
             out.append(source, start, i - start);
             continue;
         }
         const bool starts_number = is_digit(c) || (c == '.' && i + 1 < n && is_digit(source[i + 1]));
-        if (!starts_number || (i > 0 && (source[i - 1] == '.' || is_word_char(source[i - 1])))) {
+        if (!starts_number || (i > 0 && (source[i - 1] == '.' || is_identifier_char(source[i - 1])))) {
             out += c;
             ++i;
             continue;
@@ -79,7 +79,7 @@ std::string shorten_float_literals(const std::string& source) {
         i = exponent_end(source, i);
         const std::string token = source.substr(start, i - start);
         size_t suffix_end = i;
-        while (suffix_end < n && is_word_char(source[suffix_end])) ++suffix_end;
+        while (suffix_end < n && is_identifier_char(source[suffix_end])) ++suffix_end;
         const std::string suffix = source.substr(i, suffix_end - i);
         // Only a plain literal or HLSL's float suffix; `lf`, `u`, `h` and the like stay untouched.
         out += suffix.empty() || suffix == "f" || suffix == "F" ? shorter(token) : token;
@@ -99,14 +99,14 @@ size_t literal_length(const std::string& text, size_t at) {
     if (i == at || text.find_first_of("0123456789", at) >= i) return 0;
     i = exponent_end(text, i);
     if (i < n && (text[i] == 'f' || text[i] == 'F')) ++i;
-    return i < n && is_word_char(text[i]) ? 0 : i - at;
+    return i < n && is_identifier_char(text[i]) ? 0 : i - at;
 }
 
 // The length of a component selection `.x` (one of xyzw) at `at` that ends the expression there.
 size_t component_length(const std::string& text, size_t at) {
     const size_t n = text.size();
     if (at + 1 >= n || text[at] != '.' || std::string_view("xyzw").find(text[at + 1]) == std::string_view::npos) return 0;
-    if (at + 2 < n && (is_word_char(text[at + 2]) || text[at + 2] == '.')) return 0;
+    if (at + 2 < n && (is_identifier_char(text[at + 2]) || text[at + 2] == '.')) return 0;
     return 2;
 }
 
@@ -123,7 +123,7 @@ std::string without_splat_selects(const std::string& source) {
             i = stop;
             continue;
         }
-        const bool boundary = i == 0 || (!is_word_char(source[i - 1]) && source[i - 1] != '.');
+        const bool boundary = i == 0 || (!is_identifier_char(source[i - 1]) && source[i - 1] != '.');
         // GLSL, Godot: vecN(L).c, where L may be negative (kept in parentheses).
         if (boundary && source.compare(i, 3, "vec") == 0 && i + 4 < n && source[i + 3] >= '2' && source[i + 3] <= '4' && source[i + 4] == '(') {
             const size_t value = i + 5;

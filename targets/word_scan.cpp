@@ -7,12 +7,12 @@ std::string rewrite_words(const std::string& text, const std::function<std::opti
     out.reserve(text.size());
     size_t last = 0;
     for (size_t at = 0; at < text.size();) {
-        if (!is_word_char(text[at])) {
+        if (!is_identifier_char(text[at])) {
             ++at;
             continue;
         }
         size_t end = at;
-        while (end < text.size() && is_word_char(text[end])) ++end;
+        while (end < text.size() && is_identifier_char(text[end])) ++end;
         if (auto replaced = rewrite(std::string_view(text).substr(at, end - at))) {
             out.append(text, last, at - last);
             out += *replaced;
@@ -30,9 +30,9 @@ std::string replace_member_access(const std::string& text, const std::string& in
     std::string out;
     size_t last = 0;
     for (size_t at = text.find(access); at != std::string::npos; at = text.find(access, at + 1)) {
-        if (at < last || (at > 0 && is_word_char(text[at - 1]))) continue;
+        if (at < last || (at > 0 && is_identifier_char(text[at - 1]))) continue;
         size_t end = at + access.size();
-        while (end < text.size() && is_word_char(text[end])) ++end;
+        while (end < text.size() && is_identifier_char(text[end])) ++end;
         if (end == at + access.size()) continue;  // no member name follows
         out.append(text, last, at - last);
         out += replace(text.substr(at + access.size(), end - at - access.size()));

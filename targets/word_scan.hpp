@@ -8,11 +8,9 @@
 #include <string>
 #include <string_view>
 
-namespace crtforge::detail {
+#include "crtforge/identifier_chars.hpp"
 
-inline bool is_word_char(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-}
+namespace crtforge::detail {
 
 // `text` with each word for which `rewrite(word)` gives a value replaced by it.
 std::string rewrite_words(const std::string& text, const std::function<std::optional<std::string>(std::string_view word)>& rewrite);

@@ -4,6 +4,12 @@
 // report as one process: retroarch_corpus_test.cpp.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "crtforge/validate/corpus_workers.hpp"
@@ -42,6 +48,7 @@ for a in "$@"; do
     CRASH) kill -SEGV $$ ;;
     FAIL) exit 3 ;;
     STOP) exit 0 ;;
+    TELL*) mkdir "$TMPDIR/left-behind" && printf '%s' "$TMPDIR" > "${a#TELL}" ;;
     *) printf '%s\n' "$a" >&"$fd" ;;
   esac
 done)";
@@ -86,7 +93,10 @@ TEST_CASE("a corpus row goes through its line of JSON and back unchanged", "[cor
 
 TEST_CASE("the sweep puts each worker's rows in report order and isolates a preset that kills its worker", "[corpus-workers]") {
     const std::vector<std::string> presets{"a/1.slangp", "a/2.slangp", "b/3.slangp", "b/4.slangp", "c/5.slangp", "c/6.slangp", "c/7.slangp"};
-    const CorpusRequest request = request_of(presets);
+    CorpusRequest request = request_of(presets);
+    // With two threads a worker's last preset overlaps the next worker's start: two run at once.
+    request.jobs = GENERATE(1u, 2u);
+    INFO("jobs " << request.jobs);
     // Rows come back in an order of the worker's choosing (last first here): the report's is the request's.
     size_t calls = 0, last_done = 0;
     auto progress = [&](size_t done, size_t total, const CorpusRow&) {
@@ -125,6 +135,29 @@ TEST_CASE("the sweep puts each worker's rows in report order and isolates a pres
             }
         }
         CHECK(calls == presets.size());
+    }
+    SECTION("what a crashed worker leaves in its temporary folder goes with the sweep's") {
+        const std::string told = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/crtforge-workers-test-" +
+                                 std::to_string(::getpid());
+        auto line = [&](const std::string& p) {
+            if (p == "a/1.slangp") return "TELL" + told;  // then its row: a TELL is not a row
+            return p == "a/2.slangp" ? std::string("CRASH") : corpus_row_line(full_row(request, p));
+        };
+        CorpusWorkers w = shell_workers(3, line);
+        const auto base = w.arguments;
+        w.arguments = [&, base](const std::vector<std::string>& names, int fd) {
+            auto args = base(names, fd);
+            if (names.front() == "a/1.slangp") args.insert(args.begin() + 5, corpus_row_line(full_row(request, "a/1.slangp")));
+            return args;
+        };
+        auto run = run_corpus_in_workers(request, w);
+        REQUIRE(run.ok());
+        std::ifstream in(told);
+        const std::string folder((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::remove(told.c_str());
+        REQUIRE_FALSE(folder.empty());
+        CHECK_FALSE(std::filesystem::exists(folder));
+        CHECK(run.value().rows[1].targets.at("spirv").status == "crashed");
     }
     SECTION("a shard runs only its presets") {
         CorpusRequest shard = request;

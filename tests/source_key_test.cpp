@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "crtforge/bounded_memo.hpp"
+#include "crtforge/spirv_compiler.hpp"
 #include "generator/spirv_source_key.hpp"
 
 namespace {
@@ -101,4 +102,26 @@ TEST_CASE("a memo claim makes a second worker wait for the first's value", "[cac
     const auto other = memo.claim("other");  // a claim of another key does not wait
     const auto again = memo.claim("key");    // nor one of a key no one holds
     CHECK_FALSE(memo.find("other"));
+}
+
+TEST_CASE("spirv-val remembers the modules it passed, never a module that differs from one", "[compile][cache]") {
+    CompileOptions options;
+    auto module = compile_to_spirv("#version 450\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(0.5); }\n", options);
+    REQUIRE(module.ok());
+    const SpirvBinary& words = module.value();
+    CHECK(validate_spirv(words).ok());  // passed by the compiler already: remembered
+    CHECK(validate_spirv(words).ok());
+    // The same size, one word changed (the id bound to 0: no id may be used): not the remembered module.
+    SpirvBinary broken = words;
+    broken[3] = 0;
+    const Status once = validate_spirv(broken), twice = validate_spirv(broken);
+    CHECK_FALSE(once.ok());
+    CHECK_FALSE(twice.ok());
+    // A module cut short, and a module with a word appended, are judged on their own bytes too.
+    SpirvBinary shorter(words.begin(), words.end() - 1);
+    CHECK_FALSE(validate_spirv(shorter).ok());
+    SpirvBinary longer = words;
+    longer.push_back(0x00010000u);  // half an instruction header: a word count of 1, opcode 0
+    CHECK_FALSE(validate_spirv(longer).ok());
+    CHECK(validate_spirv(words).ok());
 }

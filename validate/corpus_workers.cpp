@@ -3,6 +3,7 @@
 #include "crtforge/validate/corpus_workers.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "crtforge/files.hpp"
 #include "runtime/common/process_util.hpp"
 
 namespace crtforge {
@@ -24,21 +26,39 @@ namespace {
 constexpr int kRowsFd = 3;                     // the rows' descriptor in the worker
 constexpr size_t kMaxRowLine = 4u << 20;       // rows hold short reasons: a longer line is not a row
 
-struct WorkerEnd {
-    int status = 0;                      // waitpid's
-    std::vector<CorpusRow> rows;         // in the order written
+// A worker running: its batch (indexes into the shard's presets), the rows it has written, and the
+// part of a line not ended yet.
+struct Worker {
+    pid_t pid = -1;
+    int fd = -1;
+    std::vector<size_t> batch;
+    size_t rows = 0;
+    std::string pending;
 };
 
-// Starts a worker for `presets` and reads its rows until it closes the pipe; `on_row` sees each as it
-// arrives (the progress bar), before the worker has ended.
-Result<WorkerEnd> run_worker(const CorpusWorkers& workers, const std::vector<std::string>& presets,
-                             const std::function<Status(const CorpusRow&)>& on_row) {
+// The workers still running; on an early return every one is killed and reaped, so a failed sweep
+// leaves no process behind.
+struct Workers {
+    std::vector<Worker> running;
+    ~Workers() {
+        for (Worker& w : running) {
+            ::kill(w.pid, SIGKILL);
+            ::close(w.fd);
+            int status = 0;
+            while (::waitpid(w.pid, &status, 0) < 0 && errno == EINTR) {
+            }
+        }
+    }
+};
+
+Result<Worker> start_worker(const CorpusWorkers& workers, const std::vector<std::string>& presets, std::vector<size_t> batch,
+                            const std::string& scratch) {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) return make_error(std::string("cannot make a pipe: ") + std::strerror(errno), {}, 0, "corpus");
     detail::SpawnSpec spec;
     spec.executable = workers.executable;
     spec.args = workers.arguments(presets, kRowsFd);
-    spec.env = detail::child_environment({});
+    spec.env = detail::child_environment({{"TMPDIR", scratch}});
     spec.output_fd = STDERR_FILENO;  // a worker's messages are the sweep's
     spec.extra_fd = std::make_pair(fds[1], kRowsFd);
     auto pid = detail::spawn(spec);
@@ -47,35 +67,26 @@ Result<WorkerEnd> run_worker(const CorpusWorkers& workers, const std::vector<std
         ::close(fds[0]);
         return pid.error();
     }
-    WorkerEnd end;
-    Status failed = Ok{};
-    std::string pending;
-    char buffer[1 << 16];
-    for (;;) {
-        const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        pending.append(buffer, static_cast<size_t>(n));
-        size_t start = 0;
-        for (size_t nl; failed.ok() && (nl = pending.find('\n', start)) != std::string::npos; start = nl + 1) {
-            auto row = corpus_row_from_line(pending.substr(start, nl - start));
-            if (!row.ok()) failed = row.error();
-            else if (failed = on_row(row.value()); failed.ok()) end.rows.push_back(std::move(row.value()));
-        }
-        pending.erase(0, start);
-        if (failed.ok() && pending.size() > kMaxRowLine) failed = make_error("a corpus worker wrote a line too long to be a row", {}, 0, "corpus");
-        if (!failed.ok()) {
-            ::kill(pid.value(), SIGKILL);  // its rows can no longer be trusted
-            break;
-        }
+    Worker w;
+    w.pid = pid.value();
+    w.fd = fds[0];
+    w.batch = std::move(batch);
+    return w;
+}
+
+// The rows in what `w` wrote since: each complete line handed to `on_row`.
+Status take_rows(Worker& w, const char* data, size_t size, const std::function<Status(const Worker&, const CorpusRow&)>& on_row) {
+    w.pending.append(data, size);
+    size_t start = 0;
+    for (size_t nl; (nl = w.pending.find('\n', start)) != std::string::npos; start = nl + 1) {
+        auto row = corpus_row_from_line(w.pending.substr(start, nl - start));
+        if (!row.ok()) return row.error();
+        if (auto s = on_row(w, row.value()); !s.ok()) return s;
+        ++w.rows;
     }
-    ::close(fds[0]);
-    while (::waitpid(pid.value(), &end.status, 0) < 0) {
-        if (errno != EINTR) return make_error(std::string("cannot wait for a corpus worker: ") + std::strerror(errno), {}, 0, "corpus");
-    }
-    if (!failed.ok()) return failed.error();
-    if (!pending.empty() && WIFEXITED(end.status)) return make_error("a corpus worker's last row is cut short", {}, 0, "corpus");
-    return end;
+    w.pending.erase(0, start);
+    if (w.pending.size() > kMaxRowLine) return make_error("a corpus worker wrote a line too long to be a row", {}, 0, "corpus");
+    return Ok{};
 }
 
 }  // namespace
@@ -98,45 +109,87 @@ Result<CorpusReport> run_corpus_in_workers(const CorpusRequest& request, const C
         batches.push_back(std::move(batch));
     }
     size_t done = 0;
-    while (!batches.empty()) {
-        const std::vector<size_t> batch = std::move(batches.front());
-        batches.pop_front();
-        std::vector<std::string> names;
-        for (size_t i : batch) names.push_back(mine[i]);
-        auto on_row = [&](const CorpusRow& row) -> Status {
-            auto it = slot.find(row.preset);
-            if (it == slot.end() || have[it->second] || std::find(batch.begin(), batch.end(), it->second) == batch.end())
-                return make_error("a corpus worker wrote a row for '" + row.preset + "', not one of its presets or one it already wrote", {}, 0, "corpus");
-            have[it->second] = true;
-            report.rows[it->second] = row;
-            ++done;
-            if (progress) progress(done, mine.size(), row);
-            return Ok{};
-        };
-        auto end = run_worker(workers, names, on_row);
-        if (!end.ok()) return end.error();
+    auto on_row = [&](const Worker& w, const CorpusRow& row) -> Status {
+        auto it = slot.find(row.preset);
+        if (it == slot.end() || have[it->second] || std::find(w.batch.begin(), w.batch.end(), it->second) == w.batch.end())
+            return make_error("a corpus worker wrote a row for '" + row.preset + "', not one of its presets or one it already wrote", {}, 0,
+                              "corpus");
+        have[it->second] = true;
+        report.rows[it->second] = row;
+        ++done;
+        if (progress) progress(done, mine.size(), row);
+        return Ok{};
+    };
+    // What a worker's end means for its batch: nothing left, an error, or presets to run again.
+    auto ended = [&](const Worker& w, int status) -> Status {
         std::vector<size_t> unfinished;
-        for (size_t i : batch)
+        for (size_t i : w.batch)
             if (!have[i]) unfinished.push_back(i);
-        const int status = end.value().status;
         if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
-            return make_error(fmt::format("a corpus worker failed ({}) on {} presets from '{}'", detail::describe_status(status), batch.size(),
-                                          mine[batch.front()]),
+            return make_error(fmt::format("a corpus worker failed ({}) on {} presets from '{}'", detail::describe_status(status), w.batch.size(),
+                                          mine[w.batch.front()]),
                               {}, 0, "corpus");
-        if (unfinished.empty()) continue;
-        if (WIFEXITED(status))
-            return make_error("a corpus worker ended without a row for '" + mine[unfinished.front()] + "'", {}, 0, "corpus");
-        if (batch.size() == 1) {  // this preset kills its worker: say so in its row
-            CorpusRow row = corpus_row_for(request, mine[batch.front()]);
+        if (unfinished.empty()) return Ok{};
+        if (WIFEXITED(status)) return make_error("a corpus worker ended without a row for '" + mine[unfinished.front()] + "'", {}, 0, "corpus");
+        if (w.batch.size() == 1) {  // this preset kills its worker: say so in its row
+            CorpusRow row = corpus_row_for(request, mine[w.batch.front()]);
             for (auto& [name, r] : row.targets) {
                 r.status = "crashed";
                 r.reason = "the worker process running this preset died: " + detail::describe_status(status);
             }
-            if (auto s = on_row(row); !s.ok()) return s.error();
-            continue;
+            return on_row(w, row);
         }
         // Which of the presets in flight killed it is not known: each unfinished one runs alone.
         for (auto it = unfinished.rbegin(); it != unfinished.rend(); ++it) batches.push_front({*it});
+        return Ok{};
+    };
+
+    // The workers' temporary folders go in one of the sweep's, removed at its end: a worker killed by
+    // a signal cannot remove its own. (Declared before `live`: the workers end first.)
+    auto scratch = TemporaryFolder::create("crtforge-sweep");
+    if (!scratch.ok()) return scratch.error();
+    Workers live;
+    const size_t threads = std::max(1u, request.jobs);
+    char buffer[1 << 16];
+    while (!batches.empty() || !live.running.empty()) {
+        // The next batch starts once the newest worker has fewer presets left than threads: its last
+        // presets and the next worker's start-up overlap instead of leaving cores idle.
+        const Worker* newest = live.running.empty() ? nullptr : &live.running.back();
+        if (!batches.empty() && live.running.size() < 2 && (!newest || newest->batch.size() - newest->rows < threads)) {
+            std::vector<std::string> names;
+            for (size_t i : batches.front()) names.push_back(mine[i]);
+            auto w = start_worker(workers, names, std::move(batches.front()), scratch.value().path().string());
+            batches.pop_front();
+            if (!w.ok()) return w.error();
+            live.running.push_back(std::move(w.value()));
+            continue;
+        }
+        std::vector<pollfd> fds;
+        for (const Worker& w : live.running) fds.push_back({w.fd, POLLIN, 0});
+        if (::poll(fds.data(), fds.size(), -1) < 0) {
+            if (errno == EINTR) continue;
+            return make_error(std::string("cannot wait for the corpus workers: ") + std::strerror(errno), {}, 0, "corpus");
+        }
+        for (size_t k = fds.size(); k-- > 0;) {
+            if (!fds[k].revents) continue;
+            Worker& w = live.running[k];
+            const ssize_t n = ::read(w.fd, buffer, sizeof buffer);
+            if (n < 0 && errno == EINTR) continue;
+            if (n > 0) {
+                if (auto s = take_rows(w, buffer, static_cast<size_t>(n), on_row); !s.ok()) return s.error();
+                continue;
+            }
+            // The pipe closed: the worker has ended (or closed it and will).
+            int status = 0;
+            while (::waitpid(w.pid, &status, 0) < 0) {
+                if (errno != EINTR) return make_error(std::string("cannot wait for a corpus worker: ") + std::strerror(errno), {}, 0, "corpus");
+            }
+            ::close(w.fd);
+            const Worker gone = std::move(w);
+            live.running.erase(live.running.begin() + static_cast<std::ptrdiff_t>(k));
+            if (!gone.pending.empty() && WIFEXITED(status)) return make_error("a corpus worker's last row is cut short", {}, 0, "corpus");
+            if (auto s = ended(gone, status); !s.ok()) return s.error();
+        }
     }
     return report;
 }

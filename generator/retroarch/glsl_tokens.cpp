@@ -2,12 +2,12 @@
 
 #include <cctype>
 
+#include "crtforge/identifier_chars.hpp"
+
 namespace crtforge::retroarch {
 
 namespace {
 
-bool ident_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
 // The end of the whitespace, comments and line continuations starting at `i`.
 size_t space_end(const std::string& s, size_t i) {
@@ -34,7 +34,7 @@ size_t number_end(const std::string& s, size_t start) {
     size_t i = start + 1;
     while (i < s.size()) {
         const char c = s[i];
-        if (ident_char(c) || c == '.') ++i;
+        if (crtforge::detail::is_identifier_char(c) || c == '.') ++i;
         else if ((c == '+' || c == '-') && !hex && (s[i - 1] == 'e' || s[i - 1] == 'E')) ++i;
         else break;
     }
@@ -56,8 +56,8 @@ std::vector<GlslToken> tokenize_glsl(const std::string& s) {
         const char c = s[i];
         size_t end = i + 1;
         GlslToken::Kind kind = GlslToken::Kind::Punct;
-        if (ident_start(c)) {
-            while (end < s.size() && ident_char(s[end])) ++end;
+        if (crtforge::detail::is_identifier_start(c)) {
+            while (end < s.size() && crtforge::detail::is_identifier_char(s[end])) ++end;
             kind = GlslToken::Kind::Identifier;
         } else if (std::isdigit(static_cast<unsigned char>(c)) ||
                    (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {

@@ -75,6 +75,25 @@ std::string identifier_from(const std::string& text) {
     return out;
 }
 
+// `name` cut to `longest` characters where it is longer: its start, then `joiner` and a hash of the
+// whole (FNV-1a, 8 hex digits), so two long names that share a start stay apart.
+std::string shortened(std::string name, size_t longest, char joiner) {
+    if (name.size() <= longest) return name;
+    uint32_t hash = 2166136261u;
+    for (char c : name) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+    name.resize(longest - 9);
+    while (!name.empty() && (name.back() == '_' || name.back() == '-')) name.pop_back();
+    return name + joiner + fmt::format("{:08x}", hash);
+}
+
+// "ra_" + the preset's name as an identifier, short enough that its pass selector (<stage>_pass)
+// is still a name crtforge takes (64 characters).
+std::string stage_name_for(const std::string& preset_name) {
+    std::string id = identifier_from(preset_name);
+    id.erase(0, id.find_first_not_of('_'));  // "ra_" + a name that starts with a digit: no "__"
+    return shortened("ra_" + id, detail::kMaxIdentifierLength - std::char_traits<char>::length("_pass"), '_');
+}
+
 std::string relative_to(const std::string& path, const std::string& base) {
     std::error_code ec;
     const fs::path rel = fs::relative(path, base, ec);
@@ -111,9 +130,7 @@ public:
 
     Result<ImportedPreset> run(const std::string& path) {
         out_.name = options_.name.empty() ? imported_preset_name(path) : options_.name;
-        std::string id = identifier_from(out_.name);
-        id.erase(0, id.find_first_not_of('_'));  // "ra_" + a name that starts with a digit: no "__"
-        out_.stage = "ra_" + id;
+        out_.stage = stage_name_for(out_.name);
         out_.passes = preset_.passes.size();
         out_.inputs = preset_.files;
         for (const Diagnostic& w : preset_.warnings) out_.warnings.push_back(w.warning());
@@ -489,8 +506,7 @@ std::string imported_preset_name(const std::string& slangp_path) {
         out += std::isalnum(u) ? static_cast<char>(std::tolower(u)) : c == '_' ? '_' : '-';
     }
     while (!out.empty() && !std::isalnum(static_cast<unsigned char>(out.front()))) out.erase(out.begin());
-    if (out.size() > 64) out.resize(64);
-    return out.empty() ? "imported" : out;
+    return out.empty() ? "imported" : shortened(out, 64, '-');
 }
 
 Result<ImportedPreset> import_slangp(const std::string& slangp_path, const SlangImportOptions& options) {

@@ -299,11 +299,35 @@ struct Translation {
     }
 };
 
-// Every identifier of the text, to make names that are not yet taken.
-std::set<std::string> identifiers(const Tokens& t) {
+// The tokens that name a layout qualifier (`location`, `binding`, `std140` in `layout(std140,
+// binding = 0)`): words of the language there, not names of the shader's, whatever a parameter
+// or a rename is called. A qualifier's value (`location = N`) is an expression and not one.
+std::vector<bool> layout_qualifier_names(const Tokens& t) {
+    std::vector<bool> out(t.size(), false);
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (t[i].kind != Kind::Identifier || t[i].text != "layout") continue;
+        size_t k = next_significant(t, i);
+        if (k >= t.size() || t[k].text != "(") continue;
+        int depth = 0;
+        std::string before;  // the last significant token at the qualifier list's own depth
+        for (; k < t.size(); ++k) {
+            const GlslToken& token = t[k];
+            if (token.kind == Kind::Space) continue;
+            if (token.text == "(") ++depth;
+            if (token.text == ")" && --depth == 0) break;
+            if (depth == 1 && token.kind == Kind::Identifier && (before == "(" || before == ",")) out[k] = true;
+            if (depth == 1 || token.text == "(") before = token.text;
+        }
+        i = k;
+    }
+    return out;
+}
+
+// Every identifier of the text but a layout qualifier's name, to make names that are not yet taken.
+std::set<std::string> identifiers(const Tokens& t, const std::vector<bool>& qualifier_names) {
     std::set<std::string> out;
-    for (const GlslToken& token : t)
-        if (token.kind == Kind::Identifier) out.insert(token.text);
+    for (size_t i = 0; i < t.size(); ++i)
+        if (t[i].kind == Kind::Identifier && !qualifier_names[i]) out.insert(t[i].text);
     return out;
 }
 
@@ -362,7 +386,8 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
             if (b.instance.empty()) bare_member[m.name] = &m;
 
     // Names the rewrite brings in; where the shader has them already, its own get another name.
-    const std::set<std::string> taken = identifiers(t);
+    const std::vector<bool> qualifier_names = layout_qualifier_names(t);
+    const std::set<std::string> taken = identifiers(t, qualifier_names);
     std::set<std::string> introduced = {"source", "sourceSize", "outputSize", "viewportSize", "frameCount", "time", "CrtParams",
                                         "CRT_RA_SIZE", kShaderMain, "crtCorner"};
     for (const Block& b : d.blocks)
@@ -432,7 +457,7 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
             if (token.kind == Kind::Space) out.push_back(token);  // line breaks keep the lines where they were
             continue;
         }
-        if (token.kind != Kind::Identifier) { out.push_back(token); continue; }
+        if (token.kind != Kind::Identifier || qualifier_names[i]) { out.push_back(token); continue; }
         const long before = previous_significant(t, i);
         const bool after_dot = before >= 0 && t[static_cast<size_t>(before)].text == ".";
         if (!after_dot && bare_member.count(token.text)) {

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "crtforge/identifier_chars.hpp"
 #include "generator/retroarch/retroarch_files.hpp"
 #include "generator/toml_reader.hpp"
 
@@ -153,7 +154,7 @@ bool ends_conditional_branch(const std::string& text) {
         const std::string_view w(word);
         if (text.compare(i, w.size(), w) == 0) {
             const size_t after = i + w.size();
-            if (after == text.size() || !(std::isalnum(static_cast<unsigned char>(text[after])) || text[after] == '_'))
+            if (after == text.size() || !crtforge::detail::is_identifier_char(text[after]))
                 return true;
         }
     }

@@ -44,7 +44,8 @@ struct ImportedPreset {
     std::vector<std::string> inputs;    // every file read (.slangp chain, shaders, includes, LUTs)
 };
 
-// A preset name from a .slangp's file name: lower case, '-' for anything but letters, digits, '_'.
+// A preset name from a .slangp's file name: lower case, '-' for anything but letters, digits, '_';
+// over 64 characters, its start and a hash of the whole.
 std::string imported_preset_name(const std::string& slangp_path);
 
 Result<ImportedPreset> import_slangp(const std::string& slangp_path, const SlangImportOptions& options);

@@ -35,7 +35,8 @@ Result<SpirvBinary> compile_to_spirv(const std::string& source, const CompileOpt
 // where it was and #line directives kept. Errors (#error, a malformed directive) carry file:line.
 Result<std::string> preprocess_vulkan_glsl(const std::string& source, ShaderStage stage, const std::string& name);
 
-// spirv-val on a module (Vulkan 1.0 environment).
+// spirv-val on a module (Vulkan 1.0 environment). Modules found valid are remembered (a bounded
+// process memo, compared word for word), so the same bytes are checked once.
 Status validate_spirv(const SpirvBinary& binary);
 
 // Text form, for debugging and tests.

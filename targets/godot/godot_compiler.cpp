@@ -61,7 +61,7 @@ std::string rewrite_calls(const std::string& text, const std::string& function,
     std::string out;
     size_t last = 0;
     for (size_t at = text.find(call); at != std::string::npos; at = text.find(call, at + 1)) {
-        if (at < last || (at > 0 && detail::is_word_char(text[at - 1]))) continue;
+        if (at < last || (at > 0 && detail::is_identifier_char(text[at - 1]))) continue;
         std::vector<std::string> args(1);
         int depth = 0;
         size_t end = at + call.size();
