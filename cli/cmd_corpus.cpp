@@ -3,6 +3,7 @@
 //                [--uniforms default|none|all|NAMES] [--optimised-jit] [--presets-per-process N]
 // Every .slangp under DIR through import, SPIR-V, each target's emitter and consumer, a render by
 // each consumer judged against Vulkan: the dashboard of validate/corpus_report.cpp.
+#include <fcntl.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -164,6 +165,8 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
         if (!display.ok()) return report(display.error());
         const bool worker = a->rows_fd >= 0;
         if (worker != !a->worker_presets.empty()) return report(make_error("give both or neither", {}, 0, "--rows-fd"));
+        if (worker && ::fcntl(a->rows_fd, F_GETFL) < 0)
+            return report(make_error(fmt::format("descriptor {} is not open", a->rows_fd), {}, 0, "--rows-fd"));
         // A worker is given its presets; the sweep lists DIR's.
         auto found = worker ? Result<std::vector<std::string>>(a->worker_presets) : list_corpus_presets(a->dir);
         if (!found.ok()) return report(found.error());

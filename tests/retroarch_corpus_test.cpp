@@ -485,6 +485,9 @@ TEST_CASE("corpus in worker processes writes the report one process writes byte 
     auto lone = test::run_crtforge(base + " --rows-fd 3");
     CHECK(lone.exit_code == 2);
     CHECK(lone.err.find("--rows-fd") != std::string::npos);
+    auto closed = test::run_crtforge(base + " --rows-fd 1000 --worker-preset good/plain.slangp");
+    CHECK(closed.exit_code == 2);
+    CHECK(closed.err.find("'--rows-fd': descriptor 1000 is not open") != std::string::npos);
 }
 
 TEST_CASE("GLSL ES 3.00 and WebGL 2 count gl_FragCoord's rows from the top as Vulkan does (ES has no origin_upper_left)",
