@@ -150,76 +150,6 @@ TEST_CASE("corpus runs every preset of a library through import, SPIR-V, each ta
     }
 }
 
-TEST_CASE("presets with long file names import into names crtforge takes, kept apart by a hash", "[retroarch][corpus-command]") {
-    test::TempDir dir;
-    write_library(dir);
-    // Two passes each (so the stage has a pass selector, <stage>_pass), names of 70 characters that
-    // differ only past the 56th: the corpus has file names of up to 73.
-    const std::string stem = "crt-royale-fast-ntsc-composite-slotmask-genesis-rainbow-effect-longer";
-    const std::string two = "shaders = 2\nshader0 = ../shaders/plain.slang\nshader1 = ../shaders/plain.slang\n";
-    test::write_file(dir / ("long/" + stem + "-a.slangp"), two);
-    test::write_file(dir / ("long/" + stem + "-b.slangp"), two);
-    std::set<std::string> stages;
-    for (const char* end : {"-a", "-b"}) {
-        SlangImportOptions options;
-        options.root = dir.path();
-        auto imported = import_slangp(dir / ("long/" + stem + end + ".slangp"), options);
-        REQUIRE(imported.ok());
-        INFO(imported.value().stage);
-        CHECK(imported.value().stage.size() + 5 <= 64);
-        CHECK(imported.value().name.size() <= 64);
-        CHECK(imported.value().stage.rfind("ra_crt_royale_fast_ntsc", 0) == 0);
-        CHECK(imported.value().stage.find("__") == std::string::npos);
-        stages.insert(imported.value().stage);
-    }
-    CHECK(stages.size() == 2);
-
-    CorpusRequest request;
-    request.root = dir.path();
-    request.presets = {"long/" + stem + "-a.slangp", "long/" + stem + "-b.slangp"};
-    request.targets = {TargetId::Spirv};
-    request.source_width = 32;
-    request.source_height = 24;
-    request.display_width = 64;
-    request.display_height = 48;
-    auto run = run_corpus(request, Cache());
-    REQUIRE(run.ok());
-    for (const CorpusRow& row : run.value().rows) {
-        INFO(row.preset << ": " << row.import_error << row.targets.at("spirv").reason);
-        CHECK(row.targets.at("spirv").status == "agrees");
-    }
-}
-
-TEST_CASE("parameters named like layout qualifiers leave the qualifiers alone", "[retroarch][corpus-command]") {
-    // misc/cocktail-cabinet names a parameter `location`: renamed away from the shader's own words,
-    // it must not reach `layout(location = 1)`.
-    test::TempDir dir;
-    test::write_file(dir / "shaders/words.slang",
-                     test::slang_program({"float location; float binding; ",
-                                          "#pragma parameter location \"Location\" 0.25 0.0 1.0 0.05\n"
-                                          "#pragma parameter binding \"Binding\" 2.0 1.0 3.0 1.0\n",
-                                          "layout(location = 1) {io} vec2 vShift;\n", "    vShift = vec2(params.location, 0.0);\n",
-                                          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-                                          "void main() {\n"
-                                          "    FragColor = vec4(texture(Source, vTexCoord + vShift).rgb * params.binding * 0.5, 1.0);\n"
-                                          "}\n"}));
-    test::write_file(dir / "words.slangp", "shaders = 1\nshader0 = shaders/words.slang\n");
-    CorpusRequest request;
-    request.root = dir.path();
-    request.presets = {"words.slangp"};
-    request.targets = {TargetId::Spirv, TargetId::Glsl330};
-    request.source_width = 32;
-    request.source_height = 24;
-    request.display_width = 64;
-    request.display_height = 48;
-    auto run = run_corpus(request, Cache());
-    REQUIRE(run.ok());
-    const CorpusRow& row = run.value().rows.front();
-    INFO(row.import_error << row.spirv_error << row.targets.at("spirv").reason << row.targets.at("glsl330").reason);
-    CHECK(row.targets.at("spirv").status == "agrees");
-    CHECK(row.targets.at("glsl330").status == "agrees");
-}
-
 TEST_CASE("a failure's reason class drops where it happened and what varies", "[retroarch][corpus-command]") {
     CHECK(corpus_reason_class("/a/b.slang:12: error: frag shader: 'foo' : undeclared identifier") ==
           "frag shader: 'X' : undeclared identifier");
@@ -502,4 +432,48 @@ TEST_CASE("GLSL 3.30, ES 3.00 and WebGL 2 run textureGather as four reads of its
     test::TempDir dir;
     write_gather_library(dir);
     for (TargetId target : {TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2}) check_all_agree(dir, {"gather.slangp"}, target, 0, 100, 75);
+}
+
+TEST_CASE("presets with long file names import into names crtforge takes, kept apart by a hash", "[retroarch][corpus-command]") {
+    test::TempDir dir;
+    write_library(dir);
+    // Two passes each (so the stage has a pass selector, <stage>_pass), names of 70 characters that
+    // differ only past the 56th: the corpus has file names of up to 73.
+    const std::string stem = "crt-royale-fast-ntsc-composite-slotmask-genesis-rainbow-effect-longer";
+    const std::string two = "shaders = 2\nshader0 = ../shaders/plain.slang\nshader1 = ../shaders/plain.slang\n";
+    test::write_file(dir / ("long/" + stem + "-a.slangp"), two);
+    test::write_file(dir / ("long/" + stem + "-b.slangp"), two);
+    std::set<std::string> stages;
+    for (const char* end : {"-a", "-b"}) {
+        SlangImportOptions options;
+        options.root = dir.path();
+        auto imported = import_slangp(dir / ("long/" + stem + end + ".slangp"), options);
+        REQUIRE(imported.ok());
+        INFO(imported.value().stage);
+        CHECK(imported.value().stage.size() + 5 <= 64);
+        CHECK(imported.value().name.size() <= 64);
+        CHECK(imported.value().stage.rfind("ra_crt_royale_fast_ntsc", 0) == 0);
+        CHECK(imported.value().stage.find("__") == std::string::npos);
+        stages.insert(imported.value().stage);
+    }
+    CHECK(stages.size() == 2);
+
+    check_all_agree(dir, {"long/" + stem + "-a.slangp", "long/" + stem + "-b.slangp"}, TargetId::Glsl330);
+}
+
+TEST_CASE("parameters named like layout qualifiers leave the qualifiers alone", "[retroarch][corpus-command]") {
+    // misc/cocktail-cabinet names a parameter `location`: renamed away from the shader's own words,
+    // it must not reach `layout(location = 1)`.
+    test::TempDir dir;
+    test::write_file(dir / "shaders/words.slang",
+                     test::slang_program({"float location; float binding; ",
+                                          "#pragma parameter location \"Location\" 0.25 0.0 1.0 0.05\n"
+                                          "#pragma parameter binding \"Binding\" 2.0 1.0 3.0 1.0\n",
+                                          "layout(location = 1) {io} vec2 vShift;\n", "    vShift = vec2(params.location, 0.0);\n",
+                                          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                          "void main() {\n"
+                                          "    FragColor = vec4(texture(Source, vTexCoord + vShift).rgb * params.binding * 0.5, 1.0);\n"
+                                          "}\n"}));
+    test::write_file(dir / "words.slangp", "shaders = 1\nshader0 = shaders/words.slang\n");
+    check_all_agree(dir, {"words.slangp"}, TargetId::Glsl330);
 }
