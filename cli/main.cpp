@@ -11,6 +11,8 @@
 
 #include "cli/cli_common.hpp"
 #include "crtforge/files.hpp"
+#include "crtforge/lut_file.hpp"
+#include "crtforge/runtime/image_io.hpp"
 #include "crtforge/runtime/process_memory.hpp"
 #include "crtforge/slang_import.hpp"
 #include "crtforge/version.hpp"
@@ -148,6 +150,7 @@ std::string empty_option_value(const CLI::App& app) {
 
 int main(int argc, char** argv) {
     crtforge::keep_freed_memory();  // before anything allocates an image
+    crtforge::set_lut_picture_decoder(&crtforge::read_lut_picture);  // exports ship JPEG LUTs as PNG
     // A file-size limit (ulimit -f) would kill the process by signal mid-write, leaving a partial
     // file: ignored, the write fails with EFBIG instead and the error paths clean up as on a full disk.
     std::signal(SIGXFSZ, SIG_IGN);

@@ -303,7 +303,9 @@ std::string lut_file_path(const LutSpec& lut) {
 }
 
 std::string lut_export_path(const Preset& preset, const LutSpec& lut) {
-    const std::string ext = lut.generator.empty() ? std::filesystem::path(lut.file).extension().string() : ".png";
+    // Generated LUTs are PNG; a file LUT is too wherever a decoder can make it one (lut_files).
+    const bool png = !lut.generator.empty() || lut_picture_decoder();
+    const std::string ext = png ? ".png" : std::filesystem::path(lut.file).extension().string();
     return "luts/" + preset.name + "." + lut.name + ext;
 }
 
@@ -324,16 +326,28 @@ Result<std::map<std::string, std::string>> lut_files(const Preset& preset) {
         }
         // Read and checked at load (crtforge/lut_file.hpp); a LUT resolved outside a library is
         // read and checked here.
+        std::string bytes;
         if (lut.bytes) {
-            files[lut.name] = *lut.bytes;
-            continue;
+            bytes = *lut.bytes;
+        } else {
+            auto data = read_text_file(lut_file_path(lut), kMaxLutFileBytes);
+            if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
+                                              "lut." + lut.name + ".file");
+            if (std::string e = lut_picture_error(data.value()); !e.empty())
+                return make_error("the LUT file '" + lut.file + "' " + e, lut.where.file, lut.where.line, "lut." + lut.name + ".file");
+            bytes = std::move(data.value());
         }
-        auto data = read_text_file(lut_file_path(lut), kMaxLutFileBytes);
-        if (!data.ok()) return make_error("cannot read the LUT file: " + data.error().message, lut.where.file, lut.where.line,
-                                          "lut." + lut.name + ".file");
-        if (std::string e = lut_picture_error(data.value()); !e.empty())
-            return make_error("the LUT file '" + lut.file + "' " + e, lut.where.file, lut.where.line, "lut." + lut.name + ".file");
-        files[lut.name] = std::move(data.value());
+        // A JPEG (any picture but a PNG) ships as the PNG of its decoded texels, where a decoder is
+        // registered (lut_export_path names it .png then).
+        const bool png = bytes.size() >= 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+        if (LutPictureDecoder decode = lut_picture_decoder(); decode && !png) {
+            auto picture = decode(lut_file_path(lut));
+            if (!picture.ok())
+                return make_error("cannot decode the LUT file '" + lut.file + "': " + picture.error().message, lut.where.file,
+                                  lut.where.line, "lut." + lut.name + ".file");
+            bytes = encode_png(picture.value());
+        }
+        files[lut.name] = std::move(bytes);
     }
     return files;
 }

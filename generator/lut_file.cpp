@@ -5,6 +5,7 @@
 #include "crtforge/lut_file.hpp"
 
 #include <array>
+#include <atomic>
 #include <filesystem>
 
 #include <zlib.h>
@@ -200,6 +201,13 @@ std::string check_picture(std::string_view bytes) {
 }
 
 }  // namespace
+
+namespace {
+std::atomic<LutPictureDecoder> registered_decoder{nullptr};
+}  // namespace
+
+void set_lut_picture_decoder(LutPictureDecoder decoder) { registered_decoder = decoder; }
+LutPictureDecoder lut_picture_decoder() { return registered_decoder; }
 
 std::string lut_picture_error(std::string_view bytes) {
     const std::string key = Cache::key({"whole picture", bytes});

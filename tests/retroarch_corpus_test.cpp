@@ -10,6 +10,7 @@
 #include <fstream>
 #include <set>
 
+#include "crtforge/runtime/image_io.hpp"
 #include "crtforge/slang_import.hpp"
 
 #include "crtforge/validate/corpus.hpp"
@@ -476,4 +477,43 @@ TEST_CASE("parameters named like layout qualifiers leave the qualifiers alone", 
                                           "}\n"}));
     test::write_file(dir / "words.slangp", "shaders = 1\nshader0 = shaders/words.slang\n");
     check_all_agree(dir, {"words.slangp"}, TargetId::Glsl330);
+}
+
+TEST_CASE("a JPEG LUT ships as the PNG of its texels, which the shipped WebGPU driver reads like Vulkan", "[retroarch][corpus-command][wgsl]") {
+    // 654 presets of the library (scanline-classic's, uborder's, koko-aio's backdrops) name JPEG
+    // pictures; the driver decodes PNG only. A picture of the library's own, so skipped without it.
+    const std::string jpeg = std::string(CRTFORGE_SOURCE_DIR) + "/../shared/slang-shaders/bezel/koko-aio/textures/backdrop.jpg";
+    if (!std::filesystem::is_regular_file(jpeg)) {
+        WARN("no RetroArch corpus JPEG at " << jpeg << ": skipped");
+        return;
+    }
+    test::TempDir dir;
+    std::filesystem::copy_file(jpeg, dir / "backdrop.jpg");
+    test::write_file(dir / "shaders/lut.slang",
+                     pass("layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                          "layout(set = 0, binding = 3) uniform sampler2D backdrop;\n",
+                          "    FragColor = vec4(mix(texture(Source, vTexCoord).rgb, texture(backdrop, vTexCoord).rgb, 0.75) * params.GAIN, 1.0);"));
+    test::write_file(dir / "lut.slangp", "shaders = 1\nshader0 = shaders/lut.slang\ntextures = backdrop\nbackdrop = backdrop.jpg\n");
+    check_all_agree(dir, {"lut.slangp"}, TargetId::Wgsl);
+
+    // What an export ships: a .png, a whole PNG of the JPEG's texels as the renders decode them.
+    auto exported = test::run_crtforge("export --preset '" + (dir / "lut.slangp") + "' --target wgsl --out '" +
+                                       (dir / "out") + "'");
+    INFO(exported.out << exported.err);
+    REQUIRE(exported.exit_code == 0);
+    std::vector<std::string> luts;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir / "out"))
+        if (entry.path().parent_path().filename() == "luts") luts.push_back(entry.path().string());
+    REQUIRE_FALSE(luts.empty());  // the export's luts/ and the npm package's
+    auto original = read_image(dir / "backdrop.jpg");
+    REQUIRE(original.ok());
+    for (const std::string& lut : luts) {
+        INFO(lut);
+        CHECK(std::filesystem::path(lut).extension() == ".png");
+        auto shipped = read_image(lut);
+        REQUIRE(shipped.ok());
+        CHECK(shipped.value().width == original.value().width);
+        const bool same_texels = shipped.value().rgba == original.value().rgba;  // not the vectors: Catch would print them
+        CHECK(same_texels);
+    }
 }

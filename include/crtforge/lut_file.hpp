@@ -9,9 +9,19 @@
 #include <string_view>
 
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/luts.hpp"
 #include "crtforge/preset.hpp"
 
 namespace crtforge {
+
+// How a LUT file that is not a PNG (a JPEG) becomes one at export: every target then ships PNG
+// LUTs, which every engine reads and the WebGPU driver decodes itself (it has no JPEG decoder, as a
+// page without an image library has none). The core has no image library: a program that has one
+// (the crtforge CLI and the tests: the OpenImageIO module, the same decoder the renders use)
+// registers it. Without one, a LUT file is exported as it is, under its own extension.
+using LutPictureDecoder = Result<LutImage> (*)(const std::string& path);
+void set_lut_picture_decoder(LutPictureDecoder decoder);
+LutPictureDecoder lut_picture_decoder();
 
 // The largest LUT file read (bytes): the corpus's largest picture is a few MB.
 inline constexpr std::uintmax_t kMaxLutFileBytes = std::uintmax_t{64} << 20;

@@ -3,6 +3,8 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <cmath>
 #include <mutex>
 
 #include "crtforge/paths.hpp"
@@ -50,6 +52,18 @@ Result<Image> read_image(const std::string& path) {
     const LoadedModule& m = module();
     if (!m.table) return make_error(m.error, path);
     return m.table->read_image(path);
+}
+
+Result<LutImage> read_lut_picture(const std::string& path) {
+    auto image = read_image(path);
+    if (!image.ok()) return image.error();
+    const Image& in = image.value();
+    LutImage out;
+    out.width = in.width;
+    out.height = in.height;
+    out.rgba.resize(in.rgba.size());
+    for (size_t i = 0; i < in.rgba.size(); ++i) out.rgba[i] = static_cast<uint8_t>(std::lround(std::clamp(in.rgba[i], 0.0f, 1.0f) * 255.0f));
+    return out;
 }
 
 Status write_png(const std::string& path, const Image& image, int bits) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/luts.hpp"
 #include "crtforge/runtime/image.hpp"
 
 namespace crtforge {
@@ -28,6 +29,11 @@ Result<Image> read_image(const std::string& path);
 // both are byte-deterministic (no timestamps or software tags). Errors: empty or malformed image,
 // non-finite pixel values, bits not 8/16, a path that cannot be written.
 Status write_png(const std::string& path, const Image& image, int bits = 8);
+
+// A LUT picture (PNG, JPEG) as 8-bit RGBA, through read_image: the texels the renders sample, each
+// channel value * 255 rounded (exact for 8-bit files). crtforge's LUT picture decoder
+// (crtforge/lut_file.hpp), registered by the CLI and the tests.
+Result<LutImage> read_lut_picture(const std::string& path);
 Status write_exr(const std::string& path, const Image& image);
 
 }  // namespace crtforge
