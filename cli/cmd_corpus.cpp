@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/paths.hpp"
 #include "crtforge/validate/corpus.hpp"
 #include "crtforge/validate/corpus_workers.hpp"
 
@@ -226,9 +227,8 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
             result = run_corpus(request, make_cache(g), corpus_progress());
         } else {
             CorpusWorkers workers;
-            std::error_code exe_ec;
-            workers.executable = std::filesystem::read_symlink("/proc/self/exe", exe_ec).string();
-            if (exe_ec) return report(make_error("cannot find this program to start its workers: " + exe_ec.message(), {}, 0, "corpus"));
+            workers.executable = running_executable();
+            if (workers.executable.empty()) return report(make_error("cannot find this program to start its workers", {}, 0, "corpus"));
             workers.presets_per_process = a->presets_per_process;
             workers.arguments = [a, &g, root](const std::vector<std::string>& presets, int fd) {
                 return worker_arguments(*a, g, root, presets, fd);

@@ -24,9 +24,8 @@ bool holds_data(const fs::path& prefix) {
 std::string find_prefix() {
     if (!explicit_prefix().empty()) return explicit_prefix();
     if (const char* env = std::getenv("CRTFORGE_PREFIX"); env && *env) return env;
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) return {};
+    const fs::path exe = running_executable();
+    if (exe.empty()) return {};
     // Only the executable's own folder and its parent: a deeper search could find a stranger's.
     for (const fs::path& dir : {exe.parent_path(), exe.parent_path().parent_path()})
         if (holds_data(dir)) return dir.string();
@@ -34,6 +33,12 @@ std::string find_prefix() {
 }
 
 }  // namespace
+
+std::string running_executable() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string() : exe.string();
+}
 
 void set_install_prefix(const std::string& prefix) { explicit_prefix() = prefix; }
 

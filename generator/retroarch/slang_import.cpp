@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "crtforge/cache.hpp"
 #include "crtforge/files.hpp"
 #include "crtforge/inert_text.hpp"
 #include "crtforge/lut_file.hpp"
@@ -75,15 +76,14 @@ std::string identifier_from(const std::string& text) {
     return out;
 }
 
-// `name` cut to `longest` characters where it is longer: its start, then `joiner` and a hash of the
-// whole (FNV-1a, 8 hex digits), so two long names that share a start stay apart.
+// `name` cut to `longest` characters where it is longer: its start, then `joiner` and 8 hex digits
+// of the whole's Cache::key, so two long names that share a start stay apart.
 std::string shortened(std::string name, size_t longest, char joiner) {
     if (name.size() <= longest) return name;
-    uint32_t hash = 2166136261u;
-    for (char c : name) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+    const std::string hash = Cache::key({name}).substr(0, 8);
     name.resize(longest - 9);
     while (!name.empty() && (name.back() == '_' || name.back() == '-')) name.pop_back();
-    return name + joiner + fmt::format("{:08x}", hash);
+    return name + joiner + hash;
 }
 
 // "ra_" + the preset's name as an identifier, short enough that its pass selector (<stage>_pass)

@@ -21,6 +21,9 @@
 
 namespace crtforge {
 
+// The running program's path (/proc/self/exe), or "" when it cannot be read: where the prefix is
+// looked for, and what `crtforge corpus` starts as its workers.
+std::string running_executable();
 // Call before any other crtforge call that loads data (not thread-safe against concurrent lookups).
 void set_install_prefix(const std::string& prefix);
 
