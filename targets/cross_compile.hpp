@@ -13,6 +13,7 @@
 #include "crtforge/targets.hpp"
 #include "targets/float_literals.hpp"
 #include "targets/spirv_flat_arrays.hpp"
+#include "targets/spirv_split_io_structs.hpp"
 #include "targets/spirv_gather_lowering.hpp"
 
 namespace crtforge::detail {
@@ -36,13 +37,16 @@ std::string replace_block_access(const std::string& text, const std::string& ins
 // Compiles `module` with a Compiler (CompilerGLSL or a subclass) after `configure(compiler)` set
 // its options. `target` names the language in diagnostics ("GLSL 330", "HLSL SM 5.0"). With
 // `flat_arrays`, arrays of arrays are flattened first (spirv_flat_arrays), for languages without them;
-// with `lower_gathers`, textureGather becomes four reads (spirv_gather_lowering).
+// with `lower_gathers`, textureGather becomes four reads (spirv_gather_lowering); with `split_io_structs`,
+// struct stage inputs and outputs become one per member (spirv_split_io_structs): SPIRV-Cross splits
+// them itself for ES but drops their `flat`, which an int member must have.
 template <typename Compiler, typename Configure>
 Result<std::string> cross_compile(const SpirvBinary& module, ShaderStage stage, const std::string& target,
                                   Configure&& configure, const char* instance_name = nullptr, bool flat_arrays = false,
-                                  bool lower_gathers = false) {
+                                  bool lower_gathers = false, bool split_io_structs = false) {
     try {
         SpirvBinary words = module;
+        if (split_io_structs) split_interface_structs(words);
         if (flat_arrays) flatten_arrays_of_arrays(words);
         if (lower_gathers) lower_texture_gathers(words);
         Compiler compiler(std::move(words));

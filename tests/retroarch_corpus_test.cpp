@@ -302,6 +302,37 @@ void write_original_library(const test::TempDir& dir) {
                                    "shader1 = shaders/original.slang\nfilter_linear1 = false\n");
 }
 
+// structs.slangp: scanline-classic's way of handing the vertex stage's work to the fragment stage,
+// struct varyings (one with a nested struct and a matrix, a flat one with an int), a struct built
+// whole and a constant one, read whole and by member; and inverse() of each size (its colour
+// matrices), which WGSL has no builtin for. Every varying is affine in TexCoord or the same at every
+// vertex: RetroArch's quad and crtforge's full-screen triangle interpolate those alike.
+void write_structs_library(const test::TempDir& dir) {
+    test::write_file(dir / "shaders/structs.slang",
+          test::slang_program({"", "struct Timing { float phase; vec2 scale; };\n"
+                                   "struct Grade { vec3 tint; Timing timing; mat3 matrix; };\n"
+                                   "struct Counter { int band; float weight; };\n",
+                               "layout(location = 1) {io} Grade grade;\n"
+                               "layout(location = 7) flat {io} Counter counter;\n",
+                               "    grade = Grade(vec3(0.9, 0.6, 0.3) + 0.1 * TexCoord.x, Timing(TexCoord.y * 6.0, vec2(1.0, 0.5 + TexCoord.x)),\n"
+                               "                  mat3(1.0, 0.2, 0.1, 0.1, 0.9 + 0.1 * TexCoord.y, 0.1, 0.05, 0.1, 1.1));\n"
+                               "    if (params.SourceSize.x > 16.0) grade.timing = Timing(1.0, vec2(0.5, 2.0));  // a constant struct stored\n"
+                               "    counter.band = int(params.SourceSize.x) / 3 + 1;  // flat: the same at every vertex\n"
+                               "    counter.weight = 0.75;\n",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "vec3 graded(Grade g, vec3 rgb) {\n"
+                               "    vec2 k = inverse(mat2(g.timing.scale.x, 0.3, 0.2, g.timing.scale.y)) * vec2(0.5, 0.25);\n"
+                               "    vec4 w = inverse(mat4(2.0, 0.1, 0.0, 0.3, 0.0, 1.5 + k.x, 0.2, 0.0, 0.1, 0.0, 1.0 + k.y, 0.1, 0.0, 0.2, 0.0, 1.0)) * vec4(rgb, 1.0);\n"
+                               "    return inverse(g.matrix) * w.xyz * g.tint * (0.75 + 0.25 * sin(g.timing.phase)) + 0.1 * vec3(k, w.w);\n"
+                               "}\n"
+                               "void main() {\n"
+                               "    Grade whole = grade;  // the struct read whole, handed to a function\n"
+                               "    vec3 rgb = graded(whole, texture(Source, vTexCoord).rgb);\n"
+                               "    FragColor = vec4(rgb * (counter.band % 2 == 0 ? 1.0 : counter.weight), 1.0);\n"
+                               "}\n"}));
+    test::write_file(dir / "structs.slangp", "shaders = 1\nshader0 = shaders/structs.slang\nfilter_linear0 = false\n");
+}
+
 // feedback.slangp: three passes, the second reading its own last output (trailFeedback).
 void write_feedback_library(const test::TempDir& dir) {
     test::write_file(dir / "shaders/zoom.slang", zoom_out_pass());
@@ -332,6 +363,16 @@ TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Wgsl, 3);
 }
 
+
+TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL), and inverse() runs on WebGPU, like Vulkan",
+          "[retroarch][corpus-command][structs]") {
+    test::TempDir dir;
+    write_structs_library(dir);
+    for (TargetId target : {TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3, TargetId::GlslEs300}) {
+        INFO(target_info(target).name);
+        check_all_agree(dir, {"structs.slangp"}, target, 0, 100, 75);
+    }
+}
 
 TEST_CASE("GLSL ES 3.00 and GLSL 3.30 run a pass with a non-square matrix and an array of arrays (flattened) like Vulkan",
           "[retroarch][corpus-command][flat-arrays]") {

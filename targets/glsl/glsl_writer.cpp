@@ -107,7 +107,7 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
             o.emit_uniform_buffer_as_plain_uniforms = options.plain_uniforms;
             c.set_common_options(o);
         }, options.plain_uniforms ? kPlainBlockMarker : nullptr, /*flat_arrays*/ options.es ? options.version < 310 : options.version < 430,
-           /*lower_gathers*/ options.es ? options.version < 310 : options.version < 400);
+           /*lower_gathers*/ options.es ? options.version < 310 : options.version < 400, /*split_io_structs*/ options.es);
     });
     if (!out.ok()) return out;
     if (!options.es)

@@ -3,6 +3,7 @@
 #include "targets/godot/spirv_constant_indices.hpp"
 #include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/spirv_flat_arrays.hpp"
+#include "targets/spirv_split_io_structs.hpp"
 #include "targets/spirv_gather_lowering.hpp"
 #include "targets/float_literals.hpp"
 #include "targets/word_scan.hpp"
@@ -121,6 +122,7 @@ constexpr const char* kTau = "6.28318530717959";
 }  // namespace
 
 std::vector<uint32_t> in_godot_types(std::vector<uint32_t> words, int godot_version) {
+    detail::split_interface_structs(words);  // Godot's varyings are single values
     detail::flatten_arrays_of_arrays(words);
     square_matrices(words);
     detail::lower_texture_gathers(words);  // Godot's language has no textureGather with a component

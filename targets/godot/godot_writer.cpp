@@ -1,10 +1,14 @@
 #include "targets/godot/godot_writer.hpp"
 
+#include <map>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "crtforge/version.hpp"
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot_scene.hpp"
+#include "targets/word_scan.hpp"
 
 namespace crtforge::godot {
 
@@ -151,6 +155,45 @@ std::string format_reduction(PixelFormat format) {
 
 const char* shader_extension(int version) { return version >= 4 ? ".gdshader" : ".shader"; }
 
+// The struct declarations SPIRV-Cross printed at the top level of `text` ("struct Name\n{...};\n"),
+// by name, each with where it starts and its whole text.
+std::map<std::string, std::pair<size_t, std::string>> struct_declarations(const std::string& text) {
+    std::map<std::string, std::pair<size_t, std::string>> out;
+    for (size_t at = 0; (at = text.find("struct ", at)) != std::string::npos; at += 7) {
+        if (at > 0 && text[at - 1] != '\n') continue;
+        const size_t name_end = text.find('\n', at);
+        const size_t end = text.find("\n};\n", at);
+        if (name_end == std::string::npos || end == std::string::npos) break;
+        out[text.substr(at + 7, name_end - at - 7)] = {at, text.substr(at, end + 4 - at)};
+    }
+    return out;
+}
+
+// vertex() follows the fragment stage's text in one file, and Godot refuses a struct declared twice:
+// the vertex stage's copy of a struct the fragment stage declares alike is dropped, one declared
+// otherwise under the same name is renamed (<name>_v).
+std::string without_repeated_structs(std::string vertex, const std::string& fragment) {
+    const auto fragment_structs = struct_declarations(fragment);
+    std::map<std::string, std::string> renamed;
+    const auto vertex_structs = struct_declarations(vertex);
+    for (auto it = vertex_structs.rbegin(); it != vertex_structs.rend(); ++it) {
+        const auto& [name, where] = *it;
+        auto same = fragment_structs.find(name);
+        if (same == fragment_structs.end()) continue;
+        if (same->second.second == where.second) {
+            vertex.erase(where.first, where.second.size());
+        } else {
+            renamed[name] = name + "_v";
+        }
+    }
+    if (renamed.empty()) return vertex;
+    return detail::rewrite_words(vertex, [&](std::string_view word) -> std::optional<std::string> {
+        auto r = renamed.find(std::string(word));
+        if (r == renamed.end()) return std::nullopt;
+        return r->second;
+    });
+}
+
 Result<std::string> generate_shader(const TargetInput& input, const Options& options) {
     // A program pass (an imported RetroArch shader) brings its vertex stage: translated first, its
     // outputs become the varyings the fragment stage's header declares, and vertex() follows.
@@ -170,7 +213,7 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
     try {
         GodotCompiler compiler(*input.fragment, *input.variant, options, ShaderStage::Fragment, std::move(varyings));
         std::string text = compiler.compile_godot();
-        if (!vertex.empty()) text += "\n" + vertex;
+        if (!vertex.empty()) text += "\n" + without_repeated_structs(vertex, text);
         return text;
     } catch (const std::exception& e) {
         return make_validation_error(fmt::format("SPIRV-Cross cannot express the fragment shader in Godot {}: {}",

@@ -41,6 +41,8 @@ private:
     // ---- values ----
     void instruction(const Instruction& inst);
     void ext_instruction(const Instruction& inst);
+    // The name of the module helper that inverts an n x n f32 matrix (declared on first use).
+    std::string matrix_inverse_helper(uint32_t n);
     void image_instruction(const Instruction& inst);
     Expr value(uint32_t id);
     std::string ref(uint32_t pointer_id);

@@ -9,6 +9,9 @@
 
 #include <fmt/format.h>
 
+#include <spirv_cross/spirv_cross_error_handling.hpp>
+
+#include "targets/spirv_split_io_structs.hpp"
 #include "targets/wgsl/wgsl_context.hpp"
 #include "targets/wgsl/wgsl_names.hpp"
 
@@ -588,7 +591,9 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
     std::vector<std::unique_ptr<ModuleEmitter>> emitters;
     try {
         for (const auto& stage : stages) {
-            auto parsed = parse_spirv(*stage.spirv);
+            // An inter-stage struct travels as its members, each at its own location.
+            SpirvBinary split = *stage.spirv;
+            auto parsed = parse_spirv(detail::split_interface_structs(split) ? split : *stage.spirv);
             if (!parsed.ok()) return parsed.error();
             modules.push_back(std::move(parsed.value()));
         }
@@ -609,6 +614,8 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
         }
     } catch (const EmitError& e) {
         return make_validation_error("WGSL emitter: " + e.message, e.line.file, e.line.line);
+    } catch (const spirv_cross::CompilerError& e) {
+        return make_validation_error(std::string("WGSL emitter: ") + e.what());
     } catch (const std::exception& e) {
         // An id or index the module refers to but never defines: malformed SPIR-V, not a crash.
         return make_validation_error(std::string("WGSL emitter: malformed SPIR-V (") + e.what() + ")");

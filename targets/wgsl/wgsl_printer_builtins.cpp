@@ -49,6 +49,37 @@ const std::map<GLSLstd450, const char*>& same_integer_builtin() {
 
 }  // namespace
 
+std::string FunctionPrinter::matrix_inverse_helper(uint32_t n) {
+    if (n == 2)
+        return mod_.helper("inverse_2x2",
+            "(m: mat2x2<f32>) -> mat2x2<f32> {\n"
+            "  let det = m[0][0] * m[1][1] - m[1][0] * m[0][1];\n"
+            "  return mat2x2<f32>(vec2<f32>(m[1][1], -m[0][1]), vec2<f32>(-m[1][0], m[0][0])) * (1.0 / det);\n"
+            "}\n");
+    if (n == 3)
+        return mod_.helper("inverse_3x3",
+            "(m: mat3x3<f32>) -> mat3x3<f32> {\n"
+            "  // the rows of the inverse are the cross products of the other two columns, over the determinant\n"
+            "  let bc = cross(m[1], m[2]);\n"
+            "  let ca = cross(m[2], m[0]);\n"
+            "  let ab = cross(m[0], m[1]);\n"
+            "  return transpose(mat3x3<f32>(bc, ca, ab)) * (1.0 / dot(m[0], bc));\n"
+            "}\n");
+    return mod_.helper("inverse_4x4",
+        "(m: mat4x4<f32>) -> mat4x4<f32> {\n"
+        "  // columns a, b, c, d as 3-vectors with their w components x, y, z, w: the rows of the\n"
+        "  // inverse come from the cross products of column pairs, over the determinant\n"
+        "  let a = m[0].xyz; let b = m[1].xyz; let c = m[2].xyz; let d = m[3].xyz;\n"
+        "  let x = m[0].w; let y = m[1].w; let z = m[2].w; let w = m[3].w;\n"
+        "  var s = cross(a, b); var t = cross(c, d);\n"
+        "  var u = a * y - b * x; var v = c * w - d * z;\n"
+        "  let k = 1.0 / (dot(s, v) + dot(t, u));\n"
+        "  s = s * k; t = t * k; u = u * k; v = v * k;\n"
+        "  return transpose(mat4x4<f32>(vec4<f32>(cross(b, v) + t * y, -dot(b, t)), vec4<f32>(cross(v, a) - t * x, dot(a, t)),\n"
+        "                               vec4<f32>(cross(d, u) + s * w, -dot(d, s)), vec4<f32>(cross(u, c) - s * z, dot(c, s))));\n"
+        "}\n");
+}
+
 void FunctionPrinter::ext_instruction(const Instruction& inst) {
     const auto& o = inst.operands;
     if (o.size() < 2) unsupported(inst, "an operand is missing");
@@ -167,9 +198,17 @@ void FunctionPrinter::ext_instruction(const Instruction& inst) {
             define(inst, Expr::primary(text), true);
             return;
         }
+        case GLSLstd450MatrixInverse: {
+            // WGSL has no inverse(): the adjugate over the determinant, as a helper per size (a
+            // singular matrix gives non-finite values, as GLSL leaves it undefined).
+            const Type& t = m_.type(inst.type);
+            if (t.op != spv::OpTypeMatrix || t.count < 2 || t.count > 4 || mod_.component_count(t.element) != t.count)
+                unsupported(inst, "inverse() of a matrix that is not square");
+            define(inst, Expr::primary(matrix_inverse_helper(t.count) + "(" + arg(0).text + ")"), true);
+            return;
+        }
         default: {
             static const std::map<GLSLstd450, const char*> names = {
-                {GLSLstd450MatrixInverse, "MatrixInverse"},
                 {GLSLstd450InterpolateAtCentroid, "InterpolateAtCentroid"}, {GLSLstd450InterpolateAtSample, "InterpolateAtSample"},
                 {GLSLstd450InterpolateAtOffset, "InterpolateAtOffset"}, {GLSLstd450NMin, "NMin"}, {GLSLstd450NMax, "NMax"},
                 {GLSLstd450NClamp, "NClamp"}, {GLSLstd450PackDouble2x32, "PackDouble2x32"},
