@@ -78,11 +78,30 @@ struct SharedTexture {
     std::string name, type, sampler;  // sampler: the split-off sampler's name ("" if none)
     uint32_t sampler_binding = 0;
 };
+// Where a vertex output location travels when the stage has more locations than WebGPU allows
+// (kMaxInterStageLocations): packed with others of its scalar type and interpolation into one
+// location, at components [first, first + count) of it.
+struct PackedLocation {
+    uint32_t location = 0;    // the packed location
+    uint32_t first = 0, count = 0;
+};
+struct PackedContainer {
+    uint32_t location = 0;
+    std::string wgsl_type;      // vec2<f32>, vec4<i32>, f32, ...
+    std::string interpolation;  // " @interpolate(flat, either)" or ""
+};
+// Dawn's limit on user-defined inter-stage variables (locations 0..14).
+inline constexpr uint32_t kMaxInterStageLocations = 15;
+
 struct SharedResources {
     std::map<std::pair<uint32_t, uint32_t>, SharedUniform> uniforms;   // (group, binding)
     std::map<std::pair<uint32_t, uint32_t>, SharedTexture> textures;   // (group, binding)
     std::map<uint32_t, uint32_t> next_sampler_binding;  // group -> first binding no stage uses
     std::map<std::string, std::string> helper_names;    // helper function -> its name in the module
+    // The vertex stage's packing of its outputs (empty where they fit), which the fragment stage's
+    // inputs follow: vertex output location -> where it travels, and the packed locations.
+    std::map<uint32_t, PackedLocation> packed_locations;
+    std::vector<PackedContainer> packed_containers;
 };
 
 class ModuleEmitter {
@@ -146,6 +165,11 @@ private:
     // The whole value rebuilt from its slots' parameters, params[next...] in io_slots order.
     std::string rebuild_from_slots(uint32_t type_id, const std::vector<StageInterface::Slot>& params, size_t& next);
     void declare_interface(const EntryPoint& entry);
+    // Vertex outputs beyond kMaxInterStageLocations packed into fewer locations (shared_resources).
+    void pack_vertex_outputs();
+    // The fragment stage's read of a packed vertex output (its packed location declared as a parameter).
+    std::string packed_read(const PackedLocation& packed);
+    std::map<uint32_t, StageInterface::Slot> packed_params_;  // packed location -> this stage's parameter
     std::string declare_struct(uint32_t type_id);
     void emit_entry(const EntryPoint& entry);
     std::map<uint32_t, std::string> struct_names_;

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -457,6 +459,20 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
                     in.params.push_back({fmt::format("@location({}){}", *deco.location + k, vertex ? "" : interpolation()),
                                          unique_identifier(slots.size() == 1 ? base : fmt::format("{}_{}", base, k), stage_names),
                                          type_name(slots[k].type), ""});
+                if (!vertex && !shared_resources.packed_locations.empty()) {
+                    // The vertex stage packed its outputs: each location is read out of its packed one.
+                    for (size_t k = 0; k < slots.size(); ++k) {
+                        auto packed = shared_resources.packed_locations.find(*deco.location + static_cast<uint32_t>(k));
+                        if (packed == shared_resources.packed_locations.end())
+                            fail(fmt::format("fragment input location {} is not a vertex output", *deco.location + k));
+                        in.params[k].name = packed_read(packed->second);
+                    }
+                    size_t next = 0;
+                    in.read = rebuild_from_slots(value_type, in.params, next);
+                    in.params.clear();
+                    interface.inputs.push_back(in);
+                    continue;
+                }
                 size_t next = 0;
                 in.read = rebuild_from_slots(value_type, in.params, next);
             } else {
@@ -504,6 +520,94 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
         }
         interface.outputs.push_back(out);
     }
+    if (vertex) pack_vertex_outputs();
+    if (!vertex && !packed_params_.empty()) {  // the packed locations this stage reads, as parameters
+        StageInterface::Input in;
+        for (const auto& [location, param] : packed_params_) in.params.push_back(param);
+        interface.inputs.push_back(in);
+    }
+}
+
+std::string ModuleEmitter::packed_read(const PackedLocation& packed) {
+    auto param = packed_params_.find(packed.location);
+    if (param == packed_params_.end()) {
+        const PackedContainer* container = nullptr;
+        for (const PackedContainer& c : shared_resources.packed_containers)
+            if (c.location == packed.location) container = &c;
+        if (!container) fail(fmt::format("packed location {} is not declared", packed.location));
+        param = packed_params_.emplace(packed.location, StageInterface::Slot{
+                    fmt::format("@location({}){}", container->location, container->interpolation),
+                    unique_identifier(fmt::format("packed_{}", packed.location), stage_names), container->wgsl_type, ""}).first;
+    }
+    const bool whole = param->second.wgsl_type.rfind("vec", 0) != 0;  // a scalar container: the value itself
+    static const char* const kComponents = "xyzw";
+    return whole ? param->second.name : param->second.name + "." + std::string(kComponents + packed.first, packed.count);
+}
+
+// WebGPU allows fewer inter-stage locations than Vulkan (Dawn: 15, Vulkan: at least 32); a RetroArch
+// pass may hand 17 to its fragment stage (scanline-classic's colour pass). Past the limit, the
+// vertex stage's location outputs are packed first fit, in location order, into locations of four
+// components that hold one scalar type and one interpolation; the fragment stage reads each value
+// back out of its packed location (shared_resources.packed_locations). Under the limit nothing changes.
+void ModuleEmitter::pack_vertex_outputs() {
+    struct Located {
+        StageInterface::Output* output;
+        size_t field;
+        uint32_t location, components;
+        std::string scalar, interpolation;
+    };
+    static const std::regex location_re(R"(^@location\((\d+)\)(.*)$)");
+    static const std::regex type_re(R"(^(?:vec([234])<(\w+)>|(\w+))$)");
+    std::vector<Located> located;
+    for (auto& out : interface.outputs)
+        for (size_t f = 0; f < out.fields.size(); ++f) {
+            std::smatch lm, tm;
+            if (!std::regex_match(out.fields[f].attribute, lm, location_re)) continue;
+            if (!std::regex_match(out.fields[f].wgsl_type, tm, type_re)) fail("a vertex output of type " + out.fields[f].wgsl_type + " cannot be packed");
+            located.push_back({&out, f, static_cast<uint32_t>(std::stoul(lm[1].str())), tm[1].matched ? static_cast<uint32_t>(std::stoul(tm[1].str())) : 1u,
+                               tm[1].matched ? tm[2].str() : tm[3].str(), lm[2].str()});
+        }
+    if (located.size() <= kMaxInterStageLocations) return;
+    std::sort(located.begin(), located.end(), [](const Located& a, const Located& b) { return a.location < b.location; });
+    struct Container {
+        std::string scalar, interpolation;
+        uint32_t used = 0;
+        std::vector<const Located*> parts;
+    };
+    std::vector<Container> containers;
+    for (const Located& l : located) {
+        auto fits = std::find_if(containers.begin(), containers.end(), [&](const Container& c) {
+            return c.scalar == l.scalar && c.interpolation == l.interpolation && c.used + l.components <= 4;
+        });
+        if (fits == containers.end()) fits = containers.insert(containers.end(), Container{l.scalar, l.interpolation, 0, {}});
+        shared_resources.packed_locations[l.location] = {static_cast<uint32_t>(fits - containers.begin()), fits->used, l.components};
+        fits->used += l.components;
+        fits->parts.push_back(&l);
+    }
+    if (containers.size() > kMaxInterStageLocations)
+        fail(fmt::format("the vertex stage hands {} values to the fragment stage; packed they still take {} locations, "
+                         "WebGPU allows {}", located.size(), containers.size(), kMaxInterStageLocations));
+    StageInterface::Output packed;
+    for (uint32_t c = 0; c < containers.size(); ++c) {
+        const Container& container = containers[c];
+        const std::string type = container.used == 1 ? container.scalar : fmt::format("vec{}<{}>", container.used, container.scalar);
+        shared_resources.packed_containers.push_back({c, type, container.interpolation});
+        std::string value;
+        for (const Located* part : container.parts) value += (value.empty() ? "" : ", ") + part->output->fields[part->field].value;
+        if (container.parts.size() > 1) value = type + "(" + value + ")";
+        const std::string field = unique_identifier(fmt::format("packed_{}", c), stage_names);
+        packed.fields.push_back({fmt::format("@location({}){}", c, container.interpolation), field, type, value});
+    }
+    // The packed fields replace the location fields (builtins such as the position stay).
+    std::set<std::pair<const StageInterface::Output*, size_t>> moved;
+    for (const Located& l : located) moved.insert({l.output, l.field});
+    for (auto& out : interface.outputs) {
+        std::vector<StageInterface::Slot> kept;
+        for (size_t f = 0; f < out.fields.size(); ++f)
+            if (!moved.count({&out, f})) kept.push_back(out.fields[f]);
+        out.fields = std::move(kept);
+    }
+    interface.outputs.push_back(std::move(packed));
 }
 
 void ModuleEmitter::emit_entry(const EntryPoint& entry) {
