@@ -334,7 +334,8 @@ void write_structs_library(const test::TempDir& dir) {
                                "}\n"}));
     test::write_file(dir / "structs.slangp", "shaders = 1\nshader0 = shaders/structs.slang\nfilter_linear0 = false\n");
     // many.slangp: 18 locations from the vertex stage to the fragment stage (floats, vectors, a
-    // matrix, flat ints), more than WebGPU's 15: the WGSL packs them into fewer.
+    // matrix, flat ints), more than WebGPU's 15: the WGSL packs them into fewer. And a constant
+    // infinity (uborder's), which a WGSL constant expression may not compute.
     std::string varyings, writes, reads = "vec3(0.0)";
     for (int i = 0; i < 12; ++i) {
         varyings += fmt::format("layout(location = {}) {{io}} {} v{};\n", i + 1, i % 3 == 0 ? "vec2" : "float", i);
@@ -349,6 +350,7 @@ void write_structs_library(const test::TempDir& dir) {
                                "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
                                "void main() {\n"
                                "    vec3 rgb = tint * texture(Source, vTexCoord).rgb;\n"
+                               "    rgb = max(rgb, vec3(-1.0 / 0.0));  // an infinity, which WGSL may not spell as a constant\n"
                                "    FragColor = vec4(0.5 * rgb + 0.25 + 0.25 * sin((" + reads + ") * 0.1 * float(band.x % band.y + phase)), 1.0);\n"
                                "}\n"}));
     test::write_file(dir / "many.slangp", "shaders = 1\nshader0 = shaders/many.slang\nfilter_linear0 = false\n");
@@ -385,7 +387,7 @@ TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in
 }
 
 
-TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL), more than 15 locations are packed for WebGPU, and inverse() runs there, like Vulkan",
+TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL), and more than 15 locations, inverse() and an infinite constant run on WebGPU, like Vulkan",
           "[retroarch][corpus-command][structs]") {
     test::TempDir dir;
     write_structs_library(dir);

@@ -199,8 +199,12 @@ std::string with_unsigned_literals_spelled(const std::string& text) {
         const bool hex = number.size() > 2 && number[0] == '0' && (number[1] == 'x' || number[1] == 'X') &&
                          number.find_first_not_of("0123456789abcdefABCDEF", 2) == std::string_view::npos;
         const bool decimal = number.find_first_not_of("0123456789") == std::string_view::npos;
-        if (!hex && !decimal) return std::nullopt;
-        return "uint(" + std::string(number) + ")";
+        if ((!hex && !decimal) || (hex && number.size() > 10)) return std::nullopt;  // 32 bits at most
+        if (!hex) return "uint(" + std::string(number) + ")";
+        // Nor does it read hexadecimal ("Invalid numeric constant"; SPIRV-Cross spells an infinite
+        // float constant uintBitsToFloat(0xff800000u)): the int of the same bits, which uint() keeps.
+        const auto bits = static_cast<uint32_t>(std::stoul(std::string(number.substr(2)), nullptr, 16));
+        return "uint(" + std::to_string(static_cast<int32_t>(bits)) + ")";
     });
 }
 

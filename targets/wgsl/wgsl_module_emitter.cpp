@@ -233,6 +233,17 @@ Expr ModuleEmitter::constant(uint32_t id) {
             const uint32_t bits = c.words.empty() ? 0 : c.words[0];
             if (t.op == spv::OpTypeFloat) {
                 if (t.width != 32) fail("only 32-bit float constants are supported");
+                if ((bits & 0x7f800000u) == 0x7f800000u) {
+                    // An infinity or a NaN (spirv-opt folds 1.0 / 0.0 into one): WGSL refuses a constant
+                    // expression whose value is not finite, even bitcast<f32>(0x7f800000u), so it comes
+                    // from a function, which is never a constant expression.
+                    const std::string from_bits = helper("f32_from_bits",
+                        "(bits: u32) -> f32 {\n"
+                        "  // a value that is not finite: a constant expression may not compute one\n"
+                        "  return bitcast<f32>(bits);\n"
+                        "}\n");
+                    return Expr::name(from_bits + "(" + u32_literal(bits) + ")");
+                }
                 std::string text = f32_literal(bits);
                 return Expr::name(text[0] == '-' ? "(" + text + ")" : text);
             }
