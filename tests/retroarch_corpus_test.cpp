@@ -354,6 +354,25 @@ void write_structs_library(const test::TempDir& dir) {
                                "    FragColor = vec4(0.5 * rgb + 0.25 + 0.25 * sin((" + reads + ") * 0.1 * float(band.x % band.y + phase)), 1.0);\n"
                                "}\n"}));
     test::write_file(dir / "many.slangp", "shaders = 1\nshader0 = shaders/many.slang\nfilter_linear0 = false\n");
+    // renamed.slangp: a vertex output and the fragment input at its location named apart
+    // (scanline-classic's vTexCoord_out / vTexCoord_in), which GLSL without locations meets by name.
+    test::write_file(dir / "shaders/renamed.slang",
+          "#version 450\n"
+          "layout(push_constant) uniform Push { vec4 SourceSize; } params;\n"
+          "layout(std140, set = 0, binding = 0) uniform UBO { mat4 MVP; } global;\n"
+          "#pragma stage vertex\n"
+          "layout(location = 0) in vec4 Position;\n"
+          "layout(location = 1) in vec2 TexCoord;\n"
+          "layout(location = 0) out vec2 uv_out;\n"
+          "layout(location = 1) out vec3 shade_out;\n"
+          "void main() { gl_Position = global.MVP * Position; uv_out = TexCoord; shade_out = vec3(1.0, 0.6 + 0.4 * TexCoord.x, 0.8); }\n"
+          "#pragma stage fragment\n"
+          "layout(location = 0) in vec2 uv_in;\n"
+          "layout(location = 1) in vec3 shade_in;\n"
+          "layout(location = 0) out vec4 FragColor;\n"
+          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+          "void main() { FragColor = vec4(texture(Source, uv_in).rgb * shade_in, 1.0); }\n");
+    test::write_file(dir / "renamed.slangp", "shaders = 1\nshader0 = shaders/renamed.slang\nfilter_linear0 = false\n");
 }
 
 // feedback.slangp: three passes, the second reading its own last output (trailFeedback).
@@ -387,14 +406,14 @@ TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in
 }
 
 
-TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL), and more than 15 locations, inverse() and an infinite constant run on WebGPU, like Vulkan",
+TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL, ES), GLSL meets varyings named apart, and more than 15 locations, inverse() and an infinite constant run on WebGPU, like Vulkan",
           "[retroarch][corpus-command][structs]") {
     test::TempDir dir;
     write_structs_library(dir);
-    for (TargetId target : {TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3, TargetId::GlslEs300}) {
+    for (TargetId target : {TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3, TargetId::GlslEs300, TargetId::Glsl330}) {
         INFO(target_info(target).name);
         check_all_agree(dir, {"structs.slangp"}, target, 0, 100, 75);
-        check_all_agree(dir, {"many.slangp"}, target);  // 2x: no texel edge under a pixel centre
+        check_all_agree(dir, {"many.slangp", "renamed.slangp"}, target);  // 2x: no texel edge under a pixel centre
     }
 }
 
