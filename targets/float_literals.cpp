@@ -1,5 +1,7 @@
 // Shortest round-trip float literals in SPIRV-Cross output (see float_literals.hpp).
 #include "targets/float_literals.hpp"
+
+#include <functional>
 #include "targets/word_scan.hpp"
 
 #include <cctype>
@@ -49,7 +51,8 @@ std::string shorter(const std::string& token) {
 
 }  // namespace
 
-std::string shorten_float_literals(const std::string& source) {
+std::string rewrite_float_literals(const std::string& source,
+                                   const std::function<std::string(const std::string& token, const std::string& suffix)>& rewrite) {
     std::string out;
     out.reserve(source.size());
     size_t i = 0;
@@ -81,12 +84,21 @@ std::string shorten_float_literals(const std::string& source) {
         size_t suffix_end = i;
         while (suffix_end < n && is_identifier_char(source[suffix_end])) ++suffix_end;
         const std::string suffix = source.substr(i, suffix_end - i);
-        // Only a plain literal or HLSL's float suffix; `lf`, `u`, `h` and the like stay untouched.
-        out += suffix.empty() || suffix == "f" || suffix == "F" ? shorter(token) : token;
-        out += suffix;
+        if (token.find_first_of(".eE") == std::string::npos) {
+            out += token + suffix;  // an integer
+        } else {
+            out += rewrite(token, suffix);
+        }
         i = suffix_end;
     }
     return out;
+}
+
+std::string shorten_float_literals(const std::string& source) {
+    return rewrite_float_literals(source, [](const std::string& token, const std::string& suffix) {
+        // Only a plain literal or HLSL's float suffix; `lf`, `u`, `h` and the like stay untouched.
+        return (suffix.empty() || suffix == "f" || suffix == "F" ? shorter(token) : token) + suffix;
+    });
 }
 
 namespace {

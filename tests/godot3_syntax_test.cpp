@@ -68,9 +68,22 @@ TEST_CASE("Godot 3: loops get an initialiser, a step and a condition, unsigned l
     CHECK(with_loop_initialisers("for (; i_16 < 6; i_16++)\n{\n    for (; j < 2; j++)") ==
           "for (int crtforge_init0 = 0; i_16 < 6; i_16++)\n{\n    for (int crtforge_init1 = 0; j < 2; j++)");
     CHECK(with_godot3_syntax("for (;;)") == "for (int crtforge_loop0 = 0; true; crtforge_loop0 += 0)");  // given one already
-    CHECK(with_unsigned_literals_spelled("x % 4u + 0xFFu + y2u + 10") == "x % uint(4) + uint(0xFF) + y2u + 10");
+    // Nor hexadecimal: the int of the same bits (SPIRV-Cross spells an infinity's bits so).
+    CHECK(with_unsigned_literals_spelled("x % 4u + 0xFFu + y2u + 10 + 0xff800000u") == "x % uint(4) + uint(255) + y2u + 10 + uint(-8388608)");
     // All of them, in order: the moved steps leave a loop that then gets its zero step.
     CHECK(with_godot3_syntax("for (int i = 0; i < 4; j = k, i++)\n{\n}\n") == "for (int i = 0; i < 4; i += 0)\n{\n    j = k; i++;\n}\n");
+}
+
+TEST_CASE("Godot 3: a float literal its six printed digits would change goes as its bits", "[godot][godot3-syntax]") {
+    // Godot 3 prints constants with %g: 0.9999999 would reach the driver as 1.0, 0.083333336 as 0.0833333.
+    CHECK(with_float_literals_exact("a > 0.9999999 ? 0.083333336 : 0.5;\n") ==
+          "a > uintBitsToFloat(uint(1065353214)) ? uintBitsToFloat(uint(1034594987)) : 0.5;\n");
+    // Kept: what six digits hold (1e-07 included), integers, suffixed literals, comments, and the
+    // literals a uniform's default or a constant's initialiser must be.
+    CHECK(with_float_literals_exact("x = 0.25 * 3.14159 + 1e-07 + 1024.0 + 12 + 1.5f; // 0.9999999\n") ==
+          "x = 0.25 * 3.14159 + 1e-07 + 1024.0 + 12 + 1.5f; // 0.9999999\n");
+    CHECK(with_float_literals_exact("uniform float k : hint_range(0.0, 1.0) = 0.9999999;\n  const float c = 0.9999999;\n") ==
+          "uniform float k : hint_range(0.0, 1.0) = 0.9999999;\n  const float c = 0.9999999;\n");
 }
 
 TEST_CASE("Godot 3: an array assigned whole, assigned a constructor, or declared from another, is copied element by element", "[godot][godot3-syntax]") {

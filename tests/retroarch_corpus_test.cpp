@@ -355,7 +355,8 @@ void write_structs_library(const test::TempDir& dir) {
                                "}\n"}));
     test::write_file(dir / "many.slangp", "shaders = 1\nshader0 = shaders/many.slang\nfilter_linear0 = false\n");
     // renamed.slangp: a vertex output and the fragment input at its location named apart
-    // (scanline-classic's vTexCoord_out / vTexCoord_in), which GLSL without locations meets by name.
+    // (scanline-classic's vTexCoord_out / vTexCoord_in), which GLSL without locations meets by name;
+    // and a constant six digits do not hold (scanline-classic's 1.0 - EPS: Godot 3 prints %g).
     test::write_file(dir / "shaders/renamed.slang",
           "#version 450\n"
           "layout(push_constant) uniform Push { vec4 SourceSize; } params;\n"
@@ -371,7 +372,10 @@ void write_structs_library(const test::TempDir& dir) {
           "layout(location = 1) in vec3 shade_in;\n"
           "layout(location = 0) out vec4 FragColor;\n"
           "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
-          "void main() { FragColor = vec4(texture(Source, uv_in).rgb * shade_in, 1.0); }\n");
+          "void main() {\n"
+          "    vec4 c = texture(Source, uv_in);  // opaque: alpha 1.0, above 0.9999999 (not in six digits: 1.0)\n"
+          "    FragColor = vec4(c.rgb * shade_in * (c.a > 0.9999999 ? 1.0 : 0.25), 1.0);\n"
+          "}\n");
     test::write_file(dir / "renamed.slangp", "shaders = 1\nshader0 = shaders/renamed.slang\nfilter_linear0 = false\n");
 }
 
@@ -406,7 +410,7 @@ TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in
 }
 
 
-TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL, ES), GLSL meets varyings named apart, and more than 15 locations, inverse() and an infinite constant run on WebGPU, like Vulkan",
+TEST_CASE("struct varyings travel member by member where a target has none (Godot, WGSL, ES), GLSL meets varyings named apart, Godot 3 gets constants whole, and more than 15 locations, inverse() and an infinite constant run on WebGPU, like Vulkan",
           "[retroarch][corpus-command][structs]") {
     test::TempDir dir;
     write_structs_library(dir);

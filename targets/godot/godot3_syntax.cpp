@@ -1,8 +1,13 @@
 // Godot 3's parser: see godot3_syntax.hpp.
 #include "targets/godot/godot3_syntax.hpp"
+#include "targets/float_literals.hpp"
 #include "targets/word_scan.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <optional>
@@ -10,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
 #include <spirv_cross/spirv_common.hpp>
 
 namespace crtforge::godot::godot3 {
@@ -85,8 +91,36 @@ std::string replace_each(const std::string& text, const std::regex& pattern,
 }  // namespace
 
 std::string with_godot3_syntax(const std::string& text) {
-    return with_negated_subtrahends_added(with_unsigned_literals_spelled(with_loop_initialisers(
-        with_loop_increments(with_loop_steps_in_body(with_loop_declarations_single(with_array_copies_elementwise(with_constant_arrays_local(text))))))));
+    return with_float_literals_exact(with_negated_subtrahends_added(with_unsigned_literals_spelled(with_loop_initialisers(
+        with_loop_increments(with_loop_steps_in_body(with_loop_declarations_single(with_array_copies_elementwise(with_constant_arrays_local(text)))))))));
+}
+
+std::string with_float_literals_exact(const std::string& text) {
+    // Godot 3 hands a float constant to the driver printed with six significant digits (%g): 0.9999999
+    // reaches it as 1.0 (scanline-classic's `alpha > 1.0 - EPS` then never holds and its bezel's
+    // green key shows), 0.083333336 as 0.0833333. A literal those digits do not keep goes as the
+    // bits of its float, which an integer carries whole. Not in a uniform's default (the inspector's
+    // value, which reaches the shader as a parameter, not as text) or a constant's initialiser,
+    // which Godot 3 wants literal.
+    auto exact = [](const std::string& token, const std::string& suffix) {
+        if (!suffix.empty()) return token + suffix;
+        const float value = std::strtof(token.c_str(), nullptr);
+        const float printed = std::strtof(fmt::format("{:g}", static_cast<double>(value)).c_str(), nullptr);
+        if (std::bit_cast<uint32_t>(printed) == std::bit_cast<uint32_t>(value) || !std::isfinite(value)) return token;
+        return fmt::format("uintBitsToFloat(uint({}))", std::bit_cast<int32_t>(value));
+    };
+    std::string out;
+    out.reserve(text.size() + text.size() / 8);
+    for (size_t at = 0; at < text.size();) {
+        size_t end = text.find('\n', at);
+        end = end == std::string::npos ? text.size() : end + 1;
+        const std::string line = text.substr(at, end - at);
+        const size_t first = line.find_first_not_of(" \t");
+        const bool declared = first != std::string::npos && (line.compare(first, 8, "uniform ") == 0 || line.compare(first, 6, "const ") == 0);
+        out += declared ? line : crtforge::detail::rewrite_float_literals(line, exact);
+        at = end;
+    }
+    return out;
 }
 
 std::string with_array_copies_elementwise(const std::string& text) {

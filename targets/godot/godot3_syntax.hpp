@@ -27,6 +27,9 @@ std::string with_loop_increments(const std::string& text);
 // A for loop with no initialiser (`for (; i < 6; i++)`: "Expected expression, found: PERIOD") gets
 // the declaration of an int nothing reads.
 std::string with_loop_initialisers(const std::string& text);
+// A float literal Godot 3 would print with fewer digits than its float needs (six: %g) as
+// uintBitsToFloat(uint(<its bits as an int>)).
+std::string with_float_literals_exact(const std::string& text);
 // 4u as uint(4): Godot 3 reads the literal as an int.
 std::string with_unsigned_literals_spelled(const std::string& text);
 // `a - (-b)` as `a + b` for a name or a number b: Godot 3 prints it to GLSL as `(a--b)`, which the

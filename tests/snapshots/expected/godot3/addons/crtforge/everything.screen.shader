@@ -131,7 +131,7 @@ void fragment()
             color_1 = edgeColor.rgb.zyx;
             break;
         }
-        color_1 = ((color_3 * tint_1 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * (pulseDepth * sin(part * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / 6.28318530717959) * 6.28318530717959 / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
+        color_1 = ((color_3 * tint_1 + vec3(((crt_flip_y(SCREEN_UV).y < 0.5) ? 0.01 : (-0.01)) * lift_1)) * min(max(1.5 - max(d.x, d.y), 0.8), 0.2)) * (pulseDepth * sin(part * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / uintBitsToFloat(uint(1086918619))) * uintBitsToFloat(uint(1086918619)) / 3600.0) / pulseRate)) * pulseRate)) + 1.0);
         break;
     } while(false);
     vec4 c = vec4(color_1, 1.0);
