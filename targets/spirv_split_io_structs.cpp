@@ -1,6 +1,7 @@
 // Struct stage inputs and outputs split into one variable per member, for Godot's shading language
-// (its varyings are single values) and WGSL (an inter-stage value is a scalar or a vector at a
-// @location; a struct cannot be one).
+// (its varyings are single values), WGSL (an inter-stage value is a scalar or a vector at a
+// @location; a struct cannot be one) and GLSL ES (SPIRV-Cross splits them itself there, but drops
+// the `flat` an int member must have).
 //
 // RetroArch's scanline-classic passes its timing model from the vertex to the fragment stage as one
 // struct (`layout(location = 2) out TimebaseConfig tb;`, ten floats): 602 library presets.
@@ -12,7 +13,11 @@
 //   every pointer type they need is declared), with the variable's interpolation decorations;
 // - an access chain into it starts at the member's variable (with no index left, an access chain
 //   with no indices: the variable itself); one that stops at a nested struct is remembered;
-// - a load of a (nested) struct loads its members and builds it; a store extracts and stores them.
+// - a load of a (nested) struct loads its members, and builds the struct only where something
+//   uses it whole (a member taken out of it is the member's load); a store stores the parts of a
+//   struct built or constant there, or extracts them;
+// - the struct types (and constants, pointers, function types of them) nothing refers to any more
+//   are removed: SPIRV-Cross declares every struct type, and Godot 3 has no structs.
 #include "targets/spirv_split_io_structs.hpp"
 
 #include <spirv_cross/spirv.hpp>
@@ -39,7 +44,6 @@ struct Node {
     uint32_t variable = 0, pointer_type = 0, location = 0;
     uint32_t split = 0;  // the variable split
     std::string name;
-    std::vector<uint32_t> member_path;  // member indices from the split variable down to here
 };
 
 // The decorations a leaf takes over from its variable and the members on its path.
@@ -247,8 +251,6 @@ private:
             Node member;
             member.type = members[k];
             member.split = variable;
-            member.member_path = node.member_path;
-            member.member_path.push_back(k);
             auto member_name = member_names_.find({node.type, k});
             const std::string part = member_name != member_names_.end() && !member_name->second.empty() ? member_name->second
                                                                                                           : "m" + std::to_string(k);
