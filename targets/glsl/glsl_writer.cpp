@@ -10,7 +10,6 @@
 #include <sstream>
 
 #include "crtforge/uniforms.hpp"
-#include "generator/spirv_words.hpp"
 #include "targets/cross_compile.hpp"
 #include "targets/word_scan.hpp"
 
@@ -92,26 +91,10 @@ std::string flatten_plain_uniform_block(const std::string& text, const std::stri
     return detail::replace_block_access(out, instance, [](const std::string& member) { return member; });
 }
 
-// The vertex stage's output variables by location (split as the writer splits them for ES).
-std::map<uint32_t, std::string> output_names(SpirvBinary words, bool split_io_structs) {
-    if (split_io_structs) detail::split_interface_structs(words);
-    std::map<uint32_t, std::string> names, out;
-    std::map<uint32_t, uint32_t> locations;
-    auto list = detail::spirv_instructions(words);
-    if (!list) return out;
-    for (const detail::SpirvInstruction& in : *list) {
-        auto at = [&](size_t i) { return i < in.count ? words[in.offset + i] : 0u; };
-        if (in.opcode == spv::OpName) names[at(1)] = detail::spirv_literal_string(words, in.offset + 2, in.offset + in.count);
-        if (in.opcode == spv::OpDecorate && at(2) == spv::DecorationLocation) locations[at(1)] = at(3);
-        if (in.opcode == spv::OpVariable && at(3) == spv::StorageClassOutput && locations.count(at(2)) && names.count(at(2)))
-            out[locations.at(at(2))] = names.at(at(2));
-    }
-    return out;
-}
-
 Result<TargetOutput> generate(const TargetInput& input, const Options& options) {
     const std::string language = options.es ? fmt::format("GLSL ES {}", options.version) : fmt::format("GLSL {}", options.version);
     const Precision precision = input.variant->options.precision;
+    std::map<uint32_t, std::string> vertex_outputs;  // location -> name, read while the vertex stage compiles
     auto out = detail::emit_both_stages(input, ".vert", ".frag", [&](const SpirvBinary& module, ShaderStage stage) {
         return detail::cross_compile<spirv_cross::CompilerGLSL>(module, stage, language, [&](spirv_cross::CompilerGLSL& c) {
             auto o = c.get_common_options();
@@ -128,13 +111,16 @@ Result<TargetOutput> generate(const TargetInput& input, const Options& options) 
             // GLSL without explicit varying locations (ES 3.00, 3.30 without separate shader objects)
             // meets a vertex output and a fragment input by name, Vulkan by location: a RetroArch
             // pass may name them apart (scanline-classic's vTexCoord_out / vTexCoord_in), so the
-            // fragment stage's input takes the name of the vertex output at its location.
-            if (stage == ShaderStage::Fragment && input.vertex) {
-                const auto vertex_names = output_names(*input.vertex, options.es);
-                for (const auto& in : c.get_shader_resources().stage_inputs) {
-                    if (!c.has_decoration(in.id, spv::DecorationLocation)) continue;
-                    auto name = vertex_names.find(c.get_decoration(in.id, spv::DecorationLocation));
-                    if (name != vertex_names.end() && name->second != c.get_name(in.id)) c.set_name(in.id, name->second);
+            // fragment stage's input takes the name of the vertex output at its location
+            // (emit_both_stages compiles the vertex stage first).
+            const auto resources = c.get_shader_resources();
+            for (const auto& io : stage == ShaderStage::Vertex ? resources.stage_outputs : resources.stage_inputs) {
+                if (!c.has_decoration(io.id, spv::DecorationLocation)) continue;
+                const uint32_t location = c.get_decoration(io.id, spv::DecorationLocation);
+                if (stage == ShaderStage::Vertex) {
+                    vertex_outputs[location] = c.get_name(io.id);
+                } else if (auto name = vertex_outputs.find(location); name != vertex_outputs.end() && !name->second.empty()) {
+                    c.set_name(io.id, name->second);
                 }
             }
         }, options.plain_uniforms ? kPlainBlockMarker : nullptr, /*flat_arrays*/ options.es ? options.version < 310 : options.version < 430,

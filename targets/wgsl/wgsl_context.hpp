@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -52,6 +53,12 @@ struct StageInterface {
         std::string wgsl_type;  // the slot's WGSL type
         std::string value;      // outputs: what is returned (the local, or a column/element of it)
     };
+    // A returned field at a location: the location, its SPIR-V scalar/vector type and its
+    // interpolation attribute (what packing past WebGPU's limit groups by).
+    struct Located {
+        uint32_t location = 0, type = 0;
+        std::string interpolation;
+    };
     struct Input {
         uint32_t variable = 0;
         std::vector<Slot> params;  // the entry point's parameters for this input
@@ -62,6 +69,7 @@ struct StageInterface {
         std::string local;            // the local var the body writes
         std::string wgsl_type;
         std::vector<Slot> fields;     // returned
+        std::map<size_t, Located> located;  // fields[i] at a location -> where
         std::map<uint32_t, std::string> block_members;  // block member index -> local name
     };
     std::vector<Input> inputs;

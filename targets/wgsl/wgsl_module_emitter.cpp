@@ -5,7 +5,6 @@
 #include <cstring>
 #include <functional>
 #include <optional>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -522,10 +521,12 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
             out.local = unique_identifier(name.empty() ? "output" : name, stage_names);
             // One returned field per location: column / element k of the local.
             const std::vector<IoSlot> slots = io_slots(value_type);
-            for (size_t k = 0; k < slots.size(); ++k)
+            for (size_t k = 0; k < slots.size(); ++k) {
+                out.located[out.fields.size()] = {*deco.location + static_cast<uint32_t>(k), slots[k].type, vertex ? interpolation() : ""};
                 out.fields.push_back({fmt::format("@location({}){}", *deco.location + k, vertex ? interpolation() : ""),
                                       slots.size() == 1 ? out.local : fmt::format("{}_{}", out.local, k), type_name(slots[k].type),
                                       out.local + slots[k].path});
+            }
         } else {
             fail(fmt::format("output '{}' has neither a location nor a supported builtin", name));
         }
@@ -561,32 +562,25 @@ std::string ModuleEmitter::packed_read(const PackedLocation& packed) {
 // components that hold one scalar type and one interpolation; the fragment stage reads each value
 // back out of its packed location (shared_resources.packed_locations). Under the limit nothing changes.
 void ModuleEmitter::pack_vertex_outputs() {
-    struct Located {
+    struct Part {
         StageInterface::Output* output;
         size_t field;
         uint32_t location, components;
         std::string scalar, interpolation;
     };
-    static const std::regex location_re(R"(^@location\((\d+)\)(.*)$)");
-    static const std::regex type_re(R"(^(?:vec([234])<(\w+)>|(\w+))$)");
-    std::vector<Located> located;
+    std::vector<Part> located;
     for (auto& out : interface.outputs)
-        for (size_t f = 0; f < out.fields.size(); ++f) {
-            std::smatch lm, tm;
-            if (!std::regex_match(out.fields[f].attribute, lm, location_re)) continue;
-            if (!std::regex_match(out.fields[f].wgsl_type, tm, type_re)) fail("a vertex output of type " + out.fields[f].wgsl_type + " cannot be packed");
-            located.push_back({&out, f, static_cast<uint32_t>(std::stoul(lm[1].str())), tm[1].matched ? static_cast<uint32_t>(std::stoul(tm[1].str())) : 1u,
-                               tm[1].matched ? tm[2].str() : tm[3].str(), lm[2].str()});
-        }
+        for (const auto& [f, at] : out.located)
+            located.push_back({&out, f, at.location, component_count(at.type), type_name(scalar_of(at.type)), at.interpolation});
     if (located.size() <= kMaxInterStageLocations) return;
-    std::sort(located.begin(), located.end(), [](const Located& a, const Located& b) { return a.location < b.location; });
+    std::sort(located.begin(), located.end(), [](const Part& a, const Part& b) { return a.location < b.location; });
     struct Container {
         std::string scalar, interpolation;
         uint32_t used = 0;
-        std::vector<const Located*> parts;
+        std::vector<const Part*> parts;
     };
     std::vector<Container> containers;
-    for (const Located& l : located) {
+    for (const Part& l : located) {
         auto fits = std::find_if(containers.begin(), containers.end(), [&](const Container& c) {
             return c.scalar == l.scalar && c.interpolation == l.interpolation && c.used + l.components <= 4;
         });
@@ -604,19 +598,20 @@ void ModuleEmitter::pack_vertex_outputs() {
         const std::string type = container.used == 1 ? container.scalar : fmt::format("vec{}<{}>", container.used, container.scalar);
         shared_resources.packed_containers.push_back({c, type, container.interpolation});
         std::string value;
-        for (const Located* part : container.parts) value += (value.empty() ? "" : ", ") + part->output->fields[part->field].value;
+        for (const Part* part : container.parts) value += (value.empty() ? "" : ", ") + part->output->fields[part->field].value;
         if (container.parts.size() > 1) value = type + "(" + value + ")";
         const std::string field = unique_identifier(fmt::format("packed_{}", c), stage_names);
         packed.fields.push_back({fmt::format("@location({}){}", c, container.interpolation), field, type, value});
     }
     // The packed fields replace the location fields (builtins such as the position stay).
     std::set<std::pair<const StageInterface::Output*, size_t>> moved;
-    for (const Located& l : located) moved.insert({l.output, l.field});
+    for (const Part& l : located) moved.insert({l.output, l.field});
     for (auto& out : interface.outputs) {
         std::vector<StageInterface::Slot> kept;
         for (size_t f = 0; f < out.fields.size(); ++f)
             if (!moved.count({&out, f})) kept.push_back(out.fields[f]);
         out.fields = std::move(kept);
+        out.located.clear();  // every located field moved into a packed one
     }
     interface.outputs.push_back(std::move(packed));
 }
