@@ -377,6 +377,33 @@ void write_structs_library(const test::TempDir& dir) {
           "    FragColor = vec4(c.rgb * shade_in * (c.a > 0.9999999 ? 1.0 : 0.25), 1.0);\n"
           "}\n");
     test::write_file(dir / "renamed.slangp", "shaders = 1\nshader0 = shaders/renamed.slang\nfilter_linear0 = false\n");
+    // interface.slangp: koko-aio's stage interface. `noperspective` varyings (WebGPU's compatibility
+    // mode has no `linear`), two of them at locations 16 and 17 though fewer than 15 are used (past
+    // WebGPU's last), a flat array (five locations), an output the fragment stage declares but never
+    // reads (the HLSL vertex shader must leave it out, or every later TEXCOORD lands one location
+    // off), and a loop whose condition starts with a type constructor (`float(n) < TAPS`, which
+    // Godot 4 parses as a declaration unless it is in parentheses).
+    test::write_file(dir / "shaders/interface.slang",
+          test::slang_program({"float TAPS; ", "#pragma parameter TAPS \"Taps\" 3.0 1.0 5.0 1.0\n",
+                               "layout(location = 1) flat {io} float unread;\n"
+                               "layout(location = 2) flat {io} float weights[5];\n"
+                               "layout(location = 7) noperspective {io} vec2 uv_linear;\n"
+                               "layout(location = 16) noperspective {io} vec2 glow_plus;\n"
+                               "layout(location = 17) noperspective {io} vec2 glow_minus;\n",
+                               "    unread = 7.0 + params.SourceSize.x;\n"
+                               "    for (int i = 0; i < 5; ++i) weights[i] = 0.1 * float(i + 1) + 0.25 * params.SourceSize.z;\n"
+                               "    uv_linear = TexCoord * 0.75 + 0.125;\n"
+                               "    glow_plus = TexCoord + vec2(0.1, 0.0);\n"
+                               "    glow_minus = TexCoord - vec2(0.0, 0.1);\n",
+                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                               "void main() {\n"
+                               "    float sum = 0.0;\n"
+                               "    for (int n = 0; float(n) < params.TAPS; n++) sum += weights[n];\n"
+                               "    vec3 c = texture(Source, uv_linear).rgb;\n"
+                               "    vec3 g = texture(Source, glow_plus).rgb - 0.5 * texture(Source, glow_minus).rgb;\n"
+                               "    FragColor = vec4(c * sum + 0.5 * g, 1.0);\n"
+                               "}\n"}));
+    test::write_file(dir / "interface.slangp", "shaders = 1\nshader0 = shaders/interface.slang\nfilter_linear0 = false\n");
 }
 
 // feedback.slangp: three passes, the second reading its own last output (trailFeedback).
@@ -418,6 +445,16 @@ TEST_CASE("struct varyings travel member by member where a target has none (Godo
         INFO(target_info(target).name);
         check_all_agree(dir, {"structs.slangp"}, target, 0, 100, 75);
         check_all_agree(dir, {"many.slangp", "renamed.slangp"}, target);  // 2x: no texel edge under a pixel centre
+    }
+}
+
+TEST_CASE("koko-aio's stage interface runs like Vulkan: noperspective varyings on WebGPU's compatibility mode, locations past 15, a flat array, an output the fragment stage never reads (HLSL), a loop condition starting with a type (Godot 4)",
+          "[retroarch][corpus-command][structs][interface]") {
+    test::TempDir dir;
+    write_structs_library(dir);
+    for (TargetId target : {TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3, TargetId::Hlsl50, TargetId::GlslEs300}) {
+        INFO(target_info(target).name);
+        check_all_agree(dir, {"interface.slangp"}, target);
     }
 }
 

@@ -111,6 +111,32 @@ std::string without_texel_offsets(std::string text) {
     return text;
 }
 
+// Godot parses a `for` condition as a statement, so one that starts with a type constructor
+// (`float(n) < w`, as SPIRV-Cross prints an int counter compared with a float) reads as a
+// declaration and is refused ("Expected an identifier or '[' after type"). In parentheses it is
+// an expression.
+std::string with_for_conditions_parenthesised(std::string text) {
+    static const std::regex kTypeCall(R"(^\s*(float|int|uint|bool|[biu]?vec[234]|mat[234])\s*\()");
+    for (size_t at = text.find("for ("); at != std::string::npos; at = text.find("for (", at + 5)) {
+        if (at > 0 && (std::isalnum(static_cast<unsigned char>(text[at - 1])) || text[at - 1] == '_')) continue;
+        // The condition: between the first and the second `;` outside parentheses.
+        size_t begin = std::string::npos, end = std::string::npos;
+        int depth = 0;
+        for (size_t i = at + 5; i < text.size() && end == std::string::npos; ++i) {
+            const char c = text[i];
+            if (c == '(') ++depth;
+            else if (c == ')' && depth-- == 0) break;
+            else if (c == ';' && depth == 0) (begin == std::string::npos ? begin : end) = i;
+        }
+        if (end == std::string::npos) continue;
+        const std::string condition = text.substr(begin + 1, end - begin - 1);
+        if (!std::regex_search(condition, kTypeCall)) continue;
+        const size_t first = condition.find_first_not_of(' ');
+        text.replace(begin + 1, end - begin - 1, condition.substr(0, first) + "(" + condition.substr(first) + ")");
+    }
+    return text;
+}
+
 // TIME wraps (rendering/limits/time/time_rollover_secs, 3600 s by default). A phase TIME * speed
 // stays continuous across the wrap when speed * 3600 is a whole number of turns, so the speed
 // is rounded to the nearest multiple of 2*pi/3600 rad/s (a change below 0.0009 rad/s). Which param is
@@ -320,7 +346,7 @@ std::string GodotCompiler::compile_godot() {
         out.insert(close, "    COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);  // screen mode: the bezel's alpha over black\n");
     }
     if (stage_ == ShaderStage::Fragment) out = with_format_stored(out);
-    out = with_border_emulated(without_texel_offsets(out));
+    out = with_for_conditions_parenthesised(with_border_emulated(without_texel_offsets(out)));
     // Godot's matrices are square: matNxN is matN; a non-square one was padded to square in the
     // SPIR-V (spirv_square_matrices), so one here is a bug, refused rather than emitted.
     auto dimension = [](char c) { return c >= '2' && c <= '4'; };

@@ -31,7 +31,8 @@ std::set<uint32_t> fragment_input_locations(const SpirvBinary& fragment) {
 // members of SPIRV_Cross_Output and the lines that copy them there. (This SPIRV-Cross's HLSL
 // writer honours neither output masks nor interface-variable sets for stage outputs.)
 std::string drop_unread_outputs(std::string text, const std::set<uint32_t>& read) {
-    static const std::regex member(R"(\n    [A-Za-z0-9_]+ ([A-Za-z0-9_]+) : TEXCOORD([0-9]+);)");
+    // "    [interpolation modifiers] type name[[N]] : TEXCOORD<location>;"
+    static const std::regex member(R"(\n    (?:[A-Za-z0-9_]+ )+([A-Za-z0-9_]+)(?:\[[0-9]+\])? : TEXCOORD([0-9]+);)");
     const size_t start = text.find("struct SPIRV_Cross_Output\n{");
     if (start == std::string::npos) return text;
     const size_t end = text.find("\n};", start);

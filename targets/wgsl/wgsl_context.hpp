@@ -110,6 +110,14 @@ struct SharedResources {
     // inputs follow: vertex output location -> where it travels, and the packed locations.
     std::map<uint32_t, PackedLocation> packed_locations;
     std::vector<PackedContainer> packed_containers;
+    // Fragment input locations Vulkan interpolates without perspective (`noperspective`). WebGPU's
+    // compatibility mode (GL ES backends) has no `@interpolate(linear)`, so the vertex stage sends
+    // value * w and, at `clip_w_location`, w itself, both interpolated with perspective; their
+    // quotient is the screen-linear value (exactly the value where w is 1, as in every crtforge pass).
+    // Set only where both stages are emitted together (a stage alone keeps `linear`).
+    bool emulate_linear = false;
+    std::set<uint32_t> linear_locations;
+    uint32_t clip_w_location = 0;
 };
 
 class ModuleEmitter {
@@ -178,6 +186,11 @@ private:
     // The fragment stage's read of a packed vertex output (its packed location declared as a parameter).
     std::string packed_read(const PackedLocation& packed);
     std::map<uint32_t, StageInterface::Slot> packed_params_;  // packed location -> this stage's parameter
+    // The vertex stage's screen-linear outputs sent as value * w, plus w (SharedResources::linear_locations).
+    void emulate_linear_outputs();
+    // The fragment stage's read of that w (a parameter of its own, or out of a packed location).
+    std::string clip_w_read();
+    std::optional<StageInterface::Slot> clip_w_param_;
     std::string declare_struct(uint32_t type_id);
     void emit_entry(const EntryPoint& entry);
     std::map<uint32_t, std::string> struct_names_;

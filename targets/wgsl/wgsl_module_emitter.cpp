@@ -432,10 +432,12 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
             // rejects. `either` runs everywhere; it differs from Vulkan's first provoking vertex only
             // where a flat output varies between the triangle's vertices.
             if (deco.flat || integer) return " @interpolate(flat, either)";
-            std::string kind = deco.no_perspective ? "linear" : "perspective";
+            // Where both stages are emitted, `noperspective` is emulated (emulate_linear_outputs).
+            const bool linear = deco.no_perspective && !shared_resources.emulate_linear;
+            std::string kind = linear ? "linear" : "perspective";
             if (deco.centroid) return " @interpolate(" + kind + ", centroid)";
             if (deco.sample) return " @interpolate(" + kind + ", sample)";
-            return deco.no_perspective ? " @interpolate(linear)" : "";
+            return linear ? " @interpolate(linear)" : "";
         };
 
         if (pointer.storage == spv::StorageClassInput) {
@@ -469,22 +471,22 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
                     in.params.push_back({fmt::format("@location({}){}", *deco.location + k, vertex ? "" : interpolation()),
                                          unique_identifier(slots.size() == 1 ? base : fmt::format("{}_{}", base, k), stage_names),
                                          type_name(slots[k].type), ""});
-                if (!vertex && !shared_resources.packed_locations.empty()) {
-                    // The vertex stage packed its outputs: each location is read out of its packed one.
-                    for (size_t k = 0; k < slots.size(); ++k) {
-                        auto packed = shared_resources.packed_locations.find(*deco.location + static_cast<uint32_t>(k));
-                        if (packed == shared_resources.packed_locations.end())
-                            fail(fmt::format("fragment input location {} is not a vertex output", *deco.location + k));
-                        in.params[k].name = packed_read(packed->second);
+                const bool packed = !vertex && !shared_resources.packed_locations.empty();
+                std::vector<StageInterface::Slot> reads = in.params;
+                for (size_t k = 0; k < slots.size(); ++k) {
+                    const uint32_t location = *deco.location + static_cast<uint32_t>(k);
+                    if (packed) {  // the vertex stage packed its outputs: each location is read out of its packed one
+                        auto at = shared_resources.packed_locations.find(location);
+                        if (at == shared_resources.packed_locations.end())
+                            fail(fmt::format("fragment input location {} is not a vertex output", location));
+                        reads[k].name = packed_read(at->second);
                     }
-                    size_t next = 0;
-                    in.read = rebuild_from_slots(value_type, in.params, next);
-                    in.params.clear();
-                    interface.inputs.push_back(in);
-                    continue;
+                    if (!vertex && shared_resources.linear_locations.count(location))
+                        reads[k].name = "(" + reads[k].name + " / " + clip_w_read() + ")";
                 }
                 size_t next = 0;
-                in.read = rebuild_from_slots(value_type, in.params, next);
+                in.read = rebuild_from_slots(value_type, reads, next);
+                if (packed) in.params.clear();
             } else {
                 fail(fmt::format("input '{}' has neither a location nor a builtin", name));
             }
@@ -532,12 +534,53 @@ void ModuleEmitter::declare_interface(const EntryPoint& entry) {
         }
         interface.outputs.push_back(out);
     }
-    if (vertex) pack_vertex_outputs();
-    if (!vertex && !packed_params_.empty()) {  // the packed locations this stage reads, as parameters
+    if (vertex) {
+        emulate_linear_outputs();
+        pack_vertex_outputs();
+    }
+    if (!vertex && (!packed_params_.empty() || clip_w_param_)) {  // parameters of this stage's own making
         StageInterface::Input in;
         for (const auto& [location, param] : packed_params_) in.params.push_back(param);
+        if (clip_w_param_) in.params.push_back(*clip_w_param_);
         interface.inputs.push_back(in);
     }
+}
+
+void ModuleEmitter::emulate_linear_outputs() {
+    if (shared_resources.linear_locations.empty()) return;
+    std::string position;
+    for (const auto& out : interface.outputs)
+        for (const auto& field : out.fields)
+            if (field.attribute == "@builtin(position)") position = field.value;
+    if (position.empty()) fail("the fragment stage reads noperspective inputs but the vertex stage writes no position");
+    uint32_t f32 = 0;
+    for (const auto& [id, t] : m.types)
+        if (t.op == spv::OpTypeFloat && t.width == 32) f32 = id;
+    for (auto& out : interface.outputs)
+        for (auto& [f, at] : out.located)
+            if (shared_resources.linear_locations.count(at.location)) {
+                StageInterface::Slot& field = out.fields[f];
+                if (type(scalar_of(at.type)).op != spv::OpTypeFloat)
+                    fail(fmt::format("location {} is noperspective but not floating point", at.location));
+                field.value = "(" + field.value + ") * " + position + ".w";
+            }
+    StageInterface::Output w;
+    const uint32_t location = shared_resources.clip_w_location;
+    w.located[0] = {location, f32, ""};
+    w.fields.push_back({fmt::format("@location({})", location), unique_identifier("clip_w", stage_names), "f32", position + ".w"});
+    interface.outputs.push_back(std::move(w));
+}
+
+std::string ModuleEmitter::clip_w_read() {
+    const uint32_t location = shared_resources.clip_w_location;
+    if (!shared_resources.packed_locations.empty()) {
+        auto at = shared_resources.packed_locations.find(location);
+        if (at == shared_resources.packed_locations.end()) fail("the vertex stage sends no w for noperspective inputs");
+        return packed_read(at->second);
+    }
+    if (!clip_w_param_)
+        clip_w_param_ = StageInterface::Slot{fmt::format("@location({})", location), unique_identifier("clip_w", stage_names), "f32", ""};
+    return clip_w_param_->name;
 }
 
 std::string ModuleEmitter::packed_read(const PackedLocation& packed) {
@@ -557,10 +600,12 @@ std::string ModuleEmitter::packed_read(const PackedLocation& packed) {
 }
 
 // WebGPU allows fewer inter-stage locations than Vulkan (Dawn: 15, Vulkan: at least 32); a RetroArch
-// pass may hand 17 to its fragment stage (scanline-classic's colour pass). Past the limit, the
+// pass may hand 17 to its fragment stage (scanline-classic's colour pass), or use locations past 14
+// (koko-aio's glow pass: 16 and 17). Past the limit, the
 // vertex stage's location outputs are packed first fit, in location order, into locations of four
 // components that hold one scalar type and one interpolation; the fragment stage reads each value
-// back out of its packed location (shared_resources.packed_locations). Under the limit nothing changes.
+// back out of its packed location (shared_resources.packed_locations). Where every location is under
+// the limit nothing changes.
 void ModuleEmitter::pack_vertex_outputs() {
     struct Part {
         StageInterface::Output* output;
@@ -572,7 +617,8 @@ void ModuleEmitter::pack_vertex_outputs() {
     for (auto& out : interface.outputs)
         for (const auto& [f, at] : out.located)
             located.push_back({&out, f, at.location, component_count(at.type), type_name(scalar_of(at.type)), at.interpolation});
-    if (located.size() <= kMaxInterStageLocations) return;
+    const bool fits = std::all_of(located.begin(), located.end(), [](const Part& p) { return p.location < kMaxInterStageLocations; });
+    if (fits) return;  // every location already one WebGPU has
     std::sort(located.begin(), located.end(), [](const Part& a, const Part& b) { return a.location < b.location; });
     struct Container {
         std::string scalar, interpolation;
@@ -694,6 +740,40 @@ void ModuleEmitter::emit() {
     emit_entry(e);
 }
 
+namespace {
+
+uint32_t location_count(const SpirvModule& m, uint32_t type_id) {
+    const Type& t = m.type(type_id);
+    if (t.op == spv::OpTypeMatrix) return t.count;
+    if (t.op == spv::OpTypeArray) return t.count * location_count(m, t.element);
+    return 1;
+}
+
+// Which fragment input locations are noperspective, and a location neither stage uses for w.
+void plan_linear_emulation(const SpirvModule& vertex, const SpirvModule& fragment, SharedResources& shared) {
+    std::set<uint32_t> used;
+    auto scan = [&](const SpirvModule& m, spv::StorageClass storage, bool mark_linear) {
+        for (const auto& [id, var] : m.globals) {
+            auto d = m.decorations.find(id);
+            if (d == m.decorations.end() || !d->second.location) continue;
+            const Type& pointer = m.type(var.type);
+            if (pointer.storage != storage) continue;
+            const uint32_t count = location_count(m, pointer.element);
+            for (uint32_t k = 0; k < count; ++k) {
+                used.insert(*d->second.location + k);
+                if (mark_linear && d->second.no_perspective && !d->second.flat)
+                    shared.linear_locations.insert(*d->second.location + k);
+            }
+        }
+    };
+    scan(vertex, spv::StorageClassOutput, false);
+    scan(fragment, spv::StorageClassInput, true);
+    shared.emulate_linear = true;
+    while (used.count(shared.clip_w_location)) ++shared.clip_w_location;
+}
+
+}  // namespace
+
 Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOptions& options) {
     NameScope global_names;
     SharedResources shared_resources;
@@ -707,6 +787,14 @@ Result<WgslModule> emit_wgsl(const std::vector<StageInput>& stages, const EmitOp
             if (!parsed.ok()) return parsed.error();
             modules.push_back(std::move(parsed.value()));
         }
+        const SpirvModule* vertex = nullptr;
+        const SpirvModule* fragment = nullptr;
+        for (const SpirvModule& module : modules)
+            if (!module.entry_points.empty()) {
+                if (module.entry_points[0].model == spv::ExecutionModelVertex) vertex = &module;
+                if (module.entry_points[0].model == spv::ExecutionModelFragment) fragment = &module;
+            }
+        if (vertex && fragment && vertex == &modules.front()) plan_linear_emulation(*vertex, *fragment, shared_resources);
         for (const SpirvModule& module : modules)
             for (const auto& [id, var] : module.globals) {
                 auto d = module.decorations.find(id);
