@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "crtforge/exporter.hpp"
@@ -66,9 +68,49 @@ bool same_contents(const std::string& dir, const std::map<std::string, std::stri
     return true;
 }
 
+// The export's own list of what it wrote, beside its files: a later export replaces a folder only
+// when it holds nothing else (a folder the user added files to, or that merely holds a file named
+// manifest.json, is not crtforge's to delete).
+constexpr const char* kIndexName = ".crtforge-export";
+constexpr const char* kIndexHeader = "crtforge export: the files below are this folder's whole content\n";
+
+std::string index_text(const std::map<std::string, std::string>& files) {
+    std::string text = kIndexHeader;
+    for (const auto& [path, data] : files) text.append(path).append("\n");
+    return text;
+}
+
+// "" when every entry of `dir` is a file its index lists (or a folder holding one); otherwise why not.
+std::string not_an_earlier_export(const fs::path& dir) {
+    auto index = read_text_file((dir / kIndexName).string(), 16u << 20);
+    if (!index.ok() || index.value().rfind(kIndexHeader, 0) != 0)
+        return "is not a crtforge export (it has no " + std::string(kIndexName) + " index)";
+    std::set<std::string> listed, folders;
+    std::istringstream lines(index.value().substr(std::string(kIndexHeader).size()));
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty()) {
+            listed.insert(line);
+            for (fs::path up = fs::path(line).parent_path(); !up.empty(); up = up.parent_path()) folders.insert(up.generic_string());
+        }
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::none, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+        const std::string relative = fs::relative(it->path(), dir, ec).generic_string();
+        if (relative == kIndexName) continue;
+        const bool known = it->is_symlink(ec) ? false
+                         : it->is_directory(ec) ? folders.count(relative) != 0
+                         : it->is_regular_file(ec) && listed.count(relative) != 0;
+        if (!known) return "holds '" + relative + "', which no crtforge export wrote";
+    }
+    if (ec) return "cannot be listed: " + ec.message();
+    return "";
+}
+
 }  // namespace
 
-Status write_export(const std::string& out, const std::map<std::string, std::string>& files) {
+Status write_export(const std::string& out, const std::map<std::string, std::string>& exported) {
+    std::map<std::string, std::string> files = exported;
+    files[kIndexName] = index_text(exported);
     std::error_code ec;
     const fs::path target = fs::path(out).lexically_normal();
     const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
@@ -79,8 +121,9 @@ Status write_export(const std::string& out, const std::map<std::string, std::str
     if (ec) return make_error("cannot create the parent directory: " + ec.message(), parent.string(), 0, "--out");
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) return make_error("exists and is not a directory", out, 0, "--out");
     // Replacing a folder that is not an earlier export would delete a user's files.
-    if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir / "manifest.json", ec))
-        return make_error("exists and is not a crtforge export (no manifest.json): give a new or empty directory", out, 0, "--out");
+    if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec))
+        if (const std::string why = not_an_earlier_export(dir); !why.empty())
+            return make_error("exists and " + why + ": give a new or empty directory", out, 0, "--out");
 
     std::string hidden = ".";
     hidden.append(name.string()).append(".crtforge-");  // appends: GCC 12 misreads a chain of + here (-Wrestrict)

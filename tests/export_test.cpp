@@ -184,4 +184,16 @@ TEST_CASE("an export replaces its directory all at once, under a lock, and clean
     CHECK(refused.exit_code == 2);
     CHECK_THAT(refused.err, Catch::Contains("is not a crtforge export"));
     CHECK(files_in(mine) == std::set<std::string>{"notes.txt"});
+    // Nor is one that merely holds a file named manifest.json (a web extension's, say)...
+    std::ofstream(mine + "/manifest.json") << "{\"name\": \"extension\"}";
+    const auto extension = test::run_crtforge("export --quiet --preset classic --out '" + mine + "'");
+    CHECK(extension.exit_code == 2);
+    CHECK_THAT(extension.err, Catch::Contains("it has no .crtforge-export index"));
+    CHECK(files_in(mine) == std::set<std::string>{"manifest.json", "notes.txt"});
+    // ...nor an earlier export the user has added a file to: it names the file.
+    std::ofstream(out + "/glsl330/my-notes.txt") << "mine";
+    const auto added = run("--preset classic");
+    CHECK(added.exit_code == 2);
+    CHECK_THAT(added.err, Catch::Contains("holds 'glsl330/my-notes.txt', which no crtforge export wrote"));
+    CHECK(fs::exists(out + "/glsl330/my-notes.txt"));
 }
