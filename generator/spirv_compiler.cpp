@@ -1,4 +1,5 @@
 // glslang (in-process) -> SPIR-V -> SPIRV-Tools optimise + validate.
+#include "generator/macro_budget.hpp"
 #include "crtforge/spirv_compiler.hpp"
 #include "crtforge/parse_number.hpp"
 #include "crtforge/version.hpp"
@@ -79,6 +80,7 @@ Result<std::shared_ptr<Parsed>> parse_shader(const std::string& source, ShaderSt
                                              SourceLanguage language, bool vulkan, int version,
                                              bool es, const std::string& entry_point,
                                              const std::string& name) {
+    if (auto bounded = detail::check_macro_expansion(source, name); !bounded.ok()) return bounded.error();
     ensure_glslang_initialized();
     auto parsed = std::make_shared<Parsed>();
     parsed->shader = std::make_unique<glslang::TShader>(to_glslang(stage));
@@ -380,6 +382,7 @@ std::string compiler_versions() {
 }
 
 Result<std::string> preprocess_vulkan_glsl(const std::string& source, ShaderStage stage, const std::string& name) {
+    if (auto bounded = detail::check_macro_expansion(source, name); !bounded.ok()) return bounded.error();
     ensure_glslang_initialized();
     glslang::TShader shader(to_glslang(stage));
     const char* text = source.c_str();

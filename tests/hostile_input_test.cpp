@@ -18,6 +18,7 @@
 #include "crtforge/inert_text.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/variant.hpp"
+#include "generator/macro_budget.hpp"
 #include "tests/test_support.hpp"
 
 using namespace crtforge;
@@ -639,4 +640,55 @@ TEST_CASE("a report folder is written all or nothing: a refused or failed run le
     CHECK(slurp(report + "/report.json") == before);
     CHECK(fs::exists(report + "/images"));
     CHECK(no_staging_left());
+}
+
+TEST_CASE("a macro that expands beyond any shader (macros within macros) is refused at its line before glslang's preprocessor runs",
+          "[hostile][spec][macro]") {
+    // Forty macros, each using the one before twice: 2^40 tokens.
+    std::string chain = "#define B0 1.0\n";
+    for (int i = 1; i <= 40; ++i) chain += fmt::format("#define B{} (B{} + B{})\n", i, i - 1, i - 1);
+    SECTION("the estimate: an object-like chain, nested calls of a function-like macro, #line followed, real code kept") {
+        auto bomb = detail::check_macro_expansion("float x;\n" + chain + "float y = B40;\n", "a.glsl");
+        REQUIRE_FALSE(bomb.ok());
+        CHECK(bomb.error().file == "a.glsl");
+        CHECK(bomb.error().line == 2 + 20);  // B20 is the first past 4 million
+        CHECK_THAT(bomb.error().message, Catch::Contains("macro 'B20' expands to more than 4000000 tokens"));
+
+        std::string nested = "x";
+        for (int i = 0; i < 40; ++i) nested = "TWICE(" + nested + ")";
+        auto calls = detail::check_macro_expansion("#define TWICE(a) a + a\n#line 10 \"shader.slang\"\nfloat y =\n  " + nested + ";\n", "main");
+        REQUIRE_FALSE(calls.ok());
+        CHECK(calls.error().file == "shader.slang");
+        CHECK(calls.error().line == 11);  // the call's line (#line 10 names the line after it)
+        CHECK_THAT(calls.error().message, Catch::Contains("the shader expands to more than"));
+
+        // What real shaders do: function-like helpers, a macro used thousands of times, variadic ones.
+        std::string fine = "#define SAT(x) clamp(x, 0.0, 1.0)\n#define LUMA(c) dot(SAT(c), vec3(0.299, 0.587, 0.114))\n"
+                           "#define LOG(...) __VA_ARGS__\n#define K B6\n" + chain.substr(0, chain.find("#define B7"));
+        for (int i = 0; i < 2000; ++i) fine += fmt::format("float v{} = LUMA(vec3({}.0)) + LOG(1.0, 2.0) + K;\n", i, i);
+        CHECK(detail::check_macro_expansion(fine, "fine.glsl").ok());
+    }
+    SECTION("in a stage snippet: generate names the snippet's line") {
+        test::ScratchTemplates scratch;
+        scratch.write("stages/vignette.glsl", chain + scratch.read("stages/vignette.glsl"));
+        test::TempDir out;
+        auto run = test::run_crtforge("--templates " + scratch.dir() + " generate --preset classic --target spirv --out " + out.path() + "/g");
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("stages/vignette.glsl:21: error: macro 'B20' expands to more than"));
+        CHECK_FALSE(fs::exists(out.path() + "/g"));
+    }
+    SECTION("in an imported .slang: import names the shader's line and writes nothing") {
+        test::TempDir dir;
+        std::string nested = "1.0";
+        for (int i = 0; i < 40; ++i) nested = "TWICE(" + nested + ")";
+        test::write_file(dir / "bomb.slang", test::slang_program({"", "#define TWICE(a) (a + a)\n", "", "",
+                                                               "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                                               "void main() { FragColor = texture(Source, vTexCoord) * " + nested + "; }\n"}));
+        test::write_file(dir / "bomb.slangp", "shaders = 1\nshader0 = bomb.slang\n");
+        auto run = test::run_crtforge("import '" + (dir / "bomb.slangp") + "' --out '" + (dir / "out") + "'");
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("bomb.slang:"));
+        CHECK_THAT(run.err, Catch::Contains("expands to more than 4000000 tokens"));
+        CHECK_FALSE(fs::exists(dir / "out"));
+    }
 }
