@@ -1,6 +1,6 @@
 // crtforge corpus DIR [--root R] [--report OUT] [--only P,...] [--target T,...|--vulkan-only] [--shard i/n] [-j N]
 //                [--source-size WxH] [--size WxH] [--frame N] [--min-psnr DB] [--smooth] [--retroarch DIR]
-//                [--uniforms default|none|all|NAMES] [--optimised-jit] [--presets-per-process N]
+//                [--uniforms default|none|all|NAMES] [--optimised-jit] [--presets-per-process N] [--preset-timeout S]
 // Every .slangp under DIR through import, SPIR-V, each target's emitter and consumer, a render by
 // each consumer judged against Vulkan: the dashboard of validate/corpus_report.cpp.
 #include <fcntl.h>
@@ -34,6 +34,7 @@ struct CorpusArgs {
     int frame = 2;
     double min_psnr = 40.0, fail_under = 0.0;
     size_t presets_per_process = 50;
+    double preset_timeout = 600;
     int rows_fd = -1;                           // a worker: its rows go here, as lines of JSON
     std::vector<std::string> worker_presets;    // a worker: its presets, relative to DIR
 };
@@ -85,6 +86,7 @@ Result<std::vector<TargetId>> corpus_targets(const std::vector<std::string>& lis
 
 // A worker's run: each row, as it is done, a line of JSON on `fd` for the sweep that started it.
 int run_as_worker(const CorpusRequest& request, const Cache& cache, int fd) {
+    ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // the consumers it starts must not hold the sweep's pipe open
     auto write_row = [fd](size_t, size_t, const CorpusRow& row) {
         const std::string line = corpus_row_line(row) + "\n";
         for (size_t at = 0; at < line.size();) {
@@ -148,6 +150,11 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
                     "Run the presets in worker processes of this many each (0: all in this one). A fresh process gives back what "
                     "the Vulkan driver keeps (lavapipe grows ~90 MB per large preset); a preset that crashes its worker gets a row saying so")
         ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    cmd->add_option("--preset-timeout", a->preset_timeout,
+                    "Seconds a worker may go without finishing a preset before it is stopped and the preset gets a 'timeout' row "
+                    "(0: no limit; not with --presets-per-process 0)")
+        ->check(CLI::Range(0.0, 86400.0))
         ->capture_default_str();
     // How the sweep runs its workers; not for users.
     cmd->add_option("--rows-fd", a->rows_fd)->group("")->check(CLI::Range(3, 1023));
@@ -223,13 +230,14 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
         auto mine = corpus_shard_presets(request);
         if (!mine.ok()) return report(mine.error());
         Result<CorpusReport> result = make_error("not run");
-        if (a->presets_per_process == 0 || mine.value().size() <= a->presets_per_process) {
+        if (a->presets_per_process == 0) {
             result = run_corpus(request, make_cache(g), corpus_progress());
         } else {
             CorpusWorkers workers;
             workers.executable = running_executable();
             if (workers.executable.empty()) return report(make_error("cannot find this program to start its workers", {}, 0, "corpus"));
             workers.presets_per_process = a->presets_per_process;
+            workers.preset_timeout_s = a->preset_timeout;
             workers.arguments = [a, &g, root](const std::vector<std::string>& presets, int fd) {
                 return worker_arguments(*a, g, root, presets, fd);
             };

@@ -48,6 +48,7 @@ for a in "$@"; do
     CRASH) kill -SEGV $$ ;;
     FAIL) exit 3 ;;
     STOP) exit 0 ;;
+    HANG) exec sleep 1000 ;;
     TELL*) mkdir "$TMPDIR/left-behind" && printf '%s' "$TMPDIR" > "${a#TELL}" ;;
     *) printf '%s\n' "$a" >&"$fd" ;;
   esac
@@ -158,6 +159,25 @@ TEST_CASE("the sweep puts each worker's rows in report order and isolates a pres
         REQUIRE_FALSE(folder.empty());
         CHECK_FALSE(std::filesystem::exists(folder));
         CHECK(run.value().rows[1].targets.at("spirv").status == "crashed");
+    }
+    SECTION("a preset that never ends is stopped after the time limit and gets a timeout row; the rest are run again") {
+        auto line = [&](const std::string& p) { return p == "c/6.slangp" ? std::string("HANG") : corpus_row_line(full_row(request, p)); };
+        CorpusWorkers w = shell_workers(3, line);
+        w.preset_timeout_s = 0.5;
+        auto run = run_corpus_in_workers(request, w, progress);
+        REQUIRE(run.ok());
+        const auto& rows = run.value().rows;
+        REQUIRE(rows.size() == presets.size());
+        for (size_t i = 0; i < presets.size(); ++i) {
+            INFO(presets[i]);
+            if (presets[i] == "c/6.slangp") {
+                CHECK(rows[i].targets.at("spirv").status == "timeout");
+                CHECK_THAT(rows[i].targets.at("wgsl").reason, Catch::Matchers::Contains("no result within 0.5 s (--preset-timeout)"));
+            } else {
+                CHECK(corpus_row_line(rows[i]) == corpus_row_line(full_row(request, presets[i])));
+            }
+        }
+        CHECK(calls == presets.size());
     }
     SECTION("a shard runs only its presets") {
         CorpusRequest shard = request;

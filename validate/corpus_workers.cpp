@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <deque>
 #include <map>
@@ -34,6 +35,8 @@ struct Worker {
     std::vector<size_t> batch;
     size_t rows = 0;
     std::string pending;
+    std::chrono::steady_clock::time_point since;  // its start or its last row
+    bool timed_out = false;                       // stopped for writing no row in time
 };
 
 // The workers still running; on an early return every one is killed and reaped, so a failed sweep
@@ -71,6 +74,7 @@ Result<Worker> start_worker(const CorpusWorkers& workers, const std::vector<std:
     w.pid = pid.value();
     w.fd = fds[0];
     w.batch = std::move(batch);
+    w.since = std::chrono::steady_clock::now();
     return w;
 }
 
@@ -83,6 +87,7 @@ Status take_rows(Worker& w, const char* data, size_t size, const std::function<S
         if (!row.ok()) return row.error();
         if (auto s = on_row(w, row.value()); !s.ok()) return s;
         ++w.rows;
+        w.since = std::chrono::steady_clock::now();
     }
     w.pending.erase(0, start);
     if (w.pending.size() > kMaxRowLine) return make_error("a corpus worker wrote a line too long to be a row", {}, 0, "corpus");
@@ -131,11 +136,12 @@ Result<CorpusReport> run_corpus_in_workers(const CorpusRequest& request, const C
                               {}, 0, "corpus");
         if (unfinished.empty()) return Ok{};
         if (WIFEXITED(status)) return make_error("a corpus worker ended without a row for '" + mine[unfinished.front()] + "'", {}, 0, "corpus");
-        if (w.batch.size() == 1) {  // this preset kills its worker: say so in its row
+        if (w.batch.size() == 1) {  // this preset kills its worker, or runs past the limit: say so in its row
             CorpusRow row = corpus_row_for(request, mine[w.batch.front()]);
             for (auto& [name, r] : row.targets) {
-                r.status = "crashed";
-                r.reason = "the worker process running this preset died: " + detail::describe_status(status);
+                r.status = w.timed_out ? "timeout" : "crashed";
+                r.reason = w.timed_out ? fmt::format("no result within {:g} s (--preset-timeout): stopped", workers.preset_timeout_s)
+                                       : "the worker process running this preset died: " + detail::describe_status(status);
             }
             return on_row(w, row);
         }
@@ -164,9 +170,24 @@ Result<CorpusReport> run_corpus_in_workers(const CorpusRequest& request, const C
             live.running.push_back(std::move(w.value()));
             continue;
         }
+        // A worker past its time is stopped; its pipe then closes and it ends as one killed.
+        int wait_ms = -1;
+        if (workers.preset_timeout_s > 0) {
+            const auto now = std::chrono::steady_clock::now();
+            const auto limit = std::chrono::duration<double>(workers.preset_timeout_s);
+            for (Worker& w : live.running) {
+                const double left = std::chrono::duration<double>(w.since + limit - now).count();
+                if (left <= 0 && !w.timed_out) {
+                    ::kill(w.pid, SIGKILL);
+                    w.timed_out = true;
+                }
+                const int ms = left <= 0 ? 1000 : static_cast<int>(std::min(left * 1000.0 + 1.0, 3600e3));
+                wait_ms = wait_ms < 0 ? ms : std::min(wait_ms, ms);
+            }
+        }
         std::vector<pollfd> fds;
         for (const Worker& w : live.running) fds.push_back({w.fd, POLLIN, 0});
-        if (::poll(fds.data(), fds.size(), -1) < 0) {
+        if (::poll(fds.data(), fds.size(), wait_ms) < 0) {
             if (errno == EINTR) continue;
             return make_error(std::string("cannot wait for the corpus workers: ") + std::strerror(errno), {}, 0, "corpus");
         }

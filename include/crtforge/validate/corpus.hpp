@@ -43,6 +43,7 @@ struct CorpusRequest {
 //   "agrees"   rendered, at or above it (Vulkan itself: rendered, every pixel finite)
 //   "skipped"  an earlier step of the preset failed (import or SPIR-V)
 //   "crashed"  the worker process running the preset died (a signal: a driver crash, the OOM killer)
+//   "timeout"  the worker running the preset alone wrote no row within the sweep's --preset-timeout
 struct CorpusTargetResult {
     std::string status = "skipped";
     size_t passes_compiled = 0;  // passes whose files the consumer accepted

@@ -20,6 +20,9 @@ struct CorpusWorkers {
     // worker writes one corpus_row_line() per preset, each ended by '\n', to descriptor `rows_fd`.
     std::function<std::vector<std::string>(const std::vector<std::string>& presets, int rows_fd)> arguments;
     size_t presets_per_process = 50;
+    // A worker that writes no row for this long is stopped (0: never): its preset in flight gets a
+    // "timeout" row (alone in a worker; in a batch, the unfinished presets run again one by one).
+    double preset_timeout_s = 0;
 };
 
 // The same report as run_corpus() (rows in the same order, the same bytes), run by workers. A
