@@ -28,7 +28,7 @@ Result<std::pair<int, int>> parse_size(const std::string& text) {
     if (!size || size->first < 1 || size->second < 1 || size->first > kMaxImageDimension || size->second > kMaxImageDimension)
         return make_error(fmt::format("'{}' must be WIDTHxHEIGHT, each 1..{} (e.g. 640x480)", text, kMaxImageDimension), {}, 0,
                           "--size");
-    if (const std::string over = image_budget_error(static_cast<int>(size->first), static_cast<int>(size->second)); !over.empty())
+    if (const std::string over = render_budget_error(static_cast<int>(size->first), static_cast<int>(size->second)); !over.empty())
         return make_error("'" + text + "' " + over, {}, 0, "--size");
     return std::make_pair(static_cast<int>(size->first), static_cast<int>(size->second));
 }

@@ -221,7 +221,11 @@ TEST_CASE("sizes, frames and shards beyond 32 bits are refused, not wrapped arou
         check_refused("render --preset classic --input pixel_art --size '" + size + "' --output /tmp/never.png", "--size");
     auto budget = test::run_crtforge("render --preset classic --input pixel_art --size 16384x16384 --output /tmp/never.png");
     CHECK(budget.exit_code == 2);
-    CHECK_THAT(budget.err, Catch::Contains("image memory budget"));
+    CHECK_THAT(budget.err, Catch::Contains("render memory budget"));
+    // Within the image budget but not a render's: several framebuffers of that size would pass 2 GB.
+    auto render = test::run_crtforge("render --preset super-win --input pixel_art --size 4096x4096 --output /tmp/never.png");
+    CHECK(render.exit_code == 2);
+    CHECK_THAT(render.err, Catch::Contains("'4096x4096' is 16 Mpx, beyond the render memory budget of 9 Mpx"));
     for (std::string shard : {"4294967297/4", "1/4294967297", "0/4", "5/4", "1/0", "-1/4"})
         check_refused("validate --preset classic --target spirv --shard '" + shard + "'", "--shard");
     auto frames = test::run_crtforge("render --preset classic --input pixel_art --frames 4294967296:4294967297 --output '/tmp/never_%d.png'");
@@ -256,25 +260,25 @@ static void check_header_only_png_fails(const test::TempDir& dir, const std::str
 }
 
 TEST_CASE("an image beyond the memory budget is refused from its header, before decoding", "[hostile][image]") {
-    // 9000 x 9000 (81 Mpx): refused for its size, not decoded (decoding would report a truncated file).
+    // 4100 x 4100 (17 Mpx, past 4096 x 4096): refused for its size, not decoded (decoding would report a truncated file).
     test::TempDir dir;
-    check_header_only_png_fails(dir, "huge.png", 9000, 9000, "image memory budget");
+    check_header_only_png_fails(dir, "huge.png", 4100, 4100, "image memory budget");
 }
 
 TEST_CASE("a file claiming a large picture it does not hold fails before the picture's memory is taken", "[hostile][image]") {
-    // 8000 x 8000 is within the budget, so the header passes; the 1 GB of floats it claims must
+    // 4096 x 4096 is within the budget, so the header passes; the 256 MB of floats it claims must
     // not be committed before rows really decode (the buffer grows band by band).
     test::TempDir dir;
-    check_header_only_png_fails(dir, "liar.png", 8000, 8000, "cannot read pixels");
+    check_header_only_png_fails(dir, "liar.png", 4096, 4096, "cannot read pixels");
     // The same through the CLI in a child process, whose peak resident memory the kernel keeps:
-    // well under the claimed picture's 1 GB (the process itself needs ~160 MB).
+    // well under the claimed picture's 256 MB plus the process itself (~160 MB).
     auto run = test::run_crtforge("render --reference --preset classic --input '" + (dir / "liar.png") +
                                   "' --output '" + (dir / "out.png") + "'");
     CHECK(run.exit_code == 2);
     CHECK_FALSE(fs::exists(dir / "out.png"));
     rusage usage{};
     REQUIRE(getrusage(RUSAGE_CHILDREN, &usage) == 0);
-    CHECK(usage.ru_maxrss < 500 * 1024);  // KiB
+    CHECK(usage.ru_maxrss < 300 * 1024);  // KiB
 }
 
 TEST_CASE("keywords and builtins of any target are refused as param names at the spec line", "[hostile][spec]") {

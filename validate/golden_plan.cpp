@@ -101,7 +101,7 @@ public:
         const int64_t w = *a->get(0)->value<int64_t>(), h = *a->get(1)->value<int64_t>();
         if (w < 1 || h < 1 || w > kMaxImageDimension || h > kMaxImageDimension)
             return error(node, field, fmt::format("{}x{} is outside 1..{}", w, h, kMaxImageDimension));
-        if (const std::string over = image_budget_error(w, h); !over.empty()) return error(node, field, fmt::format("{}x{} {}", w, h, over));
+        if (const std::string over = render_budget_error(w, h); !over.empty()) return error(node, field, fmt::format("{}x{} {}", w, h, over));
         return std::make_pair(static_cast<int>(w), static_cast<int>(h));
     }
 

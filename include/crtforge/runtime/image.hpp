@@ -16,15 +16,29 @@ namespace crtforge {
 inline constexpr int kMaxImageDimension = 16384;
 
 // The image memory budget: no image crtforge reads, renders or writes has more pixels than this
-// (8192 x 8192 or 16384 x 4096; 1 GiB as RGBA float). Readers check it from the file's header,
-// before decoding; a render at the budget peaks at about 6 GiB (docs/hard-cases.md, "Memory").
-inline constexpr std::size_t kMaxImagePixels = std::size_t{8192} * 8192;
+// (4096 x 4096 or 16384 x 1024: 256 MiB as RGBA float; the corpus's largest picture is a 4096 x 4096
+// LUT). Readers check it from the file's header, before decoding; a render at the budget stays
+// near 2 GiB (docs/hard-cases.md, "Memory": about 100-140 bytes per pixel at the peak).
+inline constexpr std::size_t kMaxImagePixels = std::size_t{4096} * 4096;
+
+// What one render may draw into: its display and each pass's framebuffer (4096 x 2304, 16:9 at
+// 4096 wide; DCI 4K and UHD fit). Smaller than the image budget: a render keeps several
+// framebuffers of a size, each read back, so this bounds it near 2 GiB (super-win at the limit).
+inline constexpr std::size_t kMaxRenderPixels = std::size_t{4096} * 2304;
 
 // Empty when a width x height image fits the budget, else the reason, for a message.
 inline std::string image_budget_error(long long width, long long height) {
     if (width > 0 && height > 0 && static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) > kMaxImagePixels)
         return "is " + std::to_string(width * height / 1000000) + " Mpx, beyond the image memory budget of " +
-               std::to_string(kMaxImagePixels / 1000000) + " Mpx (e.g. 8192x8192)";
+               std::to_string(kMaxImagePixels / 1000000) + " Mpx (e.g. 4096x4096)";
+    return {};
+}
+
+// Empty when a render (display or framebuffer) of width x height fits kMaxRenderPixels, else why not.
+inline std::string render_budget_error(long long width, long long height) {
+    if (width > 0 && height > 0 && static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) > kMaxRenderPixels)
+        return "is " + std::to_string(width * height / 1000000) + " Mpx, beyond the render memory budget of " +
+               std::to_string(kMaxRenderPixels / 1000000) + " Mpx (e.g. 4096x2304, 3840x2160)";
     return {};
 }
 
