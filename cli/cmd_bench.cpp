@@ -90,7 +90,10 @@ Runner add_bench_command(CLI::App& app, const GlobalOptions& g) {
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--input", o->input, "Generated test input, at the preset's source size")->capture_default_str();
-    cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")->capture_default_str();
+    // Earlier frames run first (a scene with feedback needs them): bounded, so a bench never runs for hours.
+    cmd->add_option("--frame", o->frame, "Frame whose passes are timed (earlier frames run first)")
+        ->check(CLI::Range(0, 10000))
+        ->capture_default_str();
     auto* draws = cmd->add_option("--draws", o->draws, "Draws per timing (default: as many pixels as 4 draws at 1280x960: 16 at 640x480, 2 at 1920x1080, 1 at 3840x2160)")
                       ->check(CLI::Range(1, 100000));
     cmd->add_option("--repeats", o->repeats, "Timings per pass (the fastest is reported, the median and spread beside it; the blit takes the fastest of max(N, 5), beside the first of a size eight more)")->check(CLI::Range(1, 1000))->capture_default_str();

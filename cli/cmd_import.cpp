@@ -18,7 +18,7 @@ Result<SlangImportOptions> slang_import_options(const std::string& root, const s
     options.root = root;
     options.name = name;
     if (!name.empty() && !is_preset_name(name))
-        return make_error("'" + name + "' must be lower-case letters, digits, '-' or '_'", {}, 0, "--name");
+        return make_error("'" + name + "' must be 1 to 64 lower-case letters, digits, '-' or '_', starting with a letter or digit", {}, 0, "--name");
     options.unset_filter = smooth ? Filter::Linear : Filter::Nearest;
     if (!source_size.empty()) {
         auto size = parse_size(source_size);

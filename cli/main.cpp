@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <new>
 #include <set>
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "cli/cli_common.hpp"
+#include "crtforge/cache.hpp"
 #include "crtforge/files.hpp"
 #include "crtforge/lut_file.hpp"
 #include "crtforge/runtime/image_io.hpp"
@@ -197,6 +199,23 @@ int main(int argc, char** argv) {
     if (const std::string empty = empty_option_value(app); !empty.empty()) {
         std::fprintf(stderr, "crtforge: error: %s has an empty value (give a value, or leave the option out)\n", empty.c_str());
         return kExitUsage;
+    }
+    // The cache folder, from --cache-dir or the environment: set but empty, or something other than
+    // a folder (a file, /dev/null), is refused rather than quietly read and written as a cache.
+    if (!g.no_cache && g.cache_dir.empty()) {
+        if (const char* env = std::getenv("CRTFORGE_CACHE"); env && !*env) {
+            std::fprintf(stderr, "crtforge: error: CRTFORGE_CACHE is set but empty (give a folder, or unset it)\n");
+            return kExitUsage;
+        }
+    }
+    if (!g.no_cache) {
+        const std::string cache = g.cache_dir.empty() ? crtforge::Cache::default_dir() : g.cache_dir;
+        std::error_code ec;
+        if (!cache.empty() && std::filesystem::exists(cache, ec) && !std::filesystem::is_directory(cache, ec)) {
+            std::fprintf(stderr, "crtforge: %s: error: field '%s': is not a folder (the compile cache is one)\n", cache.c_str(),
+                         g.cache_dir.empty() ? "CRTFORGE_CACHE" : "--cache-dir");
+            return kExitUsage;
+        }
     }
     // Every failure is meant to arrive as a Diagnostic; this is the last line of defence, so an
     // exception that escapes anyway is still one line and exit 2, never an abort.

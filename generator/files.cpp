@@ -40,9 +40,11 @@ Result<std::vector<std::string>> list_files(const std::string& dir, const std::s
     if (ec) return make_error("cannot list directory: " + ec.message(), dir);
     for (const auto& entry : it) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_regular_file(ec) && name.size() > ext.size() &&
-            name.compare(name.size() - ext.size(), ext.size(), ext) == 0)
-            out.push_back(dir + "/" + name);
+        if (name.size() <= ext.size() || name.compare(name.size() - ext.size(), ext.size(), ext) != 0) continue;
+        // One named like a file of this kind but not one (a FIFO, a device, a link to nothing) is an
+        // error, not a file silently left out.
+        if (!entry.is_regular_file(ec)) return make_error("is not a regular file", dir + "/" + name);
+        out.push_back(dir + "/" + name);
     }
     std::sort(out.begin(), out.end());
     return out;

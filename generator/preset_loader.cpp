@@ -223,8 +223,8 @@ Result<PassEntry> parse_pass(const TomlReader& r, const toml::table& t, size_t i
     auto mod = r.integer(t, "frame_count_mod", field);
     if (!mod.ok()) return mod.error();
     if (mod.value()) {
-        if (*mod.value() < 1 || *mod.value() > (1 << 30))
-            return r.error(t.get("frame_count_mod"), field + ".frame_count_mod", "must be 1..2^30");
+        if (*mod.value() < 0 || *mod.value() > (1 << 30))  // 0: as is, as RetroArch reads it
+            return r.error(t.get("frame_count_mod"), field + ".frame_count_mod", "must be 0..2^30 (0: as is)");
         pass.frame_count_mod = static_cast<int>(*mod.value());
     }
     auto supersample = parse_supersample(r, t, field);
@@ -374,7 +374,7 @@ Result<std::vector<TierEntry>> parse_tiers(const TomlReader& r, const toml::node
         tier.line = r.line_of(tier_node);
         // A tier's name joins the point and filtered tiers' ("<name>+filtered") in reports and CLI.
         if (!is_preset_name(tier.name) || tier.name == "point" || tier.name == "filtered")
-            return r.error(&tier_node, field, "'" + tier.name + "' must be lower-case letters, digits, '-' or '_', and not 'point' or 'filtered'");
+            return r.error(&tier_node, field, "'" + tier.name + "' must be 1 to 64 lower-case letters, digits, '-' or '_', starting with a letter or digit, and not 'point' or 'filtered'");
         const toml::table* tt = tier_node.as_table();
         if (!tt) return r.error(&tier_node, field, "must be a table");
         if (auto s = r.only_keys(*tt, {"doc", "passes"}, field); !s.ok()) return s.error();
@@ -413,7 +413,7 @@ Result<PresetFile> parse_preset_file(const std::string& text, const std::string&
     file.name = name.value();
     if (!is_preset_name(file.name))
         return r.error(root.get("name"), "name",
-                       "'" + file.name + "' must be lower-case letters, digits, '-' or '_' (it becomes a file name)");
+                       "'" + file.name + "' must be 1 to 64 lower-case letters, digits, '-' or '_', starting with a letter or digit (it becomes a file name)");
     auto doc = r.string(root, "doc", "", true);
     if (!doc.ok()) return doc.error();
     file.doc = doc.value();

@@ -80,6 +80,20 @@ std::string display_dir(const std::string& dir) {
     return rel.string();
 }
 
+// A template file must lie in its template folder: a link out of it (to /etc/passwd, say) would
+// make any file on the machine part of a stage or preset, and its text part of an error message.
+Status inside_folder(const std::string& path, const std::string& folder) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path file = fs::weakly_canonical(path, ec);
+    const fs::path root = fs::weakly_canonical(folder, ec);
+    if (ec) return make_error("cannot resolve: " + ec.message(), path);
+    const fs::path rel = file.lexically_relative(root);
+    if (rel.empty() || *rel.begin() == "..")
+        return make_error("leads out of the template folder " + folder + " (to " + file.string() + ")", path);
+    return Ok{};
+}
+
 }  // namespace
 
 namespace {
@@ -93,7 +107,10 @@ Result<std::vector<std::string>> layered_files(const std::vector<std::string>& l
         if (!std::filesystem::is_directory(layer + "/" + sub, ec)) continue;
         auto files = list_files(layer + "/" + sub, ext);
         if (!files.ok()) return files.error();
-        for (const std::string& f : files.value()) by_stem[file_stem(f)] = f;
+        for (const std::string& f : files.value()) {
+            if (auto inside = inside_folder(f, layer); !inside.ok()) return inside.error();
+            by_stem[file_stem(f)] = f;
+        }
     }
     std::vector<std::string> out;
     for (const auto& [stem, path] : by_stem) out.push_back(path);
@@ -163,6 +180,8 @@ Result<std::shared_ptr<TemplateLibrary>> TemplateLibrary::load(const std::string
             continue;
         }
         s.glsl_path = std::filesystem::path(path).parent_path().string() + "/" + s.name + ".glsl";
+        if (auto inside = inside_folder(s.glsl_path, std::filesystem::path(path).parent_path().parent_path().string()); !inside.ok())
+            return inside.error();
         auto glsl = read_text_file(s.glsl_path, detail::kMaxTomlBytes);
         if (!glsl.ok()) return glsl.error();
         s.glsl_source = glsl.value();

@@ -56,6 +56,12 @@ Status lint_stage_source(const StageSpec& stage) {
         return fail(static_cast<size_t>(m.position()), "a snippet declares no '" + m[1].str() +
                                                             "' resources: the textures it reads are its form's `textures`, "
                                                             "its values are the spec's params");
+    // Nor does it switch language features on: an `#extension` (GL_EXT_debug_printf, say) reaches
+    // only the SPIR-V, which then fails validation far from the snippet, and no other target has it.
+    static const std::regex extension(R"((^|\n)[ \t]*#[ \t]*extension\b)");
+    if (std::smatch m; std::regex_search(text, m, extension))
+        return fail(static_cast<size_t>(m.position()) + m[1].length(),
+                    "a snippet enables no GLSL extensions (#extension): the generated code is the same GLSL for every target");
     // An array beyond a few thousand elements is no CRT stage's, and past 65535 words one SPIR-V
     // instruction cannot hold its constant (glslang then writes a broken module).
     static const std::regex array_size(R"(\[\s*(\d+)\s*\])");

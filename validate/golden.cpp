@@ -1,6 +1,8 @@
 #include "crtforge/validate/golden.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -480,7 +482,16 @@ Result<GoldenUpdate> update_goldens(const TemplateLibrary& library, const std::s
         if (std::find(owners.begin(), owners.end(), owner) == owners.end()) owners.push_back(owner);
     }
     std::map<std::string, std::pair<Image, Image>> pictures;  // owner id -> (reference, unstable map)
-    for (const auto& sequence : golden_sequences(owners)) {
+    // A line on stderr at most every 10 s while it renders: long work is never silent.
+    const auto sequences = golden_sequences(owners);
+    auto last_said = std::chrono::steady_clock::now();
+    size_t sequences_done = 0;
+    for (const auto& sequence : sequences) {
+        if (std::chrono::steady_clock::now() - last_said >= std::chrono::seconds(10)) {
+            std::fprintf(stderr, "golden update: %zu/%zu sequences rendered\n", sequences_done, sequences.size());
+            last_said = std::chrono::steady_clock::now();
+        }
+        ++sequences_done;
         auto rendered = render_golden_references(library, sequence);
         if (!rendered.ok()) return rendered.error();
         auto flips = render_golden_unstable(library, sequence, rendered.value());

@@ -549,10 +549,16 @@ Result<std::vector<GoldenEntry>> golden_plan(const TemplateLibrary& library, con
                     // A scene that states its source size is fed pictures of that size.
                     if (p.scene.source_width) std::tie(iw, ih) = std::make_pair(p.scene.source_width, p.scene.source_height);
                     for (int frame : rule.frames) {
-                        // A scene with feedback or history runs every frame before the one shown.
-                        if (frame > 1000000 && p.keeps_state())
-                            return make_error("frame " + std::to_string(frame) + " of '" + p.name + "', which keeps state between frames: "
-                                              "it would run every frame before it (at most 1000000)", path, rule.line, "golden.frame");
+                        // A scene with feedback or history runs every frame before the one shown: the
+                        // reference draws a 32x24 super-win frame in ~22 ms, so frames x pixels is bounded
+                        // (a golden then takes at most a minute or two).
+                        constexpr double kMaxSequencePixelFrames = 4e6;
+                        const double work = (static_cast<double>(frame) + 1.0) * rule.width * rule.height;
+                        if (p.keeps_state() && work > kMaxSequencePixelFrames)
+                            return make_error(fmt::format("frame {} of '{}' at {}x{}: it keeps state between frames, so every frame "
+                                                          "before it is drawn too; (frame + 1) x width x height may be at most {:.0f}",
+                                                          frame, p.name, rule.width, rule.height, kMaxSequencePixelFrames),
+                                              path, rule.line, "golden.frame");
                         // The configuration's entry, placed: make_golden_entry gives the rest.
                         const GoldenEntry placed = make_golden_entry(p.name, input, rule.width, rule.height, iw, ih, frame, rule.fit);
                         GoldenEntry e = config;

@@ -347,6 +347,17 @@ Status copy_report_images(const std::vector<std::string>& shard_dirs, const std:
     return Ok{};
 }
 
+namespace {
+
+// A golden id, preset or target names a folder or file of the merged report (images/<id>/<target>.png):
+// one plain path component, never a way out of the report's folder.
+bool plain_component(const std::string& s) {
+    if (s.empty() || s.size() > 255 || s[0] == '.') return false;
+    return std::all_of(s.begin(), s.end(), [](char c) { return c != '/' && c != '\\' && static_cast<unsigned char>(c) >= 0x20; });
+}
+
+}  // namespace
+
 Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
     ValidationReport merged;
     std::map<std::string, GoldenEntry> goldens;
@@ -392,6 +403,7 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
                 e.input_width = g.at("inputWidth");
                 e.input_height = g.at("inputHeight");
                 e.frame = g.at("frame");
+                if (!plain_component(e.id)) return make_error("golden id '" + e.id + "' is not a plain name", path, 0, "goldens.id");
                 const auto& t = g.at("tolerance");
                 e.tolerance = {t.at("maxRmse"), t.at("outlierThreshold"), t.at("maxOutlierFraction"), t.at("minSsim"),
                                t.value("maxTileRmse", 0.0), t.at("why")};
@@ -402,6 +414,9 @@ Result<ValidationReport> merge_reports(const std::vector<std::string>& dirs) {
                 if (r.check.rfind("render:", 0) == 0) r.golden_id = r.check.substr(7);
                 r.not_rendered = c.value("status", "") == "not-rendered";
                 if (r.check.rfind("agree:", 0) == 0) r.golden_id = r.check.substr(6);
+                for (const std::string* name : {&r.preset, &r.target, &r.golden_id})
+                    if (!name->empty() && !plain_component(*name))
+                        return make_error("check names '" + *name + "', which is not a plain name", path, 0, "checks");
                 if (c.contains("metrics")) {
                     const auto& m = c.at("metrics");
                     Verdict v;

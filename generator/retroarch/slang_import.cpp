@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -194,12 +195,16 @@ private:
                 used_names.insert(name);
                 param_names_[p.id] = name;
             }
+        for (const auto& [id, at] : preset_.empty_values)
+            if (params_.count(id))
+                return make_error(fmt::format("the shader parameter '{}' is given an empty value (give a number, or leave the line out)", id),
+                                  at.file, at.line, id);
         for (const auto& [id, value] : preset_.parameters) {
             if (!params_.count(id)) continue;
-            if (!std::isfinite(value)) {
+            if (!std::isfinite(value) || std::fabs(value) > std::numeric_limits<float>::max()) {
                 const SourceLocation& at = preset_.parameter_lines.at(id);
-                return make_error(fmt::format("the shader parameter '{}' is set to {}, not a finite number", id, value), at.file,
-                                  at.line, id);
+                return make_error(fmt::format("the shader parameter '{}' is set to {}, not a finite number within float range "
+                                              "(RetroArch reads it as a float)", id, value), at.file, at.line, id);
             }
             values_[id] = value;
         }
@@ -518,6 +523,7 @@ Result<ImportedPreset> import_slangp(const std::string& slangp_path, const Slang
 
 Status write_imported_preset(const ImportedPreset& preset, const std::string& dir) {
     std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) return make_error("exists and is not a folder", dir, 0, "--out");
     const fs::path staging = fs::path(dir) / (".crtforge-import-" + preset.name + "-" + std::to_string(::getpid()));
     fs::remove_all(staging, ec);
     // Every file staged first (where a full disk shows), then each moved into place.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -226,13 +227,16 @@ Result<SlangParameter> parse_parameter(const std::string& text, const std::strin
         size_t consumed = 0;
         const double value = detail::parse_number_prefix(std::string_view(text).substr(i), consumed);
         if (consumed == 0) return fail(std::string(names[k]) + " of '" + p.id + "' is not a number");
-        if (!std::isfinite(value)) return fail(std::string(names[k]) + " of '" + p.id + "' is not finite");
+        if (!std::isfinite(value) || std::fabs(value) > std::numeric_limits<float>::max())
+            return fail(std::string(names[k]) + " of '" + p.id + "' is not a finite number within float range (RetroArch reads it as a float)");
         *numbers[k] = value;
         i += consumed;
     }
     while (i < text.size() && is_blank(text[i])) ++i;
     size_t consumed = 0;
     const double step = i < text.size() ? detail::parse_number_prefix(std::string_view(text).substr(i), consumed) : 0.0;
+    if (consumed > 0 && std::isfinite(step) && std::fabs(step) > std::numeric_limits<float>::max())
+        return fail("STEP of '" + p.id + "' is beyond float range (RetroArch reads it as a float)");
     if (consumed > 0 && std::isfinite(step)) {
         p.step = step;
         p.has_step = true;

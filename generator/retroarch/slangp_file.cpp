@@ -554,6 +554,10 @@ Result<SlangpPreset> load_slangp(const std::string& path, const std::string& roo
                                                       e.where.file, e.where.line, e.key));
                 continue;
             }
+            if (e.value.empty()) {
+                out.empty_values[e.key] = e.where;
+                continue;
+            }
             size_t consumed = 0;
             const double value = detail::parse_number_prefix(e.value, consumed);
             // Not a number: not a parameter value. A whole value that is a number but not a finite one

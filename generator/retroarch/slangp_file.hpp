@@ -109,6 +109,9 @@ struct SlangpPreset {
     // value may be inf or nan: RetroArch's strtod reads them; the caller refuses them).
     std::vector<std::pair<std::string, double>> parameters;
     std::map<std::string, SourceLocation> parameter_lines;
+    // Keys written with an empty value (`P1 =`) that are no preset key: if one names a shader
+    // parameter, the importer refuses it (an empty value is a mistake, not the value left out).
+    std::map<std::string, SourceLocation> empty_values;
     std::vector<std::string> files;      // every preset file read (the chain, and #include'd files)
     // What RetroArch accepts but ignores or replaces by a default. Diagnostic::str() says "error:";
     // a caller printing these words them as warnings itself.
