@@ -696,3 +696,91 @@ TEST_CASE("a macro that expands beyond any shader (macros within macros) is refu
         CHECK_FALSE(fs::exists(dir / "out"));
     }
 }
+
+TEST_CASE("hostile inputs of stop 51: stateful golden frames, bench frames, float range and empty values in .slangp, #extension, crafted report ids, links out of the templates, cache paths",
+          "[hostile][stop51]") {
+    test::TempDir dir;
+    SECTION("a golden plan asking a stateful preset for a frame far away is refused at the rule's line") {
+        test::write_file(dir / "plan/plan.toml", "[[golden]]\nwhy = \"x\"\npresets = [\"super-win\"]\ninputs = [\"color_bars\"]\n"
+                                                  "size = [32, 24]\nframes = [1000000]\n");
+        auto run = test::run_crtforge("golden update --dir '" + (dir / "plan") + "'");
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("plan.toml:1") && Catch::Contains("golden.frame") && Catch::Contains("keeps state"));
+        check_refused("bench --preset super-win --size 64x48 --frame 100000000 --quick --no-tiers", "--frame");
+    }
+    SECTION("import: values beyond float range, an empty value for a shader parameter, --out a file") {
+        const std::string shader = test::slang_program({"float P1; ", "#pragma parameter P1 \"p\" 0.5 0.0 1.0 0.1\n", "", "",
+                                                        "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                                        "void main() { FragColor = texture(Source, vTexCoord) * params.P1; }\n"});
+        test::write_file(dir / "s.slang", shader);
+        std::string huge = shader;
+        huge.replace(huge.find("0.5 0.0 1.0 0.1"), 15, "0.5 -1e308 1e308 0.1");
+        test::write_file(dir / "huge.slang", huge);
+        test::write_file(dir / "value.slangp", "shaders = 1\nshader0 = s.slang\nparameters = \"P1\"\nP1 = 1e39\n");
+        test::write_file(dir / "bounds.slangp", "shaders = 1\nshader0 = huge.slang\n");
+        test::write_file(dir / "empty.slangp", "shaders = 1\nshader0 = s.slang\nalias0 = \"\"\nP1 =\n");
+        test::write_file(dir / "good.slangp", "shaders = 1\nshader0 = s.slang\nP1 = 0.25\n");
+        const std::pair<const char*, const char*> cases[] = {{"value.slangp", "value.slangp:4: error: field 'P1'"},
+                                                             {"bounds.slangp", "MINIMUM of 'P1' is not a finite number within float range"},
+                                                             {"empty.slangp", "empty.slangp:4: error: field 'P1': the shader parameter 'P1' is given an empty value"}};
+        for (const auto& [file, wanted] : cases) {
+            INFO(file);
+            auto run = test::run_crtforge("import '" + (dir / file) + "' --out '" + (dir / "out") + "'");
+            CHECK(run.exit_code == 2);
+            CHECK_THAT(run.err, Catch::Contains(wanted));
+            CHECK_FALSE(fs::exists(dir / "out"));
+        }
+        overwrite(dir / "afile", "x");
+        auto onto = test::run_crtforge("import '" + (dir / "good.slangp") + "' --out '" + (dir / "afile") + "'");
+        CHECK(onto.exit_code == 2);
+        CHECK_THAT(onto.err, Catch::Contains("afile: error: field '--out': exists and is not a folder"));
+    }
+    SECTION("a snippet enables no extension; template files stay inside their folder and are regular files") {
+        test::ScratchTemplates t;
+        t.write("stages/vignette.glsl", "#extension GL_EXT_debug_printf : enable\n" + t.read("stages/vignette.glsl"));
+        auto lib = t.load();
+        REQUIRE_FALSE(lib.ok());
+        CHECK_THAT(lib.error().file, Catch::EndsWith("stages/vignette.glsl"));
+        CHECK(lib.error().line == 1);
+        CHECK_THAT(lib.error().message, Catch::Contains("#extension"));
+
+        test::write_file(dir / "overlay/presets/keep.toml", "x");
+        fs::remove(dir / "overlay/presets/keep.toml");
+        fs::create_symlink("/etc/passwd", dir / "overlay/presets/evil.toml");
+        auto out = test::run_crtforge("--templates '" + (dir / "overlay") + "' list presets");
+        CHECK(out.exit_code == 2);
+        CHECK_THAT(out.err, Catch::Contains("evil.toml: error: leads out of the template folder"));
+        CHECK(out.err.find("root:") == std::string::npos);  // nothing of the file it points at
+        fs::remove(dir / "overlay/presets/evil.toml");
+        fs::create_symlink("/dev/zero", dir / "overlay/presets/zero.toml");
+        auto zero = test::run_crtforge("--templates '" + (dir / "overlay") + "' list presets");
+        CHECK(zero.exit_code == 2);
+        CHECK_THAT(zero.err, Catch::Contains("zero.toml"));
+    }
+    SECTION("report merge refuses a golden id that climbs out of the report") {
+        auto shard = [&](const std::string& name) {
+            REQUIRE(test::run_crtforge("validate --preset classic --target spirv --shard " + name + "/2 --report '" + (dir / ("s" + name)) + "'")
+                        .exit_code == 0);
+        };
+        shard("1");
+        shard("2");
+        const std::string path = dir / "s1/report.json";
+        std::string json = test::slurp(path);
+        const size_t id = json.find("\"id\": \"", json.find("\"goldens\""));
+        REQUIRE(id != std::string::npos);
+        json.insert(id + 7, "../../../outside/");
+        overwrite(path, json);
+        auto merged = test::run_crtforge("report merge --out '" + (dir / "m") + "' '" + (dir / "s1") + "' '" + (dir / "s2") + "'");
+        CHECK(merged.exit_code == 2);
+        CHECK_THAT(merged.err, Catch::Contains("is not a plain name"));
+        CHECK_FALSE(fs::exists(dir / "m"));
+    }
+    SECTION("the compile cache: set but empty, or not a folder") {
+        check_refused("--cache-dir /dev/null list presets", "'--cache-dir': is not a folder");
+        overwrite(dir / "file", "x");
+        check_refused("--cache-dir '" + (dir / "file") + "' list presets", "is not a folder");
+        auto empty = test::run_crtforge("list presets", "CRTFORGE_CACHE=");
+        CHECK(empty.exit_code == 2);
+        CHECK_THAT(empty.err, Catch::Contains("CRTFORGE_CACHE is set but empty"));
+    }
+}
