@@ -240,4 +240,27 @@ Result<std::string> read_lut_file(const LutSpec& lut, const std::string& templat
     return bytes;
 }
 
+std::optional<std::pair<int, int>> lut_picture_size(std::string_view b) {
+    if (b.size() >= 24 && b.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8) && b.substr(12, 4) == "IHDR")
+        return std::make_pair(static_cast<int>(be32(b, 16)), static_cast<int>(be32(b, 20)));
+    if (b.size() < 4 || static_cast<uint8_t>(b[0]) != 0xff || static_cast<uint8_t>(b[1]) != 0xd8) return std::nullopt;
+    for (size_t at = 2; at + 9 <= b.size();) {  // the JPEG's frame header, as jpeg_error walks to it
+        if (static_cast<uint8_t>(b[at]) != 0xff) return std::nullopt;
+        const uint8_t marker = static_cast<uint8_t>(b[at + 1]);
+        if (marker == 0xff) {
+            ++at;
+            continue;
+        }
+        if (marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) {
+            at += 2;
+            continue;
+        }
+        if (marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc)
+            return std::make_pair(static_cast<int>(be16(b, at + 7)), static_cast<int>(be16(b, at + 5)));
+        if (marker == 0xda || marker == 0xd9) return std::nullopt;
+        at += 2 + be16(b, at + 2);
+    }
+    return std::nullopt;
+}
+
 }  // namespace crtforge

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "crtforge/lut_file.hpp"
 #include "crtforge/template_library.hpp"
 
 namespace crtforge {
@@ -192,6 +193,28 @@ Result<std::vector<ResolvedStage>> resolve_stages(const std::vector<StageSpec>& 
                               field_prefix + rs.stage->name);
         }
     return out;
+}
+
+// A LUT bound where a form reads a fixed layout (FormSpec::texture_sizes) must have that size:
+// a picture of another size would be sampled as if it had the layout, silently wrong.
+Status lut_fits_forms(const Pass& pass, const std::string& binding, const LutSpec& lut) {
+    for (const ResolvedStage& rs : pass.stages) {
+        if (!rs.form) continue;
+        auto wanted = rs.form->texture_sizes.find(binding);
+        if (wanted == rs.form->texture_sizes.end()) continue;
+        std::optional<std::pair<int, int>> size;
+        if (lut.bytes) {
+            size = lut_picture_size(*lut.bytes);
+        } else if (const LutGenerator* generator = lut.generator.empty() ? nullptr : find_lut_generator(lut.generator)) {
+            const LutImage image = generator->generate(lut.params);
+            size = std::make_pair(image.width, image.height);
+        }
+        if (size && *size != wanted->second)
+            return make_error(fmt::format("is {}x{}, but form '{}' of stage '{}' reads '{}' as a {}x{} table", size->first, size->second,
+                                          rs.form->name, rs.stage->name, binding, wanted->second.first, wanted->second.second),
+                              lut.where.file, lut.where.line, "lut." + lut.name);
+    }
+    return Ok{};
 }
 
 // "original", "original@N", "<alias>", "<alias>@previous", "lut:<name>".
@@ -572,6 +595,8 @@ Result<Preset> TemplateLibrary::resolve_preset(const std::vector<PresetFile>& fi
             const TextureSource& src = input.from;
             if (src.kind == TextureSource::Kind::Lut && !preset.find_lut(src.name))
                 return make_error("there is no [lut." + src.name + "]", file, line, field);
+            if (src.kind == TextureSource::Kind::Lut)
+                if (auto sized = lut_fits_forms(pass, input.binding, *preset.find_lut(src.name)); !sized.ok()) return sized.error();
             if (src.kind != TextureSource::Kind::Pass && src.kind != TextureSource::Kind::Feedback) continue;
             auto target = std::find_if(preset.passes.begin(), preset.passes.end(), [&](const Pass& p) { return p.alias == src.name; });
             if (target == preset.passes.end()) return make_error("there is no pass '" + src.name + "'", file, line, field);

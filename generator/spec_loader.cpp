@@ -10,6 +10,7 @@
 #include "crtforge/template_library.hpp"
 #include "generator/reserved_words.hpp"
 #include "generator/toml_reader.hpp"
+#include "crtforge/runtime/image.hpp"
 
 namespace crtforge {
 
@@ -211,7 +212,7 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
     if (stage.program) {
         if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "vertex", "fragment"}, prefix); !s.ok())
             return s.error();
-    } else if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "quality_of", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok()) {
+    } else if (auto s = r.only_keys(t, {"name", "doc", "params", "builtins", "textures", "texture_sizes", "quality_of", "warp", "sample_uv", "fetch", "color", "finish", "alpha"}, prefix); !s.ok()) {
         return s.error();
     }
     FormSpec f;
@@ -251,6 +252,25 @@ Result<FormSpec> parse_form(const TomlReader& r, const toml::table& t, const Sta
         f.textures.push_back(name);
     }
     if (stage.program) return parse_program_files(r, t, field, f);
+    if (const toml::node* sizes = t.get("texture_sizes")) {
+        const toml::table* table = sizes->as_table();
+        if (!table) return r.error(sizes, join_field(field, "texture_sizes"), "must be a table: texture = [width, height]");
+        for (const auto& [key, value] : *table) {
+            const std::string name(key.str());
+            const std::string where = join_field(field, "texture_sizes." + name);
+            if (std::find(f.textures.begin(), f.textures.end(), name) == f.textures.end())
+                return r.error(&value, where, "'" + name + "' is not one of the form's textures");
+            const toml::array* a = value.as_array();
+            auto dimension = [&](size_t i) -> int64_t {
+                const toml::node* n = a && a->size() == 2 ? a->get(i) : nullptr;
+                return n && n->is_integer() ? *n->value<int64_t>() : 0;
+            };
+            const int64_t w = dimension(0), h = dimension(1);
+            if (w < 1 || h < 1 || w > kMaxImageDimension || h > kMaxImageDimension)
+                return r.error(&value, where, "must be [width, height], each 1.." + std::to_string(kMaxImageDimension));
+            f.texture_sizes[name] = {static_cast<int>(w), static_cast<int>(h)};
+        }
+    }
     auto quality_of = r.string(t, "quality_of", field, false);
     if (!quality_of.ok()) return quality_of.error();
     f.quality_of = quality_of.value();

@@ -775,6 +775,19 @@ TEST_CASE("hostile inputs of stop 51: stateful golden frames, bench frames, floa
         CHECK_THAT(merged.err, Catch::Contains("is not a plain name"));
         CHECK_FALSE(fs::exists(dir / "m"));
     }
+    SECTION("a LUT of another size than the layout its form reads is refused at the LUT's line") {
+        test::write_file(dir / "lut/presets/tiny.toml", "name = \"tiny\"\ndoc = \"d\"\n[lut.grade]\nfile = \"tiny.png\"\n[[pass]]\n"
+                                                       "alias = \"clean\"\n[pass.textures]\ngrade = \"lut:grade\"\n[pass.stages.color_grade]\n");
+        Image one;
+        one.width = one.height = 1;
+        one.rgba = {0.5f, 0.5f, 0.5f, 1.0f};
+        REQUIRE(write_png(dir / "lut/presets/tiny.png", one).ok());
+        auto run = test::run_crtforge("--templates '" + (dir / "lut") + "' export --preset tiny --target glsl330 --out '" + (dir / "o") + "'");
+        CHECK(run.exit_code == 2);
+        CHECK_THAT(run.err, Catch::Contains("tiny.toml:3: error: field 'lut.grade': is 1x1, but form 'lut32' of stage 'color_grade' "
+                                            "reads 'grade' as a 1024x32 table"));
+        CHECK_FALSE(fs::exists(dir / "o"));
+    }
     SECTION("the compile cache: set but empty, or not a folder") {
         check_refused("--cache-dir /dev/null list presets", "'--cache-dir': is not a folder");
         overwrite(dir / "file", "x");

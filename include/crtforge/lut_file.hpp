@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <string>
 #include <string_view>
 
@@ -30,6 +32,9 @@ inline constexpr std::uintmax_t kMaxLutFileBytes = std::uintmax_t{64} << 20;
 // the rows IHDR declares, IEND) or a whole JPEG (its markers up to the scan, a frame header, the
 // end-of-image marker) within kMaxImageDimension and the image budget; else why not.
 std::string lut_picture_error(std::string_view bytes);
+
+// A PNG's or JPEG's width and height from its header (nullopt if the bytes are neither).
+std::optional<std::pair<int, int>> lut_picture_size(std::string_view bytes);
 
 // The file of `lut` (a file LUT), relative to its preset file: refused when absolute or when it
 // resolves (links followed) outside `template_root`, when it is not a regular file, is larger than

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,9 @@ struct FormSpec {
     // Textures this form samples besides `source` (the pass's main input): each a sampler2D of
     // that name, bound by the preset's pass to a pass output, feedback, history or LUT.
     std::vector<std::string> textures;
+    // The size a texture must have, where the form's code reads it as a fixed layout (a 32^3 cube
+    // stored 1024 x 32): a LUT of another size bound to it is refused, not sampled as garbage.
+    std::map<std::string, std::pair<int, int>> texture_sizes;
     std::string functions[kHookCount];     // indexed by Hook; empty = none
     // The point-sampled form this one is the filtered quality tier of (empty: none): the same params
     // meaning the same picture, averaged over each output pixel's footprint so that fine patterns do
