@@ -2,6 +2,7 @@
 // and crtforge devices
 #include <fmt/format.h>
 
+#include "cli/heartbeat.hpp"
 #include "cli/cli_common.hpp"
 #include "crtforge/paths.hpp"
 #include "crtforge/validate/golden.hpp"
@@ -31,7 +32,10 @@ Runner add_golden_command(CLI::App& app, const GlobalOptions& g) {
         auto lib = load_library(g, code);
         if (!lib) return code;
         if (auto s = add_golden_presets(*lib, *dir); !s.ok()) return report(s.error());
-        auto written = update_goldens(*lib, *dir, *filter);
+        auto written = [&] {
+            Heartbeat heartbeat("golden update");  // a long sequence says nothing between its own lines
+            return update_goldens(*lib, *dir, *filter);
+        }();
         if (!written.ok()) return report(written.error());
         fmt::print("golden update: {} reference images written to {} (manifest lists {})\n", written.value().written, *dir,
                    written.value().planned);

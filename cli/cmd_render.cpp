@@ -9,6 +9,7 @@
 #include "cli/cli_common.hpp"
 #include "crtforge/quality_tiers.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
+#include "cli/heartbeat.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/parse_number.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -219,6 +220,9 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             job.frames = frames;
             job.file_luts = file_luts;
             job.supersample = a->supersample;
+            // The reference reports no progress of its own; a render of many samples, or of a
+            // preset whose params ask for much work per pixel, takes minutes.
+            Heartbeat heartbeat(fmt::format("render --reference {}x{}", w, h));
             images = render_reference_scene(job);
         } else {
             auto compiled = compile_scene(*lib, *preset, options.value(), cache);
@@ -245,6 +249,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             r.on_frame = [tty](size_t done, size_t total) {
                 if (total >= kProgressFrames) report_progress(tty, done, total, "render", fmt::format("frame {}/{}", done, total), 10);
             };
+            Heartbeat heartbeat(fmt::format("render {}x{} on {}", w, h, target->name));
             images = renderer.render_scene(r);
         }
         if (!images.ok()) return report(images.error());
