@@ -41,6 +41,7 @@ Result<std::vector<std::string>> list_files(const std::string& dir, const std::s
     for (const auto& entry : it) {
         const std::string name = entry.path().filename().string();
         if (name.size() <= ext.size() || name.compare(name.size() - ext.size(), ext.size(), ext) != 0) continue;
+        if (name[0] == '.') continue;  // hidden: an editor's lock or backup (Emacs's .#name.toml links to nothing), not a file of ours
         // One named like a file of this kind but not one (a FIFO, a device, a link to nothing) is an
         // error, not a file silently left out.
         if (!entry.is_regular_file(ec)) return make_error("is not a regular file", dir + "/" + name);

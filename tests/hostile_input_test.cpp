@@ -752,6 +752,10 @@ TEST_CASE("hostile inputs of stop 51: stateful golden frames, bench frames, floa
         CHECK_THAT(out.err, Catch::Contains("evil.toml: error: leads out of the template folder"));
         CHECK(out.err.find("root:") == std::string::npos);  // nothing of the file it points at
         fs::remove(dir / "overlay/presets/evil.toml");
+        // An editor's lock beside a preset (Emacs: a link to nothing named .#name.toml) is hidden: not a preset.
+        fs::create_symlink("user@host.1234:1700000000", dir / "overlay/presets/.#classic.toml");
+        auto locked = test::run_crtforge("--templates '" + (dir / "overlay") + "' list presets");
+        CHECK(locked.exit_code == 0);
         fs::create_symlink("/dev/zero", dir / "overlay/presets/zero.toml");
         auto zero = test::run_crtforge("--templates '" + (dir / "overlay") + "' list presets");
         CHECK(zero.exit_code == 2);

@@ -18,7 +18,8 @@ Result<std::string> read_text_file(const std::string& path, std::uintmax_t max_b
 // The bound for data files crtforge writes and reads back (golden manifest, report shards, cache
 // entries): far above any real one, far below what would exhaust memory.
 inline constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{256} << 20;
-// Regular files in dir whose names end with `ext`, sorted by name (deterministic order).
+// The files in dir whose names end with `ext`, sorted by name (deterministic order); hidden names
+// (a leading '.') are left out. One so named that is not a regular file is an error naming it.
 Result<std::vector<std::string>> list_files(const std::string& dir, const std::string& ext);
 // Writes to "<path>.tmp-<pid>" then renames, so readers never see a half-written file; creates the
 // parent directories.
