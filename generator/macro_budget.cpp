@@ -1,4 +1,5 @@
 #include "generator/macro_budget.hpp"
+#include "generator/template_lint.hpp"
 
 #include <cctype>
 #include <map>
@@ -25,27 +26,6 @@ struct Macro {
 
 bool identifier_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-// The source without comments (each replaced by a space; newlines kept, so lines still count).
-std::string without_comments(const std::string& s) {
-    std::string out;
-    out.reserve(s.size());
-    for (size_t i = 0; i < s.size();) {
-        if (s.compare(i, 2, "//") == 0) {
-            while (i < s.size() && s[i] != '\n') ++i;
-            out += ' ';
-        } else if (s.compare(i, 2, "/*") == 0) {
-            const size_t end = s.find("*/", i + 2);
-            const size_t stop = end == std::string::npos ? s.size() : end + 2;
-            for (; i < stop; ++i)
-                if (s[i] == '\n') out += '\n';
-            out += ' ';
-        } else {
-            out += s[i++];
-        }
-    }
-    return out;
-}
 
 std::vector<std::string> tokens_of(const std::string& text) {
     std::vector<std::string> out;

@@ -9,21 +9,6 @@ namespace {
 
 constexpr unsigned long kMaxSnippetArray = 4096;
 
-// The snippet with // and /* */ comments blanked (newlines kept, so lines still count).
-std::string without_comments(const std::string& text) {
-    std::string out = text;
-    for (size_t i = 0; i + 1 < out.size(); ++i) {
-        if (out[i] == '/' && out[i + 1] == '/') {
-            while (i < out.size() && out[i] != '\n') out[i++] = ' ';
-        } else if (out[i] == '/' && out[i + 1] == '*') {
-            for (; i + 1 < out.size() && !(out[i] == '*' && out[i + 1] == '/'); ++i)
-                if (out[i] != '\n') out[i] = ' ';
-            if (i + 1 < out.size()) out[i] = out[i + 1] = ' ';
-        }
-    }
-    return out;
-}
-
 int line_at(const std::string& text, size_t offset) {
     return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
 }
@@ -42,6 +27,20 @@ const ParamSpec* float_param(const StageSpec& stage, const std::string& name) {
 }
 
 }  // namespace
+
+std::string without_comments(const std::string& text) {
+    std::string out = text;
+    for (size_t i = 0; i + 1 < out.size(); ++i) {
+        if (out[i] == '/' && out[i + 1] == '/') {
+            while (i < out.size() && out[i] != '\n') out[i++] = ' ';
+        } else if (out[i] == '/' && out[i + 1] == '*') {
+            for (; i + 1 < out.size() && !(out[i] == '*' && out[i + 1] == '/'); ++i)
+                if (out[i] != '\n') out[i] = ' ';
+            if (i + 1 < out.size()) out[i] = out[i + 1] = ' ';
+        }
+    }
+    return out;
+}
 
 Status lint_stage_source(const StageSpec& stage) {
     const std::string text = without_comments(stage.glsl_source);

@@ -3,6 +3,8 @@
 // file and line (docs/hard-cases.md lists what each target would do instead).
 #pragma once
 
+#include <string>
+
 #include "crtforge/diagnostic.hpp"
 #include "crtforge/spec.hpp"
 
@@ -15,5 +17,8 @@ namespace crtforge::detail {
 //   a division by a float param whose range includes 0 (0 is a value the preset may set)
 // Each is an Input error at the snippet's file:line, field "glsl".
 Status lint_stage_source(const StageSpec& stage);
+
+// GLSL text with its // and /* */ comments blanked (newlines kept, so lines still count).
+std::string without_comments(const std::string& text);
 
 }  // namespace crtforge::detail
