@@ -202,20 +202,14 @@ int main(int argc, char** argv) {
     }
     // The cache folder, from --cache-dir or the environment: set but empty, or something other than
     // a folder (a file, /dev/null), is refused rather than quietly read and written as a cache.
-    if (!g.no_cache && g.cache_dir.empty()) {
-        if (const char* env = std::getenv("CRTFORGE_CACHE"); env && !*env) {
-            std::fprintf(stderr, "crtforge: error: CRTFORGE_CACHE is set but empty (give a folder, or unset it)\n");
-            return kExitUsage;
-        }
-    }
     if (!g.no_cache) {
+        const char* env = std::getenv("CRTFORGE_CACHE");
+        if (g.cache_dir.empty() && env && !*env) return crtforge::cli::report(crtforge::make_error("is set but empty (give a folder, or unset it)", {}, 0, "CRTFORGE_CACHE"));
         const std::string cache = g.cache_dir.empty() ? crtforge::Cache::default_dir() : g.cache_dir;
         std::error_code ec;
-        if (!cache.empty() && std::filesystem::exists(cache, ec) && !std::filesystem::is_directory(cache, ec)) {
-            std::fprintf(stderr, "crtforge: %s: error: field '%s': is not a folder (the compile cache is one)\n", cache.c_str(),
-                         g.cache_dir.empty() ? "CRTFORGE_CACHE" : "--cache-dir");
-            return kExitUsage;
-        }
+        if (!cache.empty() && std::filesystem::exists(cache, ec) && !std::filesystem::is_directory(cache, ec))
+            return crtforge::cli::report(crtforge::make_error("is not a folder (the compile cache is one)", cache, 0,
+                                     !g.cache_dir.empty() ? "--cache-dir" : env && *env ? "CRTFORGE_CACHE" : "cache folder"));
     }
     // Every failure is meant to arrive as a Diagnostic; this is the last line of defence, so an
     // exception that escapes anyway is still one line and exit 2, never an abort.

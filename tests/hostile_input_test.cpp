@@ -798,6 +798,6 @@ TEST_CASE("hostile inputs of stop 51: stateful golden frames, bench frames, floa
         check_refused("--cache-dir '" + (dir / "file") + "' list presets", "is not a folder");
         auto empty = test::run_crtforge("list presets", "CRTFORGE_CACHE=");
         CHECK(empty.exit_code == 2);
-        CHECK_THAT(empty.err, Catch::Contains("CRTFORGE_CACHE is set but empty"));
+        CHECK_THAT(empty.err, Catch::Contains("field 'CRTFORGE_CACHE': is set but empty"));
     }
 }
