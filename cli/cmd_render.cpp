@@ -13,6 +13,7 @@
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/parse_number.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
+#include "crtforge/scene.hpp"
 #include "crtforge/validate/target_render.hpp"
 
 namespace crtforge::cli {
@@ -120,6 +121,24 @@ Result<std::vector<int>> parse_frames(const std::string& text) {
     return frames;
 }
 
+// The display and every pass's framebuffer within the render budget (kMaxRenderPixels), checked
+// before anything is drawn: a display taken from a large input, or a pass scaled past the display,
+// would otherwise hold several pictures of that size (a 4096x4096 input at its own size: 2 GB).
+Status check_render_budget(const Preset& preset, PixelSize source, PixelSize display, std::optional<DisplayFit> fit, bool from_input) {
+    if (const std::string over = render_budget_error(display.width, display.height); !over.empty())
+        return make_error(fmt::format("the display {}x{} {}{}", display.width, display.height, over,
+                                      from_input ? " (it is the input's size: give a smaller --size)" : ""),
+                          {}, 0, from_input ? "--input" : "--size");
+    const PixelRect screen = screen_rect(preset, display, source, fit);
+    const std::vector<PixelSize> sizes = pass_sizes(preset, source, {screen.width, screen.height});
+    for (size_t i = 0; i < sizes.size() && i < preset.passes.size(); ++i)
+        if (const std::string over = render_budget_error(sizes[i].width, sizes[i].height); !over.empty())
+            return make_error(fmt::format("pass '{}' would render {}x{} for a {}x{} display: it {}", preset.passes[i].alias, sizes[i].width,
+                                          sizes[i].height, display.width, display.height, over),
+                              preset.passes[i].where.file, preset.passes[i].where.line, "pass." + preset.passes[i].alias + ".scale");
+    return Ok{};
+}
+
 }  // namespace
 
 Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
@@ -197,6 +216,8 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             auto first = source.value()(frames.front());
             if (!first.ok()) return report(first.error());
             if (!size) std::tie(w, h) = std::make_pair(first.value().width, first.value().height);
+            if (auto s = check_render_budget(*preset, {first.value().width, first.value().height}, {w, h}, fit.value(), !size); !s.ok())
+                return report(s.error());
         }
         auto luts = read_file_luts(*preset);
         if (!luts.ok()) return report(luts.error());

@@ -148,6 +148,21 @@ std::string empty_option_value(const CLI::App& app) {
     return {};
 }
 
+// "--preset --target glsl330": CLI11 takes an option's name as the value of the option before it
+// (which then reports some other option missing). Found as a value that names an option of its
+// command: "<option> has no value" instead.
+std::string option_taken_as_value(const CLI::App& app) {
+    for (const CLI::Option* option : app.get_options()) {
+        if (option->get_type_size() == 0 || option->count() == 0) continue;
+        for (const std::string& value : option->results())
+            if (value.size() > 1 && value[0] == '-' && app.get_option_no_throw(value) != nullptr)
+                return option->get_name() + " has no value ('" + value + "' is an option of its own)";
+    }
+    for (const CLI::App* sub : app.get_subcommands())
+        if (std::string found = option_taken_as_value(*sub); !found.empty()) return found;
+    return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -189,13 +204,18 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::string msg = e.what();
+        std::string msg = option_taken_as_value(app);
+        if (msg.empty()) msg = e.what();
         for (char& c : msg) if (c == '\n') c = ' ';
         std::fprintf(stderr, "crtforge: error: %s (see 'crtforge --help')\n", msg.c_str());
         return kExitUsage;
     }
     // An option given with an empty value (--templates "", --size "") is a mistake, not the
     // option left out: refused, naming the option, before any command runs.
+    if (const std::string taken = option_taken_as_value(app); !taken.empty()) {
+        std::fprintf(stderr, "crtforge: error: %s (see 'crtforge --help')\n", taken.c_str());
+        return kExitUsage;
+    }
     if (const std::string empty = empty_option_value(app); !empty.empty()) {
         std::fprintf(stderr, "crtforge: error: %s has an empty value (give a value, or leave the option out)\n", empty.c_str());
         return kExitUsage;

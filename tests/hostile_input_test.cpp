@@ -801,3 +801,34 @@ TEST_CASE("hostile inputs of stop 51: stateful golden frames, bench frames, floa
         CHECK_THAT(empty.err, Catch::Contains("field 'CRTFORGE_CACHE': is set but empty"));
     }
 }
+
+TEST_CASE("hostile inputs of stop 52: a display taken from a large input, a pass beyond the render budget, an option taken as a value",
+          "[hostile][stop52]") {
+    test::TempDir dir;
+    SECTION("the render budget holds for a display taken from the input and for every pass, not only for --size") {
+        // 3100 x 3100 (9.6 Mpx) is a readable picture (under the 16 Mpx image budget) but beyond
+        // the 9 Mpx a render may draw into.
+        Image big = Image::make(3100, 3100);
+        std::fill(big.rgba.begin(), big.rgba.end(), 0.5f);
+        REQUIRE(write_png(dir / "big.png", big).ok());
+        auto at_input = test::run_crtforge("render --preset classic --input '" + (dir / "big.png") + "' --output '" + (dir / "o.png") + "'");
+        CHECK(at_input.exit_code == 2);
+        CHECK_THAT(at_input.err, Catch::Contains("field '--input'") && Catch::Contains("3100x3100") && Catch::Contains("--size"));
+        CHECK(std::count(at_input.err.begin(), at_input.err.end(), '\n') == 1);
+        // A pass at twice a 2000x1500 display: 4000x3000, 12 Mpx, which the image budget (16 Mpx)
+        // would let through.
+        test::write_file(dir / "overlay/presets/up.toml",
+                         "name = \"up\"\ndoc = \"d\"\n[[pass]]\nalias = \"up\"\nscale_type = \"viewport\"\nscale = 2.0\n"
+                         "[pass.stages.scanlines]\nscanlineIntensity = 0.5\n[[pass]]\nalias = \"down\"\n");
+        auto pass = test::run_crtforge("--templates '" + (dir / "overlay") + "' render --preset up --input pixel_art --size 2000x1500 --output '" +
+                                       (dir / "o.png") + "'");
+        CHECK(pass.exit_code == 2);
+        CHECK_THAT(pass.err, Catch::Contains("presets/up.toml:3") && Catch::Contains("pass.up.scale") && Catch::Contains("4000x3000") &&
+                                 Catch::Contains("render memory budget"));
+        CHECK_FALSE(fs::exists(dir / "o.png"));
+    }
+    SECTION("an option with its value left out, the next option's name taken as the value, is named") {
+        check_refused("generate --preset --target glsl330", "--preset has no value ('--target' is an option of its own)");
+        check_refused("render --preset --input pixel_art --output o.png", "--preset has no value ('--input'");
+    }
+}
