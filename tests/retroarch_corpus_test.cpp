@@ -416,6 +416,22 @@ void write_feedback_library(const test::TempDir& dir) {
                                    "shader2 = shaders/plain.slang\nfilter_linear2 = true\n");
 }
 
+// long13.slangp and long14.slangp: the zoom, the trail (which reads its own feedback: one copy
+// viewport in Godot) and 11 or 12 copies of the picture, so 14 or 15 viewports in Godot; a pass
+// drawn out of order reads an earlier frame's output or none.
+void write_long_chain_library(const test::TempDir& dir) {
+    write_feedback_library(dir);
+    for (int passes : {13, 14}) {
+        std::string text = fmt::format("shaders = {}\nshader0 = shaders/zoom.slang\nscale_type0 = source\n"
+                                       "shader1 = shaders/trail.slang\nscale_type1 = source\nfilter_linear1 = false\n",
+                                       passes);
+        // The last pass has no scale: one with a scale gets a copy pass to the display (as RetroArch).
+        for (int i = 2; i < passes; ++i)
+            text += fmt::format("shader{0} = shaders/plain.slang\n{1}", i, i + 1 < passes ? fmt::format("scale_type{} = source\n", i) : "");
+        test::write_file(dir / fmt::format("long{}.slangp", passes), text);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("WebGPU renders imported presets like Vulkan: clamp_to_border faded in the WGSL, the host clamping to the edge, feedback",
@@ -490,6 +506,20 @@ TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyin
     check_all_agree(dir, {"chain.slangp", "gather.slangp", "linear.slangp", "tables.slangp"}, TargetId::Godot3, 0, 100, 75);
     write_original_library(dir);
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot3, 3);
+}
+
+TEST_CASE("Godot 3 keeps its passes in order up to 14 viewports and refuses a scene that needs more, naming why, while Godot 4 orders any number",
+          "[retroarch][corpus-command][godot3][godot4]") {
+    test::TempDir dir;
+    write_long_chain_library(dir);
+    check_all_agree(dir, {"long13.slangp"}, TargetId::Godot3, 3);  // 13 passes and a feedback copy
+    check_all_agree(dir, {"long14.slangp"}, TargetId::Godot4, 3);
+    auto refused = test::run_crtforge("export --preset '" + (dir / "long14.slangp") + "' --target godot3 --out '" + (dir / "out") + "'");
+    CHECK(refused.exit_code == 2);
+    CHECK_THAT(refused.err, Catch::Contains("field 'godot3'") && Catch::Contains("needs 15 viewports in Godot 3 (14 passes, 1 feedback copies, 0 history copies)") &&
+                                Catch::Contains("Godot 4"));
+    CHECK(std::count(refused.err.begin(), refused.err.end(), '\n') == 1);
+    CHECK_FALSE(std::filesystem::exists(dir / "out"));
 }
 
 TEST_CASE("corpus --vulkan-only --uniforms none: the quick sweep bakes each preset's values, says so in its report, and refuses what it cannot run",

@@ -146,6 +146,27 @@ private:
     size_t subs_count_ = 0;
 };
 
+// Godot 3 draws its active viewports in the order of a sort whose comparison only knows "a
+// viewport inside another" (VisualServerViewport's ViewportSort): siblings compare equal, and its
+// introsort keeps their (tree) order only up to 16 elements; past that it swaps them each frame,
+// so a pass reads another's output of an earlier frame or none (measured with Godot 3.2.3: a chain
+// of copy passes draws right with 16 active viewports in all, black with 17). Every viewport of
+// the game counts: the root, the one the game draws its own picture into, and the scene's passes
+// and copies; so a scene may use 14.
+constexpr size_t kGodot3OrderedViewports = 16, kGodot3GameViewports = 2;
+
+Status check_godot3_viewport_count(const Preset& preset, size_t passes, size_t feedback, int history, int version) {
+    const size_t needed = passes + feedback + static_cast<size_t>(history);
+    if (version >= 4 || needed + kGodot3GameViewports <= kGodot3OrderedViewports) return Ok{};
+    return make_error(fmt::format("needs {} viewports in Godot 3 ({} passes, {} feedback copies, {} history copies), but Godot 3 draws "
+                                  "viewports in order only while a game has at most {} (it re-sorts more each frame, so passes read "
+                                  "stale or empty outputs); {} are left beside the root and the game's own picture: export it for "
+                                  "Godot 4, which orders any number",
+                                  needed, passes, feedback, history, kGodot3OrderedViewports,
+                                  kGodot3OrderedViewports - kGodot3GameViewports),
+                      preset.where.file, preset.where.line, "godot3");
+}
+
 }  // namespace
 
 std::string scene_path(const Preset& preset) { return std::string(kFolder) + preset.name + ".tscn"; }
@@ -228,6 +249,7 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int v
                 if (input.mipmap && input.from.kind == TextureSource::Kind::Lut && input.from.name == lut.name) luts[lut.name]["mipmap"] = true;
     }
     const int history = preset.history_depth();
+    if (auto s = check_godot3_viewport_count(preset, in.passes.size(), feedback.size(), history, version); !s.ok()) return s.error();
     auto index_of = [&](const std::string& alias) {
         for (size_t i = 0; i < preset.passes.size(); ++i)
             if (preset.passes[i].alias == alias) return i;
