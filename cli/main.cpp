@@ -21,8 +21,43 @@
 
 namespace crtforge::cli {
 
+namespace {
+
+// The overlay a command's .slangp arguments are imported into, and each imported preset's name and
+// .slangp path: an error in a file of that temporary overlay (gone once crtforge exits) is told
+// at the .slangp the user gave.
+struct ImportedArguments {
+    std::string overlay;
+    std::vector<std::pair<std::string, std::string>> presets;  // imported name, .slangp path
+};
+ImportedArguments& imported_arguments() {
+    static ImportedArguments imported;
+    return imported;
+}
+
+// `d` with a file inside the temporary overlay named as the .slangp it came from, the overlay
+// file and line kept in the message.
+Diagnostic at_user_file(const Diagnostic& d) {
+    const ImportedArguments& imported = imported_arguments();
+    const std::string prefix = imported.overlay + "/";
+    if (imported.overlay.empty() || imported.presets.empty() || d.file.compare(0, prefix.size(), prefix) != 0) return d;
+    const std::string inside = d.file.substr(prefix.size());
+    const std::string* slangp = &imported.presets.front().second;
+    for (const auto& [name, path] : imported.presets)
+        for (const std::string& start : {"presets/" + name + ".", "presets/" + name + "/", "stages/ra_" + name + ".", "stages/ra_" + name + "/"})
+            if (inside.compare(0, start.size(), start) == 0) slangp = &path;
+    Diagnostic out = d;
+    out.file = *slangp;
+    out.line = 0;
+    out.column = 0;
+    out.message += " (in its import: " + inside + (d.line > 0 ? ":" + std::to_string(d.line) : std::string()) + ")";
+    return out;
+}
+
+}  // namespace
+
 int report(const Diagnostic& d) {
-    std::fprintf(stderr, "crtforge: %s\n", d.str().c_str());
+    std::fprintf(stderr, "crtforge: %s\n", at_user_file(d).str().c_str());
     return d.kind == ErrorKind::Validation ? kExitValidation : kExitUsage;
 }
 
@@ -47,6 +82,7 @@ Result<std::string> import_preset_arguments(const GlobalOptions& g, std::vector<
         overlay.emplace(std::move(made.value()));
     }
     const std::string dir = (overlay->path() / "overlay").string();
+    imported_arguments().overlay = dir;
     std::set<std::string> names;
     for (std::string& p : presets) {
         if (!is_slangp(p)) continue;
@@ -57,6 +93,7 @@ Result<std::string> import_preset_arguments(const GlobalOptions& g, std::vector<
             return make_error("two .slangp presets import as '" + imported.value().name + "'; import them with crtforge import --name", p, 0,
                               "--preset");
         if (auto s = write_imported_preset(imported.value(), dir); !s.ok()) return s.error();
+        imported_arguments().presets.emplace_back(imported.value().name, p);
         p = imported.value().name;
     }
     return dir;
