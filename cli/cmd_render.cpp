@@ -10,6 +10,7 @@
 #include "crtforge/quality_tiers.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
 #include "cli/heartbeat.hpp"
+#include "reference/reference_work.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/parse_number.hpp"
 #include "crtforge/runtime/test_inputs.hpp"
@@ -64,6 +65,18 @@ std::optional<Pattern> parse_pattern(const std::string& text) {
     return Pattern{text.substr(0, at), text.substr(i + 1), width};
 }
 
+// An input picture within the source budget (kMaxSourcePixels): a render holds many copies of
+// pictures its source's size, so a 4096x4096 input reached 2 GB whatever the display.
+Result<Image> read_input(const std::string& path) {
+    auto image = read_image(path);
+    if (!image.ok()) return image.error();
+    if (const std::string over = source_budget_error(image.value().width, image.value().height); !over.empty())
+        return make_error(fmt::format("the input picture {}x{} {} (a render holds many copies of its source): scale it down first",
+                                      image.value().width, image.value().height, over),
+                          path, 0, "--input");
+    return image;
+}
+
 // The input at each frame. A generated input's size: the scene's source size when it states one,
 // else an NES frame for pixel art and 640x480 for the others.
 Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, const Preset* preset) {
@@ -75,11 +88,11 @@ Result<std::function<Result<Image>(int)>> input_source(const std::string& spec, 
             std::error_code e;
             if (!std::filesystem::exists(path, e))
                 return make_error("the input sequence has no frame " + std::to_string(frame), path, 0, "--input");
-            return read_image(path);
+            return read_input(path);
         });
     }
     if (std::filesystem::exists(spec, ec)) {
-        auto image = read_image(spec);
+        auto image = read_input(spec);
         if (!image.ok()) return image.error();
         Image still = std::move(image.value());
         return std::function<Result<Image>(int)>([still](int) -> Result<Image> { return still; });
@@ -241,11 +254,26 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             job.frames = frames;
             job.file_luts = file_luts;
             job.supersample = a->supersample;
+            if (auto s = reference::check_reference_work(job); !s.ok()) return report(s.error());
             // The reference reports no progress of its own; a render of many samples, or of a
             // preset whose params ask for much work per pixel, takes minutes.
             Heartbeat heartbeat(fmt::format("render --reference {}x{}", w, h));
             images = render_reference_scene(job);
         } else {
+            {
+                // The GPU runs the stages' loops as the reference does; a driver's watchdog would cut
+                // one of billions of steps short without a word.
+                ReferenceSceneJob counted;
+                counted.library = lib.get();
+                counted.preset = preset;
+                counted.source = source.value();
+                counted.width = w;
+                counted.height = h;
+                counted.fit = fit.value();
+                counted.frames = frames;
+                counted.file_luts = file_luts;
+                if (auto s = reference::check_reference_work(counted); !s.ok()) return report(s.error());
+            }
             auto compiled = compile_scene(*lib, *preset, options.value(), cache);
             if (!compiled.ok()) return report(compiled.error());
             auto outputs = emit_scene(compiled.value(), target->id, cache);

@@ -293,7 +293,7 @@ Status parse_scene_tables(const TomlReader& r, const toml::table& root, PresetFi
         auto size = r.int_pair(*t, "size", "source", 1, kMaxSceneDimension);
         if (!size.ok()) return size.error();
         if (size.value()) std::tie(file.source_width, file.source_height) = *size.value();
-        if (const std::string over = image_budget_error(file.source_width.value_or(1), file.source_height.value_or(1)); !over.empty())
+        if (const std::string over = source_budget_error(file.source_width.value_or(1), file.source_height.value_or(1)); !over.empty())
             return r.error(t->get("size"), "source.size", over);
         auto par = r.int_pair(*t, "pixel_aspect", "source", 1, 1000);
         if (!par.ok()) return par.error();

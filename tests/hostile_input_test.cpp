@@ -807,14 +807,21 @@ TEST_CASE("hostile inputs of stop 52: a display taken from a large input, a pass
     test::TempDir dir;
     SECTION("the render budget holds for a display taken from the input and for every pass, not only for --size") {
         // 3100 x 3100 (9.6 Mpx) is a readable picture (under the 16 Mpx image budget) but beyond
-        // the 9 Mpx a render may draw into.
+        // the 4.1 Mpx a render's source may have and the 9 Mpx a render may draw into.
         Image big = Image::make(3100, 3100);
         std::fill(big.rgba.begin(), big.rgba.end(), 0.5f);
         REQUIRE(write_png(dir / "big.png", big).ok());
-        auto at_input = test::run_crtforge("render --preset classic --input '" + (dir / "big.png") + "' --output '" + (dir / "o.png") + "'");
-        CHECK(at_input.exit_code == 2);
-        CHECK_THAT(at_input.err, Catch::Contains("field '--input'") && Catch::Contains("3100x3100") && Catch::Contains("--size"));
-        CHECK(std::count(at_input.err.begin(), at_input.err.end(), '\n') == 1);
+        // Refused as an input whatever the display (a 4096x4096 one took a render of classic to
+        // 2.04 GB at 64x48), and so as the display it would set.
+        for (const std::string size : {"", " --size 64x48"}) {
+            auto at_input = test::run_crtforge("render --preset classic --input '" + (dir / "big.png") + "'" + size + " --output '" +
+                                               (dir / "o.png") + "'");
+            CHECK(at_input.exit_code == 2);
+            CHECK_THAT(at_input.err, Catch::Contains("big.png: error: field '--input': the input picture 3100x3100 is 9.6 Mpx, "
+                                                                     "beyond the source memory budget") &&
+                                         Catch::Contains("scale it down first"));
+            CHECK(std::count(at_input.err.begin(), at_input.err.end(), '\n') == 1);
+        }
         // A pass at twice a 2000x1500 display: 4000x3000, 12 Mpx, which the image budget (16 Mpx)
         // would let through.
         test::write_file(dir / "overlay/presets/up.toml",
@@ -826,6 +833,35 @@ TEST_CASE("hostile inputs of stop 52: a display taken from a large input, a pass
         CHECK_THAT(pass.err, Catch::Contains("presets/up.toml:3") && Catch::Contains("pass.up.scale") && Catch::Contains("4000x3000") &&
                                  Catch::Contains("render memory budget"));
         CHECK_FALSE(fs::exists(dir / "o.png"));
+    }
+    SECTION("a value that makes a stage's loop run billions of steps per pixel is refused before any render, naming it") {
+        // A template set whose ringing stage allows two billion taps, and super-win asking for them.
+        test::ScratchTemplates t;
+        std::string ringing = t.read("stages/ringing.toml");
+        const size_t at = ringing.find("range = [1, 6]");
+        REQUIRE(at != std::string::npos);
+        ringing.replace(at, 14, "range = [1, 2000000000]");
+        t.write("stages/ringing.toml", ringing);
+        std::string win = t.read("presets/super-win.toml");
+        const size_t taps = win.find("ringTaps = 3");
+        REQUIRE(taps != std::string::npos);
+        win.replace(taps, 12, "ringTaps = 2000000000");
+        t.write("presets/super-win.toml", win);
+        const std::string base = "--templates '" + t.dir() + "' ";
+        for (const std::string& render : {std::string("render --reference"), std::string("render --target spirv")}) {
+            INFO(render);
+            auto run = test::run_crtforge(base + render + " --preset super-win --input pixel_art --size 320x240 --output '" + (dir / "w.png") + "'");
+            CHECK(run.exit_code == 2);
+            CHECK_THAT(run.err, Catch::Contains("presets/super-win.toml:34") && Catch::Contains("field 'pass.ntsc.stages.ringing.ringTaps'") &&
+                                    Catch::Contains("whose ringTaps sets 4e+09 loop steps per sample"));
+            CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+            CHECK_FALSE(fs::exists(dir / "w.png"));
+        }
+        // The same preset at its own three taps renders.
+        win.replace(taps, 21, "ringTaps = 3");
+        t.write("presets/super-win.toml", win);
+        auto fine = test::run_crtforge(base + "render --reference --preset super-win --input pixel_art --size 64x48 --output '" + (dir / "w.png") + "'");
+        CHECK(fine.exit_code == 0);
     }
     SECTION("an option with its value left out, the next option's name taken as the value, is named") {
         check_refused("generate --preset --target glsl330", "--preset has no value ('--target' is an option of its own)");

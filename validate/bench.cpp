@@ -15,6 +15,7 @@
 #include "crtforge/validate/target_render.hpp"
 #include "validate/consumers/consumer.hpp"
 #include "validate/scene_runner.hpp"
+#include "reference/reference_work.hpp"
 
 namespace crtforge {
 
@@ -252,7 +253,9 @@ Result<const BenchSession::Reference*> BenchSession::reference(const Preset& pre
     if (auto found = state_->references.find(key); found != state_->references.end()) return &found->second;
     Reference made;
     if (supersample == 1) made.display_pass.emplace();
-    auto rendered = render_reference_scene(reference_job(library_, preset, o, supersample), made.display_pass ? &*made.display_pass : nullptr);
+    const ReferenceSceneJob job = reference_job(library_, preset, o, supersample);
+    if (auto s = reference::check_reference_work(job); !s.ok()) return s.error();
+    auto rendered = render_reference_scene(job, made.display_pass ? &*made.display_pass : nullptr);
     if (!rendered.ok()) return rendered.error();
     ++state_->reference_renders;
     made.image = std::move(rendered.value().front());

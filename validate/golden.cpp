@@ -23,6 +23,7 @@
 #include "crtforge/lut_file.hpp"
 #include "crtforge/validate/target_render.hpp"
 #include "generator/toml_reader.hpp"
+#include "reference/reference_work.hpp"
 
 namespace crtforge {
 
@@ -169,6 +170,7 @@ Result<std::vector<Image>> render_references(const TemplateLibrary& library, con
     job.overrides = first.overrides;
     job.start_time = first.start_time;
     for (const GoldenEntry* e : sequence) job.frames.push_back(e->frame);
+    if (auto s = reference::check_reference_work(job); !s.ok()) return s.error();
     return render_reference_scene(jitter_sign == 0.0 ? job : jittered(job, jitter_sign, jitter_sign));
 }
 

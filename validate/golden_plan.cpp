@@ -94,14 +94,15 @@ public:
         return out;
     }
 
-    Result<std::pair<int, int>> size(const toml::node* node, const std::string& field) const {
+    Result<std::pair<int, int>> size(const toml::node* node, const std::string& field, bool source = false) const {
         const toml::array* a = node ? node->as_array() : nullptr;
         if (!a || a->size() != 2 || !a->get(0)->is_integer() || !a->get(1)->is_integer())
             return error(node, field, "must be [width, height]");
         const int64_t w = *a->get(0)->value<int64_t>(), h = *a->get(1)->value<int64_t>();
         if (w < 1 || h < 1 || w > kMaxImageDimension || h > kMaxImageDimension)
             return error(node, field, fmt::format("{}x{} is outside 1..{}", w, h, kMaxImageDimension));
-        if (const std::string over = render_budget_error(w, h); !over.empty()) return error(node, field, fmt::format("{}x{} {}", w, h, over));
+        if (const std::string over = source ? source_budget_error(w, h) : render_budget_error(w, h); !over.empty())
+            return error(node, field, fmt::format("{}x{} {}", w, h, over));
         return std::make_pair(static_cast<int>(w), static_cast<int>(h));
     }
 
@@ -167,7 +168,7 @@ public:
             if (!s.ok()) return s.error();
             std::tie(rule.width, rule.height) = s.value();
             if (const toml::node* in = t.get("input_size")) {
-                auto is = size(in, "golden.input_size");
+                auto is = size(in, "golden.input_size", true);
                 if (!is.ok()) return is.error();
                 rule.input_size = is.value();
             }
