@@ -242,38 +242,27 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
             return report(make_error("the reference counts frames from 0", {}, 0, "--frame-count-base"));
         if (a->display != "rgba16f" && a->reference)
             return report(make_error("the reference draws in double precision, not onto a display format", {}, 0, "--display"));
+        // The scene as the reference would render it; its work is counted for every target, since
+        // the GPU runs the stages' loops as the reference does (a driver's watchdog would cut one
+        // of billions of steps short without a word).
+        ReferenceSceneJob job;
+        job.library = lib.get();
+        job.preset = preset;
+        job.source = source.value();
+        job.width = w;
+        job.height = h;
+        job.fit = fit.value();
+        job.frames = frames;
+        job.file_luts = file_luts;
+        job.supersample = a->supersample;
+        if (auto s = reference::check_reference_work(job); !s.ok()) return report(s.error());
         Result<std::vector<Image>> images = make_error("not rendered");
         if (a->reference) {
-            ReferenceSceneJob job;
-            job.library = lib.get();
-            job.preset = preset;
-            job.source = source.value();
-            job.width = w;
-            job.height = h;
-            job.fit = fit.value();
-            job.frames = frames;
-            job.file_luts = file_luts;
-            job.supersample = a->supersample;
-            if (auto s = reference::check_reference_work(job); !s.ok()) return report(s.error());
             // The reference reports no progress of its own; a render of many samples, or of a
             // preset whose params ask for much work per pixel, takes minutes.
             Heartbeat heartbeat(fmt::format("render --reference {}x{}", w, h));
             images = render_reference_scene(job);
         } else {
-            {
-                // The GPU runs the stages' loops as the reference does; a driver's watchdog would cut
-                // one of billions of steps short without a word.
-                ReferenceSceneJob counted;
-                counted.library = lib.get();
-                counted.preset = preset;
-                counted.source = source.value();
-                counted.width = w;
-                counted.height = h;
-                counted.fit = fit.value();
-                counted.frames = frames;
-                counted.file_luts = file_luts;
-                if (auto s = reference::check_reference_work(counted); !s.ok()) return report(s.error());
-            }
             auto compiled = compile_scene(*lib, *preset, options.value(), cache);
             if (!compiled.ok()) return report(compiled.error());
             auto outputs = emit_scene(compiled.value(), target->id, cache);
