@@ -146,33 +146,54 @@ std::string png_error(std::string_view b) {
     return png_stream_error(data, png_raw_size(width, height, bits_per_pixel, interlaced), row_bytes);
 }
 
-std::string jpeg_error(std::string_view b) {
+// A JPEG's marker segments from after its start-of-image marker: the frame header's size once
+// met (width, height), where the entropy-coded data starts (past the start-of-scan segment), or
+// what is wrong. With `to_frame` it stops at the frame header (lut_picture_size needs no more).
+struct JpegSegments {
+    std::optional<std::pair<int, int>> size;
+    size_t scan = 0;
+    std::string error;
+};
+
+JpegSegments walk_jpeg(std::string_view b, bool to_frame) {
+    JpegSegments out;
+    auto fail = [&](const char* why) {
+        out.error = why;
+        return out;
+    };
     size_t at = 2;
-    bool frame = false;
     for (;;) {
-        while (at < b.size() && static_cast<uint8_t>(b[at]) == 0xff && at + 1 < b.size() && static_cast<uint8_t>(b[at + 1]) == 0xff) ++at;
-        if (at + 4 > b.size()) return "the file ends before the picture data (truncated?)";
-        if (static_cast<uint8_t>(b[at]) != 0xff) return "bytes stand where a marker belongs (corrupt file)";
+        while (at + 1 < b.size() && static_cast<uint8_t>(b[at]) == 0xff && static_cast<uint8_t>(b[at + 1]) == 0xff) ++at;  // fill bytes
+        if (at + 4 > b.size()) return fail("the file ends before the picture data (truncated?)");
+        if (static_cast<uint8_t>(b[at]) != 0xff) return fail("bytes stand where a marker belongs (corrupt file)");
         const uint8_t marker = static_cast<uint8_t>(b[at + 1]);
-        if (marker == 0xd9) return "the end-of-image marker comes before the picture data";
+        if (marker == 0xd9) return fail("the end-of-image marker comes before the picture data");
         if (marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) {  // markers without a length
             at += 2;
             continue;
         }
         const uint32_t length = be16(b, at + 2);
-        if (length < 2 || at + 2 + length > b.size()) return "a marker segment is longer than the rest of the file (truncated?)";
+        if (length < 2 || at + 2 + length > b.size()) return fail("a marker segment is longer than the rest of the file (truncated?)");
         const bool sof = marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc;
         if (sof) {
-            if (length < 8) return "the frame header is malformed";
-            if (std::string e = size_error(be16(b, at + 7), be16(b, at + 5)); !e.empty()) return e;
-            frame = true;
+            if (length < 8) return fail("the frame header is malformed");
+            out.size = std::make_pair(static_cast<int>(be16(b, at + 7)), static_cast<int>(be16(b, at + 5)));
+            if (to_frame) return out;
         }
         at += 2 + length;
         if (marker == 0xda) break;  // start of scan: entropy-coded data follows
     }
-    if (!frame) return "no frame header comes before the picture data";
+    if (!out.size) return fail("no frame header comes before the picture data");
+    out.scan = at;
+    return out;
+}
+
+std::string jpeg_error(std::string_view b) {
+    const JpegSegments jpeg = walk_jpeg(b, false);
+    if (!jpeg.error.empty()) return jpeg.error;
+    if (std::string e = size_error(jpeg.size->first, jpeg.size->second); !e.empty()) return e;
     // In entropy-coded data a 0xff byte is stuffed (ff 00) or a restart marker, so ff d9 is the end.
-    if (b.substr(at).find("\xff\xd9") == std::string_view::npos) return "the end-of-image marker is missing (truncated?)";
+    if (b.substr(jpeg.scan).find("\xff\xd9") == std::string_view::npos) return "the end-of-image marker is missing (truncated?)";
     return {};
 }
 
@@ -244,23 +265,7 @@ std::optional<std::pair<int, int>> lut_picture_size(std::string_view b) {
     if (b.size() >= 24 && b.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8) && b.substr(12, 4) == "IHDR")
         return std::make_pair(static_cast<int>(be32(b, 16)), static_cast<int>(be32(b, 20)));
     if (b.size() < 4 || static_cast<uint8_t>(b[0]) != 0xff || static_cast<uint8_t>(b[1]) != 0xd8) return std::nullopt;
-    for (size_t at = 2; at + 9 <= b.size();) {  // the JPEG's frame header, as jpeg_error walks to it
-        if (static_cast<uint8_t>(b[at]) != 0xff) return std::nullopt;
-        const uint8_t marker = static_cast<uint8_t>(b[at + 1]);
-        if (marker == 0xff) {
-            ++at;
-            continue;
-        }
-        if (marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) {
-            at += 2;
-            continue;
-        }
-        if (marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc)
-            return std::make_pair(static_cast<int>(be16(b, at + 7)), static_cast<int>(be16(b, at + 5)));
-        if (marker == 0xda || marker == 0xd9) return std::nullopt;
-        at += 2 + be16(b, at + 2);
-    }
-    return std::nullopt;
+    return walk_jpeg(b, true).size;  // the frame header's, as jpeg_error walks to it
 }
 
 }  // namespace crtforge

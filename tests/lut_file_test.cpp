@@ -117,6 +117,16 @@ TEST_CASE("a LUT picture is checked whole: truncated, corrupt, mislabelled or ov
     CHECK_THAT(lut_picture_error(jpeg_bytes(kMaxImageDimension + 1, 8)), Catch::Contains("pixel limit"));
     CHECK_THAT(lut_picture_error(jpeg_bytes(8192, 8193)), Catch::Contains("budget"));
     CHECK_THAT(lut_picture_error(jpeg_bytes(0, 8)), Catch::Contains("0x8"));
+
+    // The size a form's layout is checked against comes from the same walk of the markers.
+    CHECK(lut_picture_size(jpeg_bytes(64, 32)) == std::make_pair(64, 32));
+    std::string filled = jpeg_bytes(1024, 32);
+    filled.insert(2, "\xff\xff\xff");  // fill bytes before a marker
+    CHECK(lut_picture_size(filled) == std::make_pair(1024, 32));
+    CHECK(lut_picture_error(filled).empty());
+    CHECK_FALSE(lut_picture_size(jpeg_bytes(64, 32).substr(0, 12)));  // cut before the frame header
+    CHECK_FALSE(lut_picture_size("P6\n4 4\n255\n"));
+    CHECK(lut_picture_size(png).has_value());
 }
 
 TEST_CASE("a PNG's header is held to its image data: size, rows and filter bytes", "[lut-file][hostile]") {
