@@ -76,7 +76,7 @@ double scene_work(const SceneWorkJob& job) {
         for (const ResolvedStage& s : preset.passes[i].stages) per_sample += stage_loop(preset.passes[i], s, job.overrides, job.lut_size).steps;
         work += static_cast<double>(sizes[i].width) * sizes[i].height * samples * per_sample;
     }
-    return work * std::max(job.frames_run, 1);
+    return work;
 }
 
 Status check_scene_work(const SceneWorkJob& job) {
@@ -96,9 +96,9 @@ Status check_scene_work(const SceneWorkJob& job) {
     const std::string why = worst_pass ? fmt::format("; most of it is pass '{}', whose {} sets {:.3g} loop steps per sample", worst_pass->alias,
                                                      worst.set_by, worst.steps)
                                        : std::string();
-    return make_error(fmt::format("asks for {:.3g} samples x loop steps ({}x{} display, {} frame(s), {}x{} samples per pixel), beyond the "
-                                  "{:.0e} a render may{}",
-                                  work, job.display.width, job.display.height, job.frames_run, job.supersample, job.supersample,
+    return make_error(fmt::format("asks for {:.3g} samples x loop steps a frame ({}x{} display, {}x{} samples per pixel), beyond the "
+                                  "{:.0e} a frame may{}",
+                                  work, job.display.width, job.display.height, job.supersample, job.supersample,
                                   kMaxSceneWork, why),
                       worst_pass ? worst_pass->where.file : preset.where.file, worst_pass ? worst_pass->where.line : preset.where.line,
                       worst_pass ? "pass." + worst_pass->alias + "." + worst.field : "preset");
@@ -114,8 +114,6 @@ Result<SceneWorkJob> scene_work_job(const ReferenceSceneJob& job) {
     out.source = {first.value().width, first.value().height};
     out.display = {job.width, job.height};
     out.fit = job.fit;
-    const int last = *std::max_element(job.frames.begin(), job.frames.end());
-    out.frames_run = job.preset->keeps_state() ? last + 1 : static_cast<int>(job.frames.size());
     out.supersample = job.supersample;
     const Preset* preset = job.preset;
     const std::map<std::string, SharedImage> files = job.file_luts;

@@ -17,7 +17,7 @@
 
 namespace crtforge::reference {
 
-// Samples x loop steps a render may ask for: 125 times the heaviest golden of the shipped plan
+// Samples x loop steps one frame of a render may ask for: 125 times the heaviest golden of the shipped plan
 // (atari-ntsc at 1280x960, its palette search 128 steps a sample: 1.6e8, 1.7 s for the reference on
 // 2 cores). It bounds what a value can lengthen, not a stage's fixed cost (super-win at 1920x1080
 // counts 5e6 and takes 3.4 s): a render past it would run for hours, or be cut short by a driver.
@@ -28,13 +28,14 @@ struct SceneWorkJob {
     std::map<std::string, Value> overrides;              // param -> value, in every pass that reads it
     PixelSize source, display;                           // the original's size and the display's
     std::optional<DisplayFit> fit;
-    int frames_run = 1;                                  // frames drawn (a preset with state draws every frame up to the last)
     int supersample = 1;                                 // samples per display pixel per side
     std::function<PixelSize(const std::string& lut)> lut_size;  // a LUT's size by name
 };
 
-// The estimate: for each pass, its pixels x samples x (1 + the steps of the loops its stages run
-// per sample), summed over the passes and frames.
+// The estimate for one frame: for each pass, its pixels x samples x (1 + the steps of the loops
+// its stages run per sample), summed over the passes. Frames are not counted: how many a render
+// draws is bounded on its own (--frame), and each reports its progress; what a value can blow up
+// is the work inside one.
 double scene_work(const SceneWorkJob& job);
 
 // An error naming the pass, stage and param whose loop makes the work exceed kMaxSceneWork; else Ok.
