@@ -223,13 +223,15 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         auto source = input_source(a->input, preset);
         if (!source.ok()) return report(source.error());
         int w = size ? size->first : 0, h = size ? size->second : 0;
+        PixelSize source_size;  // the first frame's, read once here (the work count reuses it)
         {
             // The first frame only says the display size (and that it loads); not kept, so a large
             // picture is not held once more through the render.
             auto first = source.value()(frames.front());
             if (!first.ok()) return report(first.error());
-            if (!size) std::tie(w, h) = std::make_pair(first.value().width, first.value().height);
-            if (auto s = check_render_budget(*preset, {first.value().width, first.value().height}, {w, h}, fit.value(), !size); !s.ok())
+            source_size = {first.value().width, first.value().height};
+            if (!size) std::tie(w, h) = std::make_pair(source_size.width, source_size.height);
+            if (auto s = check_render_budget(*preset, source_size, {w, h}, fit.value(), !size); !s.ok())
                 return report(s.error());
         }
         auto luts = read_file_luts(*preset);
@@ -255,7 +257,7 @@ Runner add_render_command(CLI::App& app, const GlobalOptions& g) {
         job.frames = frames;
         job.file_luts = file_luts;
         job.supersample = a->supersample;
-        if (auto s = reference::check_reference_work(job); !s.ok()) return report(s.error());
+        if (auto s = reference::check_reference_work(job, source_size); !s.ok()) return report(s.error());
         Result<std::vector<Image>> images = make_error("not rendered");
         if (a->reference) {
             // The reference reports no progress of its own; a render of many samples, or of a

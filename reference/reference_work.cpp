@@ -104,14 +104,17 @@ Status check_scene_work(const SceneWorkJob& job) {
                       worst_pass ? "pass." + worst_pass->alias + "." + worst.field : "preset");
 }
 
-Result<SceneWorkJob> scene_work_job(const ReferenceSceneJob& job) {
+Result<SceneWorkJob> scene_work_job(const ReferenceSceneJob& job, std::optional<PixelSize> source) {
     if (!job.preset || !job.source || job.frames.empty()) return make_error("reference scene job without a preset, source or frames");
-    auto first = job.source(job.frames.front());
-    if (!first.ok()) return first.error();
+    if (!source) {
+        auto first = job.source(job.frames.front());
+        if (!first.ok()) return first.error();
+        source = PixelSize{first.value().width, first.value().height};
+    }
     SceneWorkJob out;
     out.preset = job.preset;
     out.overrides = job.overrides;
-    out.source = {first.value().width, first.value().height};
+    out.source = *source;
     out.display = {job.width, job.height};
     out.fit = job.fit;
     out.supersample = job.supersample;
@@ -127,8 +130,8 @@ Result<SceneWorkJob> scene_work_job(const ReferenceSceneJob& job) {
     return out;
 }
 
-Status check_reference_work(const ReferenceSceneJob& job) {
-    auto work = scene_work_job(job);
+Status check_reference_work(const ReferenceSceneJob& job, std::optional<PixelSize> source) {
+    auto work = scene_work_job(job, source);
     if (!work.ok()) return work.error();
     return check_scene_work(work.value());
 }

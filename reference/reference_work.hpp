@@ -41,11 +41,12 @@ double scene_work(const SceneWorkJob& job);
 // An error naming the pass, stage and param whose loop makes the work exceed kMaxSceneWork; else Ok.
 Status check_scene_work(const SceneWorkJob& job);
 
-// The job of a reference scene render: its source's size from the first frame's original, the
-// frames it draws, its LUTs' sizes from the job's images and the preset's generators.
-Result<SceneWorkJob> scene_work_job(const ReferenceSceneJob& job);
+// The job of a reference scene render: its source's size (`source` where the caller has read it
+// already, else from the first frame's original), its LUTs' sizes from the job's images and the
+// preset's generators.
+Result<SceneWorkJob> scene_work_job(const ReferenceSceneJob& job, std::optional<PixelSize> source = {});
 
 // check_scene_work of a reference scene render.
-Status check_reference_work(const ReferenceSceneJob& job);
+Status check_reference_work(const ReferenceSceneJob& job, std::optional<PixelSize> source = {});
 
 }  // namespace crtforge::reference
