@@ -505,11 +505,11 @@ Result<SceneTiming> BenchSession::measure_once(const Preset& preset, const Prese
         t.alias = preset.passes[i].alias;
         t.width = job.width;
         t.height = job.height;
-        t.input_width = job.input.width;
-        t.input_height = job.input.height;
+        t.input_width = job.input->width;
+        t.input_height = job.input->height;
         t.format = format_name(job.format);
         t.cost = spirv_cost(compiled.value()[i].fragment);
-        const RenderJob blit = blit_job(job.input, job.width, job.height, job.format);
+        const RenderJob blit = blit_job(*job.input, job.width, job.height, job.format);
         if (auto calibrated = calibrate(shape_of(t), blit); !calibrated.ok()) return calibrated.error();
         auto times = time_pass(*engine.value(), job, &blit, o);
         if (!times.ok()) return times.error();

@@ -233,7 +233,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             pr.target = r.target;
             pr.output = r.outputs ? &(*r.outputs)[i] : nullptr;
             const PassInput& main = pass.inputs.front();
-            pr.input = *resolve(main.from);  // the main input travels as an Image of its own
+            pr.input = resolve(main.from);
             pr.filter = to_filter(main.filter);
             auto wrap = to_wrap(main.wrap, "pass." + pass.alias + ".wrap");
             if (!wrap.ok()) return wrap.error();

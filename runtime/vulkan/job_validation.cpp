@@ -31,7 +31,7 @@ Status check_size(const VulkanContext& context, const RenderJob& job) {
     detail::JobLimits job_limits{clamp_int(max_extent(limits, true)), clamp_int(max_extent(limits, false)),
                                  clamp_int(limits.maxImageDimension2D), context.info().name,
                                  "the device's maxImageDimension2D"};
-    if (auto s = detail::check_job_extent(job.width, job.height, job.input, job_limits); !s.ok()) return s;
+    if (auto s = detail::check_job_extent(job.width, job.height, *job.input, job_limits); !s.ok()) return s;
     if (auto s = detail::check_texture_images(job.textures, job_limits); !s.ok()) return s;
     if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;
     return detail::check_clear_color(job.clear_color);

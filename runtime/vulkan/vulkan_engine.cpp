@@ -33,7 +33,7 @@ struct JobResources {
     HostBuffer readback;
 };
 
-// The input is the job's own; the other textures come through `cache`.
+// Every texture, the input too, comes through `cache`.
 Result<JobResources> create_job_resources(const VulkanContext& context, const RenderJob& job, const JobPlan& plan,
                                           TextureCache& cache) {
     JobResources out;
@@ -42,8 +42,7 @@ Result<JobResources> create_job_resources(const VulkanContext& context, const Re
     for (size_t i = 0; i <= job.textures.size(); ++i) {
         const TexturePlan& format = plan.textures[i];
         const bool mipmap = i == 0 ? job.mipmap : job.textures[i - 1].mipmap;
-        auto texels = i == 0 ? create_uploaded_image(context, job.input, format.format, format.texels, mipmap)
-                             : cache.get(context, job.textures[i - 1].image, format.format, format.texels, mipmap);
+        auto texels = cache.get(context, i == 0 ? job.input : job.textures[i - 1].image, format.format, format.texels, mipmap);
         if (!texels) return texels.error();
         const SamplerFilter filter = i == 0 ? job.filter : job.textures[i - 1].filter;
         const WrapMode wrap = i == 0 ? job.wrap : job.textures[i - 1].wrap;

@@ -113,7 +113,7 @@ Result<const OutputFile*> file_with_role(const TargetRenderRequest& request, con
 Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& r) {
     // The pass works on the pixels it draws: the viewport's when it has one.
     const int width = r.viewport.full() ? r.width : r.viewport.width, height = r.viewport.full() ? r.height : r.viewport.height;
-    FrameInfo frame{width, height, r.input.width, r.input.height, r.time, r.frame_count, r.screen_width, r.screen_height};
+    FrameInfo frame{width, height, r.input->width, r.input->height, r.time, r.frame_count, r.screen_width, r.screen_height};
     return pack_uniforms(*r.compiled, frame, r.overrides);
 }
 

@@ -55,7 +55,7 @@ Status fill_pass_job(int version, TargetRenderRequest& r, Job& job) {
     job.shader_code = shader.value()->data;
     if (auto s = pin_time(job.shader_code); !s.ok()) return s.error();
     if (job.shader_code != shader.value()->data) job.params[kPinnedTime] = std::fmod(r.time, kGodotTimeRollover);
-    job.input = std::move(r.input);
+    job.input = *r.input;
     job.filter = r.filter;
     job.width = r.width;
     job.height = r.height;

@@ -84,8 +84,9 @@ struct RenderJob {
     std::vector<uint32_t> vertex_spirv, fragment_spirv;
     // Uploaded as an RGBA32F sampled texture (RGBA16F where the device cannot sample/filter
     // RGBA32F), addressed by `wrap` (clamp-to-edge by default). An empty image binds a 1x1
-    // transparent-black texture, for shaders that sample nothing.
-    Image input;
+    // transparent-black texture, for shaders that sample nothing. Shared as `textures` are: the
+    // engine uploads a picture it has seen before (an earlier pass's input or texture) once.
+    SharedImage input;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
     // A mip chain, as RetroArch's Vulkan driver builds one for `mipmap_input` and `NAME_mipmap`:

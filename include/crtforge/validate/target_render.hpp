@@ -49,7 +49,7 @@ struct TargetRenderRequest {
     TargetId target = TargetId::Spirv;
     // The emitted files of that pass; spirv renders the compiled modules and needs none.
     const TargetOutput* output = nullptr;
-    Image input;  // the main input ("source")
+    SharedImage input;  // the main input ("source"), shared: a pass output reaches its reader without a copy
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
     bool mipmap = false;
