@@ -173,31 +173,36 @@ Result<VariantOptions> VariantFlags::parse() const {
 
 namespace {
 
-// The first option, of `app` or the subcommands it parsed, that was given an empty value ("" if none).
-std::string empty_option_value(const CLI::App& app) {
+// The first value given to an option of `app` or of its subcommands (flags have none) for which
+// `finding` says something; what it said, or empty.
+template <typename Finding>
+std::string find_in_option_values(const CLI::App& app, const Finding& finding) {
     for (const CLI::Option* option : app.get_options()) {
         if (option->get_type_size() == 0 || option->count() == 0) continue;  // a flag, or not given
         for (const std::string& value : option->results())
-            if (value.empty()) return option->get_name();
+            if (std::string found = finding(app, *option, value); !found.empty()) return found;
     }
     for (const CLI::App* sub : app.get_subcommands())
-        if (const std::string name = empty_option_value(*sub); !name.empty()) return name;
+        if (std::string found = find_in_option_values(*sub, finding); !found.empty()) return found;
     return {};
+}
+
+// The name of an option given an empty value (--templates "").
+std::string empty_option_value(const CLI::App& app) {
+    return find_in_option_values(app, [](const CLI::App&, const CLI::Option& option, const std::string& value) {
+        return value.empty() ? option.get_name() : std::string();
+    });
 }
 
 // "--preset --target glsl330": CLI11 takes an option's name as the value of the option before it
 // (which then reports some other option missing). Found as a value that names an option of its
 // command: "<option> has no value" instead.
 std::string option_taken_as_value(const CLI::App& app) {
-    for (const CLI::Option* option : app.get_options()) {
-        if (option->get_type_size() == 0 || option->count() == 0) continue;
-        for (const std::string& value : option->results())
-            if (value.size() > 1 && value[0] == '-' && app.get_option_no_throw(value) != nullptr)
-                return option->get_name() + " has no value ('" + value + "' is an option of its own)";
-    }
-    for (const CLI::App* sub : app.get_subcommands())
-        if (std::string found = option_taken_as_value(*sub); !found.empty()) return found;
-    return {};
+    return find_in_option_values(app, [](const CLI::App& command, const CLI::Option& option, const std::string& value) {
+        if (value.size() > 1 && value[0] == '-' && command.get_option_no_throw(value) != nullptr)
+            return option.get_name() + " has no value ('" + value + "' is an option of its own)";
+        return std::string();
+    });
 }
 
 }  // namespace

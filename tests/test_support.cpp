@@ -5,7 +5,9 @@
 #include <random>
 
 #include <catch2/catch.hpp>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "crtforge/files.hpp"
 #include "crtforge/reference/reference_renderer.hpp"
@@ -98,9 +100,19 @@ CommandResult run_command(const std::string& command) {
     TempDir tmp;
     const std::string out = tmp / "out.txt", err = tmp / "err.txt";
     const std::string cmd = "(" + command + ") >'" + out + "' 2>'" + err + "' </dev/null";
-    int status = std::system(cmd.c_str());
+    // fork + exec rather than std::system: wait4 gives this command's own resource use (its peak
+    // memory), where getrusage(RUSAGE_CHILDREN) would give the largest of every child so far.
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
     CommandResult r;
+    int status = 0;
+    rusage usage{};
+    if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid) return r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.peak_rss_kib = usage.ru_maxrss;
     r.out = slurp(out);
     r.err = slurp(err);
     return r;

@@ -70,6 +70,7 @@ Result<Preset> resolve_preset_texts(const std::vector<std::pair<std::string, std
 struct CommandResult {
     int exit_code = -1;
     std::string out, err;
+    long peak_rss_kib = 0;  // the command's peak resident memory (the largest of its processes)
 };
 
 // Runs a shell command line, capturing both streams.

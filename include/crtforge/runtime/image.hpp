@@ -34,28 +34,35 @@ inline constexpr std::size_t kMaxRenderPixels = std::size_t{4096} * 2304;
 // to scale down first.
 inline constexpr std::size_t kMaxSourcePixels = std::size_t{2560} * 1600;
 
+namespace detail {
+// "is 9.6 Mpx, beyond the <budget> memory budget of 4.1 Mpx (e.g. <examples>)" when width x height
+// is past `limit` pixels; empty when it fits (or is not a size at all: the caller refuses that).
+inline std::string pixel_budget_error(long long width, long long height, std::size_t limit, const char* budget,
+                                      const char* examples) {
+    if (width <= 0 || height <= 0 || static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) <= limit)
+        return {};
+    auto megapixels = [](unsigned long long pixels) {  // to a tenth, rounded
+        const unsigned long long tenths = (pixels + 50000) / 100000;
+        return std::to_string(tenths / 10) + "." + std::to_string(tenths % 10);
+    };
+    return "is " + megapixels(static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height)) + " Mpx, beyond the " +
+           budget + " memory budget of " + megapixels(limit) + " Mpx (e.g. " + examples + ")";
+}
+}  // namespace detail
+
 // Empty when a width x height image fits the budget, else the reason, for a message.
 inline std::string image_budget_error(long long width, long long height) {
-    if (width > 0 && height > 0 && static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) > kMaxImagePixels)
-        return "is " + std::to_string(width * height / 1000000) + " Mpx, beyond the image memory budget of " +
-               std::to_string(kMaxImagePixels / 1000000) + " Mpx (e.g. 4096x4096)";
-    return {};
+    return detail::pixel_budget_error(width, height, kMaxImagePixels, "image", "4096x4096");
 }
 
 // Empty when a render's source of width x height fits kMaxSourcePixels, else why not.
 inline std::string source_budget_error(long long width, long long height) {
-    if (width > 0 && height > 0 && static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) > kMaxSourcePixels)
-        return "is " + std::to_string(width * height / 1000000) + "." + std::to_string(width * height / 100000 % 10) +
-               " Mpx, beyond the source memory budget of 4.1 Mpx (e.g. 2560x1600)";
-    return {};
+    return detail::pixel_budget_error(width, height, kMaxSourcePixels, "source", "2560x1600");
 }
 
 // Empty when a render (display or framebuffer) of width x height fits kMaxRenderPixels, else why not.
 inline std::string render_budget_error(long long width, long long height) {
-    if (width > 0 && height > 0 && static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) > kMaxRenderPixels)
-        return "is " + std::to_string(width * height / 1000000) + " Mpx, beyond the render memory budget of " +
-               std::to_string(kMaxRenderPixels / 1000000) + " Mpx (e.g. 4096x2304, 3840x2160)";
-    return {};
+    return detail::pixel_budget_error(width, height, kMaxRenderPixels, "render", "4096x2304, 3840x2160");
 }
 
 // Row-major, row 0 is the TOP row, 4 floats per pixel (R, G, B, A). Values are linear (never
