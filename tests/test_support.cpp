@@ -1,5 +1,6 @@
 #include "tests/test_support.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -110,7 +111,11 @@ CommandResult run_command(const std::string& command) {
     CommandResult r;
     int status = 0;
     rusage usage{};
-    if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid) return r;
+    if (pid < 0) return r;
+    pid_t waited = -1;
+    do waited = ::wait4(pid, &status, 0, &usage);  // a signal to the test process must not orphan the command
+    while (waited < 0 && errno == EINTR);
+    if (waited != pid) return r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.peak_rss_kib = usage.ru_maxrss;
     r.out = slurp(out);

@@ -160,7 +160,7 @@ Status check_job(const DawnJob& job) {
     if (job.vertex_entry.empty()) return job_error("the vertex entry point name is empty", "vertex_entry");
     if (job.fragment_entry.empty()) return job_error("the fragment entry point name is empty", "fragment_entry");
     const detail::JobLimits limits{kDawnMaxExtent, kDawnMaxExtent, kDawnMaxExtent, "Dawn", "maxTextureDimension2D"};
-    if (auto s = detail::check_job_extent(job.width, job.height, job.uses_texture ? job.input : Image{}, limits); !s.ok())
+    if (auto s = detail::check_job_extent(job.width, job.height, job.uses_texture ? *job.input : Image{}, limits); !s.ok())
         return s;
     if (auto s = detail::check_texture_images(job.textures, limits); !s.ok()) return s;
     if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;
@@ -347,12 +347,12 @@ Result<Image> DawnEngine::render(const DawnJob& job) {
             if (auto s = write_file(uniform, job.uniform_data.data(), job.uniform_data.size()); !s.ok()) return s.error();
             message["uniform"] = uniform.string();
         }
-        if (job.uses_texture && !job.input.empty()) {
-            if (auto s = write_file(input, job.input.rgba.data(), job.input.rgba.size() * sizeof(float)); !s.ok())
+        if (job.uses_texture && !job.input->empty()) {
+            if (auto s = write_file(input, job.input->rgba.data(), job.input->rgba.size() * sizeof(float)); !s.ok())
                 return s.error();
             message["input"] = input.string();
-            message["input_width"] = job.input.width;
-            message["input_height"] = job.input.height;
+            message["input_width"] = job.input->width;
+            message["input_height"] = job.input->height;
         }
         // Each extra texture travels as the input does: raw float32 RGBA in a file of its own.
         json textures = json::array();

@@ -102,7 +102,7 @@ Status check_job(const GlContext& context, const GlRenderJob& job) {
     if (job.fragment_source.empty()) return job_error("fragment shader source is empty", "fragment_source");
     const detail::JobLimits limits{max_output_extent(facts, true), max_output_extent(facts, false),
                                    facts.max_texture_size, facts.renderer, "GL_MAX_TEXTURE_SIZE"};
-    if (auto s = detail::check_job_extent(job.width, job.height, job.input, limits); !s.ok()) return s;
+    if (auto s = detail::check_job_extent(job.width, job.height, *job.input, limits); !s.ok()) return s;
     if (auto s = check_textures(job, limits, facts); !s.ok()) return s;
     if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;
     if (auto s = detail::check_clear_color(job.clear_color); !s.ok()) return s;
@@ -276,7 +276,7 @@ private:
         gl.TexStorage2D(GL_TEXTURE_2D, 1, output_internal_format(job.format), job.width, job.height);
         // After the target, so each texture stays bound to its unit (unit 0 holds the input again).
         std::vector<UniqueTexture> textures;
-        textures.push_back(create_sampled_texture(*context_, job.input, job.filter, job.wrap, job.mipmap, job.mip_filter, job.unorm8, 0));
+        textures.push_back(create_sampled_texture(*context_, *job.input, job.filter, job.wrap, job.mipmap, job.mip_filter, job.unorm8, 0));
         for (size_t i = 0; i < job.textures.size(); ++i) {
             const TextureInput& t = job.textures[i];
             const auto unit = static_cast<GLuint>(i + 1);

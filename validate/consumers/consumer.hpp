@@ -7,7 +7,6 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "crtforge/reflection.hpp"
@@ -109,10 +108,7 @@ Result<std::vector<uint8_t>> variant_uniforms(const TargetRenderRequest& request
 template <typename Job>
 Job request_job(TargetRenderRequest& r, std::vector<uint8_t> uniforms, std::vector<TextureInput> textures = {}) {
     Job job;
-    if constexpr (std::is_same_v<decltype(job.input), SharedImage>)
-        job.input = std::move(r.input);  // the Vulkan engine uploads it through its cache, by identity
-    else
-        job.input = *r.input;
+    job.input = std::move(r.input);
     job.filter = r.filter;
     job.wrap = r.wrap;
     job.mipmap = r.mipmap;

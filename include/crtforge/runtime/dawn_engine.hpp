@@ -54,8 +54,8 @@ struct DawnJob {
     std::string wgsl;  // one module holding both entry points
     std::string vertex_entry = "vs_main", fragment_entry = "fs_main";
     // The picture bound at texture_binding. An empty image binds a 1x1 transparent-black texture.
-    // Ignored when uses_texture is false.
-    Image input;
+    // Ignored when uses_texture is false. Shared, as `textures` are (no copy per pass).
+    SharedImage input;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;  // the input's address mode, both axes
     bool mipmap = false;                    // a mip chain, as RenderJob::mipmap (the shipped driver's)

@@ -59,8 +59,9 @@ struct GlRenderJob {
     std::string vertex_source, fragment_source;
     // Uploaded as an RGBA32F texture (RGBA16F on ES when float32 linear filtering is unavailable
     // and `filter` is Linear), addressed by `wrap` (clamp-to-edge by default). An empty image
-    // binds a 1x1 transparent-black texture, for shaders that sample nothing.
-    Image input;
+    // binds a 1x1 transparent-black texture, for shaders that sample nothing. Shared, as `textures`
+    // are: a scene's pass output reaches the next pass without a copy.
+    SharedImage input;
     SamplerFilter filter = SamplerFilter::Linear;
     WrapMode wrap = WrapMode::ClampToEdge;
     bool mipmap = false;  // a mip chain, as RenderJob::mipmap (glGenerateMipmap)
