@@ -163,20 +163,30 @@ func _process(delta: float) -> void:
         if (std::sscanf(line.c_str(), "T %lf %lf", &summed, &shader) == 2) samples.emplace_back(summed, shader);
     }
     REQUIRE(samples.size() == 100);
-    // TIME = fmod(summed + offset, 3600): the offset (the time before the script started counting)
-    // is the same at every frame, to the 1 s the 8-bit channel resolves. The first two frames are
-    // left out: the frame whose time_scale changed advances TIME and `summed` by different steps.
-    const double offset = samples[2].second - samples[2].first;
-    int wraps = 0;
+    // TIME = fmod(summed + offset, 3600), so from one frame to the next TIME advances by what
+    // `summed` advanced, less 3600 where it wrapped. Checked a frame pair at a time, not against
+    // one offset: under load the engine now and then draws a frame with a step other than the one
+    // _process saw (the frame whose time_scale changed always does), which moves the offset for
+    // good without saying anything about the wrap. Such pairs may be a few; the pairs that
+    // straddle a wrap must agree to the 1 s the 8-bit channel resolves, all but one at most (a
+    // hiccup may fall on a wrap): a wrap other than an exact fmod breaks every one of them.
+    int agreeing = 0, wraps = 0, broken_wraps = 0, pairs = 0;
     for (size_t i = 2; i < samples.size(); ++i) {
-        const double expected = std::fmod(samples[i].first + offset + 3600.0 * 1000, 3600.0);
-        double d = std::fabs(samples[i].second - expected);
-        d = std::min(d, 3600.0 - d);  // either side of the wrap
-        INFO("frame " << i << ": summed " << samples[i].first << " s, TIME " << samples[i].second << " s, expected " << expected);
-        CHECK(d < 2.0);
-        if (i > 2 && samples[i].second < samples[i - 1].second) ++wraps;
+        const double summed_step = samples[i].first - samples[i - 1].first;
+        const double time_step = samples[i].second - samples[i - 1].second;
+        const bool wrapped = time_step < 0;
+        const double expected = std::fmod(summed_step, 3600.0) - (wrapped ? 3600.0 : 0.0);
+        const bool agrees = std::fabs(time_step - expected) < 2.0;
+        INFO("frames " << i - 1 << "-" << i << ": summed +" << summed_step << " s, TIME " << samples[i - 1].second
+                       << " -> " << samples[i].second << " s");
+        if (wrapped && !agrees) UNSCOPED_INFO("a wrap that does not agree: frames " << i - 1 << "-" << i);
+        ++pairs;
+        if (agrees) ++agreeing;
+        if (wrapped) ++(agrees ? wraps : broken_wraps);
     }
+    CHECK(agreeing >= pairs * 9 / 10);
     CHECK(wraps >= 2);
+    CHECK(broken_wraps <= 1);
 }
 
 TEST_CASE("godot4: a server that goes leaves no folder of its driver or Chromium behind", "[godot4]") {
