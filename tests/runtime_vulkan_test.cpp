@@ -637,3 +637,65 @@ TEST_CASE("the memory pool hands a block back only for its own type and size, wi
     pool.clear();
     CHECK(pool.kept_bytes() == 0);
 }
+
+TEST_CASE("a float target kept on the device is sampled by later jobs exactly as its read-back, an 8-bit one is read back", "[runtime][vulkan]") {
+    // A pass's output that only later passes read may stay on the device (keep_on_device): its
+    // readers must then draw what they draw from the read-back picture, to the bit, through every
+    // way a reader samples (nearest, linear, a mip chain, the main input or an extra texture).
+    const std::string pattern = constant_shader(
+        "vec4(vTexCoord * 3.7 - 0.3, sin(gl_FragCoord.x * 1.37 + gl_FragCoord.y * 0.71) * 1000.0, 1.0 / 3.0 + vTexCoord.x)");
+    const std::string reader = R"(#version 450
+layout(location = 0) in vec2 vTexCoord;
+layout(location = 0) out vec4 fragColor;
+layout(set = 0, binding = 1) uniform sampler2D source;
+layout(set = 0, binding = 3) uniform sampler2D extra;
+void main() { fragColor = texture(source, vTexCoord * 1.3 - 0.1) + 0.5 * textureLod(extra, vTexCoord.yx, 1.7); }
+)";
+    for (OutputFormat format : {OutputFormat::Rgba16Float, OutputFormat::Rgba32Float, OutputFormat::R16Float, OutputFormat::Rg16Float,
+                                OutputFormat::Rgba8Unorm}) {
+        INFO("format " << static_cast<int>(format));
+        RenderJob pass = make_job(pattern, Image{}, 19, 13, format);
+        const SharedImage read = render_ok(pass);
+        pass.keep_on_device = true;
+        auto kept_image = engine().render(pass);
+        REQUIRE(kept_image.ok());
+        const SharedImage kept = std::move(kept_image.value());
+        CHECK(kept->width == 19);
+        CHECK(kept->height == 13);
+        if (format == OutputFormat::Rgba8Unorm) {  // read back: the device's byte-to-float is not byte / 255 to the bit
+            CHECK_FALSE(kept->device);
+            CHECK(kept->rgba == read->rgba);
+            continue;
+        }
+        REQUIRE(kept->device);
+        CHECK(kept->rgba.empty());
+        for (SamplerFilter filter : {SamplerFilter::Nearest, SamplerFilter::Linear}) {
+            for (bool mipmap : {false, true}) {
+                INFO("filter " << static_cast<int>(filter) << ", mipmap " << mipmap);
+                auto job_from = [&](const SharedImage& picture) {
+                    RenderJob job = make_job(reader, Image{}, 29, 17, OutputFormat::Rgba32Float, filter);
+                    job.input = picture;
+                    job.mipmap = mipmap;
+                    job.textures.push_back(texture_input("extra", 3, Image{}, SamplerFilter::Linear, WrapMode::Repeat));
+                    job.textures[0].image = picture;
+                    job.textures[0].mipmap = true;
+                    return job;
+                };
+                CHECK(render_ok(job_from(kept)).rgba == render_ok(job_from(read)).rgba);
+            }
+        }
+    }
+
+    // Another engine cannot sample what this one kept: refused, not read as texels that are not there.
+    RenderJob pass = make_job(pattern, Image{}, 8, 8, OutputFormat::Rgba16Float);
+    pass.keep_on_device = true;
+    auto kept = engine().render(pass);
+    REQUIRE(kept.ok());
+    REQUIRE(kept.value().device);
+    auto other = create_vulkan_engine(EngineOptions{});
+    REQUIRE(other.ok());
+    RenderJob job = make_job(kPassthrough, std::move(kept.value()), 8, 8, OutputFormat::Rgba16Float);
+    auto refused = other.value()->render(job);
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().str(), Contains("another engine kept on its device"));
+}

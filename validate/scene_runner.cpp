@@ -252,6 +252,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
             const long long count = static_cast<long long>(r.frame_count_base) + frame;
             pr.frame_count = pass.frame_count_mod ? count % pass.frame_count_mod : count;
             pr.overrides = r.overrides;
+            pr.keep_on_device = !last;  // the display is the one picture the host reads
             pr.screen_width = screen.width;
             pr.screen_height = screen.height;
             if (last) {  // the display: the screen's rectangle over opaque black

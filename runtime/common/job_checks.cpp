@@ -48,7 +48,15 @@ Status check_job_extent(int width, int height, const Image& input, const JobLimi
 
 Status check_texture_image(const Image& image, const JobLimits& limits, const std::string& what,
                            const std::string& field) {
-    if (!image.consistent() || image.width < 0 || image.height < 0)
+    if (image.device) {
+        if (!limits.device_pictures || image.device->owner() != limits.device_pictures)
+            return job_error(fmt::format("{} is a picture another engine kept on its device: only that engine can sample it", what),
+                             field);
+        if (!image.rgba.empty() || image.empty())
+            return job_error(fmt::format("{} is kept on the device but is {}x{} with {} floats", what, image.width, image.height,
+                                         image.rgba.size()),
+                             field);
+    } else if (!image.consistent() || image.width < 0 || image.height < 0)
         return job_error(fmt::format("{} is {}x{} but holds {} floats (expected width * height * 4)", what,
                                      image.width, image.height, image.rgba.size()),
                          field);

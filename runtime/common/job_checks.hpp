@@ -25,12 +25,16 @@ struct JobLimits {
     int max_input = 0;                  // largest input texture side
     std::string device;                 // named in messages
     const char* input_limit_name = "";  // the API's name for max_input, e.g. "GL_MAX_TEXTURE_SIZE"
+    // The DevicePicture::owner() of pictures this engine kept on its device and can sample; null
+    // where it keeps none (every such picture is then refused).
+    const void* device_pictures = nullptr;
 };
 
 // Output size within 1..limit on both axes; the input image consistent and within max_input.
 Status check_job_extent(int width, int height, const Image& input, const JobLimits& limits);
 
-// An image to sample: consistent and within max_input (and kMaxImageDimension). `what` names it
+// An image to sample: consistent (or kept on this engine's device) and within max_input (and
+// kMaxImageDimension). `what` names it
 // in the message ("input image", "texture 'lut'"), `field` in the Diagnostic.
 Status check_texture_image(const Image& image, const JobLimits& limits, const std::string& what,
                            const std::string& field);

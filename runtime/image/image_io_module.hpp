@@ -14,7 +14,8 @@
 
 namespace crtforge {
 
-inline constexpr int kImageIoModuleVersion = 1;
+// Raised with every change of the types the table passes (2: Image::device).
+inline constexpr int kImageIoModuleVersion = 2;
 
 struct ImageIoModule {
     int version;

@@ -30,7 +30,7 @@ Status check_size(const VulkanContext& context, const RenderJob& job) {
     auto clamp_int = [](uint32_t v) { return static_cast<int>(std::min<uint32_t>(v, 1u << 30)); };
     detail::JobLimits job_limits{clamp_int(max_extent(limits, true)), clamp_int(max_extent(limits, false)),
                                  clamp_int(limits.maxImageDimension2D), context.info().name,
-                                 "the device's maxImageDimension2D"};
+                                 "the device's maxImageDimension2D", &context};
     if (auto s = detail::check_job_extent(job.width, job.height, *job.input, job_limits); !s.ok()) return s;
     if (auto s = detail::check_texture_images(job.textures, job_limits); !s.ok()) return s;
     if (auto s = detail::check_viewport(job.viewport, job.width, job.height); !s.ok()) return s;

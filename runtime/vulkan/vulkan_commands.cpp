@@ -71,9 +71,25 @@ void record_upload(VkCommandBuffer commands, const UploadedImage& texels) {
     const uint32_t levels = texture.levels;
     image_barrier(commands, texture.image.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, levels);
-    const VkBufferImageCopy region = whole_image(texture);
-    vkCmdCopyBufferToImage(commands, staging.buffer.get(), texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                           1, &region);
+    if (texels.source) {
+        // A kept target, converted to the texture's format by a blit of the same size (nearest: each
+        // texel onto itself). It stays in TRANSFER_SRC_OPTIMAL for its other readers.
+        const DeviceImage& target = texels.source->image;
+        image_barrier(commands, target.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkImageBlit blit{};
+        blit.srcSubresource = kColorLayers;
+        blit.srcOffsets[1] = {static_cast<int32_t>(target.extent.width), static_cast<int32_t>(target.extent.height), 1};
+        blit.dstSubresource = kColorLayers;
+        blit.dstOffsets[1] = {static_cast<int32_t>(texture.extent.width), static_cast<int32_t>(texture.extent.height), 1};
+        vkCmdBlitImage(commands, target.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, texture.image.get(),
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+    } else {
+        const VkBufferImageCopy region = whole_image(texture);
+        vkCmdCopyBufferToImage(commands, staging.buffer.get(), texture.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               1, &region);
+    }
     for (uint32_t level = 1; level < levels; ++level) record_mip_level(commands, texture, level);
     // Sampled from both stages' point of view: the vertex shader could sample too. Every level but
     // the last was a blit's source.
@@ -128,7 +144,7 @@ void record_readback(VkCommandBuffer commands, const DeviceImage& target, const 
 void record_pass(VkCommandBuffer commands, const PassCommands& pass) {
     for (const SampledTexture& texture : pass.textures) record_upload(commands, *texture.texels);
     record_draw(commands, pass);
-    record_readback(commands, pass.target, pass.readback);
+    if (pass.readback.buffer.get() != VK_NULL_HANDLE) record_readback(commands, pass.target, pass.readback);  // none: kept
 }
 
 void record_uploads(VkCommandBuffer commands, const PassCommands& pass) {

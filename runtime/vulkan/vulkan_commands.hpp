@@ -23,7 +23,7 @@ struct PassCommands {
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
     uint32_t descriptor_set_index = 0;
     const DeviceImage& target;       // the colour attachment
-    const HostBuffer& readback;      // receives `target`, tightly packed
+    const HostBuffer& readback;      // receives `target`, tightly packed; no buffer: the target is kept
     std::array<float, 4> clear_color{};  // the whole target's value before the draw
 };
 

@@ -33,9 +33,10 @@ struct JobResources {
     HostBuffer readback;
 };
 
-// Every texture, the input too, comes through `cache`.
+// Every texture, the input too, comes through `cache`. Without `read_back` (a target kept on the
+// device) there is no read-back buffer.
 Result<JobResources> create_job_resources(const VulkanContext& context, const RenderJob& job, const JobPlan& plan,
-                                          TextureCache& cache) {
+                                          TextureCache& cache, bool read_back) {
     JobResources out;
 
     out.textures.reserve(job.textures.size() + 1);
@@ -66,6 +67,7 @@ Result<JobResources> create_job_resources(const VulkanContext& context, const Re
                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     if (!target) return target.error();
     out.target = std::move(target).value();
+    if (!read_back) return out;
 
     const VkDeviceSize readback_bytes = VkDeviceSize{width} * height * texel_bytes(job.format);
     auto readback = create_host_buffer(context, readback_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -76,7 +78,7 @@ Result<JobResources> create_job_resources(const VulkanContext& context, const Re
 
 class VulkanEngine final : public RenderEngine {
 public:
-    explicit VulkanEngine(std::unique_ptr<VulkanContext> context) : context_(std::move(context)) {}
+    explicit VulkanEngine(std::shared_ptr<VulkanContext> context) : context_(std::move(context)) {}
 
     const DeviceInfo& device() const override { return context_->info(); }
 
@@ -122,9 +124,9 @@ private:
         std::optional<PassCommands> commands;
     };
 
-    Result<std::unique_ptr<PreparedJob>> prepare(const RenderJob& job, const JobPlan& plan) {
+    Result<std::unique_ptr<PreparedJob>> prepare(const RenderJob& job, const JobPlan& plan, bool readback = true) {
         const VulkanContext& context = *context_;
-        auto resources = create_job_resources(context, job, plan, textures_);
+        auto resources = create_job_resources(context, job, plan, textures_, readback);
         if (!resources) return resources.error();
         auto pass = passes_.get(context, job, plan.output_format);
         if (!pass) return pass.error();
@@ -199,13 +201,24 @@ private:
         return out;
     }
 
-    // The render: uploads, the draw, the readback.
+    // The render: uploads, the draw, the readback (or the target kept, RenderJob::keep_on_device).
     Result<Image> run(const RenderJob& job, const JobPlan& plan) {
-        auto prepared = prepare(job, plan);
+        const bool keep = job.keep_on_device && can_keep_target(*context_, job.format);
+        auto prepared = prepare(job, plan, !keep);
         if (!prepared) return prepared.error();
         const PassCommands& commands = *prepared.value()->commands;
         if (auto s = submit_and_wait(*context_, [&](VkCommandBuffer cb) { record_pass(cb, commands); }); !s) return s.error();
         mark_uploaded(prepared.value()->resources);
+        if (keep) {
+            auto kept = std::make_shared<KeptTarget>();
+            kept->context = context_;
+            kept->image = std::move(prepared.value()->resources.target);
+            Image out;
+            out.width = job.width;
+            out.height = job.height;
+            out.device = std::move(kept);
+            return out;
+        }
         const HostBuffer& readback = prepared.value()->resources.readback;
         if (auto s = invalidate(*context_, readback); !s) return s.error();
         return read_texels(readback.mapped, job.width, job.height, job.format);
@@ -215,7 +228,7 @@ private:
         for (SampledTexture& texture : resources.textures) texture.texels->mark_uploaded();
     }
 
-    std::unique_ptr<VulkanContext> context_;
+    std::shared_ptr<VulkanContext> context_;  // shared with the targets it keeps (KeptTarget)
     TextureCache textures_{VkDeviceSize{1} << 30};  // 1 GiB of uploaded textures
     GraphicsPassCache passes_{128};
 };
@@ -227,7 +240,8 @@ Result<std::unique_ptr<RenderEngine>> create_vulkan_engine(const EngineOptions& 
     try {
         auto context = vulkan::VulkanContext::create(options);
         if (!context) return context.error();
-        return std::unique_ptr<RenderEngine>(std::make_unique<vulkan::VulkanEngine>(std::move(context).value()));
+        return std::unique_ptr<RenderEngine>(
+            std::make_unique<vulkan::VulkanEngine>(std::shared_ptr<vulkan::VulkanContext>(std::move(context).value())));
     } catch (const std::exception& e) {
         return make_error(fmt::format("creating the Vulkan engine failed: {}", e.what()));
     }

@@ -1,5 +1,7 @@
 #include "runtime/vulkan/vulkan_resources.hpp"
 
+#include "runtime/vulkan/job_validation.hpp"
+
 #include <fmt/core.h>
 
 #include "runtime/vulkan/vulkan_check.hpp"
@@ -166,18 +168,41 @@ Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter
     return UniqueSampler(context.device(), sampler);
 }
 
+bool can_keep_target(const VulkanContext& context, OutputFormat format) {
+    switch (format) {
+        case OutputFormat::Rgba16Float:
+        case OutputFormat::Rgba32Float:
+        case OutputFormat::R16Float:
+        case OutputFormat::Rg16Float: break;
+        default: return false;
+    }
+    const VkFormatFeatureFlags target_needs = VK_FORMAT_FEATURE_BLIT_SRC_BIT;
+    const VkFormatFeatureFlags texture_needs = VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                               VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT | VK_FORMAT_FEATURE_BLIT_SRC_BIT;
+    return (context.optimal_tiling_features(output_vk_format(format)) & target_needs) == target_needs &&
+           (context.optimal_tiling_features(VK_FORMAT_R32G32B32A32_SFLOAT) & texture_needs) == texture_needs;
+}
+
 Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext& context, const Image& image,
                                                              VkFormat format, TextureTexels texels, bool mipmap) {
     auto out = std::make_shared<UploadedImage>();
     // A shader that samples nothing still gets a valid descriptor: a 1x1 transparent-black texture.
     const Image blank = Image::make(1, 1);
     const Image& source = image.empty() ? blank : image;
-    auto staging =
-        create_host_buffer(context, source.pixel_count() * texel_bytes(texels), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    if (!staging) return staging.error();
-    out->staging = std::move(staging).value();
-    write_texels(source, texels, out->staging.mapped);
-    if (auto s = flush(context, out->staging); !s) return s.error();
+    if (image.device) {
+        auto kept = std::dynamic_pointer_cast<const KeptTarget>(image.device);
+        if (!kept || kept->owner() != &context) return make_error("a picture kept on another device cannot be sampled here", {}, 0, "job.input");
+        if (texels != TextureTexels::Rgba32Float || format != VK_FORMAT_R32G32B32A32_SFLOAT)
+            return make_error("a picture kept on the device is sampled as RGBA32F only", {}, 0, "job.input");
+        out->source = std::move(kept);
+    } else {
+        auto staging =
+            create_host_buffer(context, source.pixel_count() * texel_bytes(texels), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        if (!staging) return staging.error();
+        out->staging = std::move(staging).value();
+        write_texels(source, texels, out->staging.mapped);
+        if (auto s = flush(context, out->staging); !s) return s.error();
+    }
 
     const uint32_t levels = mipmap ? mip_level_count(source.width, source.height) : 1;
     VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;

@@ -49,23 +49,42 @@ Result<DeviceImage> create_device_image(const VulkanContext& context, VkFormat f
 Result<UniqueSampler> create_sampler(const VulkanContext& context, SamplerFilter filter, WrapMode wrap, bool mipmap,
                                      SamplerFilter mip_filter);
 
-// A texture's texels on the device. `staging` holds them on their way up until the first command
-// buffer that uploads them has run (mark_uploaded() then releases it); after that the image is
-// in SHADER_READ_ONLY_OPTIMAL and any later job may sample it as it is.
+// A pass's target kept on the device (RenderJob::keep_on_device), in TRANSFER_SRC_OPTIMAL as its
+// render pass left it: its readers' textures are blitted from it. It keeps the context (device and
+// memory pool) alive, so it may outlive the engine; it must be released on the engine's thread.
+struct KeptTarget final : DevicePicture {
+    std::shared_ptr<const VulkanContext> context;  // declared first: goes after the image
+    DeviceImage image;
+    const void* owner() const override { return context.get(); }
+};
+
+// Whether a target of `format` can be kept on `context`'s device: a float format its readers'
+// RGBA32F textures take by a blit, exactly (every half and float is a float), where the device can
+// blit it into, sample and filter RGBA32F. 8-bit targets are read back: the device's conversion of
+// a byte to float is not always the read-back's byte / 255 to the last bit.
+bool can_keep_target(const VulkanContext& context, OutputFormat format);
+
+// A texture's texels on the device. `staging` holds them on their way up, or `source` where they
+// come from a kept target, until the first command buffer that uploads them has run
+// (mark_uploaded() then releases it); after that the image is in SHADER_READ_ONLY_OPTIMAL and any
+// later job may sample it as it is.
 struct UploadedImage {
     HostBuffer staging;
+    std::shared_ptr<const KeptTarget> source;
     DeviceImage image;
     bool uploaded = false;
 
     void mark_uploaded() {
         uploaded = true;
         staging = HostBuffer{};
+        source.reset();
     }
 };
 
 // `image` (empty = a 1x1 transparent-black texture) written as `texels` into a staging buffer,
 // and a `format` image of its size to receive it: with `mipmap`, with a full mip chain that the
-// upload fills (RenderJob::mipmap).
+// upload fills (RenderJob::mipmap). A picture kept on this device is blitted from its target
+// instead (RGBA32F texels only: what can_keep_target promises).
 Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext& context, const Image& image,
                                                              VkFormat format, TextureTexels texels, bool mipmap);
 

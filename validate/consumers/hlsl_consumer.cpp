@@ -27,6 +27,7 @@ public:
         // The vertex shader targets D3D's y-up clip space: drawn through a flipped viewport, as a
         // D3D-to-Vulkan layer draws it, so SV_Position counts rows from the top as on D3D.
         job.clip_y_up = true;
+        job.keep_on_device = r.keep_on_device;
         for (ShaderStage stage : {ShaderStage::Vertex, ShaderStage::Fragment}) {
             auto file = file_with_role(r, stage == ShaderStage::Vertex ? "vertex" : "fragment");
             if (!file.ok()) return file.error();

@@ -40,6 +40,7 @@ Result<RenderJob> vulkan_job(TargetRenderRequest r) {
     auto job = request_job<RenderJob>(r, std::move(uniforms.value()), std::move(textures.value()));
     job.vertex_spirv = r.compiled->vertex;
     job.fragment_spirv = r.compiled->fragment;
+    job.keep_on_device = r.keep_on_device;
     return job;
 }
 

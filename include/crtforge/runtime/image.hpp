@@ -65,11 +65,23 @@ inline std::string render_budget_error(long long width, long long height) {
     return detail::pixel_budget_error(width, height, kMaxRenderPixels, "render", "4096x2304, 3840x2160");
 }
 
+// A picture an engine kept on its device instead of reading it back (RenderJob::keep_on_device):
+// only the engine that made it can sample it. owner() says which (the engine's device as the
+// engine knows it), so any other engine refuses it instead of reading texels that are not there.
+class DevicePicture {
+public:
+    virtual ~DevicePicture() = default;
+    virtual const void* owner() const = 0;
+};
+
 // Row-major, row 0 is the TOP row, 4 floats per pixel (R, G, B, A). Values are linear (never
 // sRGB-encoded) and may exceed 1.0 or go below 0.0 (HDR intermediates), so nothing clamps them.
 struct Image {
     int width = 0, height = 0;
-    std::vector<float> rgba;  // width * height * 4 floats
+    std::vector<float> rgba;  // width * height * 4 floats; none where `device` holds the picture
+    // Set where the picture stayed on an engine's device: rgba is then empty (not consistent()),
+    // and only that engine's jobs may sample it.
+    std::shared_ptr<const DevicePicture> device;
 
     // A width x height image filled with `fill`. Sizes <= 0 give an empty image.
     static Image make(int width, int height, std::array<float, 4> fill = {0.0f, 0.0f, 0.0f, 0.0f}) {

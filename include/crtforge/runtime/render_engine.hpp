@@ -114,6 +114,12 @@ struct RenderJob {
     bool clip_y_up = false;
     std::array<float, 4> clear_color = {0, 0, 0, 0};  // linear RGBA the whole target starts as
     OutputFormat format = OutputFormat::Rgba8Unorm;
+    // The output is only sampled by later jobs of this engine (a scene's intermediate pass): the
+    // engine may keep it on its device and return an Image of its size whose `device` holds it,
+    // with no texels, instead of reading it back and uploading it again for each reader. It does
+    // so only where its readers then sample exactly the values a read-back would have given them
+    // (the float formats, copied into full float); otherwise the texels come back as usual.
+    bool keep_on_device = false;
     // The bytes of the std140 uniform block, as laid out by the shader. Empty = the shader has no
     // uniform block. It must cover every byte of the block the shader declares.
     std::vector<uint8_t> uniform_data;

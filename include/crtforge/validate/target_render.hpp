@@ -65,6 +65,8 @@ struct TargetRenderRequest {
     long long frame_count = 0;
     OutputFormat format = OutputFormat::Rgba16Float;  // float output: no 8-bit quantisation in comparisons
     std::map<std::string, Value> overrides;
+    // Only later passes of this scene, on this consumer, read the output (RenderJob::keep_on_device).
+    bool keep_on_device = false;
 };
 
 // A scene over a sequence of frames through one target's consumer: every pass each frame, each
