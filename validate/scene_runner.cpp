@@ -102,8 +102,10 @@ Result<std::map<std::string, SharedImage>> read_file_luts(const Preset& preset) 
         // checks the picture itself, and its error is the one reported.
         auto bytes = read_text_file(path, kMaxLutFileBytes);
         std::string key;
+        std::optional<BoundedMemo<SharedImage>::Claim> claim;  // the other worker, starting a preset of the same pack, waits
         if (bytes.ok()) {
             key = Cache::key({"lut", std::filesystem::path(path).extension().string(), bytes.value()});
+            claim.emplace(decoded_luts(), key);
             if (auto known = decoded_luts().find(key)) {
                 out[lut.name] = *known;
                 continue;

@@ -124,9 +124,9 @@ private:
         std::optional<PassCommands> commands;
     };
 
-    Result<std::unique_ptr<PreparedJob>> prepare(const RenderJob& job, const JobPlan& plan, bool readback = true) {
+    Result<std::unique_ptr<PreparedJob>> prepare(const RenderJob& job, const JobPlan& plan, bool read_back = true) {
         const VulkanContext& context = *context_;
-        auto resources = create_job_resources(context, job, plan, textures_, readback);
+        auto resources = create_job_resources(context, job, plan, textures_, read_back);
         if (!resources) return resources.error();
         auto pass = passes_.get(context, job, plan.output_format);
         if (!pass) return pass.error();

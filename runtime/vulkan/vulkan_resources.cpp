@@ -1,9 +1,8 @@
 #include "runtime/vulkan/vulkan_resources.hpp"
 
-#include "runtime/vulkan/job_validation.hpp"
-
 #include <fmt/core.h>
 
+#include "runtime/vulkan/job_validation.hpp"
 #include "runtime/vulkan/vulkan_check.hpp"
 
 namespace crtforge::vulkan {
@@ -191,7 +190,8 @@ Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext
     const Image& source = image.empty() ? blank : image;
     if (image.device) {
         auto kept = std::dynamic_pointer_cast<const KeptTarget>(image.device);
-        if (!kept || kept->owner() != &context) return make_error("a picture kept on another device cannot be sampled here", {}, 0, "job.input");
+        if (!kept || kept->owner() != &context)
+            return make_error("a picture kept on another device cannot be sampled here", {}, 0, "job.input");
         if (texels != TextureTexels::Rgba32Float || format != VK_FORMAT_R32G32B32A32_SFLOAT)
             return make_error("a picture kept on the device is sampled as RGBA32F only", {}, 0, "job.input");
         out->source = std::move(kept);
