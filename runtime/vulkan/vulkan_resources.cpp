@@ -188,11 +188,9 @@ Result<std::shared_ptr<UploadedImage>> create_uploaded_image(const VulkanContext
     // A shader that samples nothing still gets a valid descriptor: a 1x1 transparent-black texture.
     const Image blank = Image::make(1, 1);
     const Image& source = image.empty() ? blank : image;
-    if (image.device) {
+    if (image.device) {  // the job check has refused pictures another engine kept
         auto kept = std::dynamic_pointer_cast<const KeptTarget>(image.device);
-        if (!kept || kept->owner() != &context)
-            return make_error("a picture kept on another device cannot be sampled here", {}, 0, "job.input");
-        if (texels != TextureTexels::Rgba32Float || format != VK_FORMAT_R32G32B32A32_SFLOAT)
+        if (!kept || texels != TextureTexels::Rgba32Float || format != VK_FORMAT_R32G32B32A32_SFLOAT)
             return make_error("a picture kept on the device is sampled as RGBA32F only", {}, 0, "job.input");
         out->source = std::move(kept);
     } else {
