@@ -131,7 +131,9 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
     cmd->add_flag("--vulkan-only", a->vulkan_only, "Only the spirv target on Vulkan (the quick whole-library sweep)");
     cmd->add_option("--shard", a->shard, "Run share i of n (1-based): every n-th preset")->capture_default_str();
     cmd->add_option("-j,--jobs", a->jobs,
-                    "Worker threads (with --vulkan-only and a thread per core, lavapipe draws on them: LP_NUM_THREADS=0 unless set)")->check(CLI::Range(1, 64))->capture_default_str();
+                    "Worker threads (with --vulkan-only and a thread per core, lavapipe draws on them: LP_NUM_THREADS=0 unless set)")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
     cmd->add_option("--source-size", a->source_size, "The generated input's size (pixel_art)")->capture_default_str();
     cmd->add_option("--size", a->size, "The display size")->capture_default_str();
     cmd->add_option("--frame", a->frame, "The frame judged (frames 0..N run)")->check(CLI::Range(0, 1000))->capture_default_str();
