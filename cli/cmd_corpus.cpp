@@ -25,12 +25,15 @@ namespace crtforge::cli {
 
 namespace {
 
+// The machine's cores (at least 1): the default -j, and what a thread per core means.
+unsigned cores() { return std::max(1u, std::thread::hardware_concurrency()); }
+
 struct CorpusArgs {
     std::string dir, root, report, shard = "1/1", source_size = "160x120", size = "320x240", device, retroarch;
     std::vector<std::string> targets, only;
     bool vulkan_only = false, smooth = false, optimised_jit = false;
     std::string uniforms = "default";
-    unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+    unsigned jobs = cores();
     int frame = 2;
     double min_psnr = 40.0, fail_under = 0.0;
     size_t presets_per_process = 50;
@@ -225,7 +228,7 @@ Runner add_corpus_command(CLI::App& app, const GlobalOptions& g) {
         // With a sweep thread per core the cores are busy with presets: lavapipe's rasterizer threads
         // would only hand each draw over and wait for it (measured: Mega Bezel presets 7 % quicker
         // drawn on the thread that asks, the other families the same).
-        if (a->vulkan_only && a->jobs >= std::max(1u, std::thread::hardware_concurrency()))
+        if (a->vulkan_only && a->jobs >= cores())
             ::setenv("LP_NUM_THREADS", "0", /*overwrite*/ 0);
         if (!a->retroarch.empty() && !std::filesystem::is_directory(a->retroarch, ec))
             return report(make_error("is not a folder", a->retroarch, 0, "--retroarch"));
