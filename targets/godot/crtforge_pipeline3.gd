@@ -254,7 +254,10 @@ func _pass_sizes(source_size, screen):
 	return ordered
 
 
+# Godot draws nothing into a viewport under 2 pixels: a pass 1 pixel wide or tall gets 2, both
+# computing its one pixel (its shader holds that axis at the centre; readers are told 1).
 func _resize(viewport, child, size):
+	size = Vector2(max(size.x, 2), max(size.y, 2))
 	viewport.size = size
 	child.rect_position = Vector2()
 	child.rect_size = size

@@ -1,5 +1,6 @@
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot3_syntax.hpp"
+#include "targets/godot/godot_scene.hpp"
 #include "targets/godot/spirv_constant_indices.hpp"
 #include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/spirv_flat_arrays.hpp"
@@ -228,6 +229,7 @@ std::string GodotCompiler::uniform_declaration(const VariantParam& p) const {
 }
 
 void GodotCompiler::prepare() {
+    check_one_pixel_pass();
     auto o = get_common_options();
     o.es = true;  // Godot's shading language is GLSL ES 3.0 flavoured
     o.version = 300;
@@ -346,7 +348,7 @@ std::string GodotCompiler::compile_godot() {
         out.insert(close, "    COLOR = vec4(COLOR.rgb * COLOR.a, 1.0);  // screen mode: the bezel's alpha over black\n");
     }
     if (stage_ == ShaderStage::Fragment) out = with_format_stored(out);
-    out = with_for_conditions_parenthesised(with_border_emulated(without_texel_offsets(out)));
+    out = with_one_pixel_sizes(with_for_conditions_parenthesised(with_border_emulated(without_texel_offsets(out))));
     // Godot's matrices are square: matNxN is matN; a non-square one was padded to square in the
     // SPIR-V (spirv_square_matrices), so one here is a bug, refused rather than emitted.
     auto dimension = [](char c) { return c >= '2' && c <= '4'; };
@@ -412,6 +414,53 @@ std::string GodotCompiler::with_border_emulated(const std::string& text) const {
     return rewrite(text);
 }
 
+std::string GodotCompiler::with_one_pixel_sizes(const std::string& text) const {
+    std::map<std::string, godot::OnePixelAxes> thin;  // Godot name -> the axes its pass is 1 pixel on
+    for (const PassInput& in : variant_.pass->inputs) {
+        const godot::OnePixelAxes axes = godot::one_pixel_axes(*variant_.preset, in.from);
+        if (!axes.any()) continue;
+        if (in.binding != kSourceTextureName) thin[in.binding] = axes;
+        else if (!screen_mode()) thin["TEXTURE"] = axes;  // the screen is the display's size
+    }
+    if (thin.empty()) return text;
+    auto sized = [](const godot::OnePixelAxes& axes, const std::string& size, const std::string& one, const std::string& type) {
+        if (axes.x && axes.y) return type + "(" + one + ")";
+        return axes.x ? type + "(" + one + ", " + size + ".y)" : type + "(" + size + ".x, " + one + ")";
+    };
+    std::function<std::string(const std::string&)> rewrite = [&](const std::string& source) {
+        return rewrite_calls(source, "textureSize", [&](const std::vector<std::string>& args) {
+            std::string call = "textureSize(";
+            for (size_t i = 0; i < args.size(); ++i) call += (i ? ", " : "") + rewrite(args[i]);
+            call += ")";
+            auto t = thin.find(args[0]);
+            return t == thin.end() ? call : sized(t->second, call, "1", "ivec2");  // 1 at every level
+        });
+    };
+    std::string out = rewrite(text);
+    if (auto t = thin.find("TEXTURE"); t != thin.end())
+        out = crtforge::detail::rewrite_words(out, [&](std::string_view word) -> std::optional<std::string> {
+            if (word != "TEXTURE_PIXEL_SIZE") return std::nullopt;
+            return sized(t->second, "TEXTURE_PIXEL_SIZE", "1.0", "vec2");
+        });
+    return out;
+}
+
+void GodotCompiler::check_one_pixel_pass() const {
+    const godot::OnePixelAxes thin = godot::one_pixel_axes(*variant_.preset, variant_.pass_index);
+    if (!thin.any() || stage_ != ShaderStage::Fragment) return;
+    const std::string what = fmt::format("pass {} is 1 pixel {}, which Godot draws as 2 equal pixels", variant_.pass->alias,
+                                         thin.x ? "wide" : "tall");
+    if (!program_) throw spirv_cross::CompilerError(what + " only for an imported program");
+    // Derivatives across the two pixels are 0 where RetroArch's helper pixel gives the slope, and
+    // an implicit level of a mip chain follows them.
+    const std::vector<uint32_t>& words = ir.spirv;
+    for (size_t at = 5; at < words.size() && (words[at] >> 16) > 0; at += words[at] >> 16)
+        if (const uint32_t op = words[at] & 0xffffu; op >= spv::OpDPdx && op <= spv::OpFwidthCoarse)
+            throw spirv_cross::CompilerError(what + ": its fragment stage reads derivatives, which would then be 0");
+    for (const PassInput& in : variant_.pass->inputs)
+        if (in.mipmap) throw spirv_cross::CompilerError(what + ": it reads " + in.binding + " through a mip chain, whose level would follow 0 derivatives");
+}
+
 std::string GodotCompiler::vertex_text(std::string text) const {
     // SPIRV-Cross names values by their ids, which the fragment stage's compile reuses: the vertex
     // stage's become _v<id>.
@@ -422,8 +471,10 @@ std::string GodotCompiler::vertex_text(std::string text) const {
     });
     // The import draws RetroArch's quad as a full-screen triangle, its corner from gl_VertexIndex
     // (generator/retroarch/slang_program.cpp); a canvas_item's own quad has that corner as UV.
-    for (const auto& [corner, uv] : {std::pair<std::string, std::string>{"float((gl_VertexID << 1) & 2)", "UV.x"},
-                                     {"float(gl_VertexID & 2)", "UV.y"}})
+    // A pass drawn 2 pixels for 1 (godot::one_pixel_axes) holds that axis at the pixel's centre.
+    const godot::OnePixelAxes thin = godot::one_pixel_axes(*variant_.preset, variant_.pass_index);
+    for (const auto& [corner, uv] : {std::pair<std::string, std::string>{"float((gl_VertexID << 1) & 2)", thin.x ? "0.5" : "UV.x"},
+                                     {"float(gl_VertexID & 2)", thin.y ? "0.5" : "UV.y"}})
         for (size_t at = text.find(corner); at != std::string::npos; at = text.find(corner, at + uv.size()))
             text.replace(at, corner.size(), uv);
     if (text.find("gl_VertexID") != std::string::npos)

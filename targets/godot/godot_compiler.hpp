@@ -70,6 +70,10 @@ private:
     // clamp_to_border emulated in the shader: each read of such a texture times the share inside it.
     std::string with_border_emulated(const std::string& text) const;
     std::map<std::string, bool> border_textures() const;  // Godot name (TEXTURE for the source) -> linear
+    // A texture from a pass drawn 2 pixels for 1 (godot::one_pixel_axes): its size queries say 1.
+    std::string with_one_pixel_sizes(const std::string& text) const;
+    // This pass drawn so: refused where its two pixels could differ (derivatives, mip chains).
+    void check_one_pixel_pass() const;
     const Variant& variant_;
     godot::Options options_;
     ShaderStage stage_;

@@ -169,6 +169,23 @@ Status check_godot3_viewport_count(const Preset& preset, size_t passes, size_t f
 
 }  // namespace
 
+OnePixelAxes one_pixel_axes(const Preset& preset, size_t pass_index) {
+    OnePixelAxes out;
+    if (pass_index + 1 >= preset.passes.size()) return out;  // the last pass draws the display
+    const Pass& pass = preset.passes[pass_index];
+    auto thin = [](const PassScale& s) { return s.type == PassScale::Type::Absolute && std::lround(s.factor) < 2; };
+    out.x = thin(pass.scale_x);
+    out.y = thin(pass.scale_y);
+    return out;
+}
+
+OnePixelAxes one_pixel_axes(const Preset& preset, const TextureSource& from) {
+    if (from.kind != TextureSource::Kind::Pass && from.kind != TextureSource::Kind::Feedback) return {};
+    for (size_t i = 0; i < preset.passes.size(); ++i)
+        if (preset.passes[i].alias == from.name) return one_pixel_axes(preset, i);
+    return {};
+}
+
 std::string scene_path(const Preset& preset) { return std::string(kFolder) + preset.name + ".tscn"; }
 
 Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int version) {
@@ -197,14 +214,14 @@ Result<std::vector<OutputFile>> generate_scene(const SceneTargetInput& in, int v
     for (size_t i = 0; i < in.passes.size(); ++i) {
         const Variant& variant = *in.passes[i];
         const Pass& pass = *variant.pass;
-        // Godot draws nothing into a viewport 1 pixel wide or tall (godotengine/godot#26187): a
-        // pass that asks for one is refused rather than exported black.
-        for (const auto& [axis, scale] : {std::pair{"x", &pass.scale_x}, std::pair{"y", &pass.scale_y}})
-            if (i + 1 < in.passes.size() && scale->type == PassScale::Type::Absolute && std::lround(scale->factor) < 2)
-                return make_error(fmt::format("pass {} is {} pixel {} on {}; Godot draws nothing into a viewport under 2 pixels", pass.alias,
-                                              std::lround(scale->factor), axis == std::string_view("x") ? "wide" : "tall",
-                                              v4 ? "Godot 4" : "Godot 3"),
-                                  pass.where.file, pass.where.line, "scale");
+        // Godot draws nothing into a viewport under 2 pixels: a program pass is drawn into 2 (see
+        // one_pixel_axes); a pass of crtforge's own shaders, whose coordinates are the node's, is
+        // refused rather than exported black.
+        const OnePixelAxes thin = one_pixel_axes(preset, i);
+        if (thin.any() && !variant.program_form())
+            return make_error(fmt::format("pass {} is 1 pixel {} on {}; Godot draws nothing into a viewport under 2 pixels", pass.alias,
+                                          thin.x ? "wide" : "tall", v4 ? "Godot 4" : "Godot 3"),
+                              pass.where.file, pass.where.line, "scale");
         const OutputFile* shader = nullptr;
         for (const OutputFile& f : in.outputs[i]->files)
             if (f.manifest_role() == "shader") shader = &f;

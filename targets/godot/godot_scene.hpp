@@ -20,6 +20,18 @@ const char* pipeline_script(int godot_version);
 const char* plugin_script(int godot_version);
 const char* overlay_script(int godot_version);
 
+// Godot draws nothing into a viewport under 2 pixels on an axis (godotengine/godot#26187). A pass
+// other than the last with an absolute scale of 1 on an axis is drawn into 2 pixels there, both
+// computing the pixel's one value (its quad corner held at 0.5 on that axis), so every filter and
+// wrap reads the two texels as the one; its readers' size queries are told 1 (godot_compiler).
+struct OnePixelAxes {
+    bool x = false, y = false;
+    bool any() const { return x || y; }
+};
+OnePixelAxes one_pixel_axes(const Preset& preset, size_t pass_index);
+// Of the pass a texture comes from (a pass output or its feedback); none for the others.
+OnePixelAxes one_pixel_axes(const Preset& preset, const TextureSource& from);
+
 // The scene file's path under the target's folder: "addons/crtforge/<preset>.tscn".
 std::string scene_path(const Preset& preset);
 

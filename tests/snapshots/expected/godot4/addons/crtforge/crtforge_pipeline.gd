@@ -225,7 +225,10 @@ func _pass_sizes(source_size: Vector2, screen: Vector2i) -> Array:
 	return ordered
 
 
+# Godot draws nothing into a viewport under 2 pixels: a pass 1 pixel wide or tall gets 2, both
+# computing its one pixel (its shader holds that axis at the centre; readers are told 1).
 func _resize(viewport: SubViewport, child: Control, size: Vector2i) -> void:
+	size = Vector2i(maxi(size.x, 2), maxi(size.y, 2))
 	viewport.size = size
 	child.position = Vector2()
 	child.size = Vector2(size)
