@@ -662,6 +662,9 @@ TEST_CASE("bench --versus-retroarch times an imported preset as RetroArch compil
     // The two compiles are told apart by what they hand the driver, not by a timing.
     CHECK(json[1]["shader"]["instructions"].get<int>() < json[0]["shader"]["instructions"].get<int>());
     CHECK(json[1]["shader"]["transcendentals"].get<int>() < json[0]["shader"]["transcendentals"].get<int>());  // pow(x, 2) reduced
+    // Each timed in two rounds, the second in the opposite order (a slow spell favours neither).
+    CHECK(json[0]["rounds"] == 2);
+    CHECK(json[1]["rounds"] == 2);
     CHECK(json[1]["retroarchCompileNs"].get<double>() == Approx(json[0]["sceneNs"].get<double>()));
     CHECK(json[1]["speedupVsRetroarchCompile"].get<double>() ==
           Approx(json[0]["sceneNs"].get<double>() / json[1]["sceneNs"].get<double>()));

@@ -588,8 +588,8 @@ Result<SceneTiming> bench_scene(const TemplateLibrary& library, const Preset& pr
 }
 
 std::string format_scene_timing(const SceneTiming& t) {
-    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, the fastest of the timings)\n", t.label(), t.width,
-                                t.height, t.frame, t.device, t.draws);
+    std::string s = fmt::format("{} at {}x{}, frame {}, on {} ({} draws per timing, the fastest of the timings{})\n", t.label(), t.width,
+                                t.height, t.frame, t.device, t.draws, t.rounds > 1 ? fmt::format(" of {} rounds", t.rounds) : "");
     s += fmt::format("{:<14} {:>11} {:>11} {:>9} {:>12} {:>12} {:>8} {:>7} {:>7} {:>7} {:>6}\n", "pass", "input", "output", "format",
                      "us/draw", "blit us", "x blit", "spread", "instr", "samples", "transc");
     for (const PassTiming& p : t.passes)

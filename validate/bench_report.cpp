@@ -113,6 +113,7 @@ std::string bench_json(const std::vector<SceneTiming>& timings) {
                        {"display", {t.width, t.height}},
                        {"frame", t.frame},
                        {"drawsPerTiming", t.draws},
+                       {"rounds", t.rounds},
                        {"passes", passes},
                        {"sceneNs", t.total_ns()},
                        {"displayBlitNs", t.display_blit_ns},

@@ -86,6 +86,9 @@ struct SceneTiming {
     int source_width = 0, source_height = 0;
     std::vector<StageCost> stage_costs;  // with BenchOptions::stage_costs
     bool retimed = false;                // timed a second time: the blits beside the first all ran slow
+    // Rounds each pass was timed in, keeping its fastest: 2 with --versus-retroarch (its variants
+    // timed again in the opposite order, so a slow spell cannot favour the one timed first).
+    int rounds = 1;
     double total_ns() const;
     // The Vulkan frame against the point-sampled reference and the supersampled one (when measured).
     std::optional<ImageMetrics> vs_point, vs_supersampled;
