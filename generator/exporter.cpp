@@ -224,16 +224,20 @@ Result<CompiledVariant> compile_variant(const TemplateLibrary& library, const Pr
         out.vertex = std::move(vert.value());
         return Ok{};
     };
-    // A program's baked params are constants (the quickest to optimise); one that leans on them
-    // being no constant expressions, as its uniforms are, gets variables it never writes, and an
-    // error then is its own (assembler.hpp, BakedParams). With specialize_baked they are
-    // specialization constants first, where the program allows them.
+    // A program's baked params are variables it never writes, folded by spirv-opt in 32 bits as a
+    // GPU computes RetroArch's run-time params: as `const`s, glslang would fold their constant
+    // expressions in double precision (crt-maximus-royale's H_blur: 0.001 / 10.0 folded to
+    // 9.99999975e-05, not the 32-bit 1.00000005e-04, and its float loop ran once more). A program
+    // that needs them constant (an array size) gets constants, and an error then is its own
+    // (assembler.hpp, BakedParams). With specialize_baked they are specialization constants
+    // first, where the program allows them.
     const bool program_baked = out.variant.program_form() && !out.variant.baked().empty();
     const bool specialized = options.specialize_baked && program_baked && compile_stages(BakedParams::Specialized).ok();
     if (!specialized) {
-        if (auto s = compile_stages(BakedParams::Constants); !s.ok()) {
+        const BakedParams first = program_baked ? BakedParams::Variables : BakedParams::Constants;
+        if (auto s = compile_stages(first); !s.ok()) {
             if (!program_baked) return s.error();
-            if (auto again = compile_stages(BakedParams::Variables); !again.ok()) return again.error();
+            if (auto again = compile_stages(BakedParams::Constants); !again.ok()) return again.error();
         }
     }
     auto reflection = reflect(out.fragment);

@@ -148,8 +148,9 @@ std::shared_ptr<TemplateLibrary> import_text_or_fail(const test::TempDir& dir, c
 
 // The preset's display through `target`'s consumer at `width` x `height`.
 Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const TemplateLibrary& lib, const Preset& preset, TargetId target,
-                                           const Image& input, int width, int height, std::vector<int> frames) {
-    auto compiled = compile_scene(lib, preset, {}, Cache());
+                                           const Image& input, int width, int height, std::vector<int> frames,
+                                           const VariantOptions& options = {}) {
+    auto compiled = compile_scene(lib, preset, options, Cache());
     if (!compiled.ok()) return compiled.error();
     auto outputs = emit_scene(compiled.value(), target, Cache());
     if (!outputs.ok()) return outputs.error();
@@ -323,9 +324,9 @@ TEST_CASE("an imported pass reads its block members in place and holds only the 
     CHECK(a.second.fragment_glsl.find("\nfloat SET = 0.0;") != std::string::npos);
     CHECK(a.second.fragment_glsl.find("\nfloat READ = 0.75;") != std::string::npos);
     // A local named like the instance keeps the struct (the local shadows it where declared); its
-    // baked params are constants, which compile there.
+    // baked params are variables there too.
     CHECK(shadow.second.fragment_glsl.find("struct CrtRetroArch_params") != std::string::npos);
-    CHECK(shadow.second.fragment_glsl.find("\nconst float READ = 0.75;") != std::string::npos);
+    CHECK(shadow.second.fragment_glsl.find("\nfloat READ = 0.75;") != std::string::npos);
 
     // And each draws what its values say: READ 0.75 of a flat 0.8 (the shadowing pass halves twice READ).
     const Image input = Image::make(16, 16, {0.8f, 0.8f, 0.8f, 1.0f});
@@ -827,6 +828,36 @@ TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what Retr
         const float* top = filtered.front().rgba.data() + (2 * i) * 4;
         CHECK(std::abs(top[1] - held[i].green) < 0.003f);
         CHECK(std::abs(top[2] - held[i].blue) < (i < 2 ? 0.26f : 0.02f));  // rgba32f: maybe half floats
+    }
+}
+
+TEST_CASE("baked parameters keep RetroArch's 32-bit arithmetic: a float loop bounded by a division runs as often as with them live",
+          "[retroarch][import][specialize]") {
+    // crt-maximus-royale's H_blur: as `const`s glslang folds 0.001 / 10.0 in double (9.99999975e-05,
+    // not the 32-bit quotient 1.00000005e-04) and this loop then runs 11 times, not 10.
+    test::TempDir dir;
+    test::write_file(dir / "shaders/steps.slang",
+                     test::slang_program({"float SHARP; ", "#pragma parameter SHARP \"Sharpness\" 10.0 1.0 20.0 0.5\n", "", "",
+                                          "void main() {\n"
+                                          "    float n = 0.0;\n"
+                                          "    for (float i = -0.005 / params.SHARP; i < 0.005 / params.SHARP; i += 0.001 / params.SHARP) n += 1.0;\n"
+                                          "    FragColor = vec4(n / 20.0, 0.0, 0.0, 1.0);\n"
+                                          "}\n"}));
+    const std::shared_ptr<TemplateLibrary> lib =
+        import_text_or_fail(dir, "steps", "shaders = 1\nshader0 = ../shaders/steps.slang\nscale_type0 = viewport\n", 1);
+    const Preset& preset = *lib->find_preset("steps");
+    const Image input = Image::make(4, 4, {0.5f, 0.5f, 0.5f, 1.0f});
+    TargetRenderer renderer;
+    VariantOptions baked;
+    baked.uniforms = UniformSelection::parse("none").value();
+    VariantOptions live;
+    live.uniforms = UniformSelection::parse("all").value();
+    for (const VariantOptions* options : {&live, &baked}) {
+        INFO((options == &baked ? "baked" : "live"));
+        auto images = render_imported(renderer, *lib, preset, TargetId::Spirv, input, 4, 4, {0}, *options);
+        INFO((images.ok() ? std::string() : images.error().str()));
+        REQUIRE(images.ok());
+        CHECK(images.value().front().rgba[0] == Approx(10.0 / 20.0).margin(1e-6));  // ten steps, in 32 bits
     }
 }
 
