@@ -36,7 +36,8 @@ int default_supersample(int width, int height) { return double(width) * height <
 
 using Variants = std::vector<std::pair<std::string, VariantOptions>>;  // by their --uniforms label
 
-// Each pass keeps the fastest of its two rounds' timings (and the spread of both).
+// Each pass keeps the fastest of its two rounds' timings and the spread of both; its median and
+// the scene's errors stay the first round's (the second round times only).
 void keep_fastest(SceneTiming& kept, const SceneTiming& again) {
     for (size_t i = 0; i < kept.passes.size() && i < again.passes.size(); ++i) {
         PassTiming& p = kept.passes[i];
@@ -63,16 +64,18 @@ Result<std::vector<SceneTiming>> time_preset(BenchSession& session, const Preset
         variants.size() > 1 && std::any_of(variants.begin(), variants.end(), [](const auto& v) { return v.first == "retroarch"; });
     std::vector<SceneTiming> out;
     for (size_t t = 0; t < tiers.size(); ++t) {
-        auto time_variant = [&](const std::string& label, const VariantOptions& variant) {
-            options.variant = variant;
-            options.uniforms_label = label;
-            options.stage_costs = stage_costs && tiers[t].name == "point";
-            return session.tier(tiers, t, options);
+        auto time_variant = [&](const std::string& label, const VariantOptions& variant, bool timing_only) {
+            BenchOptions o = options;
+            o.variant = variant;
+            o.uniforms_label = label;
+            o.stage_costs = !timing_only && stage_costs && tiers[t].name == "point";
+            if (timing_only) o.supersample = 0;  // the errors and stage costs are measured once
+            return session.tier(tiers, t, o);
         };
         std::vector<SceneTiming> timed;
         std::optional<Image> retroarch_frame;  // this scene compiled as RetroArch does
         for (const auto& [label, variant] : variants) {
-            auto timing = time_variant(label, variant);
+            auto timing = time_variant(label, variant, false);
             if (!timing.ok()) return timing.error();
             if (label == "retroarch") {
                 retroarch_frame = session.last_frame();
@@ -85,7 +88,7 @@ Result<std::vector<SceneTiming>> time_preset(BenchSession& session, const Preset
         }
         if (versus_retroarch)
             for (size_t v = variants.size(); v-- > 0;) {
-                auto again = time_variant(variants[v].first, variants[v].second);
+                auto again = time_variant(variants[v].first, variants[v].second, true);
                 if (!again.ok()) return again.error();
                 keep_fastest(timed[v], again.value());
             }

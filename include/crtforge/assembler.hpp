@@ -24,10 +24,13 @@ struct AssembledShader {
     std::string vertex;    // the full-screen triangle
 };
 
-// How a program form gets its baked params. Constants fold soonest; but a program is written for
-// its params as uniforms, which are no constant expressions, and may lean on that (an array
-// indexed by `set - 1` in the branch `set == 0` never takes: an error once `set` is a constant).
-// Variables it never writes are what a uniform is, and spirv-opt folds them all the same.
+// How a program form gets its baked params. A program is written for its params as uniforms,
+// which are no constant expressions, and may lean on that (an array indexed by `set - 1` in the
+// branch `set == 0` never takes: an error once `set` is a constant); and glslang folds a constant
+// expression in double precision where a GPU computes the uniform's in 32 bits. Variables it never
+// writes are what a uniform is, and spirv-opt folds them in 32 bits: a program's first choice
+// (compile_variant). Constants: where a program needs them constant (an array size), and for
+// crtforge's own stages.
 // Specialized: the scalar ones as specialization constants (`layout(constant_id = N) const`), for
 // a render from the SPIR-V alone: the optimiser runs once for every preset that shares the text
 // (spirv_spec_values.hpp) and the driver folds the values when it builds the pipeline.

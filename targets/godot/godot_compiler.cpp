@@ -1,6 +1,7 @@
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot3_syntax.hpp"
 #include "targets/godot/godot_scene.hpp"
+#include "generator/spirv_words.hpp"
 #include "targets/godot/spirv_constant_indices.hpp"
 #include "targets/godot/spirv_square_matrices.hpp"
 #include "targets/spirv_flat_arrays.hpp"
@@ -447,15 +448,16 @@ std::string GodotCompiler::with_one_pixel_sizes(const std::string& text) const {
 
 void GodotCompiler::check_one_pixel_pass() const {
     const godot::OnePixelAxes thin = godot::one_pixel_axes(*variant_.preset, variant_.pass_index);
-    if (!thin.any() || stage_ != ShaderStage::Fragment) return;
+    // A pass of crtforge's own shaders so sized is refused by the scene (godot_scene.cpp).
+    if (!program_ || !thin.any() || stage_ != ShaderStage::Fragment) return;
     const std::string what = fmt::format("pass {} is 1 pixel {}, which Godot draws as 2 equal pixels", variant_.pass->alias,
                                          thin.x ? "wide" : "tall");
-    if (!program_) throw spirv_cross::CompilerError(what + " only for an imported program");
     // Derivatives across the two pixels are 0 where RetroArch's helper pixel gives the slope, and
     // an implicit level of a mip chain follows them.
-    const std::vector<uint32_t>& words = ir.spirv;
-    for (size_t at = 5; at < words.size() && (words[at] >> 16) > 0; at += words[at] >> 16)
-        if (const uint32_t op = words[at] & 0xffffu; op >= spv::OpDPdx && op <= spv::OpFwidthCoarse)
+    const auto instructions = detail::spirv_instructions(ir.spirv);
+    if (!instructions) throw spirv_cross::CompilerError(what + ", and its fragment stage does not parse");
+    for (const detail::SpirvInstruction& in : *instructions)
+        if (in.opcode >= spv::OpDPdx && in.opcode <= spv::OpFwidthCoarse)
             throw spirv_cross::CompilerError(what + ": its fragment stage reads derivatives, which would then be 0");
     for (const PassInput& in : variant_.pass->inputs)
         if (in.mipmap) throw spirv_cross::CompilerError(what + ": it reads " + in.binding + " through a mip chain, whose level would follow 0 derivatives");

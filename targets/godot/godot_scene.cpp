@@ -181,9 +181,8 @@ OnePixelAxes one_pixel_axes(const Preset& preset, size_t pass_index) {
 
 OnePixelAxes one_pixel_axes(const Preset& preset, const TextureSource& from) {
     if (from.kind != TextureSource::Kind::Pass && from.kind != TextureSource::Kind::Feedback) return {};
-    for (size_t i = 0; i < preset.passes.size(); ++i)
-        if (preset.passes[i].alias == from.name) return one_pixel_axes(preset, i);
-    return {};
+    const Pass* pass = preset.find_pass(from.name);
+    return pass ? one_pixel_axes(preset, static_cast<size_t>(pass - preset.passes.data())) : OnePixelAxes{};
 }
 
 std::string scene_path(const Preset& preset) { return std::string(kFolder) + preset.name + ".tscn"; }
