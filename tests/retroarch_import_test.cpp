@@ -940,6 +940,85 @@ TEST_CASE("a pass 1 pixel wide or tall renders in both Godots as on Vulkan: draw
     }
 }
 
+TEST_CASE("a pass that moves its quad draws it there on every target: where its clip position puts it, gl_FragCoord too",
+          "[retroarch][import][godot]") {
+    // RetroArch draws the quad where gl_Position puts it (newpixie-mini turns it upside down,
+    // metacrt's bufC mirrors it); a Godot node has a quad of its own. Moved's quad covers the
+    // middle half of the width, upside down: its pixels read their coordinates from the moved
+    // corners and gl_FragCoord from the framebuffer, and the pixels it leaves keep the clear (0).
+    // Middle is 8 x 4 between two passes; the last pass (Last, the display) moves its quad too.
+    const std::string moved_vertex = "gl_Position = global.MVP * vec4(Position.x * 0.5 + 0.25, 1.0 - Position.y, 0.0, 1.0);\n";
+    const std::string fragment =
+        "void main() { FragColor = vec4(vTexCoord.y, gl_FragCoord.x / params.OutputSize.x, gl_FragCoord.y / params.OutputSize.y, 1.0); }\n";
+    test::TempDir dir;
+    test::write_file(dir / "shaders/moved.slang", test::slang_program({"vec4 OutputSize; ", "", "", moved_vertex, fragment}));
+    test::write_file(dir / "shaders/copy.slang",
+                     test::slang_program({"", "", "", "",
+                                          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                          "void main() { FragColor = texture(Source, vTexCoord); }\n"}));
+    test::write_file(dir / "shaders/flip.slang",  // the last pass: turned upside down only
+                     test::slang_program({"", "", "", "gl_Position = global.MVP * vec4(Position.x, 1.0 - Position.y, 0.0, 1.0);\n",
+                                          "layout(set = 0, binding = 2) uniform sampler2D Source;\n"
+                                          "void main() { FragColor = vec4(texture(Source, vTexCoord).rgb, 1.0); }\n"}));
+    const std::string slangp = "shaders = 3\n"
+                               "shader0 = ../shaders/moved.slang\nalias0 = Middle\nscale_type0 = absolute\nscale_x0 = 8\nscale_y0 = 4\n"
+                               "shader1 = ../shaders/copy.slang\nfilter_linear1 = false\nscale_type1 = source\n"
+                               "shader2 = ../shaders/flip.slang\nfilter_linear2 = false\nscale_type2 = viewport\n";
+    const std::shared_ptr<TemplateLibrary> lib = import_text_or_fail(dir, "moved", slangp, 3);
+    const Preset& preset = *lib->find_preset("moved");
+    const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});  // the display's aspect: no letterbox
+    TargetRenderer renderer;
+    const Image vulkan = render_imported_or_fail(renderer, *lib, preset, TargetId::Spirv, input, 8, 4, {1}).front();
+    auto at = [](const Image& image, int x, int y) { return image.rgba.data() + (size_t(y) * image.width + size_t(x)) * 4; };
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) {
+            INFO("pixel " << x << "," << y);
+            const int row = 3 - y;  // Middle's row, the last pass having turned the picture over
+            const bool inside = x >= 2 && x < 6;
+            CHECK(at(vulkan, x, y)[0] == Approx(inside ? 1.0 - (row + 0.5) / 4.0 : 0.0).margin(0.002));  // v from the moved corners
+            CHECK(at(vulkan, x, y)[1] == Approx(inside ? (x + 0.5) / 8.0 : 0.0).margin(0.002));          // gl_FragCoord: the framebuffer's
+            CHECK(at(vulkan, x, y)[2] == Approx(inside ? (row + 0.5) / 4.0 : 0.0).margin(0.002));
+        }
+    // Every other target draws the import's triangle (the pixels past the quad dropped) or, in
+    // Godot, a node's quad moved to the corners.
+    for (TargetId target : {TargetId::Glsl450, TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2, TargetId::Hlsl50, TargetId::Hlsl60,
+                            TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
+        INFO(target_info(target).name);
+        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 8, 4, {1}).front();
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 8; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    INFO("pixel " << x << "," << y << " channel " << c);
+                    CHECK(at(image, x, y)[c] == Approx(at(vulkan, x, y)[c]).margin(0.003));  // Godot's screen: 8 bits
+                }
+    }
+}
+
+TEST_CASE("gl_FragCoord counts rows from the top on GL ES and WebGL 2 in a pass that reads nothing else",
+          "[retroarch][import][glsl]") {
+    // ES has no origin_upper_left: its GLSL counts rows by outputSize, which a pass reading only
+    // gl_FragCoord (no params, no sizes) once lacked: upside down on ES, refused on WebGL 2.
+    test::TempDir dir;
+    test::write_file(dir / "shaders/rows.slang",
+                     test::slang_program({"", "", "", "", "void main() { FragColor = vec4(gl_FragCoord.x / 8.0, gl_FragCoord.y / 4.0, 0.0, 1.0); }\n"}));
+    const std::shared_ptr<TemplateLibrary> lib =
+        import_text_or_fail(dir, "rows", "shaders = 1\nshader0 = ../shaders/rows.slang\nscale_type0 = viewport\n", 1);
+    const Preset& preset = *lib->find_preset("rows");
+    const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});
+    TargetRenderer renderer;
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2}) {
+        INFO(target_info(target).name);
+        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 8, 4, {1}).front();
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 8; ++x) {
+                INFO("pixel " << x << "," << y);
+                const float* p = image.rgba.data() + (size_t(y) * 8 + size_t(x)) * 4;
+                CHECK(p[0] == Approx((x + 0.5) / 8.0).margin(0.002));
+                CHECK(p[1] == Approx((y + 0.5) / 4.0).margin(0.002));
+            }
+    }
+}
+
 TEST_CASE("a compile found under a shared key is the module a fresh compile gives", "[compile][cache][retroarch][specialize]") {
     // Two presets share a pass and differ in its values: the second finds the first's compile by
     // key, gets its own values written in, and must equal a compile of its own source.

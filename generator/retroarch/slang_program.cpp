@@ -27,6 +27,8 @@ constexpr const char* kPrologue =
     // local named `textureSize` there (yee64); the builtin is seen from here.
     "vec4 CRT_RA_SIZE(sampler2D t) { vec2 size = vec2(textureSize(t, 0)); return vec4(size, 1.0 / size); }\n";
 constexpr const char* kShaderMain = "crt_retroarch_main";
+// The quad corner (0..1 inside RetroArch's quad) a vertex stage that moves its quad hands on.
+constexpr const char* kCornerVarying = "crtQuadCorner";
 // RetroArch's MVP for every pass: the orthographic projection of 0..1 onto clip space (y down in
 // Vulkan, as crtforge's full-screen triangle).
 constexpr const char* kMvp = "mat4(2.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, -1.0, 0.0, 1.0)";
@@ -254,6 +256,11 @@ std::string as_type(const Member& m, const std::string& vec4) { return m.type ==
 struct Translation {
     const ProgramContext& context;
     TranslatedProgram& out;
+    // Set by the vertex stage where its clip position is not RetroArch's quad as it is
+    // (moves_quad()): the fragment stage then drops what the full-screen triangle covers beyond
+    // the quad, told by the corner handed on at `corner_location`.
+    bool quad_moved = false;
+    int corner_location = 0;
 
     void use_texture(const std::string& name) {
         if (std::find(out.textures.begin(), out.textures.end(), name) == out.textures.end()) out.textures.push_back(name);
@@ -331,6 +338,35 @@ std::set<std::string> identifiers(const Tokens& t, const std::vector<bool>& qual
     return out;
 }
 
+// Whether a vertex stage places its quad anywhere but where RetroArch's MVP puts it: any write of
+// gl_Position other than `gl_Position = [global. | params.]MVP * <position input>;` (newpixie-mini
+// turns it over, image-adjustment shrinks it). Only then does the import's full-screen triangle,
+// which covers more than the quad, need its excess dropped.
+bool moves_quad(const Tokens& t, const std::string& position) {
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (t[i].kind != Kind::Identifier || t[i].text != "gl_Position") continue;
+        std::string statement;
+        for (size_t k = next_significant(t, i); k < t.size() && t[k].text != ";"; k = next_significant(t, k))
+            if (t[k].text != "(" && t[k].text != ")") statement += t[k].text;
+        if (statement != "=global.MVP*" + position && statement != "=params.MVP*" + position && statement != "=MVP*" + position)
+            return true;
+    }
+    return false;
+}
+
+// The location after the highest a stage names (its inputs' and outputs').
+int next_free_location(const Tokens& t) {
+    int next = 0;
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (t[i].kind != Kind::Identifier || t[i].text != "location") continue;
+        const size_t eq = next_significant(t, i);
+        const size_t number = eq < t.size() && t[eq].text == "=" ? next_significant(t, eq) : t.size();
+        if (number < t.size() && t[number].kind == Kind::Number && t[number].text.size() < 4)
+            next = std::max(next, std::stoi(t[number].text) + 1);
+    }
+    return next;
+}
+
 Result<std::string> translate_stage(const std::string& source, bool vertex, const std::string& file, Translation& tr) {
     // What RetroArch's compiler sees: macros expanded and only the active #if branches, so a
     // declaration a macro names or an #ifdef leaves out reads as it does there.
@@ -365,12 +401,17 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
         i = end;
     }
     t = std::move(kept);
+    const int free_location = next_free_location(t);
     auto declared = take_declarations(t, vertex, file);
     if (!declared.ok()) return declared.error();
     const Declarations& d = declared.value();
     if (vertex && (d.vertex_inputs.size() < 2 || d.vertex_inputs[0].name.empty() || d.vertex_inputs[1].name.empty()))
         return make_error("the vertex stage must declare inputs at locations 0 (position) and 1 (texture coordinate)", file, 0,
                           "vertex input");
+    if (vertex) {
+        tr.quad_moved = moves_quad(t, d.vertex_inputs[0].name);
+        tr.corner_location = free_location;
+    }
     for (const auto& [s, at] : d.samplers) {
         if (s == "Source") continue;
         if (!tr.context.textures.count(s))
@@ -446,6 +487,9 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
                                                     renamed_name(b.instance), values, line_breaks(t, b.start, b.start))};
     }
 
+    const bool reads_frag_coord =
+        !vertex && std::any_of(t.begin(), t.end(), [](const GlslToken& k) { return k.kind == Kind::Identifier && k.text == "gl_FragCoord"; });
+    const bool own_main = vertex || tr.context.opaque_output || tr.quad_moved || reads_frag_coord;  // the import's main() calls it
     Tokens out;
     for (size_t i = 0; i < t.size(); ++i) {
         GlslToken token = t[i];
@@ -466,23 +510,34 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
         }
         if (!after_dot && token.text == "Source") token.text = "source";
         else if (auto r = renamed.find(token.text); r != renamed.end() && !after_dot) token.text = r->second;
-        else if ((vertex || tr.context.opaque_output) && !after_dot && token.text == "main") token.text = kShaderMain;
+        else if (own_main && !after_dot && token.text == "main") token.text = kShaderMain;
         out.push_back(token);
     }
     std::string result = kPrologue + join_tokens(out);
+    // The stage's own main() renamed, and the import's main() around it.
+    std::string before, after;
+    if (!vertex && tr.quad_moved) {
+        // The triangle's pixels beyond RetroArch's quad (its corner past 1) are not drawn.
+        result += fmt::format("\nlayout(location = {}) in vec2 {};\n", tr.corner_location, kCornerVarying);
+        before = fmt::format("    if ({0}.x > 1.0 || {0}.y > 1.0) discard;\n", kCornerVarying);
+    }
+    if (reads_frag_coord) {
+        // GL ES and WebGL 2 count gl_FragCoord's rows from the bottom and have no origin_upper_left:
+        // their GLSL counts them from the top by outputSize (targets/glsl), which a stage that reads
+        // nothing else of the block would not have. A read that never discards keeps it there.
+        tr.out.builtins.insert(Builtin::OutputSize);
+        before += fmt::format("    if ({}.x < 0.0) discard;  // never: outputSize kept for GL ES\n", builtin_name(Builtin::OutputSize));
+    }
     if (!vertex && tr.context.opaque_output) {
         if (d.fragment_output.empty())
             return make_error("the fragment stage declares no vec4 output at location 0", file, 0, "fragment output");
         std::string output = d.fragment_output;
         if (auto r = renamed.find(output); r != renamed.end()) output = r->second;
-        result += fmt::format(
-            "\n#line 1 \"<crtforge: RetroArch's display ignores alpha>\"\n"
-            "void main() {{\n"
-            "    {0}();\n"
-            "    {1}.a = 1.0;\n"
-            "}}\n",
-            kShaderMain, output);
+        after = fmt::format("    {}.a = 1.0;\n", output);
     }
+    const char* why = !before.empty() ? "<crtforge: the pass's main>" : "<crtforge: RetroArch's display ignores alpha>";
+    if (!vertex && (!before.empty() || !after.empty()))
+        result += fmt::format("\n#line 1 \"{}\"\nvoid main() {{\n{}    {}();\n{}}}\n", why, before, kShaderMain, after);
     if (vertex) {
         const Member& position = d.vertex_inputs[0];
         const Member& coord = d.vertex_inputs[1];
@@ -491,15 +546,20 @@ Result<std::string> translate_stage(const std::string& source, bool vertex, cons
             if (type == "vec3") return std::string("vec3(crtCorner, 0.0)");
             return type + "(crtCorner)";
         };
+        const std::string corner_out =
+            tr.quad_moved ? fmt::format("layout(location = {}) out vec2 {};\n", tr.corner_location, kCornerVarying) : std::string();
+        const std::string corner_store = tr.quad_moved ? fmt::format("    {} = crtCorner;\n", kCornerVarying) : std::string();
         result += fmt::format(
             "\n#line 1 \"<crtforge: RetroArch's quad as crtforge's full-screen triangle>\"\n"
+            "{}"
             "void main() {{\n"
             "    vec2 crtCorner = vec2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));\n"
             "    {} = {};\n"
             "    {} = {};\n"
+            "{}"
             "    {}();\n"
             "}}\n",
-            position.name, from_corner(position.type), coord.name, from_corner(coord.type), kShaderMain);
+            corner_out, position.name, from_corner(position.type), coord.name, from_corner(coord.type), corner_store, kShaderMain);
     }
     return result;
 }

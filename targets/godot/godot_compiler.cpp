@@ -270,6 +270,13 @@ void GodotCompiler::prepare() {
             }
             varyings_.push_back(std::move(v));
         }
+        if (hands_on_corner_) {  // after the shader's own, at no location of theirs
+            Varying v;
+            v.location = UINT32_MAX;
+            v.name = kCornerVarying;
+            v.declaration = std::string("varying vec2 ") + kCornerVarying + ";";  // where the clip position put the pixel, 0..1
+            varyings_.push_back(std::move(v));
+        }
     }
     // Declared by Godot itself (or by emit_header): hide them and use Godot's names.
     for (const auto& in : resources.stage_inputs) {
@@ -481,11 +488,33 @@ std::string GodotCompiler::vertex_text(std::string text) const {
             text.replace(at, corner.size(), uv);
     if (text.find("gl_VertexID") != std::string::npos)
         throw spirv_cross::CompilerError("the vertex stage reads gl_VertexIndex other than as RetroArch's quad corner");
-    // The clip position is Godot's (VERTEX, the node's own quad): the shader's is computed and dropped.
     const std::string entry = "void vertex()\n{\n";
     const size_t body = text.find(entry);
     if (body == std::string::npos) throw spirv_cross::CompilerError("no vertex() in the vertex stage");
-    text.insert(body + entry.size(), "    vec4 crt_position;  // the shader's clip position: Godot places the node itself\n");
+    text.insert(body + entry.size(), "    vec4 crt_position;  // the shader's clip position\n");
+    if (screen_mode()) return text;  // the user's node, placed by the user: its own quad
+    // RetroArch draws the quad where the shader's clip position puts it (newpixie-mini turns it
+    // upside down, metacrt's bufC mirrors it). In the pipeline the host gives the pass's size and
+    // the pass's node fills its viewport at the origin, so each corner moves by the clip
+    // position's offset from the node's own: nothing where the shader leaves the quad alone (its
+    // corners land on exactly 0 and 1). A node of the user's own (no size set) keeps its quad, and
+    // an axis drawn 2 pixels for 1 keeps the node's.
+    std::string moved;
+    if (hands_on_corner_) moved += std::string("    ") + kCornerVarying + " = UV;\n";
+    moved += "    if (outputSize.x > 0.0) {\n"
+             "        vec2 crt_moved = crt_position.xy / crt_position.w * 0.5 + vec2(0.5);\n";
+    for (const auto& [axis, held] : {std::pair<char, bool>{'x', thin.x}, {'y', thin.y}}) {
+        if (held) continue;
+        moved += fmt::format("        VERTEX.{0} += (crt_moved.{0} - UV.{0}) * outputSize.{0};\n", axis);
+        if (hands_on_corner_) moved += fmt::format("        {0}.{1} = crt_moved.{1};\n", kCornerVarying, axis);
+    }
+    moved += "    }\n";
+    // Where vertex() ends: its closing brace, the first at the start of a line.
+    const size_t close = text.find("\n}", body);
+    if (close == std::string::npos) throw spirv_cross::CompilerError("no end of vertex()");
+    if (text.substr(body, close - body).find("return;") != std::string::npos)
+        throw spirv_cross::CompilerError("a vertex stage that returns early cannot have its clip position placed in Godot");
+    text.insert(close + 1, moved);
     return text;
 }
 
@@ -528,7 +557,10 @@ std::string GodotCompiler::builtin_to_glsl(spv::BuiltIn builtin, spv::StorageCla
             auto centre = [](const std::string& pixel) { return "vec4(floor(" + pixel + ") + vec2(0.5), FRAGCOORD.zw)"; };
             // Godot 3's SCREEN_UV counts rows from the bottom in every renderer (crt_flip_y: the header's).
             if (screen_mode() && options_.godot_version < 4) return centre("crt_flip_y(SCREEN_UV) / SCREEN_PIXEL_SIZE");
-            return screen_mode() ? centre("SCREEN_UV / SCREEN_PIXEL_SIZE") : centre("UV * " + builtin_expression("outputSize"));
+            if (screen_mode()) return centre("SCREEN_UV / SCREEN_PIXEL_SIZE");
+            // A program's pixel: where its clip position put it (vertex_text()), the node's UV elsewhere.
+            const bool moved = std::any_of(varyings_.begin(), varyings_.end(), [](const Varying& v) { return v.name == kCornerVarying; });
+            return centre(std::string(moved ? kCornerVarying : "UV") + " * " + builtin_expression("outputSize"));
         }
         case spv::BuiltInPosition: return "crt_position";
         default: return CompilerGLSL::builtin_to_glsl(builtin, storage);

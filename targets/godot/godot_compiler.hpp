@@ -45,6 +45,11 @@ public:
     std::string compile_godot();
     // Vertex stage: the varyings it writes, by location (valid after compile_godot()).
     const std::vector<Varying>& varyings() const { return varyings_; }
+    // Vertex stage of a pass whose fragment stage reads gl_FragCoord: it hands on where the
+    // shader's clip position put the corner (kCornerVarying), which the fragment stage's pixel
+    // position is rebuilt from.
+    void hand_on_corner() { hands_on_corner_ = true; }
+    static constexpr const char* kCornerVarying = "crt_corner";
 
 protected:
     void emit_header() override;
@@ -64,7 +69,7 @@ private:
     std::string with_format_stored(std::string text) const;  // a pass format Godot's viewports lack
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
-    std::string vertex_text(std::string text) const;  // vertex(): RetroArch's quad from UV, clip position dropped
+    std::string vertex_text(std::string text) const;  // vertex(): RetroArch's quad from UV, moved by the clip position
     // Godot 3: each integer varying's local in vertex() and fragment(), and its float carrier.
     std::string with_integer_varyings_carried(std::string text) const;
     // clamp_to_border emulated in the shader: each read of such a texture times the share inside it.
@@ -78,6 +83,7 @@ private:
     godot::Options options_;
     ShaderStage stage_;
     bool program_ = false;           // the pass is a whole program: varyings, sizes from the host
+    bool hands_on_corner_ = false;   // hand_on_corner()
     std::vector<Varying> varyings_;  // the vertex stage's outputs (given to the fragment stage)
     std::map<std::string, std::string> member_expressions_;  // block member -> Godot expression  // qualified: CompilerGLSL has its own nested Options
     std::vector<std::string> bool_members_;  // block members that are bool params (a uint in SPIR-V)

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "crtforge/version.hpp"
+#include "generator/spirv_words.hpp"
 #include "targets/godot/godot_compiler.hpp"
 #include "targets/godot/godot_scene.hpp"
 #include "targets/word_scan.hpp"
@@ -194,6 +195,19 @@ std::string without_repeated_structs(std::string vertex, const std::string& frag
     });
 }
 
+namespace {
+// Whether a stage reads gl_FragCoord (an OpDecorate ... BuiltIn FragCoord).
+bool reads_frag_coord(const SpirvBinary& words) {
+    const auto instructions = detail::spirv_instructions(words);
+    if (!instructions) return true;  // unparsed: hand the corner on; the compile then says what is wrong
+    for (const detail::SpirvInstruction& in : *instructions)
+        if (in.opcode == spv::OpDecorate && in.count >= 4 && words[in.offset + 2] == spv::DecorationBuiltIn &&
+            words[in.offset + 3] == spv::BuiltInFragCoord)
+            return true;
+    return false;
+}
+}  // namespace
+
 Result<std::string> generate_shader(const TargetInput& input, const Options& options) {
     // A program pass (an imported RetroArch shader) brings its vertex stage: translated first, its
     // outputs become the varyings the fragment stage's header declares, and vertex() follows.
@@ -203,6 +217,7 @@ Result<std::string> generate_shader(const TargetInput& input, const Options& opt
         if (!input.vertex) return make_validation_error("a program pass without its vertex stage");
         try {
             GodotCompiler compiler(*input.vertex, *input.variant, options, ShaderStage::Vertex);
+            if (options.mode != Mode::Screen && reads_frag_coord(*input.fragment)) compiler.hand_on_corner();
             vertex = compiler.compile_godot();
             varyings = compiler.varyings();
         } catch (const std::exception& e) {

@@ -120,6 +120,7 @@ Result<ShimShader> wrap_in_shim(const std::string& source, int version) {
         vertex.replace(vertex.find(color), color.size(), "");
         const std::string screen_uv = "in vec2 SCREEN_UV;";  // a vertex() reads the node's UV in both modes
         if (const size_t at = vertex.find(screen_uv); at != std::string::npos) vertex.replace(at, screen_uv.size(), "in vec2 UV;");
+        vertex += "vec2 VERTEX;  // the node's corner in its own pixels, which vertex() may move\n";
         std::string vertex_body = without_function(body, "void main()");  // fragment(), renamed above
         vertex_body.replace(vertex_body.find("void vertex()"), 13, "void main()");
         shim.vertex_glsl = vertex + vertex_varyings + "#line 1 \"<godot shader>\"\n" + vertex_body;
