@@ -146,6 +146,12 @@ std::shared_ptr<TemplateLibrary> import_text_or_fail(const test::TempDir& dir, c
     return lib.value();
 }
 
+// A preset of one pass, `program`, drawn at the display's size.
+std::shared_ptr<TemplateLibrary> one_pass_or_fail(const test::TempDir& dir, const std::string& name, const test::SlangProgram& program) {
+    test::write_file(dir / ("shaders/" + name + ".slang"), test::slang_program(program));
+    return import_text_or_fail(dir, name, "shaders = 1\nshader0 = ../shaders/" + name + ".slang\nscale_type0 = viewport\n", 1);
+}
+
 // The preset's display through `target`'s consumer at `width` x `height`.
 Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const TemplateLibrary& lib, const Preset& preset, TargetId target,
                                            const Image& input, int width, int height, std::vector<int> frames,
@@ -836,15 +842,14 @@ TEST_CASE("baked parameters keep RetroArch's 32-bit arithmetic: a float loop bou
     // crt-maximus-royale's H_blur: as `const`s glslang folds 0.001 / 10.0 in double (9.99999975e-05,
     // not the 32-bit quotient 1.00000005e-04) and this loop then runs 11 times, not 10.
     test::TempDir dir;
-    test::write_file(dir / "shaders/steps.slang",
-                     test::slang_program({"float SHARP; ", "#pragma parameter SHARP \"Sharpness\" 10.0 1.0 20.0 0.5\n", "", "",
-                                          "void main() {\n"
-                                          "    float n = 0.0;\n"
-                                          "    for (float i = -0.005 / params.SHARP; i < 0.005 / params.SHARP; i += 0.001 / params.SHARP) n += 1.0;\n"
-                                          "    FragColor = vec4(n / 20.0, 0.0, 0.0, 1.0);\n"
-                                          "}\n"}));
     const std::shared_ptr<TemplateLibrary> lib =
-        import_text_or_fail(dir, "steps", "shaders = 1\nshader0 = ../shaders/steps.slang\nscale_type0 = viewport\n", 1);
+        one_pass_or_fail(dir, "steps",
+                         {"float SHARP; ", "#pragma parameter SHARP \"Sharpness\" 10.0 1.0 20.0 0.5\n", "", "",
+                          "void main() {\n"
+                          "    float n = 0.0;\n"
+                          "    for (float i = -0.005 / params.SHARP; i < 0.005 / params.SHARP; i += 0.001 / params.SHARP) n += 1.0;\n"
+                          "    FragColor = vec4(n / 20.0, 0.0, 0.0, 1.0);\n"
+                          "}\n"});
     const Preset& preset = *lib->find_preset("steps");
     const Image input = Image::make(4, 4, {0.5f, 0.5f, 0.5f, 1.0f});
     TargetRenderer renderer;
@@ -994,15 +999,40 @@ TEST_CASE("a pass that moves its quad draws it there on every target: where its 
     }
 }
 
+TEST_CASE("SourceSize is whole pixels in both Godots' stages: yo6's round((233 - SourceSize.y) / 2) is RetroArch's -4",
+          "[retroarch][import][godot]") {
+    // Godot gives a node's texture size as TEXTURE_PIXEL_SIZE: 1 / (1 / 240) in 32 bits is not
+    // 240, and crt-yo6's vertex stage, rounding half its height difference, moved the picture a row.
+    test::TempDir dir;
+    const std::shared_ptr<TemplateLibrary> lib =
+        one_pass_or_fail(dir, "size",
+                         {"", "", "layout(location = 1) {io} float vRow;\n", "vRow = round((233.0 - params.SourceSize.y) / 2.0);\n",
+                          "void main() {\n"
+                          "    float whole = params.SourceSize.x == 320.0 && params.SourceSize.y == 240.0 ? 1.0 : 0.0;\n"
+                          "    FragColor = vec4(-vRow / 8.0, whole, round((233.0 - params.SourceSize.y) / 2.0) / -8.0, 1.0);\n"
+                          "}\n"});
+    const Preset& preset = *lib->find_preset("size");
+    const Image input = Image::make(320, 240, {0.5f, 0.5f, 0.5f, 1.0f});
+    TargetRenderer renderer;
+    for (TargetId target : {TargetId::Spirv, TargetId::Godot4, TargetId::Godot3}) {
+        INFO(target_info(target).name);
+        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 8, 6, {1}).front();
+        for (size_t i = 0; i < image.rgba.size(); i += 4) {
+            INFO("pixel " << i / 4);
+            CHECK(image.rgba[i] == Approx(0.5).margin(0.002));      // the vertex stage's -4
+            CHECK(image.rgba[i + 1] == Approx(1.0).margin(0.002));  // 320 x 240 exactly
+            CHECK(image.rgba[i + 2] == Approx(0.5).margin(0.002));  // the fragment stage's -4
+        }
+    }
+}
+
 TEST_CASE("gl_FragCoord counts rows from the top on GL ES and WebGL 2 in a pass that reads nothing else",
           "[retroarch][import][glsl]") {
     // ES has no origin_upper_left: its GLSL counts rows by outputSize, which a pass reading only
     // gl_FragCoord (no params, no sizes) once lacked: upside down on ES, refused on WebGL 2.
     test::TempDir dir;
-    test::write_file(dir / "shaders/rows.slang",
-                     test::slang_program({"", "", "", "", "void main() { FragColor = vec4(gl_FragCoord.x / 8.0, gl_FragCoord.y / 4.0, 0.0, 1.0); }\n"}));
     const std::shared_ptr<TemplateLibrary> lib =
-        import_text_or_fail(dir, "rows", "shaders = 1\nshader0 = ../shaders/rows.slang\nscale_type0 = viewport\n", 1);
+        one_pass_or_fail(dir, "rows", {"", "", "", "", "void main() { FragColor = vec4(gl_FragCoord.x / 8.0, gl_FragCoord.y / 4.0, 0.0, 1.0); }\n"});
     const Preset& preset = *lib->find_preset("rows");
     const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});
     TargetRenderer renderer;

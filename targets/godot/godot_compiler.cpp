@@ -167,7 +167,7 @@ std::string GodotCompiler::builtin_expression_fragment_size() const {
     // The node's size in pixels, whatever it is stretched to: UV changes by 1/size per pixel on an
     // axis-aligned node. Rounded, because a node covers whole pixels and the derivative carries
     // ~1e-5 relative error, enough to move samples across floor() edges (mask cells).
-    return screen_mode() ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))";
+    return screen_mode() ? "round(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))";
 }
 
 std::string GodotCompiler::builtin_expression(const std::string& member) const {
@@ -175,7 +175,7 @@ std::string GodotCompiler::builtin_expression(const std::string& member) const {
     // A program pass's sizes come from the host (crtforge_pipeline.gd sets them); a vertex stage
     // has no derivatives to find them by. Unset (0), the node's own estimate stands in.
     if (program_ && (member == "outputSize" || member == "viewportSize")) {
-        const std::string fallback = stage_ == ShaderStage::Vertex ? (screen ? "vec2(1.0)" : "(1.0 / TEXTURE_PIXEL_SIZE)")
+        const std::string fallback = stage_ == ShaderStage::Vertex ? (screen ? "vec2(1.0)" : "round(1.0 / TEXTURE_PIXEL_SIZE)")
                                                                     : builtin_expression_fragment_size();
         return "(" + member + ".x > 0.0 ? " + member + " : " + fallback + ")";
     }
@@ -183,7 +183,9 @@ std::string GodotCompiler::builtin_expression(const std::string& member) const {
     if (member == "sourceSize" && stage_ == ShaderStage::Vertex && screen)
         return "(viewportSize.x > 0.0 ? viewportSize : vec2(1.0))";
     if (member == "outputSize") return builtin_expression_fragment_size();
-    if (member == "sourceSize") return screen ? "(1.0 / SCREEN_PIXEL_SIZE)" : "(1.0 / TEXTURE_PIXEL_SIZE)";
+    // A size in whole pixels: the reciprocal of 1 / 240 in 32 bits is 239.99998, and yo6's
+    // round((233.0 - SourceSize.y) / 2.0) then moved its picture a row (-3 for RetroArch's -4).
+    if (member == "sourceSize") return screen ? "round(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / TEXTURE_PIXEL_SIZE)";
     if (member == "time") {
         // The spec marks the speed the time feeds (role angular_speed); compile_godot() refused
         // variants with more than one, since one TIME expression can keep only one phase whole.

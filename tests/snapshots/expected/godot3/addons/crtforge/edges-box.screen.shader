@@ -23,7 +23,7 @@ uniform float hostTime = -1.0;
 void fragment()
 {
     vec2 d = abs((crt_flip_y(SCREEN_UV) * 2.0) - vec2(1.0)) * shapeScale;
-    vec4 c = vec4((textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0).xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * (pulseDepth * sin((crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE)).y * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / uintBitsToFloat(uint(1086918619))) * uintBitsToFloat(uint(1086918619)) / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
+    vec4 c = vec4((textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0).xyz * (1.0 - min(max(1.5 - max(d.x, d.y), 0.8), 0.2))) * (pulseDepth * sin((crt_flip_y(SCREEN_UV) * round(1.0 / SCREEN_PIXEL_SIZE)).y * 0.025 + ((max(hostTime, 0.0) + (1.0 - step(0.0, hostTime)) * (TIME * (round(pulseRate * 3600.0 / uintBitsToFloat(uint(1086918619))) * uintBitsToFloat(uint(1086918619)) / 3600.0) / pulseRate)) * pulseRate)) + 1.0), 1.0);
     vec4 clamped = clamp(c, vec4(-65504.0), vec4(65504.0));
     bvec4 cond = isnan(c);
     COLOR = vec4(cond.x ? 0.0 : clamped.x, cond.y ? 0.0 : clamped.y, cond.z ? 0.0 : clamped.z, cond.w ? 0.0 : clamped.w);

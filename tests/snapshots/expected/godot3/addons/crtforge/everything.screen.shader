@@ -34,7 +34,7 @@ uniform float hostTime = -1.0;
 
 void fragment()
 {
-    vec2 product = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
+    vec2 product = crt_flip_y(SCREEN_UV) * round(1.0 / SCREEN_PIXEL_SIZE);
     vec4 q_1 = (vec4(crt_flip_y(SCREEN_UV).xyyx) * 2.0) - vec4(1.0);
     vec2 q_xy = q_1.xy;
     vec2 product_1 = q_1.zw * (bendAmount * dot(q_xy, q_xy) + 1.0);

@@ -13,7 +13,7 @@ uniform float pickDim : hint_range(0.0, 1.0, 0.01) = 0.6;
 
 void fragment()
 {
-    vec2 product = crt_flip_y(SCREEN_UV) * (1.0 / SCREEN_PIXEL_SIZE);
+    vec2 product = crt_flip_y(SCREEN_UV) * round(1.0 / SCREEN_PIXEL_SIZE);
     vec4 texel = textureLod(SCREEN_TEXTURE, crt_flip_y(crt_flip_y(SCREEN_UV)), 0.0);
     int x = int(product.x) - 12;
     float part = product.y;
