@@ -511,12 +511,17 @@ std::string GodotCompiler::vertex_text(std::string text) const {
         if (hands_on_corner_) moved += fmt::format("        {0}.{1} = crt_moved.{1};\n", kCornerVarying, axis);
     }
     moved += "    }\n";
-    // Where vertex() ends: its closing brace, the first at the start of a line.
+    return with_vertex_end(std::move(text), body, moved, "have its clip position placed in Godot");
+}
+
+std::string GodotCompiler::with_vertex_end(std::string text, size_t body, const std::string& statements, const std::string& what) {
+    // Where vertex() ends: its closing brace, the first at the start of a line. Statements there
+    // run last only if no return leaves earlier.
     const size_t close = text.find("\n}", body);
     if (close == std::string::npos) throw spirv_cross::CompilerError("no end of vertex()");
     if (text.substr(body, close - body).find("return;") != std::string::npos)
-        throw spirv_cross::CompilerError("a vertex stage that returns early cannot have its clip position placed in Godot");
-    text.insert(close + 1, moved);
+        throw spirv_cross::CompilerError("a vertex stage that returns early cannot " + what);
+    text.insert(close + 1, statements);
     return text;
 }
 
@@ -536,12 +541,7 @@ std::string GodotCompiler::with_integer_varyings_carried(std::string text) const
     const size_t body = text.find(entry);
     if (body == std::string::npos) throw spirv_cross::CompilerError("no " + entry.substr(5, entry.find('(') - 5) + "() to carry integer varyings in");
     if (stage_ == ShaderStage::Vertex) {
-        // The stores go where vertex() ends: its closing brace, the first at the start of a line.
-        const size_t close = text.find("\n}", body);
-        if (close == std::string::npos) throw spirv_cross::CompilerError("no end of vertex()");
-        if (text.substr(body, close - body).find("return;") != std::string::npos)
-            throw spirv_cross::CompilerError("a vertex stage that returns early cannot carry its integer varyings in Godot 3");
-        text.insert(close + 1, stores);
+        text = with_vertex_end(std::move(text), body, stores, "carry its integer varyings in Godot 3");
     }
     text.insert(body + entry.size(), locals);
     return text;

@@ -70,6 +70,8 @@ private:
     static std::string with_screen_reads_flipped(const std::string& text);  // Godot 3's bottom-up screen
     bool screen_mode() const { return options_.mode == Mode::Screen; }
     std::string vertex_text(std::string text) const;  // vertex(): RetroArch's quad from UV, moved by the clip position
+    // `statements` where vertex() (starting at `body`) ends; refused, saying it cannot `what`, if it returns early.
+    static std::string with_vertex_end(std::string text, size_t body, const std::string& statements, const std::string& what);
     // Godot 3: each integer varying's local in vertex() and fragment(), and its float carrier.
     std::string with_integer_varyings_carried(std::string text) const;
     // clamp_to_border emulated in the shader: each read of such a texture times the share inside it.
