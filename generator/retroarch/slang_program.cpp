@@ -340,7 +340,7 @@ std::set<std::string> identifiers(const Tokens& t, const std::vector<bool>& qual
 
 // Whether a vertex stage places its quad anywhere but where RetroArch's MVP puts it: any write of
 // gl_Position other than `gl_Position = [global. | params.]MVP * <position input>;` (newpixie-mini
-// turns it over, image-adjustment shrinks it). Only then does the import's full-screen triangle,
+// turns it over, the handheld mega-* shrink it). Only then does the import's full-screen triangle,
 // which covers more than the quad, need its excess dropped.
 bool moves_quad(const Tokens& t, const std::string& position) {
     for (size_t i = 0; i < t.size(); ++i) {
@@ -354,7 +354,8 @@ bool moves_quad(const Tokens& t, const std::string& position) {
     return false;
 }
 
-// The location after the highest a stage names (its inputs' and outputs').
+// The location after the highest a stage names (its inputs' and outputs'; one that spans several,
+// a matrix or struct there, would overlap it: a compile error then, not a wrong picture).
 int next_free_location(const Tokens& t) {
     int next = 0;
     for (size_t i = 0; i < t.size(); ++i) {
