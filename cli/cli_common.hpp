@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "crtforge/crtforge.hpp"
+#include "crtforge/runtime/gpu_watchdog.hpp"
 #include "crtforge/runtime/image.hpp"
 
 namespace crtforge::cli {
@@ -22,6 +23,7 @@ struct GlobalOptions {
     std::string templates;   // --templates
     std::string cache_dir;   // --cache-dir
     bool no_cache = false;   // --no-cache
+    double gpu_timeout = kDefaultGpuTimeoutSeconds;  // --gpu-timeout
 };
 
 // Prints "crtforge: <diagnostic>" to stderr and returns the matching exit code.

@@ -49,6 +49,7 @@ std::vector<std::string> worker_arguments(const CorpusArgs& a, const GlobalOptio
     std::vector<std::string> out;
     if (!g.cache_dir.empty()) out.push_back("--cache-dir=" + g.cache_dir);
     if (g.no_cache) out.push_back("--no-cache");
+    out.push_back(fmt::format("--gpu-timeout={}", g.gpu_timeout));
     out.push_back("corpus");
     out.push_back("--root=" + root);
     if (a.vulkan_only) out.push_back("--vulkan-only");

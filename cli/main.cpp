@@ -1,4 +1,5 @@
 // crtforge: a thin command line over the crtforge library.
+#include <cmath>
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
@@ -221,6 +222,17 @@ int main(int argc, char** argv) {
     app.add_option("--templates", g.templates, "Template directory (stages/, presets/); default: the shipped templates");
     app.add_option("--cache-dir", g.cache_dir, "Compile cache directory; default: $CRTFORGE_CACHE or ~/.cache/crtforge");
     app.add_flag("--no-cache", g.no_cache, "Compile everything afresh and store nothing");
+    app.add_option("--gpu-timeout", g.gpu_timeout,
+                   "Seconds one submission of GPU work may take before the run stops with an error naming the draw (a shader "
+                   "loop that never ends); 0: no limit")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                double s = 0;
+                const bool read = CLI::detail::lexical_cast(v, s);
+                return read && std::isfinite(s) && s >= 0 && s <= 1e6 ? std::string() : "a number of seconds from 0 to 1000000";
+            },
+            "SECONDS"))
+        ->capture_default_str();
 
     std::vector<std::pair<CLI::App*, Runner>> commands;
     auto track = [&](Runner r) { commands.emplace_back(app.get_subcommands({}).back(), std::move(r)); };
@@ -262,6 +274,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "crtforge: error: %s has an empty value (give a value, or leave the option out)\n", empty.c_str());
         return kExitUsage;
     }
+    crtforge::set_gpu_timeout(g.gpu_timeout);
     // The cache folder, from --cache-dir or the environment: set but empty, or something other than
     // a folder (a file, /dev/null), is refused rather than quietly read and written as a cache.
     if (!g.no_cache) {

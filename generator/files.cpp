@@ -59,6 +59,7 @@ Status write_file_atomic(const std::string& path, std::string_view data) {
         if (ec) return make_error("cannot create directory: " + ec.message(), p.parent_path().string());
     }
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    const ExitCleanup cleanup(tmp);
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         if (!out) return make_error(std::string("cannot write: ") + std::strerror(errno), path);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 
+#include "crtforge/runtime/gpu_watchdog.hpp"
 #include "crtforge/validate/corpus_workers.hpp"
 
 using namespace crtforge;
@@ -46,7 +47,8 @@ const char* kScript = R"(fd=$1; shift
 for a in "$@"; do
   case "$a" in
     CRASH) kill -SEGV $$ ;;
-    FAIL) exit 3 ;;
+    FAIL) exit 2 ;;
+    GPUSTOP) exit 3 ;;
     STOP) exit 0 ;;
     HANG) exec sleep 1000 ;;
     TELL*) mkdir "$TMPDIR/left-behind" && printf '%s' "$TMPDIR" > "${a#TELL}" ;;
@@ -179,6 +181,24 @@ TEST_CASE("the sweep puts each worker's rows in report order and isolates a pres
         }
         CHECK(calls == presets.size());
     }
+    SECTION("a worker stopped by --gpu-timeout (exit code 3) gives its preset a timeout row; the rest are run again") {
+        static_assert(kExitGpuTimeout == 3);
+        auto line = [&](const std::string& p) { return p == "b/4.slangp" ? std::string("GPUSTOP") : corpus_row_line(full_row(request, p)); };
+        auto run = run_corpus_in_workers(request, shell_workers(3, line), progress);
+        REQUIRE(run.ok());
+        const auto& rows = run.value().rows;
+        REQUIRE(rows.size() == presets.size());
+        for (size_t i = 0; i < presets.size(); ++i) {
+            INFO(presets[i]);
+            if (presets[i] == "b/4.slangp") {
+                CHECK(rows[i].targets.at("spirv").status == "timeout");
+                CHECK_THAT(rows[i].targets.at("wgsl").reason, Catch::Matchers::Contains("(--gpu-timeout): stopped"));
+            } else {
+                CHECK(corpus_row_line(rows[i]) == corpus_row_line(full_row(request, presets[i])));
+            }
+        }
+        CHECK(calls == presets.size());
+    }
     SECTION("a shard runs only its presets") {
         CorpusRequest shard = request;
         shard.shard = Shard{2, 3};
@@ -202,7 +222,7 @@ TEST_CASE("a worker that fails, stops short, writes a foreign or malformed row e
         CHECK_THAT(message, Catch::Matchers::Contains(wanted));
         CHECK(message.find('\n') == std::string::npos);
     };
-    expect_error([&](const std::string& p) { return p == "a/2.slangp" ? std::string("FAIL") : good(p); }, "exit code 3");
+    expect_error([&](const std::string& p) { return p == "a/2.slangp" ? std::string("FAIL") : good(p); }, "exit code 2");
     expect_error([&](const std::string& p) { return p == "a/2.slangp" ? std::string("STOP") : good(p); }, "without a row for 'a/2.slangp'");
     expect_error([&](const std::string& p) { return p == "a/2.slangp" ? good("z/9.slangp") : good(p); }, "not one of its presets");
     expect_error([&](const std::string& p) { return p == "a/2.slangp" ? good("a/1.slangp") : good(p); }, "not one of its presets");

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "crtforge/files.hpp"
+#include "crtforge/runtime/gpu_watchdog.hpp"
 #include "runtime/common/process_util.hpp"
 
 namespace crtforge {
@@ -130,18 +131,22 @@ Result<CorpusReport> run_corpus_in_workers(const CorpusRequest& request, const C
         std::vector<size_t> unfinished;
         for (size_t i : w.batch)
             if (!have[i]) unfinished.push_back(i);
-        if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+        // A draw past --gpu-timeout ends its worker with its own code, as a crash would: the preset
+        // it was on gets a row saying so, and the sweep goes on.
+        const bool gpu_stopped = WIFEXITED(status) && WEXITSTATUS(status) == kExitGpuTimeout;
+        if (WIFEXITED(status) && WEXITSTATUS(status) != 0 && !gpu_stopped)
             return make_error(fmt::format("a corpus worker failed ({}) on {} presets from '{}'", detail::describe_status(status), w.batch.size(),
                                           mine[w.batch.front()]),
                               {}, 0, "corpus");
         if (unfinished.empty()) return Ok{};
-        if (WIFEXITED(status)) return make_error("a corpus worker ended without a row for '" + mine[unfinished.front()] + "'", {}, 0, "corpus");
+        if (WIFEXITED(status) && !gpu_stopped) return make_error("a corpus worker ended without a row for '" + mine[unfinished.front()] + "'", {}, 0, "corpus");
         if (w.batch.size() == 1) {  // this preset kills its worker, or runs past the limit: say so in its row
             CorpusRow row = corpus_row_for(request, mine[w.batch.front()]);
             for (auto& [name, r] : row.targets) {
-                r.status = w.timed_out ? "timeout" : "crashed";
-                r.reason = w.timed_out ? fmt::format("no result within {:g} s (--preset-timeout): stopped", workers.preset_timeout_s)
-                                       : "the worker process running this preset died: " + detail::describe_status(status);
+                r.status = w.timed_out || gpu_stopped ? "timeout" : "crashed";
+                r.reason = w.timed_out     ? fmt::format("no result within {:g} s (--preset-timeout): stopped", workers.preset_timeout_s)
+                           : gpu_stopped ? fmt::format("a draw ran past {:g} s on the GPU (--gpu-timeout): stopped", gpu_timeout())
+                                         : "the worker process running this preset died: " + detail::describe_status(status);
             }
             return on_row(w, row);
         }

@@ -17,6 +17,7 @@
 #include "crtforge/files.hpp"
 #include "crtforge/lut_file.hpp"
 #include "crtforge/luts.hpp"
+#include "crtforge/runtime/gpu_watchdog.hpp"
 #include "crtforge/runtime/image_io.hpp"
 #include "crtforge/scene.hpp"
 
@@ -270,6 +271,7 @@ Result<std::vector<Image>> run_scene(const SceneRenderRequest& r, const PassRend
                 pr.height = sizes[i].height;
                 pr.format = output_format(pass.format);
             }
+            const GpuWorkLabel drawing(fmt::format("preset '{}', pass {} '{}', frame {}", preset.name, i, pass.alias, frame));
             auto image = render_pass(std::move(pr));
             if (!image.ok()) return image.error();
             current[i] = SharedImage(std::move(image.value()));

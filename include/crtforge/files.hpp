@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/exit_cleanup.hpp"
 
 namespace crtforge {
 
@@ -31,15 +32,16 @@ std::string file_stem(const std::string& path);  // "a/b/classic.toml" -> "class
 class TemporaryFolder {
 public:
     static Result<TemporaryFolder> create(const std::string& prefix);
-    TemporaryFolder(TemporaryFolder&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
+    TemporaryFolder(TemporaryFolder&& other) noexcept : path_(std::move(other.path_)), cleanup_(std::move(other.cleanup_)) { other.path_.clear(); }
     TemporaryFolder& operator=(TemporaryFolder&&) = delete;
     TemporaryFolder(const TemporaryFolder&) = delete;
     ~TemporaryFolder();
     const std::filesystem::path& path() const { return path_; }
 
 private:
-    explicit TemporaryFolder(std::filesystem::path path) : path_(std::move(path)) {}
+    explicit TemporaryFolder(std::filesystem::path path) : path_(std::move(path)), cleanup_(path_.string()) {}
     std::filesystem::path path_;
+    ExitCleanup cleanup_;
 };
 
 }  // namespace crtforge

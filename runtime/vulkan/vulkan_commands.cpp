@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "crtforge/runtime/gpu_watchdog.hpp"
 #include "runtime/vulkan/vulkan_check.hpp"
 #include "runtime/vulkan/vulkan_handle.hpp"
 
@@ -204,12 +205,15 @@ Status submit_and_wait(const VulkanContext& context, const std::function<void(Vk
     if (VkResult r = vkQueueSubmit(context.queue(), 1, &submit, fence.get()); r != VK_SUCCESS) {
         return vk_error("vkQueueSubmit", r);
     }
-    // No timeout: returning early would free objects the device may still be using. A shader
-    // that never terminates hangs here, and the caller's own timeout (CTest's) has to catch it.
-    if (VkResult r = vkWaitForFences(device, 1, &fence_handle, VK_TRUE, UINT64_MAX); r != VK_SUCCESS) {
-        return vk_error("vkWaitForFences", r);
+    // Never returns early (that would free objects the device may still be using): a draw past
+    // --gpu-timeout stops the process instead (GpuWait).
+    GpuWait wait;
+    for (;;) {
+        const VkResult r = vkWaitForFences(device, 1, &fence_handle, VK_TRUE, kGpuWaitSliceNs);
+        if (r == VK_SUCCESS) return Ok{};
+        if (r != VK_TIMEOUT) return vk_error("vkWaitForFences", r);
+        wait.still_waiting();
     }
-    return Ok{};
 }
 
 }  // namespace crtforge::vulkan

@@ -10,6 +10,7 @@
 
 #include "crtforge/cache.hpp"
 #include "crtforge/diagnostic.hpp"
+#include "crtforge/exit_cleanup.hpp"
 #include "crtforge/validate/golden.hpp"
 #include "crtforge/runtime/render_engine.hpp"
 #include "crtforge/targets.hpp"
@@ -88,7 +89,10 @@ Status write_report(const ValidationReport& report, const std::string& dir);
 class StagedReportDir {
 public:
     static Result<StagedReportDir> open(const std::string& dir);
-    StagedReportDir(StagedReportDir&& other) noexcept : dir_(std::move(other.dir_)), staging_(std::move(other.staging_)) { other.staging_.clear(); }
+    StagedReportDir(StagedReportDir&& other) noexcept
+        : dir_(std::move(other.dir_)), staging_(std::move(other.staging_)), cleanup_(std::move(other.cleanup_)) {
+        other.staging_.clear();
+    }
     StagedReportDir& operator=(StagedReportDir&&) = delete;
     StagedReportDir(const StagedReportDir&) = delete;
     ~StagedReportDir();
@@ -96,8 +100,9 @@ public:
     Status commit();
 
 private:
-    StagedReportDir(std::string dir, std::string staging) : dir_(std::move(dir)), staging_(std::move(staging)) {}
+    StagedReportDir(std::string dir, std::string staging) : dir_(std::move(dir)), staging_(std::move(staging)), cleanup_(staging_) {}
     std::string dir_, staging_;
+    ExitCleanup cleanup_;  // the staging folder, should the process have to stop at once
 };
 // The pictures of shard reports (<dir>/images/<golden>/...) into one report folder, so the merged
 // report.html shows them. Shards render disjoint (preset, target) pairs; a file two shards both
