@@ -3,9 +3,11 @@
 #include "crtforge/spirv_compiler.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -354,16 +356,68 @@ bool moves_quad(const Tokens& t, const std::string& position) {
     return false;
 }
 
-// The location after the highest a stage names (its inputs' and outputs'; one that spans several,
-// a matrix or struct there, would overlap it: a compile error then, not a wrong picture).
+// How many locations a declaration's type takes: a matrix one per column (a double one two for
+// a column of 3 or 4), a dvec3/dvec4 two, a struct its members', anything else one.
+int locations_of_type(const Tokens& t, const std::string& type, int depth = 0) {
+    auto dims = [&](size_t at) { return type.size() > at ? type.substr(at) : std::string(); };
+    const bool dbl = type.rfind("dmat", 0) == 0 || type.rfind("dvec", 0) == 0;
+    const std::string tail = type.rfind("dmat", 0) == 0 ? dims(4) : type.rfind("mat", 0) == 0 ? dims(3) : std::string();
+    if (!tail.empty() && std::isdigit(static_cast<unsigned char>(tail[0]))) {
+        const int columns = tail[0] - '0';
+        const int rows = tail.size() == 3 && tail[1] == 'x' ? tail[2] - '0' : columns;
+        return columns * (dbl && rows > 2 ? 2 : 1);
+    }
+    if (type == "dvec3" || type == "dvec4") return 2;
+    if (depth > 8) return 1;
+    // A struct: its definition's members, each with its own arrays.
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (t[i].text != "struct") continue;
+        const size_t name = next_significant(t, i);
+        const size_t open = name < t.size() && t[name].text == type ? next_significant(t, name) : t.size();
+        if (open >= t.size() || t[open].text != "{") continue;
+        int total = 0;
+        for (size_t k = next_significant(t, open); k < t.size() && t[k].text != "}";) {
+            const size_t member = next_significant(t, k);
+            int count = 1;
+            size_t after = member < t.size() ? next_significant(t, member) : t.size();
+            while (after < t.size() && t[after].text == "[") {
+                const size_t n = next_significant(t, after);
+                if (n < t.size() && t[n].kind == Kind::Number && t[n].text.size() < 4) count *= std::stoi(t[n].text);
+                after = next_significant(t, next_significant(t, n));
+            }
+            total += locations_of_type(t, t[k].text, depth + 1) * count;
+            while (after < t.size() && t[after].text != ";" && t[after].text != "}") after = next_significant(t, after);
+            k = after < t.size() && t[after].text == ";" ? next_significant(t, after) : after;
+        }
+        return std::max(total, 1);
+    }
+    return 1;
+}
+
+// The location after the highest a stage's inputs and outputs take: `location = N` and what the
+// declaration after the layout spans (a matrix, an array, a struct there take several).
 int next_free_location(const Tokens& t) {
+    static const std::set<std::string> qualifiers{"in", "out", "flat", "smooth", "noperspective", "centroid", "sample", "patch", "highp",
+                                                  "mediump", "lowp", "invariant", "precise"};
     int next = 0;
     for (size_t i = 0; i < t.size(); ++i) {
         if (t[i].kind != Kind::Identifier || t[i].text != "location") continue;
         const size_t eq = next_significant(t, i);
         const size_t number = eq < t.size() && t[eq].text == "=" ? next_significant(t, eq) : t.size();
-        if (number < t.size() && t[number].kind == Kind::Number && t[number].text.size() < 4)
-            next = std::max(next, std::stoi(t[number].text) + 1);
+        if (number >= t.size() || t[number].kind != Kind::Number || t[number].text.size() >= 4) continue;
+        size_t k = number;
+        int depth = 1;  // inside the layout's parentheses
+        while (depth > 0 && (k = next_significant(t, k)) < t.size()) depth += t[k].text == "(" ? 1 : t[k].text == ")" ? -1 : 0;
+        k = next_significant(t, k);
+        while (k < t.size() && qualifiers.count(t[k].text)) k = next_significant(t, k);
+        int span = k < t.size() && t[k].kind == Kind::Identifier ? locations_of_type(t, t[k].text) : 1;
+        size_t after = k < t.size() ? next_significant(t, next_significant(t, k)) : t.size();  // past the name
+        while (after < t.size() && t[after].text == "[") {
+            const size_t n = next_significant(t, after);
+            if (n < t.size() && t[n].kind == Kind::Number && t[n].text.size() < 4) span *= std::stoi(t[n].text);
+            after = next_significant(t, next_significant(t, n));
+        }
+        next = std::max(next, std::stoi(t[number].text) + std::max(span, 1));
     }
     return next;
 }
