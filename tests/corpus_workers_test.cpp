@@ -162,42 +162,32 @@ TEST_CASE("the sweep puts each worker's rows in report order and isolates a pres
         CHECK_FALSE(std::filesystem::exists(folder));
         CHECK(run.value().rows[1].targets.at("spirv").status == "crashed");
     }
-    SECTION("a preset that never ends is stopped after the time limit and gets a timeout row; the rest are run again") {
-        auto line = [&](const std::string& p) { return p == "c/6.slangp" ? std::string("HANG") : corpus_row_line(full_row(request, p)); };
+    // `stopped`'s worker does `word`; its row is a timeout saying `why`, every other row the worker's.
+    auto expect_timeout_row = [&](const std::string& stopped, const std::string& word, double preset_timeout, const std::string& why) {
+        auto line = [&](const std::string& p) { return p == stopped ? word : corpus_row_line(full_row(request, p)); };
         CorpusWorkers w = shell_workers(3, line);
-        w.preset_timeout_s = 0.5;
+        w.preset_timeout_s = preset_timeout;
         auto run = run_corpus_in_workers(request, w, progress);
         REQUIRE(run.ok());
         const auto& rows = run.value().rows;
         REQUIRE(rows.size() == presets.size());
         for (size_t i = 0; i < presets.size(); ++i) {
             INFO(presets[i]);
-            if (presets[i] == "c/6.slangp") {
+            if (presets[i] == stopped) {
                 CHECK(rows[i].targets.at("spirv").status == "timeout");
-                CHECK_THAT(rows[i].targets.at("wgsl").reason, Catch::Matchers::Contains("no result within 0.5 s (--preset-timeout)"));
+                CHECK_THAT(rows[i].targets.at("wgsl").reason, Catch::Matchers::Contains(why));
             } else {
                 CHECK(corpus_row_line(rows[i]) == corpus_row_line(full_row(request, presets[i])));
             }
         }
         CHECK(calls == presets.size());
+    };
+    SECTION("a preset that never ends is stopped after the time limit and gets a timeout row; the rest are run again") {
+        expect_timeout_row("c/6.slangp", "HANG", 0.5, "no result within 0.5 s (--preset-timeout)");
     }
     SECTION("a worker stopped by --gpu-timeout (exit code 3) gives its preset a timeout row; the rest are run again") {
         static_assert(kExitGpuTimeout == 3);
-        auto line = [&](const std::string& p) { return p == "b/4.slangp" ? std::string("GPUSTOP") : corpus_row_line(full_row(request, p)); };
-        auto run = run_corpus_in_workers(request, shell_workers(3, line), progress);
-        REQUIRE(run.ok());
-        const auto& rows = run.value().rows;
-        REQUIRE(rows.size() == presets.size());
-        for (size_t i = 0; i < presets.size(); ++i) {
-            INFO(presets[i]);
-            if (presets[i] == "b/4.slangp") {
-                CHECK(rows[i].targets.at("spirv").status == "timeout");
-                CHECK_THAT(rows[i].targets.at("wgsl").reason, Catch::Matchers::Contains("(--gpu-timeout): stopped"));
-            } else {
-                CHECK(corpus_row_line(rows[i]) == corpus_row_line(full_row(request, presets[i])));
-            }
-        }
-        CHECK(calls == presets.size());
+        expect_timeout_row("b/4.slangp", "GPUSTOP", 0, "(--gpu-timeout): stopped");
     }
     SECTION("a shard runs only its presets") {
         CorpusRequest shard = request;

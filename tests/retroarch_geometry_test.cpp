@@ -3,6 +3,9 @@
 // stage's own varyings), SourceSize in whole pixels, gl_FragCoord's rows on GL ES and WebGL 2.
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <functional>
+
 #include <fmt/format.h>
 
 #include "crtforge/runtime/image_compare.hpp"
@@ -13,6 +16,30 @@
 
 using namespace crtforge;
 using namespace crtforge::test::retroarch;
+
+namespace {
+
+// A one-pass preset drawn at 8 x 4 on each of `targets`: every pixel's red, green and blue against
+// `expected(x, y)`.
+void check_pixels_8x4(const TemplateLibrary& lib, const std::string& name, std::initializer_list<TargetId> targets,
+                      const std::function<std::array<double, 3>(int x, int y)>& expected) {
+    const Preset& preset = *lib.find_preset(name);
+    const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});
+    TargetRenderer renderer;
+    for (TargetId target : targets) {
+        INFO(target_info(target).name);
+        const Image image = render_imported_or_fail(renderer, lib, preset, target, input, 8, 4, {1}).front();
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 8; ++x) {
+                INFO("pixel " << x << "," << y);
+                const float* p = image.rgba.data() + (size_t(y) * 8 + size_t(x)) * 4;
+                const std::array<double, 3> want = expected(x, y);
+                for (int c = 0; c < 3; ++c) CHECK(p[c] == Approx(want[c]).margin(0.002));
+            }
+    }
+}
+
+}  // namespace
 
 TEST_CASE("a pass 1 pixel wide or tall renders in both Godots as on Vulkan: drawn 2 pixels for 1, its readers told 1",
           "[retroarch][import][godot]") {
@@ -181,20 +208,8 @@ TEST_CASE("gl_FragCoord counts rows from the top on GL ES and WebGL 2 in a pass 
     test::TempDir dir;
     const std::shared_ptr<TemplateLibrary> lib =
         one_pass_or_fail(dir, "rows", {"", "", "", "", "void main() { FragColor = vec4(gl_FragCoord.x / 8.0, gl_FragCoord.y / 4.0, 0.0, 1.0); }\n"});
-    const Preset& preset = *lib->find_preset("rows");
-    const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});
-    TargetRenderer renderer;
-    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2}) {
-        INFO(target_info(target).name);
-        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 8, 4, {1}).front();
-        for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 8; ++x) {
-                INFO("pixel " << x << "," << y);
-                const float* p = image.rgba.data() + (size_t(y) * 8 + size_t(x)) * 4;
-                CHECK(p[0] == Approx((x + 0.5) / 8.0).margin(0.002));
-                CHECK(p[1] == Approx((y + 0.5) / 4.0).margin(0.002));
-            }
-    }
+    check_pixels_8x4(*lib, "rows", {TargetId::Spirv, TargetId::Glsl330, TargetId::GlslEs300, TargetId::WebGl2},
+                     [](int x, int y) { return std::array<double, 3>{(x + 0.5) / 8.0, (y + 0.5) / 4.0, 0.0}; });
 }
 
 TEST_CASE("a moved quad's corner takes the location after the widest of the stage's varyings: a matrix, an array, a struct",
@@ -208,20 +223,8 @@ TEST_CASE("a moved quad's corner takes the location after the widest of the stag
     const std::string fragment = "void main() { FragColor = vec4(M[2][2], W[1].y, P.b[1][1], 1.0); }\n";
     test::TempDir dir;
     const std::shared_ptr<TemplateLibrary> lib = one_pass_or_fail(dir, "wide", {"", head, varyings, vertex, fragment});
-    const Preset& preset = *lib->find_preset("wide");
-    const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});
-    TargetRenderer renderer;
-    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl}) {
-        INFO(target_info(target).name);
-        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 8, 4, {1}).front();
-        for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 8; ++x) {
-                INFO("pixel " << x << "," << y);
-                const float* p = image.rgba.data() + (size_t(y) * 8 + size_t(x)) * 4;
-                const bool inside = x >= 2 && x < 6;
-                CHECK(p[0] == Approx(inside ? 0.25 : 0.0).margin(0.002));
-                CHECK(p[1] == Approx(inside ? 0.5 : 0.0).margin(0.002));
-                CHECK(p[2] == Approx(inside ? 0.75 : 0.0).margin(0.002));
-            }
-    }
+    check_pixels_8x4(*lib, "wide", {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl}, [](int x, int) {
+        const bool inside = x >= 2 && x < 6;
+        return inside ? std::array<double, 3>{0.25, 0.5, 0.75} : std::array<double, 3>{0.0, 0.0, 0.0};
+    });
 }
