@@ -496,6 +496,44 @@ TEST_CASE("Godot 4 runs imported program passes like Vulkan: vertex() and varyin
     check_all_agree(dir, {"feedback.slangp", "original.slangp"}, TargetId::Godot4, 3);
 }
 
+TEST_CASE("Godot 4, which draws on SwiftShader, is judged again against Vulkan on SwiftShader where it differs from lavapipe",
+          "[retroarch][corpus-command][godot4]") {
+    // Lavapipe ends a shader invocation after 65535 loop steps; SwiftShader, under Godot 4's WebGL 2
+    // in Chromium, runs all 70000: the same SPIR-V gives 0.936 on one driver and 1.0 on the other.
+    test::TempDir dir;
+    test::write_file(dir / "steps.slang",
+                     test::slang_program({"float Steps; ", "#pragma parameter Steps \"steps\" 70000.0 1.0 100000.0 1.0\n", "", "",
+                                          "void main() {\n"
+                                          "    float sum = 0.0;\n"
+                                          "    for (int i = 0; i < int(params.Steps); ++i) sum += 1.0 / 70000.0;\n"
+                                          "    FragColor = vec4(sum, sum, sum, 1.0);\n"
+                                          "}\n"}));
+    test::write_file(dir / "steps.slangp", "shaders = 1\nshader0 = steps.slang\n");
+    CorpusRequest request;
+    request.root = dir.path();
+    request.presets = {"steps.slangp"};
+    request.targets = {TargetId::Spirv, TargetId::Godot4};
+    request.source_width = 32;
+    request.source_height = 24;
+    request.display_width = 64;
+    request.display_height = 48;
+    auto run = run_corpus(request, Cache());
+    INFO((run.ok() ? std::string() : run.error().str()));
+    REQUIRE(run.ok());
+    REQUIRE(run.value().rows.size() == 1);
+    const CorpusTargetResult& godot4 = run.value().rows[0].targets.at("godot4");
+    INFO(godot4.reason);
+    CHECK(run.value().rows[0].targets.at("spirv").status == "agrees");
+    CHECK(godot4.status == "agrees");
+    CHECK(godot4.psnr >= 40.0);
+    CHECK_THAT(godot4.reason, Catch::Contains("agrees with Vulkan on SwiftShader, the driver it draws on") &&
+                                  Catch::Contains("against Vulkan on lavapipe"));
+    // Against lavapipe alone it differs: 1.0 against 0.936 (PSNR about 24 dB).
+    const size_t at = godot4.reason.find("); ");
+    REQUIRE(at != std::string::npos);
+    CHECK(std::stod(godot4.reason.substr(at + 3)) < 30.0);
+}
+
 TEST_CASE("Godot 3 runs imported program passes like Vulkan: vertex() and varyings, host-set sizes, gl_FragCoord, feedback, clamp_to_border, mat4x3, arrays of arrays, textureGather",
           "[retroarch][corpus-command][godot3]") {
     test::TempDir dir;

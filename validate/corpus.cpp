@@ -1,18 +1,22 @@
 // run_corpus(): each preset of the shard imported into a folder of its own (removed when done), its
 // passes compiled to SPIR-V one by one (a failing pass does not hide the rest), every target's
 // emitter and consumer compile per pass, the scene rendered by each target's consumer and judged
-// against the Vulkan render. Worker threads each own their engines (TargetRenderer); the heavy
+// against the Vulkan render (a consumer on another driver also against Vulkan on that driver).
+// Worker threads each own their engines (TargetRenderer); the heavy
 // consumers (Godot, Dawn) are the process's shared servers, started once per run.
 #include "crtforge/validate/corpus.hpp"
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
 #include <optional>
 #include <regex>
 #include <thread>
+
+#include <fmt/format.h>
 
 #include "crtforge/exporter.hpp"
 #include "crtforge/files.hpp"
@@ -73,7 +77,43 @@ std::string folder_of(const std::string& preset) {
     return dir;
 }
 
-CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Cache& cache, TargetRenderer& renderer) {
+// A consumer that draws on another driver than the sweep's Vulkan renders (Godot 4's web build:
+// WebGL 2 in Chromium, on SwiftShader) and differs from them is judged again against Vulkan on its
+// own driver: a shader's own knife-edge arithmetic (a sin-based hash, a loop past lavapipe's 65535
+// steps) comes out apart on two drivers, which is not the translation's doing. Both figures are
+// reported.
+bool draws_on_swiftshader(TargetId t) { return t == TargetId::Godot4; }
+
+// Vulkan on SwiftShader, for those judgements: its device name ("" where it is not installed or
+// the sweep already draws on it) and a renderer made at its first use.
+struct SwiftShaderJudge {
+    std::string device;
+    std::unique_ptr<TargetRenderer> renderer;
+
+    explicit SwiftShaderJudge(const EngineOptions& sweep) {
+        std::string chosen = sweep.device;
+        std::transform(chosen.begin(), chosen.end(), chosen.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (chosen.find("swiftshader") != std::string::npos) return;
+        auto devices = list_vulkan_devices();
+        if (!devices.ok()) return;
+        for (const DeviceInfo& d : devices.value())
+            if (d.name.find("SwiftShader") != std::string::npos) device = d.name;
+    }
+    Result<Image> render(SceneRenderRequest scene, const std::vector<TargetOutput>& spirv_outputs, bool validation) {
+        if (!renderer) renderer = std::make_unique<TargetRenderer>(EngineOptions{device, validation});
+        scene.target = TargetId::Spirv;
+        scene.outputs = &spirv_outputs;
+        auto images = renderer->render_scene(scene);
+        if (!images.ok()) return images.error();
+        if (images.value().empty()) return make_error("no image", {}, 0, "corpus");
+        return std::move(images.value().front());
+    }
+};
+
+std::string decibels(double psnr) { return fmt::format("{:.2f} dB", psnr); }
+
+CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Cache& cache, TargetRenderer& renderer,
+                  SwiftShaderJudge& swiftshader) {
     CorpusRow row = corpus_row_for(request, rel);
     auto skip_all = [&](const std::string& why) {
         for (auto& [name, r] : row.targets) r.reason = why;
@@ -149,6 +189,8 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
     scene.passes = &passes;
 
     std::optional<Image> vulkan;  // the judge of the other targets
+    std::vector<TargetOutput> spirv_outputs;        // its passes, drawn again on SwiftShader where needed
+    std::optional<Result<Image>> vulkan_swiftshader;  // that render, made at its first use
     for (TargetId t : request.targets) {
         CorpusTargetResult& r = row.targets[target_info(t).name];
         std::vector<TargetOutput> outputs;
@@ -207,6 +249,7 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
             r.status = "agrees";
             r.psnr = 100;
             vulkan = std::move(image);
+            spirv_outputs = std::move(outputs);
             continue;
         }
         if (!vulkan) {
@@ -222,9 +265,27 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
         }
         r.psnr = metrics.value().psnr;
         r.status = r.psnr >= request.min_psnr ? "agrees" : "differs";
-        if (r.status == "differs")
-            r.reason = "PSNR " + std::to_string(r.psnr).substr(0, 5) + " dB against Vulkan (worst pixel at " +
-                       std::to_string(metrics.value().worst_x) + "," + std::to_string(metrics.value().worst_y) + ")";
+        if (r.status == "agrees") continue;
+        r.reason = "PSNR " + std::to_string(r.psnr).substr(0, 5) + " dB against Vulkan (worst pixel at " +
+                   std::to_string(metrics.value().worst_x) + "," + std::to_string(metrics.value().worst_y) + ")";
+        if (!draws_on_swiftshader(t) || swiftshader.device.empty()) continue;
+        if (!vulkan_swiftshader) vulkan_swiftshader = swiftshader.render(scene, spirv_outputs, request.vulkan.validation);
+        if (!vulkan_swiftshader->ok()) {
+            r.reason += "; Vulkan on SwiftShader, its driver, did not render: " + one_line(vulkan_swiftshader->error());
+            continue;
+        }
+        auto same_driver = compare_images(image, vulkan_swiftshader->value());
+        if (!same_driver.ok()) continue;
+        const double lavapipe = r.psnr;
+        if (same_driver.value().psnr < request.min_psnr) {
+            r.reason += "; " + decibels(same_driver.value().psnr) + " against Vulkan on SwiftShader, its driver";
+            continue;
+        }
+        r.status = "agrees";
+        r.psnr = same_driver.value().psnr;
+        r.reason = "agrees with Vulkan on SwiftShader, the driver it draws on (" + decibels(r.psnr) + "); " + decibels(lavapipe) +
+                   " against Vulkan on " + (request.vulkan.device.empty() ? std::string("lavapipe") : request.vulkan.device) +
+                   ": the shader's own arithmetic, which the two drivers compute apart";
     }
 
     if (!request.retroarch_dir.empty()) {
@@ -287,8 +348,9 @@ Result<CorpusReport> run_corpus(const CorpusRequest& request, const Cache& cache
     std::mutex progress_mutex;
     auto worker = [&] {
         TargetRenderer renderer(request.vulkan);
+        SwiftShaderJudge swiftshader(request.vulkan);
         for (size_t i = next++; i < mine.size(); i = next++) {
-            report.rows[i] = run_one(request, mine[i], cache, renderer);
+            report.rows[i] = run_one(request, mine[i], cache, renderer, swiftshader);
             std::lock_guard<std::mutex> lock(progress_mutex);
             ++done;
             if (progress) progress(done, mine.size(), report.rows[i]);
