@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <bit>
+#include <cmath>
 #include <optional>
 #include <fstream>
 #include <set>
@@ -768,6 +769,42 @@ TEST_CASE("R32G32B32A32, A2B10G10R10, R16 and R16G16 framebuffers hold what Retr
         const float* top = filtered.front().rgba.data() + (2 * i) * 4;
         CHECK(std::abs(top[1] - held[i].green) < 0.003f);
         CHECK(std::abs(top[2] - held[i].blue) < (i < 2 ? 0.26f : 0.02f));  // rgba32f: maybe half floats
+    }
+}
+
+TEST_CASE("an sRGB framebuffer holds 8-bit sRGB codes on every target: Godot's half-float viewports rounded to them",
+          "[retroarch][import][format]") {
+    // Dark values, where an sRGB code is far from the next: the first pass stores 0..0.02 across
+    // the width, the second shows 45x what it reads back, a staircase of codes.
+    test::TempDir dir;
+    test::write_file(dir / "shaders/dark.slang", kStockHead + "#pragma format R8G8B8A8_SRGB\n"
+                                                              "void main() { FragColor = vec4(vec3(vTexCoord.x * 0.02), 1.0) + 0.0 * texture(Source, vTexCoord); }\n");
+    test::write_file(dir / "shaders/show.slang", kStockHead + "void main() { FragColor = vec4(texture(Source, vTexCoord).rgb * 45.0, 1.0); }\n");
+    const std::string slangp = "shaders = 2\n"
+                               "shader0 = ../shaders/dark.slang\nfilter_linear0 = false\nscale_type0 = absolute\nscale_x0 = 64\nscale_y0 = 4\n"
+                               "shader1 = ../shaders/show.slang\nfilter_linear1 = false\nscale_type1 = viewport\n";
+    const std::shared_ptr<TemplateLibrary> lib = import_text_or_fail(dir, "dark", slangp, 2);
+    const Preset& preset = *lib->find_preset("dark");
+    const Image input = Image::make(64, 4, {0.5f, 0.5f, 0.5f, 1.0f});
+    TargetRenderer renderer;
+    auto srgb_code = [](double linear) {
+        return std::round((linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055) * 255.0);
+    };
+    auto from_code = [](double code) { return code / 255.0 <= 0.04045 ? code / 255.0 / 12.92 : std::pow((code / 255.0 + 0.055) / 1.055, 2.4); };
+    // Godot rounds to the exact sRGB code (IEC 61966-2-1): its values are the staircase's, within
+    // its 8-bit screen. The drivers' own sRGB formats are within a code of it: lavapipe's encoding
+    // is an approximation (measured: 3 of these 64 columns a code off, 13.54 stored as 13, 30.42 as
+    // 31, 37.46 as 38), and Dawn's GL ES backend decodes these codes 1.6 % low.
+    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
+        INFO(target_info(target).name);
+        const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
+        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 64, 4, {1}).front();
+        for (int x = 0; x < 64; ++x) {
+            INFO("column " << x);
+            const double code = srgb_code((x + 0.5) / 64.0 * 0.02);
+            const double code_step = 45.0 * (from_code(code + 1.0) - from_code(code));  // 0.014 to 0.041 here
+            CHECK(image.rgba[size_t(x) * 4] == Approx(45.0 * from_code(code)).margin(godot ? 0.003 : code_step * 1.05));
+        }
     }
 }
 

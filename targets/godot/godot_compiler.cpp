@@ -393,9 +393,12 @@ std::string GodotCompiler::with_format_stored(std::string text) const {
     const size_t body = text.find(entry);
     const size_t close = body == std::string::npos ? body : text.find("\n}", body);
     if (close == std::string::npos) throw spirv_cross::CompilerError("no end of fragment() to store the pass's format at");
-    if (text.substr(body, close - body).find("return;") != std::string::npos)
+    if (text.substr(body, close - body).find("return;") != std::string::npos) {
+        // sRGB's rounding only moves values by less than a code: such a pass keeps its half floats.
+        if (variant_.pass->format == PixelFormat::Rgba8Srgb) return text;
         throw spirv_cross::CompilerError(fmt::format("a fragment stage that returns early cannot store its {} output in Godot",
                                                      pixel_format_name(variant_.pass->format)));
+    }
     text.insert(close + 1, "    " + line + "\n");
     return text;
 }

@@ -71,8 +71,6 @@ std::vector<std::string> scene_notes(const SceneTargetInput& in, int version) {
     for (size_t i = 0; i < in.passes.size(); ++i) {
         const Pass& pass = *in.passes[i]->pass;
         const bool display = i + 1 == in.passes.size();
-        if (pass.format == PixelFormat::Rgba8Srgb)
-            notes.push_back("pass " + pass.alias + " stores sRGB 8-bit; Godot viewports cannot: it is stored as float");
         if (pass.format == PixelFormat::Rgba32F && !display)
             notes.push_back("pass " + pass.alias + " stores 32-bit floats; Godot viewports cannot: it is stored as half float");
         if (!format_reduction(pass.format).empty() && !display)

@@ -146,8 +146,15 @@ std::string format_reduction(PixelFormat format) {
         case PixelFormat::Rgb10A2:
             return "COLOR = vec4(round(clamp(COLOR.rgb, 0.0, 1.0) * 1023.0) / 1023.0, round(clamp(COLOR.a, 0.0, 1.0) * 3.0) / 3.0);"
                    "  // stored as rgb10a2";
-        case PixelFormat::Rgba8:
         case PixelFormat::Rgba8Srgb:
+            // The sRGB encoding (IEC 61966-2-1) to 8-bit codes and back to linear: what a read of an
+            // sRGB 8-bit framebuffer gives (pow of 0 to a positive power is 0).
+            return "{ vec3 crt_linear = clamp(COLOR.rgb, 0.0, 1.0); "
+                   "vec3 crt_code = round(mix(crt_linear * 12.92, 1.055 * pow(crt_linear, vec3(1.0 / 2.4)) - 0.055, "
+                   "step(vec3(0.0031308), crt_linear)) * 255.0) / 255.0; "
+                   "COLOR = vec4(mix(crt_code / 12.92, pow((crt_code + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), crt_code)), "
+                   "round(clamp(COLOR.a, 0.0, 1.0) * 255.0) / 255.0); }  // stored as rgba8_srgb";
+        case PixelFormat::Rgba8:
         case PixelFormat::Rgba16F:
         case PixelFormat::Rgba32F: break;
     }

@@ -30,7 +30,8 @@ Result<TargetOutput> generate(const TargetInput& input, int godot_version);
 std::vector<std::string> material_param_lines(const Variant& variant, int godot_version);
 
 // Godot's pass viewports are 8-bit or half-float RGBA: the statement that ends the fragment() of a
-// pass stored in `format` where that stores less (r16f, rg16f, rgb10a2), reducing COLOR to what the
+// pass stored in `format` where that stores less (r16f, rg16f, rgb10a2; rgba8_srgb, held as half
+// floats, rounded to the linear value of its nearest sRGB 8-bit code), reducing COLOR to what the
 // format holds, so readers see what RetroArch's see; "" where Godot stores the format as it is
 // (rgba32f as half floats).
 std::string format_reduction(PixelFormat format);
