@@ -38,7 +38,7 @@ MUTATIONS = [
      "wgsl", "super-win,stage-color-grade-lut32,stage-crt-screen-perspective", "min printed as max"),
     ("targets/godot/godot_compiler.cpp", 'constexpr const char* kTau = "6.28318530717959";',
      'constexpr const char* kTau = "6.2832";', "godot3", "crt-pulse", "the TIME-wrap rounding uses a short 2*pi"),
-    ("targets/godot/godot_compiler.cpp", 'return screen_mode() ? "(1.0 / SCREEN_PIXEL_SIZE)" : "round(', 'return screen_mode() ? "(0.5 / SCREEN_PIXEL_SIZE)" : "round(',
+    ("targets/godot/godot_compiler.cpp", 'return screen_mode() ? "round(1.0 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(', 'return screen_mode() ? "round(0.5 / SCREEN_PIXEL_SIZE)" : "round(1.0 / abs(',
      "godot3", "classic,crt-shadow-mask,webgpu-post", "screen mode's output size halved"),
     ("targets/godot/godot_compiler.cpp", '"round(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))"',
      '"floor(1.0 / abs(vec2(dFdx(UV.x), dFdy(UV.y))))"', "godot4", "classic,crt-shadow-mask,webgpu-post",
