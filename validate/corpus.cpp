@@ -84,30 +84,38 @@ std::string folder_of(const std::string& preset) {
 // reported.
 bool draws_on_swiftshader(TargetId t) { return t == TargetId::Godot4; }
 
-// Vulkan on SwiftShader, for those judgements: its device name ("" where it is not installed or
-// the sweep already draws on it) and a renderer made at its first use.
-struct SwiftShaderJudge {
-    std::string device;
-    std::unique_ptr<TargetRenderer> renderer;
-
-    explicit SwiftShaderJudge(const EngineOptions& sweep) {
-        std::string chosen = sweep.device;
+// Vulkan on SwiftShader, for those judgements: found and started at its first use (a sweep
+// whose every target agrees never lists the devices); none where it is not installed or the
+// sweep already draws on it.
+class SwiftShaderJudge {
+public:
+    explicit SwiftShaderJudge(const EngineOptions& sweep) : sweep_(sweep) {}
+    bool available() {
+        if (looked_) return !device_.empty();
+        looked_ = true;
+        std::string chosen = sweep_.device;
         std::transform(chosen.begin(), chosen.end(), chosen.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (chosen.find("swiftshader") != std::string::npos) return;
-        auto devices = list_vulkan_devices();
-        if (!devices.ok()) return;
-        for (const DeviceInfo& d : devices.value())
-            if (d.name.find("SwiftShader") != std::string::npos) device = d.name;
+        if (chosen.find("swiftshader") != std::string::npos) return false;
+        if (auto devices = list_vulkan_devices(); devices.ok())
+            for (const DeviceInfo& d : devices.value())
+                if (d.name.find("SwiftShader") != std::string::npos) device_ = d.name;
+        return !device_.empty();
     }
-    Result<Image> render(SceneRenderRequest scene, const std::vector<TargetOutput>& spirv_outputs, bool validation) {
-        if (!renderer) renderer = std::make_unique<TargetRenderer>(EngineOptions{device, validation});
+    Result<Image> render(SceneRenderRequest scene, const std::vector<TargetOutput>& spirv_outputs) {
+        if (!renderer_) renderer_ = std::make_unique<TargetRenderer>(EngineOptions{device_, sweep_.validation});
         scene.target = TargetId::Spirv;
         scene.outputs = &spirv_outputs;
-        auto images = renderer->render_scene(scene);
+        auto images = renderer_->render_scene(scene);
         if (!images.ok()) return images.error();
         if (images.value().empty()) return make_error("no image", {}, 0, "corpus");
         return std::move(images.value().front());
     }
+
+private:
+    EngineOptions sweep_;
+    bool looked_ = false;
+    std::string device_;
+    std::unique_ptr<TargetRenderer> renderer_;
 };
 
 std::string decibels(double psnr) { return fmt::format("{:.2f} dB", psnr); }
@@ -268,8 +276,8 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
         if (r.status == "agrees") continue;
         r.reason = "PSNR " + std::to_string(r.psnr).substr(0, 5) + " dB against Vulkan (worst pixel at " +
                    std::to_string(metrics.value().worst_x) + "," + std::to_string(metrics.value().worst_y) + ")";
-        if (!draws_on_swiftshader(t) || swiftshader.device.empty()) continue;
-        if (!vulkan_swiftshader) vulkan_swiftshader = swiftshader.render(scene, spirv_outputs, request.vulkan.validation);
+        if (!draws_on_swiftshader(t) || !swiftshader.available()) continue;
+        if (!vulkan_swiftshader) vulkan_swiftshader = swiftshader.render(scene, spirv_outputs);
         if (!vulkan_swiftshader->ok()) {
             r.reason += "; Vulkan on SwiftShader, its driver, did not render: " + one_line(vulkan_swiftshader->error());
             continue;
