@@ -35,23 +35,17 @@ struct SecondDriver {
 // one and it is not the first driver) or a device name; its label is the name's first word, lower case.
 Result<std::optional<SecondDriver>> second_driver(const std::string& choice, const std::string& first) {
     if (choice == "none") return std::optional<SecondDriver>{};
-    auto devices = list_vulkan_devices();
-    if (!devices.ok()) return choice == "auto" ? Result<std::optional<SecondDriver>>(std::optional<SecondDriver>{}) : devices.error();
-    auto lower = [](std::string t) {
-        for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return t;
-    };
-    const std::string wanted = lower(choice == "auto" ? "SwiftShader" : choice);
-    for (const DeviceInfo& d : devices.value()) {
-        if (lower(d.name).find(wanted) == std::string::npos) continue;
-        if (!first.empty() && lower(d.name).find(lower(first)) != std::string::npos) continue;  // that is the first driver
-        std::string label = lower(d.name.substr(0, d.name.find(' ')));
-        label.erase(std::remove_if(label.begin(), label.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }),
-                    label.end());
-        return std::optional<SecondDriver>{SecondDriver{d.name, label}};
+    auto found = vulkan_device_named(choice == "auto" ? "SwiftShader" : choice, first);
+    if (!found.ok()) return choice == "auto" ? Result<std::optional<SecondDriver>>(std::optional<SecondDriver>{}) : found.error();
+    if (found.value().empty()) {
+        if (choice == "auto") return std::optional<SecondDriver>{};
+        return make_error("no Vulkan device matches '" + choice + "' (see 'crtforge devices')", {}, 0, "--second-device");
     }
-    if (choice == "auto") return std::optional<SecondDriver>{};
-    return make_error("no Vulkan device matches '" + choice + "' (see 'crtforge devices')", {}, 0, "--second-device");
+    const std::string& name = found.value();
+    std::string label;
+    for (char c : name.substr(0, name.find(' ')))
+        if (std::isalnum(static_cast<unsigned char>(c))) label += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return std::optional<SecondDriver>{SecondDriver{name, label}};
 }
 
 // What the arguments ask for that this machine cannot give is a usage error (exit 2) before

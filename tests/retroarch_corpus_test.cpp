@@ -194,12 +194,14 @@ std::string trail_pass() {
 
 // Runs `presets` of the library in `dir` on Vulkan and `target` (a 32x24 source on a 64x48 or the given
 // display, frame `frame`) and checks every pass compiles and every preset agrees with Vulkan.
-void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& presets, TargetId target, int frame = 0,
-                     int display_width = 64, int display_height = 48) {
+// `presets` of the library in `dir` swept through `targets` (a 32 x 24 source, frame `frame`, on a
+// `display_width` x `display_height` display); the test stops unless the sweep runs.
+CorpusReport sweep_or_fail(const test::TempDir& dir, const std::vector<std::string>& presets, const std::vector<TargetId>& targets,
+                           int frame = 0, int display_width = 64, int display_height = 48) {
     CorpusRequest request;
     request.root = dir.path();
     request.presets = presets;
-    request.targets = {TargetId::Spirv, target};
+    request.targets = targets;
     request.source_width = 32;
     request.source_height = 24;
     request.display_width = display_width;
@@ -208,9 +210,15 @@ void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& p
     auto run = run_corpus(request, Cache());
     INFO((run.ok() ? std::string() : run.error().str()));
     REQUIRE(run.ok());
-    const std::string name = target_info(target).name;
     REQUIRE(run.value().rows.size() == presets.size());
-    for (const CorpusRow& row : run.value().rows) {
+    return std::move(run).value();
+}
+
+void check_all_agree(const test::TempDir& dir, const std::vector<std::string>& presets, TargetId target, int frame = 0,
+                     int display_width = 64, int display_height = 48) {
+    const CorpusReport report = sweep_or_fail(dir, presets, {TargetId::Spirv, target}, frame, display_width, display_height);
+    const std::string name = target_info(target).name;
+    for (const CorpusRow& row : report.rows) {
         INFO(row.preset << ": " << row.import_error << row.targets.at(name).reason);
         CHECK(row.targets.at("spirv").status == "agrees");
         CHECK(row.targets.at(name).passes_compiled == row.passes);
@@ -509,21 +517,10 @@ TEST_CASE("Godot 4, which draws on SwiftShader, is judged again against Vulkan o
                                           "    FragColor = vec4(sum, sum, sum, 1.0);\n"
                                           "}\n"}));
     test::write_file(dir / "steps.slangp", "shaders = 1\nshader0 = steps.slang\n");
-    CorpusRequest request;
-    request.root = dir.path();
-    request.presets = {"steps.slangp"};
-    request.targets = {TargetId::Spirv, TargetId::Godot4};
-    request.source_width = 32;
-    request.source_height = 24;
-    request.display_width = 64;
-    request.display_height = 48;
-    auto run = run_corpus(request, Cache());
-    INFO((run.ok() ? std::string() : run.error().str()));
-    REQUIRE(run.ok());
-    REQUIRE(run.value().rows.size() == 1);
-    const CorpusTargetResult& godot4 = run.value().rows[0].targets.at("godot4");
+    const CorpusReport report = sweep_or_fail(dir, {"steps.slangp"}, {TargetId::Spirv, TargetId::Godot4});
+    const CorpusTargetResult& godot4 = report.rows[0].targets.at("godot4");
     INFO(godot4.reason);
-    CHECK(run.value().rows[0].targets.at("spirv").status == "agrees");
+    CHECK(report.rows[0].targets.at("spirv").status == "agrees");
     CHECK(godot4.status == "agrees");
     CHECK(godot4.psnr >= 40.0);
     CHECK_THAT(godot4.reason, Catch::Contains("agrees with Vulkan on SwiftShader, the driver it draws on") &&

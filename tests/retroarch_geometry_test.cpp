@@ -23,20 +23,14 @@ namespace {
 // `expected(x, y)`.
 void check_pixels_8x4(const TemplateLibrary& lib, const std::string& name, std::initializer_list<TargetId> targets,
                       const std::function<std::array<double, 3>(int x, int y)>& expected) {
-    const Preset& preset = *lib.find_preset(name);
-    const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});
-    TargetRenderer renderer;
-    for (TargetId target : targets) {
-        INFO(target_info(target).name);
-        const Image image = render_imported_or_fail(renderer, lib, preset, target, input, 8, 4, {1}).front();
+    render_on_each(lib, name, targets, {8, 4}, {8, 4}, [&](TargetId, const Image& image) {
         for (int y = 0; y < 4; ++y)
             for (int x = 0; x < 8; ++x) {
                 INFO("pixel " << x << "," << y);
-                const float* p = image.rgba.data() + (size_t(y) * 8 + size_t(x)) * 4;
                 const std::array<double, 3> want = expected(x, y);
-                for (int c = 0; c < 3; ++c) CHECK(p[c] == Approx(want[c]).margin(0.002));
+                for (int c = 0; c < 3; ++c) CHECK(pixel_at(image, x, y)[c] == Approx(want[c]).margin(0.002));
             }
-    }
+    });
 }
 
 }  // namespace
@@ -82,21 +76,20 @@ TEST_CASE("a pass 1 pixel wide or tall renders in both Godots as on Vulkan: draw
     TargetRenderer renderer;
     const Image vulkan = render_imported_or_fail(renderer, *lib, preset, TargetId::Spirv, input, 8, 4, {1}).front();
     // What Vulkan draws (each row's centre v = (row + 0.5) / 4, Column's rows at y = (r + 0.5) / 4).
-    auto at = [](const Image& image, int x, int y) { return image.rgba.data() + (size_t(y) * image.width + size_t(x)) * 4; };
     for (int row = 0; row < 4; ++row) {
         INFO("row " << row);
         const float y = (row + 0.5f) / 4.0f;
-        CHECK(at(vulkan, 0, row)[0] == Approx(0.5).margin(0.002));     // Column's x: its one pixel's centre
-        CHECK(at(vulkan, 0, row)[1] == Approx(y).margin(0.002));
-        CHECK(at(vulkan, 0, row)[2] == Approx(0.125).margin(0.002));   // gl_FragCoord.x 0.5
-        CHECK(at(vulkan, 4, row)[0] == Approx(0.6).margin(0.002));     // rows 1 and 2 of Column, linearly
-        CHECK(at(vulkan, 4, row)[1] == Approx(0.25).margin(0.002));    // textureSize: 1 wide
-        CHECK(at(vulkan, 4, row)[2] == Approx(0.5).margin(0.002));     // and 4 tall
-        CHECK(at(vulkan, 6, row)[0] == Approx(0.25).margin(0.002));    // Dot's SourceSize.x: 1
-        CHECK(at(vulkan, 6, row)[1] == Approx(0.25).margin(0.002));    // show's textureSize(Column).x: 1
-        CHECK(at(vulkan, 6, row)[2] == Approx(0.25).margin(0.002));    // show's SourceSize.y (Dot): 1
+        CHECK(pixel_at(vulkan, 0, row)[0] == Approx(0.5).margin(0.002));     // Column's x: its one pixel's centre
+        CHECK(pixel_at(vulkan, 0, row)[1] == Approx(y).margin(0.002));
+        CHECK(pixel_at(vulkan, 0, row)[2] == Approx(0.125).margin(0.002));   // gl_FragCoord.x 0.5
+        CHECK(pixel_at(vulkan, 4, row)[0] == Approx(0.6).margin(0.002));     // rows 1 and 2 of Column, linearly
+        CHECK(pixel_at(vulkan, 4, row)[1] == Approx(0.25).margin(0.002));    // textureSize: 1 wide
+        CHECK(pixel_at(vulkan, 4, row)[2] == Approx(0.5).margin(0.002));     // and 4 tall
+        CHECK(pixel_at(vulkan, 6, row)[0] == Approx(0.25).margin(0.002));    // Dot's SourceSize.x: 1
+        CHECK(pixel_at(vulkan, 6, row)[1] == Approx(0.25).margin(0.002));    // show's textureSize(Column).x: 1
+        CHECK(pixel_at(vulkan, 6, row)[2] == Approx(0.25).margin(0.002));    // show's SourceSize.y (Dot): 1
         // u = 0.1 reads 0.6 of the texel and 0.4 of the (black) border: the fade of a texture 1 wide.
-        for (int c = 0; c < 3; ++c) CHECK(at(vulkan, 2, row)[c] == Approx(at(vulkan, 0, row)[c] * 0.6f).margin(0.003));
+        for (int c = 0; c < 3; ++c) CHECK(pixel_at(vulkan, 2, row)[c] == Approx(pixel_at(vulkan, 0, row)[c] * 0.6f).margin(0.003));
     }
     for (TargetId target : {TargetId::Godot4, TargetId::Godot3}) {
         INFO(target_info(target).name);
@@ -105,7 +98,7 @@ TEST_CASE("a pass 1 pixel wide or tall renders in both Godots as on Vulkan: draw
             for (int x = 0; x < 8; ++x)
                 for (int c = 0; c < 3; ++c) {
                     INFO("pixel " << x << "," << y << " channel " << c);
-                    CHECK(at(godot, x, y)[c] == Approx(at(vulkan, x, y)[c]).margin(0.003));  // Godot's screen: 8 bits
+                    CHECK(pixel_at(godot, x, y)[c] == Approx(pixel_at(vulkan, x, y)[c]).margin(0.003));  // Godot's screen: 8 bits
                 }
     }
     // Where the two pixels could differ, the pass is refused, saying why: derivatives, which are
@@ -149,15 +142,14 @@ TEST_CASE("a pass that moves its quad draws it there on every target: where its 
     const Image input = Image::make(8, 4, {0.5f, 0.5f, 0.5f, 1.0f});  // the display's aspect: no letterbox
     TargetRenderer renderer;
     const Image vulkan = render_imported_or_fail(renderer, *lib, preset, TargetId::Spirv, input, 8, 4, {1}).front();
-    auto at = [](const Image& image, int x, int y) { return image.rgba.data() + (size_t(y) * image.width + size_t(x)) * 4; };
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 8; ++x) {
             INFO("pixel " << x << "," << y);
             const int row = 3 - y;  // Middle's row, the last pass having turned the picture over
             const bool inside = x >= 2 && x < 6;
-            CHECK(at(vulkan, x, y)[0] == Approx(inside ? 1.0 - (row + 0.5) / 4.0 : 0.0).margin(0.002));  // v from the moved corners
-            CHECK(at(vulkan, x, y)[1] == Approx(inside ? (x + 0.5) / 8.0 : 0.0).margin(0.002));          // gl_FragCoord: the framebuffer's
-            CHECK(at(vulkan, x, y)[2] == Approx(inside ? (row + 0.5) / 4.0 : 0.0).margin(0.002));
+            CHECK(pixel_at(vulkan, x, y)[0] == Approx(inside ? 1.0 - (row + 0.5) / 4.0 : 0.0).margin(0.002));  // v from the moved corners
+            CHECK(pixel_at(vulkan, x, y)[1] == Approx(inside ? (x + 0.5) / 8.0 : 0.0).margin(0.002));          // gl_FragCoord: the framebuffer's
+            CHECK(pixel_at(vulkan, x, y)[2] == Approx(inside ? (row + 0.5) / 4.0 : 0.0).margin(0.002));
         }
     // Every other target draws the import's triangle (the pixels past the quad dropped) or, in
     // Godot, a node's quad moved to the corners.
@@ -169,7 +161,7 @@ TEST_CASE("a pass that moves its quad draws it there on every target: where its 
             for (int x = 0; x < 8; ++x)
                 for (int c = 0; c < 3; ++c) {
                     INFO("pixel " << x << "," << y << " channel " << c);
-                    CHECK(at(image, x, y)[c] == Approx(at(vulkan, x, y)[c]).margin(0.003));  // Godot's screen: 8 bits
+                    CHECK(pixel_at(image, x, y)[c] == Approx(pixel_at(vulkan, x, y)[c]).margin(0.003));  // Godot's screen: 8 bits
                 }
     }
 }
@@ -186,19 +178,14 @@ TEST_CASE("SourceSize is whole pixels in both Godots' stages: yo6's round((233 -
                           "    float whole = params.SourceSize.x == 320.0 && params.SourceSize.y == 240.0 ? 1.0 : 0.0;\n"
                           "    FragColor = vec4(-vRow / 8.0, whole, round((233.0 - params.SourceSize.y) / 2.0) / -8.0, 1.0);\n"
                           "}\n"});
-    const Preset& preset = *lib->find_preset("size");
-    const Image input = Image::make(320, 240, {0.5f, 0.5f, 0.5f, 1.0f});
-    TargetRenderer renderer;
-    for (TargetId target : {TargetId::Spirv, TargetId::Godot4, TargetId::Godot3}) {
-        INFO(target_info(target).name);
-        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 8, 6, {1}).front();
+    render_on_each(*lib, "size", {TargetId::Spirv, TargetId::Godot4, TargetId::Godot3}, {320, 240}, {8, 6}, [](TargetId, const Image& image) {
         for (size_t i = 0; i < image.rgba.size(); i += 4) {
             INFO("pixel " << i / 4);
             CHECK(image.rgba[i] == Approx(0.5).margin(0.002));      // the vertex stage's -4
             CHECK(image.rgba[i + 1] == Approx(1.0).margin(0.002));  // 320 x 240 exactly
             CHECK(image.rgba[i + 2] == Approx(0.5).margin(0.002));  // the fragment stage's -4
         }
-    }
+    });
 }
 
 TEST_CASE("gl_FragCoord counts rows from the top on GL ES and WebGL 2 in a pass that reads nothing else",

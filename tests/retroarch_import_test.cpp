@@ -784,9 +784,6 @@ TEST_CASE("an sRGB framebuffer holds 8-bit sRGB codes on every target: Godot's h
                                "shader0 = ../shaders/dark.slang\nfilter_linear0 = false\nscale_type0 = absolute\nscale_x0 = 64\nscale_y0 = 4\n"
                                "shader1 = ../shaders/show.slang\nfilter_linear1 = false\nscale_type1 = viewport\n";
     const std::shared_ptr<TemplateLibrary> lib = import_text_or_fail(dir, "dark", slangp, 2);
-    const Preset& preset = *lib->find_preset("dark");
-    const Image input = Image::make(64, 4, {0.5f, 0.5f, 0.5f, 1.0f});
-    TargetRenderer renderer;
     auto srgb_code = [](double linear) {
         return std::round((linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055) * 255.0);
     };
@@ -795,17 +792,16 @@ TEST_CASE("an sRGB framebuffer holds 8-bit sRGB codes on every target: Godot's h
     // its 8-bit screen. The drivers' own sRGB formats are within a code of it: lavapipe's encoding
     // is an approximation (measured: 3 of these 64 columns a code off, 13.54 stored as 13, 30.42 as
     // 31, 37.46 as 38), and Dawn's GL ES backend decodes these codes 1.6 % low.
-    for (TargetId target : {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3}) {
-        INFO(target_info(target).name);
-        const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
-        const Image image = render_imported_or_fail(renderer, *lib, preset, target, input, 64, 4, {1}).front();
-        for (int x = 0; x < 64; ++x) {
-            INFO("column " << x);
-            const double code = srgb_code((x + 0.5) / 64.0 * 0.02);
-            const double code_step = 45.0 * (from_code(code + 1.0) - from_code(code));  // 0.014 to 0.041 here
-            CHECK(image.rgba[size_t(x) * 4] == Approx(45.0 * from_code(code)).margin(godot ? 0.003 : code_step * 1.05));
-        }
-    }
+    render_on_each(*lib, "dark", {TargetId::Spirv, TargetId::Glsl330, TargetId::Hlsl50, TargetId::Wgsl, TargetId::Godot4, TargetId::Godot3},
+                   {64, 4}, {64, 4}, [&](TargetId target, const Image& image) {
+                       const bool godot = target == TargetId::Godot4 || target == TargetId::Godot3;
+                       for (int x = 0; x < 64; ++x) {
+                           INFO("column " << x);
+                           const double code = srgb_code((x + 0.5) / 64.0 * 0.02);
+                           const double code_step = 45.0 * (from_code(code + 1.0) - from_code(code));  // 0.014 to 0.041 here
+                           CHECK(image.rgba[size_t(x) * 4] == Approx(45.0 * from_code(code)).margin(godot ? 0.003 : code_step * 1.05));
+                       }
+                   });
 }
 
 TEST_CASE("baked parameters keep RetroArch's 32-bit arithmetic: a float loop bounded by a division runs as often as with them live",

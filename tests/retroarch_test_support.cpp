@@ -74,4 +74,16 @@ std::vector<Image> render_imported_or_fail(TargetRenderer& renderer, const Templ
     return std::move(images).value();
 }
 
+void render_on_each(const TemplateLibrary& lib, const std::string& name, std::initializer_list<TargetId> targets, PixelSize source,
+                    PixelSize display, const std::function<void(TargetId, const Image&)>& check) {
+    const Preset* preset = lib.find_preset(name);
+    REQUIRE(preset);
+    const Image input = Image::make(source.width, source.height, {0.5f, 0.5f, 0.5f, 1.0f});
+    TargetRenderer renderer;
+    for (TargetId target : targets) {
+        INFO(target_info(target).name);
+        check(target, render_imported_or_fail(renderer, lib, *preset, target, input, display.width, display.height, {1}).front());
+    }
+}
+
 }  // namespace crtforge::test::retroarch

@@ -2,11 +2,14 @@
 // imported preset's display rendered through a target's consumer.
 #pragma once
 
+#include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "crtforge/runtime/image.hpp"
+#include "crtforge/scene.hpp"
 #include "crtforge/template_library.hpp"
 #include "crtforge/validate/target_render.hpp"
 #include "tests/test_support.hpp"
@@ -33,5 +36,13 @@ Result<std::vector<Image>> render_imported(TargetRenderer& renderer, const Templ
 // render_imported's frames; the test fails, naming the error, unless it renders.
 std::vector<Image> render_imported_or_fail(TargetRenderer& renderer, const TemplateLibrary& lib, const Preset& preset, TargetId target,
                                            const Image& input, int width, int height, std::vector<int> frames);
+
+// `name` of `lib` drawn by each of `targets` at `display` from a flat grey picture of `source`
+// (frame 1); `check` sees each display, its target named in the test's messages.
+void render_on_each(const TemplateLibrary& lib, const std::string& name, std::initializer_list<TargetId> targets, PixelSize source,
+                    PixelSize display, const std::function<void(TargetId, const Image&)>& check);
+
+// The four channels of pixel (x, y).
+inline const float* pixel_at(const Image& image, int x, int y) { return image.rgba.data() + (size_t(y) * image.width + size_t(x)) * 4; }
 
 }  // namespace crtforge::test::retroarch

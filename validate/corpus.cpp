@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
@@ -93,12 +92,7 @@ public:
     bool available() {
         if (looked_) return !device_.empty();
         looked_ = true;
-        std::string chosen = sweep_.device;
-        std::transform(chosen.begin(), chosen.end(), chosen.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (chosen.find("swiftshader") != std::string::npos) return false;
-        if (auto devices = list_vulkan_devices(); devices.ok())
-            for (const DeviceInfo& d : devices.value())
-                if (d.name.find("SwiftShader") != std::string::npos) device_ = d.name;
+        if (auto found = vulkan_device_named("SwiftShader", sweep_.device); found.ok()) device_ = found.value();
         return !device_.empty();
     }
     Result<Image> render(SceneRenderRequest scene, const std::vector<TargetOutput>& spirv_outputs) {

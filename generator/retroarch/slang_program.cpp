@@ -356,16 +356,27 @@ bool moves_quad(const Tokens& t, const std::string& position) {
     return false;
 }
 
+// The product of the `[N]` dimensions starting at `at` (one not a literal counts 1) and the index
+// of the token after them.
+std::pair<int, size_t> array_dimensions(const Tokens& t, size_t at) {
+    int count = 1;
+    while (at < t.size() && t[at].text == "[") {
+        const size_t n = next_significant(t, at);
+        if (n < t.size() && t[n].kind == Kind::Number && t[n].text.size() < 4) count *= std::stoi(t[n].text);
+        at = next_significant(t, next_significant(t, n));
+    }
+    return {count, at};
+}
+
 // How many locations a declaration's type takes: a matrix one per column (a double one two for
 // a column of 3 or 4), a dvec3/dvec4 two, a struct its members', anything else one.
 int locations_of_type(const Tokens& t, const std::string& type, int depth = 0) {
-    auto dims = [&](size_t at) { return type.size() > at ? type.substr(at) : std::string(); };
-    const bool dbl = type.rfind("dmat", 0) == 0 || type.rfind("dvec", 0) == 0;
-    const std::string tail = type.rfind("dmat", 0) == 0 ? dims(4) : type.rfind("mat", 0) == 0 ? dims(3) : std::string();
+    const bool dmat = type.rfind("dmat", 0) == 0;
+    const std::string tail = dmat || type.rfind("mat", 0) == 0 ? type.substr(dmat ? 4 : 3) : std::string();  // "3", "4x3"
     if (!tail.empty() && std::isdigit(static_cast<unsigned char>(tail[0]))) {
         const int columns = tail[0] - '0';
         const int rows = tail.size() == 3 && tail[1] == 'x' ? tail[2] - '0' : columns;
-        return columns * (dbl && rows > 2 ? 2 : 1);
+        return columns * (dmat && rows > 2 ? 2 : 1);
     }
     if (type == "dvec3" || type == "dvec4") return 2;
     if (depth > 8) return 1;
@@ -378,13 +389,7 @@ int locations_of_type(const Tokens& t, const std::string& type, int depth = 0) {
         int total = 0;
         for (size_t k = next_significant(t, open); k < t.size() && t[k].text != "}";) {
             const size_t member = next_significant(t, k);
-            int count = 1;
-            size_t after = member < t.size() ? next_significant(t, member) : t.size();
-            while (after < t.size() && t[after].text == "[") {
-                const size_t n = next_significant(t, after);
-                if (n < t.size() && t[n].kind == Kind::Number && t[n].text.size() < 4) count *= std::stoi(t[n].text);
-                after = next_significant(t, next_significant(t, n));
-            }
+            auto [count, after] = array_dimensions(t, member < t.size() ? next_significant(t, member) : t.size());
             total += locations_of_type(t, t[k].text, depth + 1) * count;
             while (after < t.size() && t[after].text != ";" && t[after].text != "}") after = next_significant(t, after);
             k = after < t.size() && t[after].text == ";" ? next_significant(t, after) : after;
@@ -410,14 +415,9 @@ int next_free_location(const Tokens& t) {
         while (depth > 0 && (k = next_significant(t, k)) < t.size()) depth += t[k].text == "(" ? 1 : t[k].text == ")" ? -1 : 0;
         k = next_significant(t, k);
         while (k < t.size() && qualifiers.count(t[k].text)) k = next_significant(t, k);
-        int span = k < t.size() && t[k].kind == Kind::Identifier ? locations_of_type(t, t[k].text) : 1;
-        size_t after = k < t.size() ? next_significant(t, next_significant(t, k)) : t.size();  // past the name
-        while (after < t.size() && t[after].text == "[") {
-            const size_t n = next_significant(t, after);
-            if (n < t.size() && t[n].kind == Kind::Number && t[n].text.size() < 4) span *= std::stoi(t[n].text);
-            after = next_significant(t, next_significant(t, n));
-        }
-        next = std::max(next, std::stoi(t[number].text) + std::max(span, 1));
+        const int type_span = k < t.size() && t[k].kind == Kind::Identifier ? locations_of_type(t, t[k].text) : 1;
+        const int count = array_dimensions(t, k < t.size() ? next_significant(t, next_significant(t, k)) : t.size()).first;  // past the name
+        next = std::max(next, std::stoi(t[number].text) + std::max(type_span * count, 1));
     }
     return next;
 }

@@ -416,4 +416,19 @@ Result<std::vector<DeviceInfo>> list_vulkan_devices() {
     }
 }
 
+Result<std::string> vulkan_device_named(const std::string& part, const std::string& besides) {
+    auto devices = list_vulkan_devices();
+    if (!devices.ok()) return devices.error();
+    auto lower = [](std::string t) {
+        for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return t;
+    };
+    for (const DeviceInfo& d : devices.value()) {
+        if (lower(d.name).find(lower(part)) == std::string::npos) continue;
+        if (!besides.empty() && lower(d.name).find(lower(besides)) != std::string::npos) continue;
+        return d.name;
+    }
+    return std::string();
+}
+
 }  // namespace crtforge

@@ -183,5 +183,8 @@ Result<std::unique_ptr<RenderEngine>> create_vulkan_engine(const EngineOptions& 
 
 // Every Vulkan device the loader can see, in enumeration order.
 Result<std::vector<DeviceInfo>> list_vulkan_devices();
+// The name of the first device whose name holds `part` and not `besides` (the device already in
+// use; "" for none), both case-insensitive; "" where none does.
+Result<std::string> vulkan_device_named(const std::string& part, const std::string& besides = "");
 
 }  // namespace crtforge
