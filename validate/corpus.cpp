@@ -77,12 +77,10 @@ std::string folder_of(const std::string& preset) {
 }
 
 // A consumer that draws on another driver than the sweep's Vulkan renders (Godot 4's web build:
-// WebGL 2 in Chromium, on SwiftShader) and differs from them is judged again against Vulkan on its
-// own driver: a shader's own knife-edge arithmetic (a sin-based hash, a loop past lavapipe's 65535
-// steps) comes out apart on two drivers, which is not the translation's doing. Both figures are
-// reported.
-bool draws_on_swiftshader(TargetId t) { return t == TargetId::Godot4; }
-
+// WebGL 2 in Chromium, on SwiftShader: Consumer::draws_on_swiftshader) and differs from them is
+// judged again against Vulkan on its own driver: a shader's own knife-edge arithmetic (a sin-based
+// hash, a loop past lavapipe's 65535 steps) comes out apart on two drivers, which is not the
+// translation's doing. Both figures are reported.
 // Vulkan on SwiftShader, for those judgements: found and started at its first use (a sweep
 // whose every target agrees never lists the devices); none where it is not installed or the
 // sweep already draws on it.
@@ -270,7 +268,7 @@ CorpusRow run_one(const CorpusRequest& request, const std::string& rel, const Ca
         if (r.status == "agrees") continue;
         r.reason = "PSNR " + std::to_string(r.psnr).substr(0, 5) + " dB against Vulkan (worst pixel at " +
                    std::to_string(metrics.value().worst_x) + "," + std::to_string(metrics.value().worst_y) + ")";
-        if (!draws_on_swiftshader(t) || !swiftshader.available()) continue;
+        if (!renderer.draws_on_swiftshader(t) || !swiftshader.available()) continue;
         if (!vulkan_swiftshader) vulkan_swiftshader = swiftshader.render(scene, spirv_outputs);
         if (!vulkan_swiftshader->ok()) {
             r.reason += "; Vulkan on SwiftShader, its driver, did not render: " + one_line(vulkan_swiftshader->error());

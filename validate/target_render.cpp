@@ -91,6 +91,11 @@ bool TargetRenderer::renders_on_vulkan(TargetId target) {
     return consumer.ok() && consumer.value()->renders_on_vulkan();
 }
 
+bool TargetRenderer::draws_on_swiftshader(TargetId target) {
+    auto consumer = consumer_of(target);
+    return consumer.ok() && consumer.value()->draws_on_swiftshader();
+}
+
 Status consume_output(TargetId target, const OutputFile& file) {
     TargetRenderer renderer;
     return renderer.compile(target, file);

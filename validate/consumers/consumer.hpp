@@ -80,6 +80,9 @@ public:
     virtual double filtered_8bit_step() const { return 0.0; }
     // Whether its renders run on the Vulkan engine (so a second Vulkan driver can run them too).
     virtual bool renders_on_vulkan() const { return false; }
+    // Whether its GPU is SwiftShader whatever the Vulkan device (Godot 4's web build: WebGL 2 in
+    // Chromium on SwiftShader), so that the same SPIR-V on Vulkan over SwiftShader is its peer.
+    virtual bool draws_on_swiftshader() const { return false; }
 };
 
 // The consumer registered under `key`, or nullptr.

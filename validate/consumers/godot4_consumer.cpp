@@ -44,6 +44,8 @@ public:
 
     // Godot 4's 2D viewports on WebGL 2 store 8 bits a channel.
     double output_quantum() const override { return 1.0 / 255.0; }
+    // Chromium runs its WebGL 2 on SwiftShader (tools/godot4-runner/driver.mjs: --use-angle=swiftshader).
+    bool draws_on_swiftshader() const override { return true; }
 
     std::string describe(ConsumerEngines&) const override {
         return shared_godot4_server().describe() + ": compiles every shader, renders the node shader and the exported scene";

@@ -128,6 +128,8 @@ public:
     double filtered_8bit_step(TargetId target, const Preset& preset);
     // Whether the target's consumer renders on the Vulkan engine.
     bool renders_on_vulkan(TargetId target);
+    // Whether the target's consumer draws on SwiftShader, whatever the Vulkan device.
+    bool draws_on_swiftshader(TargetId target);
 
 private:
     std::unique_ptr<ConsumerEngines> engines_;
